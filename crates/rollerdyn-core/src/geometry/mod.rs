@@ -1,0 +1,4 @@
+//! Shapes of the bodies: the roller (a cylinder with torus edges and spherical end
+//! faces) and its derived mass properties.
+
+pub mod roller;

@@ -1,0 +1,912 @@
+"""Tests of the configuration layer: units, schema, derived quantities, error messages."""
+
+from __future__ import annotations
+
+import copy
+import math
+import re
+import sys
+import tomllib
+import types
+from pathlib import Path
+
+import pytest
+from pydantic import BaseModel, ValidationError
+from rollerdyn.config import (
+    BearingConfig,
+    ConfigError,
+    TimeTable,
+    fit_roelands_z,
+    load_config,
+    parse_config,
+)
+from rollerdyn.units import Integer, Number, Quantity, QuantityError, parse_quantity
+
+ROOT = Path(__file__).resolve().parents[1]
+B1_TOML = ROOT / "examples" / "b1.toml"
+DOCS = ROOT / "docs" / "configuration.md"
+DEL = object()
+
+
+@pytest.fixture(scope="module")
+def b1() -> BearingConfig:
+    return load_config(B1_TOML)
+
+
+@pytest.fixture()
+def raw() -> dict:
+    with open(B1_TOML, "rb") as f:
+        return tomllib.load(f)
+
+
+def mutate(data: dict, path: str, value: object) -> dict:
+    data = copy.deepcopy(data)
+    *parents, last = path.split(".")
+    cur = data
+    for key in parents:
+        cur = cur.setdefault(key, {})
+    if value is DEL:
+        del cur[last]
+    else:
+        cur[last] = value
+    return data
+
+
+# --------------------------------------------------------------------------- B1 loads
+
+
+def test_b1_loads(b1: BearingConfig) -> None:
+    assert isinstance(b1, BearingConfig)
+    assert b1.name == "B1"
+    assert b1.geometry.roller_count == 17
+    assert b1.inner_ring.tilt == "locked"
+    assert b1.solver.detector == "semi-analytical"
+
+
+def test_si_conversions_exact(b1: BearingConfig) -> None:
+    g, op, lub = b1.geometry, b1.operating, b1.lubricant
+    assert g.inner_raceway_diameter == 0.02
+    assert g.outer_raceway_diameter == 0.029
+    assert g.diametral_clearance == 1e-05
+    assert g.roller.end_face_radius == 5.0
+    assert g.flange.opening_angle == math.radians(0.11)
+    assert op.inner_ring_speed == 52.35987755982988
+    assert op.temperature == 353.15
+    assert op.radial_load == 5000.0
+    assert lub.reference_viscosity is not None
+    assert lub.reference_viscosity.viscosity == 0.081
+    assert lub.reference_viscosity.temperature == 313.15
+    assert lub.vogel.k == 6.2e-05
+    assert lub.vogel.b == 1021.7
+    assert lub.vogel.c == 101.5517
+    assert lub.roelands.eta_p == 6.31e-05
+    assert lub.roelands.p_p == -196e6
+    assert lub.dicke is not None
+    assert lub.dicke.a1 == 32779180.0
+    assert lub.dicke.a2 == 298620.0
+    assert lub.dicke.b2 == 3.0115e-4
+    assert lub.density.slope == -0.6
+    assert lub.thermal_conductivity == 0.134
+    assert b1.materials.roller.youngs_modulus == 210e9
+    assert b1.surfaces.raceway.roughness == 1.6e-07
+    assert b1.surfaces.boundary_friction.smoothing_speed == 0.001
+    assert b1.solver.line_fit.load_max == 2e6
+
+
+def test_b1_derived(b1: BearingConfig) -> None:
+    g = b1.geometry
+    assert g.roller_diameter == pytest.approx(4.495e-3, rel=1e-12)
+    assert g.pitch_diameter == pytest.approx(24.5e-3, rel=1e-12)
+    assert g.circumferential_gap > 0.0
+    assert g.fill_ratio == pytest.approx(0.993, abs=5e-4)
+    assert g.inner_flange is g.flange and g.outer_flange is g.flange
+    assert g.roller.effective_length == pytest.approx(4e-3)
+    assert g.roller.slice_width == pytest.approx(2e-4)
+
+
+def test_b1_vogel_rescaled(b1: BearingConfig) -> None:
+    lub = b1.lubricant
+    assert lub.eta0(313.15) == pytest.approx(0.081, rel=1e-9)
+    unscaled = lub.vogel.eta0(313.15)
+    assert unscaled == pytest.approx(84.54e-3, rel=1e-3)
+    assert lub.vogel_scale == pytest.approx(81 / 84.54, rel=1e-3)
+    assert lub.vogel_k == pytest.approx(lub.vogel.k * 0.081 / unscaled, rel=1e-12)
+
+
+def test_b1_end_time_and_cage_speed(b1: BearingConfig) -> None:
+    assert b1.operating.end_time is None
+    assert b1.roller_set_speed * 60 / (2 * math.pi) == pytest.approx(204.1, abs=0.1)
+    assert b1.end_time == pytest.approx(1.288, abs=0.002)
+
+
+def test_b1_roelands_z_fit(b1: BearingConfig) -> None:
+    assert b1.roelands_z == pytest.approx(0.62, abs=0.01)
+    lub = b1.lubricant
+    assert lub.dicke is not None
+    z_ls = fit_roelands_z(
+        b1.base_viscosity, lub.roelands.eta_p, lub.roelands.p_p, lub.dicke, 353.15, "least_squares"
+    )
+    assert 0.4 < z_ls < 0.9
+
+
+def test_b1_inner_ring_inertia_default(b1: BearingConfig) -> None:
+    m, r = 0.1, 0.01
+    w = m / (7850 * math.pi * r * r)
+    assert b1.inner_ring_equivalent_length == pytest.approx(w)
+    assert b1.inner_ring_axial_inertia == pytest.approx(m * r * r / 2)
+    assert b1.inner_ring_transverse_inertia == pytest.approx(m * (3 * r * r + w * w) / 12)
+
+
+def test_inner_ring_inertia_given(raw: dict) -> None:
+    data = mutate(raw, "inner_ring.axial_inertia", "6e-6 kg*m^2")
+    cfg = parse_config(mutate(data, "inner_ring.transverse_inertia", "2e-5 kg*m^2"))
+    assert cfg.inner_ring_axial_inertia == pytest.approx(6e-6)
+    assert cfg.inner_ring_transverse_inertia == pytest.approx(2e-5)
+
+
+def test_b1_histories(b1: BearingConfig) -> None:
+    op = b1.operating
+    assert op.radial_load_at(0.0) == 0.0
+    assert op.radial_load_at(0.25) == pytest.approx(2500.0)
+    assert op.axial_load_at(1.0) == 1000.0
+    assert op.inner_ring_speed_at(0.5) == 0.0
+    assert op.inner_ring_speed_at(0.6) == pytest.approx(52.35987755982988 / 2)
+    assert op.inner_ring_speed_at(0.7) == pytest.approx(52.35987755982988)
+
+
+def test_b1_defaults(b1: BearingConfig) -> None:
+    assert b1.lubricant.alpha_star_fit.t_min == 293.15
+    assert b1.lubricant.alpha_star_fit.t_max == 413.15
+    assert b1.geometry.roller.crown_drop == 0.0
+    assert b1.geometry.roller.crown_length is None
+    assert b1.surfaces.roller_roller_pair is b1.surfaces.raceway
+    assert b1.lubricant.roelands.fit_pressure_max == 1e9
+
+
+def test_solver_defaults(raw: dict) -> None:
+    cfg = parse_config(mutate(raw, "solver", DEL))
+    s = cfg.solver
+    assert (s.rtol, s.atol, s.dt_max, s.output_interval) == (1e-5, 1e-9, 1e-4, 1e-4)
+    assert (s.detector, s.traction_nodes) == ("semi-analytical", 12)
+    assert (s.line_fit.load_min, s.line_fit.load_max, s.line_fit.samples) == (1e3, 2e6, 64)
+
+
+def test_frozen(b1: BearingConfig) -> None:
+    with pytest.raises(ValidationError):
+        b1.geometry.roller_count = 18  # type: ignore[misc]
+
+
+def test_model_dump_round_trip(b1: BearingConfig) -> None:
+    again = parse_config(b1.model_dump(), si_numbers=True)
+    assert again == b1
+    assert again.end_time == b1.end_time
+
+
+def test_unicode_units(raw: dict) -> None:
+    data = mutate(raw, "geometry.diametral_clearance", "10 µm")
+    data = mutate(data, "operating.temperature", "80 °C")
+    data = mutate(data, "lubricant.reference_viscosity.viscosity", "81 mPa·s")
+    cfg = parse_config(data)
+    assert cfg.geometry.diametral_clearance == 1e-05
+    assert cfg.operating.temperature == 353.15
+    assert cfg.lubricant.reference_viscosity.viscosity == 0.081
+
+
+def test_time_tables(raw: dict) -> None:
+    data = mutate(raw, "operating.radial_load", {"table": [["0 s", "0 N"], ["0.5 s", "5 kN"]]})
+    data = mutate(
+        data,
+        "operating.inner_ring_speed",
+        {"table": [["0 s", "0 rpm"], ["0.5 s", "0 rpm"], ["0.8 s", "500 rpm"]]},
+    )
+    data = mutate(data, "operating.speed_ramp", DEL)
+    cfg = parse_config(data)
+    op = cfg.operating
+    assert isinstance(op.radial_load, TimeTable)
+    assert op.radial_load.table == ((0.0, 0.0), (0.5, 5000.0))
+    assert op.radial_load_at(0.25) == pytest.approx(2500.0)
+    assert op.radial_load_at(3.0) == 5000.0
+    assert op.axial_load_at(0.25) == pytest.approx(500.0)  # constant load keeps the ramp
+    assert op.speed_history_end == 0.8
+    assert op.inner_ring_speed_at(0.65) == pytest.approx(52.35987755982988 / 2)
+    assert cfg.end_time == pytest.approx(0.8 + 0.588, abs=0.002)
+
+
+def test_flange_override(raw: dict) -> None:
+    cfg = parse_config(mutate(raw, "geometry.outer_ring_flange", {"height": "1.3 mm"}))
+    g = cfg.geometry
+    assert g.outer_flange.height == pytest.approx(1.3e-3)
+    assert g.outer_flange.opening_angle == g.flange.opening_angle
+    assert g.inner_flange is g.flange
+
+
+def test_crowned_profile(raw: dict) -> None:
+    data = mutate(raw, "geometry.roller.profile", "crowned")
+    data = mutate(data, "geometry.roller.crown_drop", "2 um")
+    cfg = parse_config(mutate(data, "geometry.roller.crown_length", "1 mm"))
+    assert cfg.geometry.roller.crown_drop == 2e-6
+    assert cfg.geometry.roller.crown_length == 1e-3
+
+
+def test_roelands_z_number(raw: dict) -> None:
+    data = mutate(raw, "lubricant.roelands", {"z": 0.6})
+    data = mutate(data, "lubricant.dicke", DEL)
+    cfg = parse_config(data)
+    assert cfg.roelands_z == 0.6
+    assert cfg.lubricant.roelands.eta_p == 6.31e-05
+    assert cfg.lubricant.roelands.p_p == -196e6
+
+
+def test_explicit_end_time(raw: dict) -> None:
+    cfg = parse_config(mutate(raw, "operating.end_time", "1.5 s"))
+    assert cfg.end_time == 1.5
+
+
+# --------------------------------------------------------------------------- units
+
+
+@pytest.mark.parametrize(
+    ("text", "family", "expected"),
+    [
+        ("20 mm", "length", 0.02),
+        ("20mm", "length", 0.02),
+        ("10 um", "length", 1e-05),
+        ("10 µm", "length", 1e-05),
+        ("5 kN", "force", 5000.0),
+        ("500 rpm", "angular velocity", 52.35987755982988),
+        ("80 degC", "temperature", 353.15),
+        ("80 °C", "temperature", 353.15),
+        ("353.15 K", "temperature", 353.15),
+        ("1021.7 K", "temperature interval", 1021.7),
+        ("1021.7 delta_degC", "temperature interval", 1021.7),
+        ("81 mPa*s", "dynamic viscosity", 0.081),
+        ("2.9862 bar/K", "pressure per temperature", 298620.0),
+        ("2.9862 bar/degC", "pressure per temperature", 298620.0),
+        ("3.0115e-4 1/K", "inverse temperature", 3.0115e-4),
+        ("0.134 W/(m*K)", "thermal conductivity", 0.134),
+        ("887.6 kg/m^3", "density", 887.6),
+        ("-0.6 kg/m^3/K", "density per temperature", -0.6),
+        ("1 N/mm", "force per length", 1000.0),
+        ("0.5 turn", "angle", math.pi),
+        ("1 mm/s", "speed", 0.001),
+        ("20 mm", "[length]", 0.02),
+    ],
+)
+def test_parse_quantity(text: str, family: str, expected: float) -> None:
+    assert parse_quantity(text, family) == expected
+
+
+@pytest.mark.parametrize(
+    ("value", "family", "message"),
+    [
+        (20, "length", "a bare number is ambiguous"),
+        ("20", "length", "without a unit"),
+        ("5000 N", "length", 'expected a length (e.g. "20 mm"), got a force'),
+        ("50 Hz", "angular velocity", "got a frequency"),
+        ("0.11", "angle", "without a unit"),
+        ("20 delta_degC", "temperature", "got a temperature difference"),
+        ("101.5 degC", "temperature interval", "use K or delta_degC"),
+        ("-300 degC", "temperature", "above 0 K"),
+        ("nan mm", "length", "must be finite"),
+        ("20 parsecz", "length", "unknown unit"),
+        (None, "length", "expected a string"),
+    ],
+)
+def test_parse_quantity_errors(value: object, family: str, message: str) -> None:
+    with pytest.raises(QuantityError, match=re.escape(message)):
+        parse_quantity(value, family)
+
+
+def test_type_factories() -> None:
+    class M(BaseModel):
+        d: Quantity("[length]", positive=True)
+        a: Quantity("angle", ge=0, lt="90 deg") = "1 deg"
+        nu: Number(gt=0, lt=0.5) = 0.3
+        k: Integer(ge=3) = 3
+
+    assert M(d="2 mm").d == 0.002
+    with pytest.raises(ValidationError, match="must be > 0"):
+        M(d="-2 mm")
+    with pytest.raises(ValidationError, match="must be >= 0 and < 90 deg"):
+        M(d="2 mm", a="90 deg")
+    with pytest.raises(ValidationError, match="expected a plain number"):
+        M(d="2 mm", nu="0.3 mm")
+    with pytest.raises(ValidationError, match="expected an integer"):
+        M(d="2 mm", k=3.0)
+    with pytest.raises(ValueError, match="ambiguous"):
+        Quantity("[temperature]")
+
+
+# --------------------------------------------------------------------------- bad inputs
+
+BAD = [
+    # (id, path to change, new value, expected problem path, expected rule text)
+    (
+        "zero radius",
+        "geometry.roller.edge_radius",
+        "0 mm",
+        "geometry.roller.edge_radius",
+        "must be > 0",
+    ),
+    (
+        "negative radius",
+        "geometry.flange.root_radius",
+        "-0.2 mm",
+        "geometry.flange.root_radius",
+        "must be > 0",
+    ),
+    (
+        "negative end face",
+        "geometry.roller.end_face_radius",
+        "-5 m",
+        "geometry.roller.end_face_radius",
+        "must be > 0",
+    ),
+    (
+        "rollers do not fit",
+        "geometry.roller_count",
+        18,
+        "geometry.roller_count",
+        "rollers do not fit",
+    ),
+    ("too few rollers", "geometry.roller_count", 2, "geometry.roller_count", "must be >= 3"),
+    (
+        "flange taller than roller",
+        "geometry.flange.height",
+        "5 mm",
+        "geometry.flange.height",
+        "must be < roller diameter",
+    ),
+    (
+        "flange below its tori",
+        "geometry.flange.height",
+        "0.4 mm",
+        "geometry.flange.height",
+        "must be > root_radius + rim_radius",
+    ),
+    (
+        "edge radius vs diameter",
+        "geometry.roller.edge_radius",
+        "2.3 mm",
+        "geometry.roller.edge_radius",
+        "must be < roller diameter/2",
+    ),
+    (
+        "edge radius vs length",
+        "geometry.roller.length",
+        "0.9 mm",
+        "geometry.roller.edge_radius",
+        "must be < length/2",
+    ),
+    (
+        "end face too small",
+        "geometry.roller.end_face_radius",
+        "2 mm",
+        "geometry.roller.end_face_radius",
+        "must be > roller diameter/2",
+    ),
+    (
+        "outer below inner",
+        "geometry.outer_raceway_diameter",
+        "19 mm",
+        "geometry.outer_raceway_diameter",
+        "must be > inner_raceway_diameter",
+    ),
+    (
+        "clearance eats rollers",
+        "geometry.diametral_clearance",
+        "10 mm",
+        "geometry.diametral_clearance",
+        "leaves no room for rollers",
+    ),
+    ("NaN", "geometry.roller.length", float("nan"), "geometry.roller.length", "must be finite"),
+    (
+        "NaN plain number",
+        "surfaces.raceway.zh_b",
+        float("nan"),
+        "surfaces.raceway.zh_b",
+        "must be finite",
+    ),
+    ("inf", "operating.radial_load", "inf N", "operating.radial_load", "must be finite"),
+    ("inf plain number", "solver.atol", float("inf"), "solver.atol", "must be finite"),
+    (
+        "unknown key",
+        "geometry.roller_cnt",
+        17,
+        "geometry.roller_cnt",
+        "unknown key 'roller_cnt' in section 'geometry' (allowed: roller_count,",
+    ),
+    ("unknown top-level key", "extra", 1, "extra", "unknown key 'extra' in section '<top level>'"),
+    (
+        "missing field",
+        "geometry.roller.length",
+        DEL,
+        "geometry.roller.length",
+        "required: a length",
+    ),
+    ("missing section", "lubricant", DEL, "lubricant", "required: a [section] table"),
+    (
+        "wrong dimension",
+        "operating.radial_load",
+        "5000 mm",
+        "operating.radial_load",
+        'expected a force (e.g. "5000 N"), got a length',
+    ),
+    (
+        "wrong dimension viscosity",
+        "lubricant.vogel.k",
+        "0.062 mPa",
+        "lubricant.vogel.k",
+        "expected a dynamic viscosity",
+    ),
+    (
+        "bare number",
+        "geometry.inner_raceway_diameter",
+        20,
+        "geometry.inner_raceway_diameter",
+        'a bare number is ambiguous (no unit); expected a length with a unit, e.g. "20 mm"',
+    ),
+    (
+        "bare number angle",
+        "geometry.flange.opening_angle",
+        0.11,
+        "geometry.flange.opening_angle",
+        "expected an angle with a unit",
+    ),
+    (
+        "poisson 0.6",
+        "materials.roller.poisson_ratio",
+        0.6,
+        "materials.roller.poisson_ratio",
+        "must be > 0 and < 0.5",
+    ),
+    (
+        "poisson with unit",
+        "materials.outer_ring.poisson_ratio",
+        "0.3 mm",
+        "materials.outer_ring.poisson_ratio",
+        "expected a plain number",
+    ),
+    (
+        "table times not increasing",
+        "operating.axial_load",
+        {"table": [["0 s", "0 N"], ["0.5 s", "1 kN"], ["0.5 s", "2 kN"]]},
+        "operating.axial_load.table.2.0",
+        "times must be strictly increasing",
+    ),
+    (
+        "table value dimension",
+        "operating.radial_load",
+        {"table": [["0 s", "0 N"], ["0.5 s", "5 mm"]]},
+        "operating.radial_load.table.1.1",
+        "expected a force",
+    ),
+    (
+        "table short row",
+        "operating.radial_load",
+        {"table": [["0 s", "0 N"], ["0.5 s"]]},
+        "operating.radial_load.table.1",
+        "each row must be [time, value]",
+    ),
+    (
+        "table one row",
+        "operating.radial_load",
+        {"table": [["0 s", "0 N"]]},
+        "operating.radial_load.table",
+        "at least 2 rows",
+    ),
+    (
+        "negative radial load",
+        "operating.radial_load",
+        "-5 kN",
+        "operating.radial_load",
+        "must be >= 0",
+    ),
+    (
+        "ramp end before start",
+        "operating.speed_ramp.end",
+        "0.4 s",
+        "operating.speed_ramp.end",
+        "must be > start",
+    ),
+    (
+        "ramp shape",
+        "operating.load_ramp.shape",
+        "smooth",
+        "operating.load_ramp.shape",
+        'must be one of "cosine" or "linear"',
+    ),
+    (
+        "end time before ramp end",
+        "operating.end_time",
+        "0.6 s",
+        "operating.end_time",
+        "must be > the end of the speed ramp",
+    ),
+    (
+        "z fit without dicke",
+        "lubricant.dicke",
+        DEL,
+        "lubricant.roelands.z",
+        "needs a [lubricant.dicke] section",
+    ),
+    (
+        "z wrong",
+        "lubricant.roelands.z",
+        "fitted",
+        "lubricant.roelands.z",
+        'expected a positive number or "fit"',
+    ),
+    ("positive p_p", "lubricant.roelands.p_p", "196 MPa", "lubricant.roelands.p_p", "must be < 0"),
+    (
+        "alpha fit range",
+        "lubricant.alpha_star_fit.t_max",
+        "10 degC",
+        "lubricant.alpha_star_fit.t_max",
+        "must be > t_min",
+    ),
+    (
+        "absolute temperature for interval",
+        "lubricant.vogel.c",
+        "101.5517 degC",
+        "lubricant.vogel.c",
+        "use K or delta_degC",
+    ),
+    (
+        "interval for absolute temperature",
+        "operating.temperature",
+        "80 delta_degC",
+        "operating.temperature",
+        "got a temperature difference",
+    ),
+    (
+        "below absolute zero",
+        "operating.temperature",
+        "-300 degC",
+        "operating.temperature",
+        "above 0 K",
+    ),
+    (
+        "temperature outside alpha fit",
+        "operating.temperature",
+        "150 degC",
+        "operating.temperature",
+        "must lie within lubricant.alpha_star_fit",
+    ),
+    ("carreau n", "lubricant.carreau.n", 1.5, "lubricant.carreau.n", "must be > 0 and <= 1"),
+    (
+        "frequency for speed",
+        "operating.inner_ring_speed",
+        "8 Hz",
+        "operating.inner_ring_speed",
+        "got a frequency",
+    ),
+    (
+        "integer slices",
+        "geometry.roller.slices",
+        20.5,
+        "geometry.roller.slices",
+        "expected an integer",
+    ),
+    (
+        "crowned without crown",
+        "geometry.roller.profile",
+        "crowned",
+        "geometry.roller.crown_length",
+        "required for a crowned profile",
+    ),
+    (
+        "crown on straight roller",
+        "geometry.roller.crown_drop",
+        "2 um",
+        "geometry.roller.crown_drop",
+        'needs profile = "crowned"',
+    ),
+    (
+        "unknown detector",
+        "solver.detector",
+        "fast",
+        "solver.detector",
+        'must be one of "semi-analytical", "gradient" or "mesh"',
+    ),
+    ("rtol >= 1", "solver.rtol", 1.0, "solver.rtol", "must be > 0 and < 1"),
+    (
+        "line fit range",
+        "solver.line_fit.load_min",
+        "3000 N/mm",
+        "solver.line_fit.load_max",
+        "must be > load_min",
+    ),
+    (
+        "speed ramp with table",
+        "operating.inner_ring_speed",
+        {"table": [["0 s", "0 rpm"], ["1 s", "500 rpm"]]},
+        "operating.speed_ramp",
+        "a speed ramp only applies to a constant speed",
+    ),
+    ("unknown unit", "geometry.roller.length", "5 mmm", "geometry.roller.length", "unknown unit"),
+    ("section not a table", "geometry", 5, "geometry", "expected a table"),
+    ("empty name", "name", "", "name", "must not be empty"),
+    (
+        "opening angle too big",
+        "geometry.flange.opening_angle",
+        "95 deg",
+        "geometry.flange.opening_angle",
+        "must be >= 0 and < 90 deg",
+    ),
+    (
+        "negative LSS at p=0",
+        "lubricant.limiting_shear_stress.chi",
+        0.2,
+        "lubricant.limiting_shear_stress.tau_l0",
+        "must be >= chi*p_star",
+    ),
+    (
+        "override flange taller than roller",
+        "geometry.inner_ring_flange",
+        {"height": "4.6 mm"},
+        "geometry.inner_ring_flange.height",
+        "must be < roller diameter",
+    ),
+    (
+        "override unknown key",
+        "geometry.outer_ring_flange",
+        {"hight": "1 mm"},
+        "geometry.outer_ring_flange.hight",
+        "did you mean 'height'?",
+    ),
+    (
+        "zero roughness",
+        "surfaces.flange.roughness",
+        "0 um",
+        "surfaces.flange.roughness",
+        "must be > 0",
+    ),
+]
+
+
+@pytest.mark.parametrize(
+    ("path", "value", "where", "rule"), [b[1:] for b in BAD], ids=[b[0] for b in BAD]
+)
+def test_bad_input(raw: dict, path: str, value: object, where: str, rule: str) -> None:
+    with pytest.raises(ConfigError) as info:
+        parse_config(mutate(raw, path, value), source="b1.toml")
+    err = info.value
+    lines = str(err).splitlines()
+    assert lines[0].startswith("invalid configuration b1.toml")
+    hits = [p for p in err.problems if p.path == where and rule in p.rule]
+    assert hits, f"no problem at {where} with {rule!r} in:\n{err}"
+    # each problem is one line "<path>: <value> — <rule>"
+    assert f"{where}: " in str(err)
+    assert all(re.match(r"^[\w.<>\- ]+: .+ — .+$", line) for line in lines[1:]), str(err)
+
+
+def test_bad_input_count() -> None:
+    assert len(BAD) >= 25
+    assert len({b[0] for b in BAD}) == len(BAD)
+
+
+def test_value_shown_as_given(raw: dict) -> None:
+    with pytest.raises(ConfigError) as info:
+        parse_config(mutate(raw, "geometry.flange.height", "5 mm"))
+    assert 'geometry.flange.height: "5 mm" — must be < roller diameter' in str(info.value)
+    with pytest.raises(ConfigError) as info:
+        parse_config(mutate(raw, "geometry.inner_raceway_diameter", 20))
+    line = str(info.value).splitlines()[1]
+    assert line == (
+        "geometry.inner_raceway_diameter: 20 — a bare number is ambiguous (no unit); "
+        'expected a length with a unit, e.g. "20 mm"'
+    )
+
+
+def test_all_problems_reported_at_once(raw: dict) -> None:
+    data = mutate(raw, "geometry.roller.length", "5 N")
+    data = mutate(data, "materials.roller.poisson_ratio", 0.7)
+    data = mutate(data, "solver.bogus", 1)
+    with pytest.raises(ConfigError) as info:
+        parse_config(data)
+    paths = [p.path for p in info.value.problems]
+    assert paths == ["geometry.roller.length", "materials.roller.poisson_ratio", "solver.bogus"]
+    assert len(str(info.value).splitlines()) == 4
+
+
+def test_inherited_flange_value_named(raw: dict) -> None:
+    with pytest.raises(ConfigError) as info:
+        parse_config(mutate(raw, "geometry.inner_ring_flange", {"root_radius": "1 mm"}))
+    (problem,) = info.value.problems
+    assert problem.path == "geometry.inner_ring_flange.height"
+    assert problem.value == '"1.1 mm" (inherited from geometry.flange)'
+
+
+def test_config_error_is_value_error() -> None:
+    assert issubclass(ConfigError, ValueError)
+    with pytest.raises(ConfigError, match="expected a table of sections"):
+        parse_config([1, 2])  # type: ignore[arg-type]
+
+
+# --------------------------------------------------------------------------- files
+
+
+def test_malformed_toml(tmp_path: Path) -> None:
+    p = tmp_path / "bad.toml"
+    p.write_text('name = "x"\n[geometry]\nroller_count = = 17\n', encoding="utf-8")
+    with pytest.raises(ConfigError) as info:
+        load_config(p)
+    msg = str(info.value)
+    assert msg.startswith(f"{p}:3:")
+    assert "malformed TOML" in msg
+
+
+def test_duplicate_key_toml(tmp_path: Path) -> None:
+    p = tmp_path / "dup.toml"
+    p.write_text('name = "x"\nname = "y"\n', encoding="utf-8")
+    with pytest.raises(ConfigError, match=rf"^{re.escape(str(p))}:2:.*malformed TOML"):
+        load_config(p)
+
+
+def test_missing_file(tmp_path: Path) -> None:
+    p = tmp_path / "nope.toml"
+    with pytest.raises(ConfigError, match="configuration file not found") as info:
+        load_config(p)
+    assert str(p) in str(info.value)
+
+
+def test_not_utf8(tmp_path: Path) -> None:
+    p = tmp_path / "latin1.toml"
+    p.write_bytes('name = "Wälzlager"\n'.encode("latin-1"))
+    with pytest.raises(ConfigError, match="not UTF-8"):
+        load_config(p)
+
+
+def test_invalid_file_names_source(tmp_path: Path) -> None:
+    p = tmp_path / "b1_bad.toml"
+    p.write_text(B1_TOML.read_text(encoding="utf-8").replace('"5.0 mm"', '"5.0 N"'), "utf-8")
+    with pytest.raises(ConfigError) as info:
+        load_config(p)
+    assert info.value.source == str(p)
+    assert str(info.value).splitlines()[0] == f"invalid configuration {p} (1 problem):"
+    assert info.value.problems[0].path == "geometry.roller.length"
+
+
+# --------------------------------------------------------------------------- b1.toml itself
+
+ORIGINS = (
+    "paper",
+    "B1.md",
+    "Schwarz et al., Lubricants 2023, 11, 369",
+    "rollerdyn default",
+    "ASSUMED, to be replaced by cited values",
+)
+
+
+def test_b1_every_value_has_origin_comment() -> None:
+    n = 0
+    for number, line in enumerate(B1_TOML.read_text(encoding="utf-8").splitlines(), 1):
+        stripped = line.strip()
+        if not stripped or stripped.startswith(("#", "[")):
+            continue
+        assert "=" in stripped, f"line {number}: {line}"
+        assert "#" in stripped, f"line {number} has no origin comment: {line}"
+        comment = stripped.split("#", 1)[1]
+        assert any(o in comment for o in ORIGINS), f"line {number}: unknown origin: {line}"
+        n += 1
+    assert n > 60
+
+
+def test_b1_assumed_lubricant_values_marked() -> None:
+    text = B1_TOML.read_text(encoding="utf-8")
+    for key in ("tau0", "n", "chi", "p_star", "tau_l0"):
+        (line,) = [ln for ln in text.splitlines() if re.match(rf"^{key}\s*=", ln)]
+        assert "ASSUMED, to be replaced by cited values" in line
+
+
+def test_b1_has_no_derived_values(raw: dict) -> None:
+    derived = {
+        "roller_diameter",
+        "pitch_diameter",
+        "circumferential_gap",
+        "fill_ratio",
+        "end_time",
+        "axial_inertia",
+        "transverse_inertia",
+        "roller_mass",
+        "vogel_k",
+        "roller_set_speed",
+    }
+    stack = [raw]
+    while stack:
+        table = stack.pop()
+        for key, value in table.items():
+            assert key not in derived, f"derived quantity {key!r} typed into b1.toml"
+            if isinstance(value, dict):
+                stack.append(value)
+    assert raw["lubricant"]["roelands"]["z"] == "fit"
+
+
+# --------------------------------------------------------------------------- docs
+
+
+def _sections(model: type[BaseModel], prefix: str = "") -> dict[str, list[str]]:
+    out = {prefix: list(model.model_fields)}
+    for name, info in model.model_fields.items():
+        stack, models = [info.annotation], []
+        while stack:
+            ann = stack.pop()
+            if isinstance(ann, type) and issubclass(ann, BaseModel):
+                models.append(ann)
+            else:
+                stack.extend(getattr(ann, "__args__", ()))
+        for m in models:
+            if not issubclass(m, TimeTable) and name not in (
+                "inner_ring_flange",
+                "outer_ring_flange",
+            ):
+                out.update(_sections(m, f"{prefix}.{name}" if prefix else name))
+    return out
+
+
+def test_docs_cover_every_field() -> None:
+    chunks = re.split(r"^(?=### )", DOCS.read_text(encoding="utf-8"), flags=re.M)
+    for section, fields in _sections(BearingConfig).items():
+        tag = f"`[{section}]`" if section else "`top level`"
+        found = [c for c in chunks if c.startswith("### ") and tag in c.splitlines()[0]]
+        assert found, f"docs: no heading with {tag}"
+        for field in fields:
+            assert f"`{field}`" in found[0], f"docs: {tag} lacks `{field}`"
+
+
+# --------------------------------------------------------------------------- Rust core
+
+
+def test_roller_mass_properties_plumbing(monkeypatch: pytest.MonkeyPatch, raw: dict) -> None:
+    calls = []
+
+    def roller_mass_properties(diameter, length, edge_radius, end_face_radius, density):
+        calls.append((diameter, length, edge_radius, end_face_radius, density))
+        return {"mass": 1.0, "axial_inertia": 2.0, "transverse_inertia": 3.0}
+
+    fake = types.ModuleType("rollerdyn._core")
+    fake.roller_mass_properties = roller_mass_properties  # type: ignore[attr-defined]
+    import rollerdyn
+
+    monkeypatch.setitem(sys.modules, "rollerdyn._core", fake)
+    monkeypatch.setattr(rollerdyn, "_core", fake, raising=False)
+    cfg = parse_config(raw)
+    assert (cfg.roller_mass, cfg.roller_axial_inertia, cfg.roller_transverse_inertia) == (
+        1.0,
+        2.0,
+        3.0,
+    )
+    assert cfg.roller_mass_properties == {
+        "mass": 1.0,
+        "axial_inertia": 2.0,
+        "transverse_inertia": 3.0,
+    }
+    assert len(calls) == 1  # computed once per configuration
+    d, length, r_e, r_f, rho = calls[0]
+    assert d == pytest.approx(4.495e-3) and length == 5e-3 and r_e == 5e-4
+    assert r_f == 5.0 and rho == 7850.0
+
+
+def _rounded_roller(d: float, length: float, r_e: float, rho: float, n: int = 20000):
+    """Mass, axial and transverse inertia of a cylinder with torus-rounded edges (flat ends)."""
+    big_r, h = d / 2, length / n
+    m = j_ax = j_tr = 0.0
+    for i in range(n):
+        x = -length / 2 + (i + 0.5) * h
+        a = abs(x) - (length / 2 - r_e)
+        r = big_r if a <= 0 else big_r - r_e + math.sqrt(max(0.0, r_e * r_e - a * a))
+        m += rho * math.pi * r * r * h
+        j_ax += rho * math.pi / 2 * r**4 * h
+        j_tr += rho * (math.pi * r**4 / 4 + math.pi * r * r * x * x) * h
+    return m, j_ax, j_tr
+
+
+def test_roller_mass_properties_real(b1: BearingConfig) -> None:
+    pytest.importorskip("rollerdyn._core")
+    cfg = load_config(B1_TOML)  # fresh object: no value cached by other tests
+    assert cfg.roller_mass == pytest.approx(0.62e-3, rel=0.03)
+    m, j_ax, j_tr = _rounded_roller(4.495e-3, 5e-3, 0.5e-3, 7850.0)
+    assert cfg.roller_mass == pytest.approx(m, rel=0.01)
+    assert cfg.roller_axial_inertia == pytest.approx(j_ax, rel=0.01)
+    assert cfg.roller_transverse_inertia == pytest.approx(j_tr, rel=0.01)
