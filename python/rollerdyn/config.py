@@ -598,47 +598,18 @@ def fit_roelands_z(
     temperature: float,
     method: str = "initial_slope",
     pressure_max: float = 1e9,
-    samples: int = 200,
 ) -> float:
-    """Roelands exponent ``z`` (eq. 19) matched to the Dicke law at ``temperature`` (K).
+    """Roelands exponent ``z`` (eq. 19) matched to the Dicke law at ``temperature`` (K),
+    computed by the Rust core (``rollerdyn-core::tribology::lubricant::fit_roelands_z``).
 
-    ``initial_slope``: equal slopes ``d ln(eta)/dp`` at ``p = 0``, which gives
-    ``z = -p_p / ((a1 + a2*theta) * ln(eta0/eta_p))``.
-    ``least_squares``: minimise the sum over ``samples`` pressures evenly spaced in
-    ``(0, pressure_max]`` of the squared difference of ``ln(eta)`` of both laws
-    (golden-section search for z in [0.01, 3]).
+    ``initial_slope``: equal slopes ``d ln(eta)/dp`` at ``p = 0``;
+    ``least_squares``: least squares in ``ln(eta)`` over ``(0, pressure_max]``.
     """
-    log_ratio = math.log(eta0 / eta_p)
-    if method == "initial_slope":
-        return -p_p / (dicke.denominator(0.0, temperature) * log_ratio)
-    if method != "least_squares":
-        raise ValueError(f"unknown z_fit method {method!r}")
-    pressures = [pressure_max * (k + 1) / samples for k in range(samples)]
-    target = [math.log(eta0) + dicke.viscosity_ratio_log(p, temperature) for p in pressures]
+    from rollerdyn import _core
 
-    def cost(z: float) -> float:
-        s = 0.0
-        for p, y in zip(pressures, target, strict=True):
-            ln_eta = math.log(eta_p) + log_ratio * ((p_p - p) / p_p) ** z
-            s += (ln_eta - y) ** 2
-        return s
-
-    lo, hi = 0.01, 3.0
-    g = (math.sqrt(5.0) - 1.0) / 2.0
-    a, b = hi - g * (hi - lo), lo + g * (hi - lo)
-    fa, fb = cost(a), cost(b)
-    for _ in range(200):
-        if hi - lo < 1e-12:
-            break
-        if fa < fb:
-            hi, b, fb = b, a, fa
-            a = hi - g * (hi - lo)
-            fa = cost(a)
-        else:
-            lo, a, fa = a, b, fb
-            b = lo + g * (hi - lo)
-            fb = cost(b)
-    return 0.5 * (lo + hi)
+    return _core.fit_roelands_z(
+        eta0, temperature, eta_p, p_p, dicke.a1, dicke.a2, dicke.b1, dicke.b2, method, pressure_max
+    )
 
 
 class LubricantConfig(_Section):
@@ -852,16 +823,29 @@ class OperatingConfig(_Section):
 
 
 class LineFitConfig(_Section):
-    """Range of the fit of eq. 11 to Tripp's line-contact law (load per unit length)."""
+    """Range of the fit of eq. 11 to Tripp's line-contact law (load per unit length).
 
-    load_min: Quantity("force per length", positive=True) = "1 N/mm"
-    load_max: Quantity("force per length", positive=True) = "2000 N/mm"
+    Without ``load_min``/``load_max`` the ranges follow from the radial load: with the
+    Stribeck/Harris estimate of the heaviest roller, ``q_ref = 4.08 F_r / (Z l)`` (l the
+    straight roller length), race contacts are fitted over ``[0.1, 2] q_ref`` and
+    roller-roller contacts over ``[0.01, 0.2] q_ref`` (see :class:`rollerdyn.model.Model`).
+    Given values apply to all three contact kinds.
+    """
+
+    load_min: Quantity("force per length", positive=True) | None = None
+    load_max: Quantity("force per length", positive=True) | None = None
     samples: Integer(ge=2) = 64
 
     @model_validator(mode="after")
     def _check(self) -> LineFitConfig:
         cross = _Cross()
-        if self.load_max <= self.load_min:
+        if (self.load_min is None) != (self.load_max is None):
+            cross.add(
+                "load_max" if self.load_max is None else "load_min",
+                "(missing)",
+                "give both load_min and load_max, or neither (derived from the radial load)",
+            )
+        elif self.load_max is not None and self.load_max <= self.load_min:
             cross.add(
                 "load_max",
                 format_si(self.load_max, "force per length"),

@@ -73,7 +73,10 @@ mod tests {
     #[test]
     fn refusals_name_value_and_rule() {
         let e = require_positive("roller radius", -1.0).unwrap_err();
-        assert_eq!(e.to_string(), "roller radius = -1: must be finite and positive");
+        assert_eq!(
+            e.to_string(),
+            "roller radius = -1: must be finite and positive"
+        );
         assert!(require_positive("x", f64::NAN).is_err());
         assert!(require_non_negative("x", 0.0).is_ok());
         assert!(require_finite("x", f64::INFINITY).is_err());

@@ -116,7 +116,9 @@ impl RollerShape {
         let xt = self.edge_torus_center();
         // Cylinder, 0 ≤ x ≤ x_t.
         let (xs, ws) = rule.mapped(0.0, xt);
-        xs.iter().zip(&ws).for_each(|(&x, &w)| add(x, self.radius, w));
+        xs.iter()
+            .zip(&ws)
+            .for_each(|(&x, &w)| add(x, self.radius, w));
         // Torus, x = x_t + r_e sin φ, ρ = R − r_e + r_e cos φ, φ ∈ [0, φ_t].
         let (phis, ws) = rule.mapped(0.0, self.edge_tangent_angle());
         let re = self.edge_radius;
@@ -130,7 +132,11 @@ impl RollerShape {
         for (&psi, &w) in psis.iter().zip(&ws) {
             let half = (0.5 * psi).sin();
             let s = psi.sin();
-            add(0.5 * self.length - 2.0 * rs * half * half, rs * s, w * rs * s);
+            add(
+                0.5 * self.length - 2.0 * rs * half * half,
+                rs * s,
+                w * rs * s,
+            );
         }
         let volume = 2.0 * PI * moments[0];
         let mass = density * volume;

@@ -122,7 +122,7 @@ mod tests {
     fn line_fit_recovers_a_line() {
         let x: Vec<f64> = (0..10).map(|i| i as f64).collect();
         let y: Vec<f64> = x.iter().map(|x| 3.0 * x - 2.0).collect();
-        let (s, i) = line_fit(&x, &y, &vec![1.0; 10]);
+        let (s, i) = line_fit(&x, &y, &[1.0; 10]);
         assert!((s - 3.0).abs() < 1e-12 && (i + 2.0).abs() < 1e-12);
     }
 

@@ -130,7 +130,8 @@ pub fn thermal_correction(
 ) -> f64 {
     let k = (-viscosity_slope / thermal_conductivity).max(0.0);
     let u0 = u0.abs();
-    let term = k.powf(0.71) * (u0.powf(1.42) + 5.65 * u0.powf(0.46) * sliding_speed.abs().powf(0.96));
+    let term =
+        k.powf(0.71) * (u0.powf(1.42) + 5.65 * u0.powf(0.46) * sliding_speed.abs().powf(0.96));
     1.0 / (1.0 + 0.133 * term)
 }
 
@@ -204,8 +205,17 @@ mod tests {
             let f = inputs(alpha, eta0);
             let h = f.chittenden(rx, ry, std::f64::consts::FRAC_PI_2, u0, force);
             let k = 1.0339 * ratio.powf(0.636);
-            let (u, w, g) = (eta0 * u0 / (E_PRIME * rx), force / (E_PRIME * rx * rx), alpha * E_PRIME);
-            let h_hd = rx * 2.69 * u.powf(0.67) * g.powf(0.53) * w.powf(-0.067) * (1.0 - 0.61 * (-0.73 * k).exp());
+            let (u, w, g) = (
+                eta0 * u0 / (E_PRIME * rx),
+                force / (E_PRIME * rx * rx),
+                alpha * E_PRIME,
+            );
+            let h_hd = rx
+                * 2.69
+                * u.powf(0.67)
+                * g.powf(0.53)
+                * w.powf(-0.067)
+                * (1.0 - 0.61 * (-0.73 * k).exp());
             assert!(rel(h, h_hd) < 0.10, "Ry/Rx = {ratio}: {h} vs {h_hd}");
         }
     }

@@ -241,8 +241,16 @@ mod tests {
         ] {
             let el = Ellipticity::exact(alpha);
             assert!(rel(el.kappa, kappa) < 1e-4, "α={alpha}: κ={}", el.kappa);
-            assert!(rel(el.first_kind, f) < 1e-4, "α={alpha}: F={}", el.first_kind);
-            assert!(rel(el.second_kind, e) < 1e-4, "α={alpha}: E={}", el.second_kind);
+            assert!(
+                rel(el.first_kind, f) < 1e-4,
+                "α={alpha}: F={}",
+                el.first_kind
+            );
+            assert!(
+                rel(el.second_kind, e) < 1e-4,
+                "α={alpha}: E={}",
+                el.second_kind
+            );
         }
     }
 

@@ -68,7 +68,7 @@ impl TrippContact {
                 wall_thickness,
             } => {
                 require_positive("outer ring wall thickness", wall_thickness)?;
-                if !(raceway_radius > roller_radius) {
+                if raceway_radius.partial_cmp(&roller_radius) != Some(std::cmp::Ordering::Greater) {
                     return Err(Error::InvalidParameter {
                         name: "outer raceway radius",
                         value: raceway_radius,
@@ -107,7 +107,12 @@ impl TrippContact {
         if load_per_length <= 0.0 {
             return 0.0;
         }
-        let a = line_half_width(load_per_length, 1.0, self.equivalent_radius(), self.e_prime());
+        let a = line_half_width(
+            load_per_length,
+            1.0,
+            self.equivalent_radius(),
+            self.e_prime(),
+        );
         let roller_term = self.roller.compliance() * ((4.0 * self.roller_radius / a).ln() - 0.5);
         let counter_term = match self.counterface {
             Counterface::Convex { radius } => {
@@ -188,7 +193,7 @@ impl LinePowerLaw {
         samples: usize,
     ) -> Result<(Self, FitReport)> {
         require_positive("line fit load_min", q_min)?;
-        if !(q_max > q_min) || !q_max.is_finite() {
+        if q_max.partial_cmp(&q_min) != Some(std::cmp::Ordering::Greater) || !q_max.is_finite() {
             return Err(Error::InvalidParameter {
                 name: "line fit load_max",
                 value: q_max,
@@ -199,7 +204,10 @@ impl LinePowerLaw {
         let log_q: Vec<f64> = (0..n)
             .map(|i| q_min.ln() + (q_max / q_min).ln() * i as f64 / (n - 1) as f64)
             .collect();
-        let log_d: Vec<f64> = log_q.iter().map(|lq| contact.deflection(lq.exp()).ln()).collect();
+        let log_d: Vec<f64> = log_q
+            .iter()
+            .map(|lq| contact.deflection(lq.exp()).ln())
+            .collect();
         let mut weights = vec![1.0; n];
         let mut best: Option<(Self, f64)> = None;
         for _ in 0..200 {
@@ -214,7 +222,7 @@ impl LinePowerLaw {
                 .map(|(lq, ld)| (slope * ld + intercept - lq).abs())
                 .collect();
             let worst = errors.iter().cloned().fold(0.0, f64::max);
-            if best.map_or(true, |(_, e)| worst < e) {
+            if best.is_none_or(|(_, e)| worst < e) {
                 best = Some((law, worst));
             }
             let total: f64 = weights.iter().zip(&errors).map(|(w, e)| w * e).sum();
@@ -239,7 +247,8 @@ impl LinePowerLaw {
             let q = q_min * (q_max / q_min).powf(i as f64 / (n - 1) as f64);
             let d = contact.deflection(q);
             max_force_error = max_force_error.max((self.force(d, 1.0) / q - 1.0).abs());
-            max_deflection_error = max_deflection_error.max((self.deflection(q, 1.0) / d - 1.0).abs());
+            max_deflection_error =
+                max_deflection_error.max((self.deflection(q, 1.0) / d - 1.0).abs());
         }
         FitReport {
             load_min: q_min,
@@ -261,7 +270,13 @@ mod tests {
     };
 
     fn b1_inner() -> TrippContact {
-        TrippContact::new(2.2475e-3, STEEL, Counterface::Convex { radius: 10e-3 }, STEEL).unwrap()
+        TrippContact::new(
+            2.2475e-3,
+            STEEL,
+            Counterface::Convex { radius: 10e-3 },
+            STEEL,
+        )
+        .unwrap()
     }
 
     fn b1_outer() -> TrippContact {
@@ -290,10 +305,11 @@ mod tests {
 
     #[test]
     fn power_law_within_one_percent_of_tripp_over_b1_loads() {
-        // B1 carries at most ≈ 1.5 kN per roller over 4 mm of straight length:
-        // ≈ 400 N/mm; 1 … 2000 N/mm spans every slice load with margin.
+        // B1's heaviest roller carries about 4.08 F_r/Z = 1.2 kN over 4 mm of straight
+        // length (Stribeck/Harris): q_ref ≈ 300 N/mm; race contacts are fitted over
+        // [0.1, 2]·q_ref = 30 … 600 N/mm (the default of rollerdyn.model).
         for contact in [b1_inner(), b1_outer()] {
-            let (law, report) = LinePowerLaw::fit(&contact, 1e3, 2e6, 64).unwrap();
+            let (law, report) = LinePowerLaw::fit(&contact, 3e4, 6e5, 64).unwrap();
             assert!(report.max_force_error < 0.01, "{report:?}");
             assert!(law.k2 > 0.85 && law.k2 < 0.95, "k2 = {}", law.k2);
         }
@@ -318,7 +334,9 @@ mod tests {
 
     #[test]
     fn refuses_bad_geometry() {
-        assert!(TrippContact::new(-1.0, STEEL, Counterface::Convex { radius: 1.0 }, STEEL).is_err());
+        assert!(
+            TrippContact::new(-1.0, STEEL, Counterface::Convex { radius: 1.0 }, STEEL).is_err()
+        );
         let bad = Counterface::OuterRing {
             raceway_radius: 1e-3,
             wall_thickness: 1e-3,

@@ -141,7 +141,8 @@ pub fn fit_roelands_z(
             rule: "must exceed Roelands' eta_p = 0.0631 mPa·s",
         });
     }
-    let z_slope = dicke.initial_coefficient(temperature) * (-roelands.p_p) / (eta0 / roelands.eta_p).ln();
+    let z_slope =
+        dicke.initial_coefficient(temperature) * (-roelands.p_p) / (eta0 / roelands.eta_p).ln();
     match method {
         ZFit::InitialSlope => Ok(z_slope),
         ZFit::LeastSquares => {
@@ -152,7 +153,10 @@ pub fn fit_roelands_z(
                 .map(|&p| dicke.viscosity(p, temperature, eta0).ln())
                 .collect();
             let cost = |z: &[f64]| {
-                let r = Roelands { z: z[0], ..*roelands };
+                let r = Roelands {
+                    z: z[0],
+                    ..*roelands
+                };
                 pressures
                     .iter()
                     .zip(&target)
@@ -235,7 +239,7 @@ impl AlphaStarFit {
     /// (c₂, c₄) by Nelder–Mead, minimising the relative residuals, from several starts.
     pub fn fit(alpha_star_at: impl Fn(f64) -> f64, t_min: f64, t_max: f64) -> Result<Self> {
         require_positive("alpha* fit t_min", t_min)?;
-        if !(t_max > t_min) || !t_max.is_finite() {
+        if t_max.partial_cmp(&t_min) != Some(std::cmp::Ordering::Greater) || !t_max.is_finite() {
             return Err(Error::InvalidParameter {
                 name: "alpha* fit t_max",
                 value: t_max,
@@ -274,7 +278,8 @@ impl AlphaStarFit {
                 .iter()
                 .zip(&values)
                 .map(|(t, v)| {
-                    let fit = c[0] * (rates[0] * (t - t_mid)).exp() + c[1] * (rates[1] * (t - t_mid)).exp();
+                    let fit = c[0] * (rates[0] * (t - t_mid)).exp()
+                        + c[1] * (rates[1] * (t - t_mid)).exp();
                     (fit / v - 1.0).powi(2)
                 })
                 .sum()
@@ -286,7 +291,7 @@ impl AlphaStarFit {
         for (r0, r1) in [(1.0, 0.0), (2.0, 0.3), (0.5, 3.0), (1.0, -1.0), (3.0, -0.5)] {
             let start = [slope * r0, slope * r1 + 1e-3 * scale];
             let (x, f) = nelder_mead(residual, &start, &[0.3 * scale, 0.3 * scale], 1e-30, 4000);
-            if best.as_ref().map_or(true, |(_, fb)| f < *fb) {
+            if best.as_ref().is_none_or(|(_, fb)| f < *fb) {
                 best = Some((x, f));
             }
         }
@@ -406,7 +411,10 @@ mod tests {
     fn blok_alpha_star_below_initial_coefficient_for_roelands() {
         // Roelands with z < 1 bends below Barus: α* lies below the initial slope
         // (Vergne & Bair, Tribol. Lett. 54 (2014) 1).
-        let r = Roelands { z: 0.62, ..Roelands::default() };
+        let r = Roelands {
+            z: 0.62,
+            ..Roelands::default()
+        };
         let eta0 = 0.0165;
         let a = blok_alpha_star(|p| r.viscosity(p, eta0), 50e6);
         let a0 = r.initial_coefficient(eta0);
@@ -416,7 +424,10 @@ mod tests {
     #[test]
     fn alpha_star_fit_reproduces_the_integral() {
         let vogel = fva3_vogel().scaled_to(313.15, 81e-3);
-        let r = Roelands { z: 0.62, ..Roelands::default() };
+        let r = Roelands {
+            z: 0.62,
+            ..Roelands::default()
+        };
         let at = |t: f64| blok_alpha_star(|p| r.viscosity(p, vogel.viscosity(t)), 50e6);
         let fit = AlphaStarFit::fit(at, 293.15, 413.15).unwrap();
         assert!(fit.max_relative_error < 2e-3, "{fit:?}");

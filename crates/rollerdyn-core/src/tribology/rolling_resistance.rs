@@ -27,7 +27,14 @@ pub fn hysteresis_moment(alpha_v: f64, normal_force: f64, half_width: f64) -> f6
 /// Limits: ψ → 1 gives the isoviscous-rigid F̃ = 1.42 Ũ^½ W^½; large M = W/Ũ^½ gives
 /// the piezoviscous-elastic F̃ = (1.42/0.966)·Ũ^¾ = 1.47 Ũ^¾.
 #[inline]
-pub fn ehl_rolling_force(e_prime: f64, r_eff: f64, length: f64, eta0: f64, u0: f64, normal_force: f64) -> f64 {
+pub fn ehl_rolling_force(
+    e_prime: f64,
+    r_eff: f64,
+    length: f64,
+    eta0: f64,
+    u0: f64,
+    normal_force: f64,
+) -> f64 {
     if normal_force <= 0.0 || u0 == 0.0 {
         return 0.0;
     }
@@ -52,7 +59,9 @@ mod tests {
         // Independent: integrate the Hertz pressure moment over the leading half.
         let (f, a, l) = (500.0, 1e-4, 2.5e-4);
         let p0 = 2.0 * f / (PI * a * l);
-        let moment = l * integrate_converged(0.0, a, 1e-13, |x| p0 * (1.0 - (x / a).powi(2)).max(0.0).sqrt() * x);
+        let moment = l * integrate_converged(0.0, a, 1e-13, |x| {
+            p0 * (1.0 - (x / a).powi(2)).max(0.0).sqrt() * x
+        });
         assert!((hysteresis_moment(0.007, f, a) / (0.007 * moment) - 1.0).abs() < 1e-8);
     }
 

@@ -1,0 +1,90 @@
+"""The force laws of the reference paper (sect. 3.1.2 - 3.3) on numpy arrays.
+
+Thin wrappers over ``rollerdyn._core``: every array argument is broadcast with numpy, the
+core evaluates elementwise, and the result has the broadcast shape. All quantities are SI
+(m, N, Pa, Pa*s, K, m/s, rad). Equation numbers refer to the reference paper.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from . import _core
+
+__all__ = [
+    "EhlTraction",
+    "boundary_friction_coefficient",
+    "boundary_share",
+    "carreau_shear_stress",
+    "chittenden_film",
+    "dicke_viscosity",
+    "ehl_rolling_force",
+    "effective_modulus",
+    "elliptic_integrals",
+    "ellipticity",
+    "hertz_line",
+    "hertz_point",
+    "hertz_point_force",
+    "hysteresis_moment",
+    "line_films",
+    "line_power_law_force",
+    "roelands_viscosity",
+    "thermal_correction",
+    "tripp_deflection",
+    "vogel_viscosity",
+]
+
+EhlTraction = _core.EhlTraction
+
+
+def _vectorize(core: Callable[..., Any], n_arrays: int) -> Callable[..., Any]:
+    """Wrap a core function whose first ``n_arrays`` arguments are equal-length 1-D arrays."""
+
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in args[:n_arrays]))
+        shape = arrays[0].shape
+        flat = [np.ascontiguousarray(a.ravel()) for a in arrays]
+        result = core(*flat, *args[n_arrays:], **kwargs)
+
+        def reshape(x: Any) -> Any:
+            if isinstance(x, np.ndarray):
+                return x.reshape(shape) if shape else float(x[0])
+            if isinstance(x, tuple):
+                return tuple(reshape(v) for v in x)
+            if isinstance(x, dict):
+                return {k: reshape(v) for k, v in x.items()}
+            return x
+
+        return reshape(result)
+
+    wrapper.__name__ = core.__name__
+    wrapper.__doc__ = core.__doc__
+    return wrapper
+
+
+def effective_modulus(e1: float, nu1: float, e2: float, nu2: float) -> float:
+    """E' = 2/((1 - nu1^2)/E1 + (1 - nu2^2)/E2) (paper, nomenclature), Pa."""
+    return 2.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2)
+
+
+elliptic_integrals = _vectorize(_core.elliptic_integrals, 1)
+ellipticity = _vectorize(_core.ellipticity, 1)
+hertz_point = _vectorize(_core.hertz_point, 4)
+hertz_point_force = _vectorize(_core.hertz_point_force, 4)
+hertz_line = _vectorize(_core.hertz_line, 4)
+tripp_deflection = _vectorize(_core.tripp_deflection, 1)
+line_power_law_force = _vectorize(_core.line_power_law_force, 2)
+vogel_viscosity = _vectorize(_core.vogel_viscosity, 1)
+roelands_viscosity = _vectorize(_core.roelands_viscosity, 2)
+dicke_viscosity = _vectorize(_core.dicke_viscosity, 3)
+carreau_shear_stress = _vectorize(_core.carreau_shear_stress, 2)
+line_films = _vectorize(_core.line_films, 4)
+chittenden_film = _vectorize(_core.chittenden_film, 5)
+thermal_correction = _vectorize(_core.thermal_correction, 2)
+boundary_friction_coefficient = _vectorize(_core.boundary_friction_coefficient, 2)
+boundary_share = _vectorize(_core.boundary_share, 1)
+hysteresis_moment = _vectorize(_core.hysteresis_moment, 2)
+ehl_rolling_force = _vectorize(_core.ehl_rolling_force, 4)

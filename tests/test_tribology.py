@@ -1,0 +1,66 @@
+"""The numpy front of the force laws: broadcasting, shapes, and clean errors."""
+
+import numpy as np
+import pytest
+
+from rollerdyn import _core
+from rollerdyn import tribology as tri
+
+
+def test_broadcasting_and_scalars():
+    out = tri.hertz_point(
+        1e-3, np.array([[2e-3], [5e-3]]), 2.3e11, np.array([10.0, 100.0, 1000.0]), "exact"
+    )
+    assert out["semi_major"].shape == (2, 3)
+    assert isinstance(tri.hertz_point_force(1e-3, 2e-3, 2.3e11, 1e-6, "exact"), float)
+    # force and penetration invert each other elementwise
+    f = tri.hertz_point_force(1e-3, 2e-3, 2.3e11, out["penetration"][0], "exact")
+    np.testing.assert_allclose(f, [10.0, 100.0, 1000.0], rtol=1e-10)
+
+
+def test_line_hertz_matches_closed_form():
+    # Johnson (1985) eq. 4.45: a = sqrt(8 q R / (pi E')), p0 = 2 q / (pi a).
+    a, p0 = tri.hertz_line(1000.0, 1e-3, 2e-3, 2.3e11)
+    q = 1000.0 / 1e-3
+    assert a == pytest.approx(np.sqrt(8 * q * 2e-3 / (np.pi * 2.3e11)), rel=1e-14)
+    assert p0 == pytest.approx(2 * q / (np.pi * a), rel=1e-14)
+
+
+def test_core_errors_are_value_errors_not_panics():
+    with pytest.raises(ValueError, match='must be "brewe_hamrock" or "exact"'):
+        tri.ellipticity(2.0, "fit")
+    with pytest.raises(ValueError, match="roller radius"):
+        _core.roller_mass_properties(-1.0, 5e-3, 5e-4, 5.0, 7850.0)
+    with pytest.raises(ValueError, match="edge radius"):
+        _core.roller_mass_properties(4e-3, 5e-3, 3e-3, 5.0, 7850.0)
+    with pytest.raises(ValueError, match="length"):
+        _core.hertz_line(np.ones(3), np.ones(2), np.ones(3), np.ones(3))
+    with pytest.raises(ValueError, match="nodes"):
+        _core.EhlTraction(
+            eta0=0.01, z=0.6, tau0=5e6, n=0.5, chi=0.08, p_star=1e9, tau_l0=8e7, nodes=0
+        )
+    with pytest.raises(ValueError, match="load_max"):
+        _core.fit_line_power_law(2e-3, "convex", 1e-2, 2e-3, 2e11, 0.3, 2e11, 0.3, 1e5, 1e4, 64)
+
+
+def test_nan_inputs_give_no_panic():
+    # NaN in arrays propagates as NaN (no exception from inside the core)
+    out = tri.line_films(np.nan, 1.0, 1.0, 1e5, 2.3e11, 2e-8, 0.02)
+    assert set(out) == {"moes", "zev", "film"}
+
+
+def test_traction_is_odd_and_saturates():
+    t = _core.EhlTraction(
+        eta0=0.0165, z=0.62, tau0=5e6, n=0.5, chi=0.08, p_star=1.5e9, tau_l0=0.12e9
+    )
+    args = [np.array([x]) for x in (1.5e9, 1e-4, 2e-4)]
+    f = t.line_force(*args, np.array([0.5]), np.array([1e-7]))[0]
+    g = t.line_force(*args, np.array([-0.5]), np.array([1e-7]))[0]
+    assert f == pytest.approx(-g, rel=1e-14)
+    # never more than the limiting shear stress over the contact area
+    p = 1.5e9 * np.cos(np.linspace(0, np.pi / 2, 1000))
+    bound = (
+        2 * 1e-4 * 2e-4 * np.trapezoid(t.limiting_shear_stress(p)[::-1], np.linspace(0, 1, 1000))
+    )
+    assert abs(f) <= 2e-4 * 2 * 1e-4 * 0.12e9
+    assert bound > 0
