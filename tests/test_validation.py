@@ -6,14 +6,11 @@ import pytest
 
 from rollerdyn.validation import cases, run
 
-
-def _ids():
-    return [f"{c.group}: {c.name}" for c in cases()]
+CASES = cases()
 
 
-@pytest.mark.parametrize("index", range(len(cases())), ids=_ids())
-def test_case(index):
-    case = cases()[index]
+@pytest.mark.parametrize("case", CASES, ids=[f"{c.group}: {c.name}" for c in CASES])
+def test_case(case):
     value = float(case.compute())
     assert math.isfinite(value), case.name
     if case.report_only:
@@ -27,5 +24,5 @@ def test_case(index):
 
 def test_run_reports_every_case():
     results = list(run())
-    assert len(results) == len(cases()) >= 40
+    assert len(results) == len(CASES) >= 40
     assert all(r.passed for r in results)

@@ -144,11 +144,11 @@ def bench(
     traction.time_per_evaluation(10_000)  # warm-up
     line, ellipse = traction.time_per_evaluation(repetitions)
     table = Table(title="EHL traction evaluation (one core)")
-    for col in ("contact", "time per evaluation [ns]", "quadrature nodes"):
+    for col in ("contact", "time per evaluation [ns]", "scheme"):
         table.add_column(col)
-    nodes = str(cfg.solver.traction_nodes)
-    table.add_row("line slice", f"{line:.0f}", nodes)
-    table.add_row("ellipse", f"{ellipse:.0f}", nodes)
+    scheme = f"{cfg.solver.traction} ({cfg.solver.traction_nodes} nodes direct)"
+    table.add_row("line slice", f"{line:.0f}", scheme)
+    table.add_row("ellipse", f"{ellipse:.0f}", scheme)
     console.print(table)
 
 

@@ -863,7 +863,8 @@ class SolverConfig(_Section):
     dt_max: Quantity("time", positive=True) = "1e-4 s"
     output_interval: Quantity("time", positive=True) = "1e-4 s"
     detector: Literal["semi-analytical", "gradient", "mesh"] = "semi-analytical"
-    traction_nodes: Integer(ge=1) = 12
+    traction_nodes: Integer(ge=1, le=200) = 12
+    traction: Literal["tabulated", "direct"] = "tabulated"
     line_fit: LineFitConfig = Field(default_factory=LineFitConfig)
 
 

@@ -151,6 +151,7 @@ class Model:
             eta_p=lub.roelands.eta_p,
             p_p=lub.roelands.p_p,
             nodes=int(self.config.solver.traction_nodes),
+            tabulated=self.config.solver.traction == "tabulated",
         )
 
 

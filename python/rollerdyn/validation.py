@@ -24,6 +24,7 @@ import numpy as np
 
 from . import tribology as tri
 from .config import BearingConfig, load_config
+from .model import Model
 
 STEEL_E, STEEL_NU = 210e9, 0.3
 E_PRIME_STEEL = tri.effective_modulus(STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
@@ -78,12 +79,13 @@ def default_config_path() -> Path:
 def cases(config: BearingConfig | None = None) -> list[Case]:
     """All validation cases; the B1-specific ones use ``config`` (default: examples/b1.toml)."""
     cfg = config if config is not None else load_config(default_config_path())
+    model = Model(cfg)
     return [
         *_hertz_cases(),
-        *_line_cases(cfg),
-        *_lubricant_cases(cfg),
+        *_line_cases(cfg, model),
+        *_lubricant_cases(cfg, model),
         *_film_cases(),
-        *_traction_cases(cfg),
+        *_traction_cases(model),
         *_friction_cases(),
         *_geometry_cases(cfg),
     ]
@@ -182,9 +184,7 @@ def _tripp(cfg: BearingConfig, kind: str, q: float) -> float:
     )
 
 
-def _line_cases(cfg: BearingConfig) -> Iterator[Case]:
-    from .model import Model
-
+def _line_cases(cfg: BearingConfig, model: Model) -> Iterator[Case]:
     yield Case(
         "Line contact",
         "Tripp inner vs Palmgren, Q = 1000 N, l = 10 mm",
@@ -204,7 +204,6 @@ def _line_cases(cfg: BearingConfig) -> Iterator[Case]:
         "radius-free fit vs Tripp at B1's small roller and thin outer ring (report only)",
         report_only=True,
     )
-    model = Model(cfg)
     for kind in ("inner", "outer", "roller"):
         yield Case(
             "Line contact",
@@ -220,7 +219,7 @@ def _line_cases(cfg: BearingConfig) -> Iterator[Case]:
 # ----------------------------------------------------------------------------- lubricant
 
 
-def _lubricant_cases(cfg: BearingConfig) -> Iterator[Case]:
+def _lubricant_cases(cfg: BearingConfig, model: Model) -> Iterator[Case]:
     from . import _core
 
     yield Case(
@@ -259,9 +258,6 @@ def _lubricant_cases(cfg: BearingConfig) -> Iterator[Case]:
         1e-8,
         "quadrature converged to 1e-12",
     )
-    from .model import Model
-
-    model = Model(cfg)
     yield Case(
         "Lubricant",
         "alpha* fit (eq. 32) vs eq. 31: max relative error, 20-140 degC",
@@ -335,9 +331,8 @@ def _film_cases() -> Iterator[Case]:
 # ----------------------------------------------------------------------------- traction
 
 
-def _traction_cases(cfg: BearingConfig) -> Iterator[Case]:
+def _traction_cases(model: Model) -> Iterator[Case]:
     from . import _core
-    from .model import Model
 
     newtonian = _core.EhlTraction(
         eta0=0.02, z=1e-300, tau0=1e300, n=1.0, chi=0.0, p_star=1.0, tau_l0=1e300
@@ -366,7 +361,6 @@ def _traction_cases(cfg: BearingConfig) -> Iterator[Case]:
         1e-5,
         "all of the film on the plateau at 1e11 1/s",
     )
-    model = Model(cfg)
     yield Case(
         "Traction",
         "fast ellipse integral vs the paper's GL x trapezoid scheme (B1 oil)",

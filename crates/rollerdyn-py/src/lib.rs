@@ -20,7 +20,7 @@ use rollerdyn_core::tribology::{
     line_contact::{Counterface, LinePowerLaw, TrippContact},
     lubricant::{self, AlphaStarFit, Carreau, Dicke, Roelands, Vogel, ZFit},
     rolling_resistance,
-    traction::{EhlTraction, LimitingShearStress},
+    traction::{EhlTraction, LimitingShearStress, TableGrid},
     Elastic,
 };
 
@@ -633,7 +633,7 @@ struct PyEhlTraction {
 #[pymethods]
 impl PyEhlTraction {
     #[new]
-    #[pyo3(signature = (*, eta0, z, tau0, n, chi, p_star, tau_l0, lss_smoothing=20e6, eta_p=0.0631e-3, p_p=-196e6, nodes=12))]
+    #[pyo3(signature = (*, eta0, z, tau0, n, chi, p_star, tau_l0, lss_smoothing=20e6, eta_p=0.0631e-3, p_p=-196e6, nodes=12, tabulated=false))]
     #[allow(clippy::too_many_arguments)]
     fn new(
         eta0: f64,
@@ -647,6 +647,7 @@ impl PyEhlTraction {
         eta_p: f64,
         p_p: f64,
         nodes: usize,
+        tabulated: bool,
     ) -> PyResult<Self> {
         for (name, v) in [
             ("eta0", eta0),
@@ -676,13 +677,16 @@ impl PyEhlTraction {
             tau_l0,
             smoothing: lss_smoothing,
         };
-        let inner = EhlTraction::new(
+        let mut inner = EhlTraction::new(
             Roelands { eta_p, p_p, z },
             Carreau { tau0, n },
             lss,
             eta0,
             nodes,
         );
+        if tabulated {
+            inner = inner.tabulated(TableGrid::default());
+        }
         Ok(Self { inner, lss })
     }
 
