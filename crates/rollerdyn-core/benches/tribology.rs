@@ -5,7 +5,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use rollerdyn_core::tribology::hertz::{EllipticalContact, EllipticalMethod};
 use rollerdyn_core::tribology::lubricant::{Carreau, Roelands};
-use rollerdyn_core::tribology::traction::{EhlTraction, LimitingShearStress};
+use rollerdyn_core::tribology::traction::{EhlTraction, LimitingShearStress, TableGrid};
 use std::hint::black_box;
 
 fn b1_traction(nodes: usize) -> EhlTraction {
@@ -27,9 +27,13 @@ fn b1_traction(nodes: usize) -> EhlTraction {
 }
 
 fn traction(c: &mut Criterion) {
-    for nodes in [12, 24] {
-        let t = b1_traction(nodes);
-        c.bench_function(&format!("traction line slice, {nodes} nodes"), |b| {
+    let variants = [
+        ("tabulated", b1_traction(12).tabulated(TableGrid::default())),
+        ("direct 12 nodes", b1_traction(12)),
+        ("direct 24 nodes", b1_traction(24)),
+    ];
+    for (name, t) in &variants {
+        c.bench_function(&format!("traction line slice, {name}"), |b| {
             b.iter(|| {
                 t.line_force(
                     black_box(1.8e9),
@@ -40,7 +44,7 @@ fn traction(c: &mut Criterion) {
                 )
             })
         });
-        c.bench_function(&format!("traction ellipse, {nodes} nodes"), |b| {
+        c.bench_function(&format!("traction ellipse, {name}"), |b| {
             b.iter(|| {
                 t.ellipse_force(
                     black_box(1.2e9),

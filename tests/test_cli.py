@@ -1,0 +1,51 @@
+"""The command line: exit codes, clean errors, and the commands' output."""
+
+from pathlib import Path
+
+from typer.testing import CliRunner
+
+from rollerdyn.cli import app
+
+RUNNER = CliRunner()
+B1 = Path(__file__).resolve().parents[1] / "examples" / "b1.toml"
+
+
+def test_validate_passes_and_prints_the_table():
+    result = RUNNER.invoke(app, ["validate"])
+    assert result.exit_code == 0, result.output
+    assert "Tripp" in result.output and "Moes" in result.output
+    assert " 0 failed" in result.output
+
+
+def test_check_prints_derived_quantities():
+    result = RUNNER.invoke(app, ["check", str(B1)])
+    assert result.exit_code == 0, result.output
+    assert "roller diameter" in result.output and "0.004495" in result.output
+
+
+def test_bad_config_is_a_clean_error(tmp_path):
+    bad = tmp_path / "bad.toml"
+    text = B1.read_text(encoding="utf-8")
+    bad.write_text(text.replace('radial_load = "5000 N"', 'radial_load = "5000 mm"'))
+    result = RUNNER.invoke(app, ["check", str(bad)])
+    assert result.exit_code == 2
+    assert "operating.radial_load" in result.output and "expected a force" in result.output
+    assert "Traceback" not in result.output
+
+
+def test_missing_config_is_a_clean_error(tmp_path):
+    result = RUNNER.invoke(app, ["check", str(tmp_path / "nope.toml")])
+    assert result.exit_code == 2
+    assert "Traceback" not in result.output
+
+
+def test_bench_reports_both_contacts():
+    result = RUNNER.invoke(app, ["bench", "--repetitions", "2000"])
+    assert result.exit_code == 0, result.output
+    assert "line slice" in result.output and "ellipse" in result.output
+
+
+def test_help_explains_units():
+    result = RUNNER.invoke(app, ["validate", "--help"])
+    assert result.exit_code == 0
+    assert "SI" in result.output
