@@ -36,22 +36,22 @@ class Model:
         return self.config.operating.temperature
 
     @cached_property
+    def _vogel(self) -> tuple[float, float]:
+        lub = self.config.lubricant
+        eta, slope = _core.vogel_viscosity(
+            _array(self.temperature), lub.vogel_k, lub.vogel.b, lub.vogel.c
+        )
+        return float(eta[0]), float(slope[0])
+
+    @property
     def eta0(self) -> float:
         """Ambient-pressure viscosity at the run temperature (Vogel, eq. 20), Pa*s."""
-        lub = self.config.lubricant
-        eta, _ = _core.vogel_viscosity(
-            _array(self.temperature), lub.vogel_k, lub.vogel.b, lub.vogel.c
-        )
-        return float(eta[0])
+        return self._vogel[0]
 
-    @cached_property
+    @property
     def viscosity_slope(self) -> float:
         """d eta0 / dT at the run temperature, Pa*s/K (for eq. 48)."""
-        lub = self.config.lubricant
-        _, slope = _core.vogel_viscosity(
-            _array(self.temperature), lub.vogel_k, lub.vogel.b, lub.vogel.c
-        )
-        return float(slope[0])
+        return self._vogel[1]
 
     @cached_property
     def roelands_z(self) -> float:

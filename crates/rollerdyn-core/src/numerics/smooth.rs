@@ -17,10 +17,7 @@ pub fn smooth_min(x: f64, y: f64) -> f64 {
     if m <= 0.0 {
         return 0.0;
     }
-    let (u, v) = (x / m, y / m);
-    let (u2, v2) = (u * u, v * v);
-    let (u4, v4) = (u2 * u2, v2 * v2);
-    u * v * m / (u4 * u4 + v4 * v4).sqrt().sqrt().sqrt()
+    x * y / (m * eighth_norm(x / m, y / m))
 }
 
 /// Smooth maximum of two non-negative magnitudes: (x⁸ + y⁸)^(1/8).
@@ -31,10 +28,15 @@ pub fn smooth_max(x: f64, y: f64) -> f64 {
     if m <= 0.0 {
         return 0.0;
     }
-    let (u, v) = (x / m, y / m);
+    m * eighth_norm(x / m, y / m)
+}
+
+/// (u⁸ + v⁸)^(1/8) for u, v in [0, 1] (one of them 1): three squarings, three roots.
+#[inline]
+fn eighth_norm(u: f64, v: f64) -> f64 {
     let (u2, v2) = (u * u, v * v);
     let (u4, v4) = (u2 * u2, v2 * v2);
-    m * (u4 * u4 + v4 * v4).sqrt().sqrt().sqrt()
+    (u4 * u4 + v4 * v4).sqrt().sqrt().sqrt()
 }
 
 /// Smooth saturation sign(x)·min(|x|, 1): an odd function, linear with slope 1 at 0,

@@ -124,6 +124,13 @@ struct KernelTable {
     ellipse: Vec<f64>,
 }
 
+/// The two contact shapes whose traction integrals are tabulated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kernel {
+    Line,
+    Ellipse,
+}
+
 /// Cubic Lagrange weights on the nodes −1, 0, 1, 2 at t.
 #[inline]
 fn lagrange_weights(t: f64) -> [f64; 4] {
@@ -210,8 +217,8 @@ impl EhlTraction {
             let p0 = i as f64 * grid.pressure_step;
             for j in 0..n_y {
                 let rate = (y0 + j as f64 * grid.log_rate_step).exp();
-                line.push(fine.line_kernel_direct(p0, rate));
-                ellipse.push(fine.ellipse_kernel_direct(p0, rate));
+                line.push(fine.kernel_direct(&fine.line_rule, p0, rate));
+                ellipse.push(fine.kernel_direct(&fine.ellipse_rule, p0, rate));
             }
         }
         self.table = Some(std::sync::Arc::new(KernelTable {
@@ -231,42 +238,29 @@ impl EhlTraction {
         self.roelands.eta_p * self.ln_viscosity_ratio.exp()
     }
 
-    /// ∫₀^(π/2) τ(p₀cos θ)·cos θ dθ by the direct rule.
+    /// A kernel by the direct rule: Σ wᵢ·τ(p₀·cᵢ, γ̇) over `rule` = (cᵢ, wᵢ), i.e.
+    /// ∫₀^(π/2) τ(p₀cos θ)·cos θ dθ (line) or ∫₀¹ τ(p₀s)·s ds (ellipse).
     #[inline]
-    fn line_kernel_direct(&self, max_pressure: f64, rate: f64) -> f64 {
-        self.line_rule
-            .iter()
+    fn kernel_direct(&self, rule: &[(f64, f64)], max_pressure: f64, rate: f64) -> f64 {
+        rule.iter()
             .map(|&(c, w)| w * self.shear_stress(max_pressure * c, rate))
             .sum()
     }
 
-    /// ∫₀¹ τ(p₀s)·s ds by the direct rule.
+    /// A kernel from the table where there is one (odd in γ̇), else by the direct rule.
     #[inline]
-    fn ellipse_kernel_direct(&self, max_pressure: f64, rate: f64) -> f64 {
-        self.ellipse_rule
-            .iter()
-            .map(|&(s, w)| w * self.shear_stress(max_pressure * s, rate))
-            .sum()
-    }
-
-    /// The line kernel, from the table where there is one (odd in γ̇).
-    #[inline]
-    fn line_kernel(&self, max_pressure: f64, rate: f64) -> f64 {
-        self.table
-            .as_ref()
-            .and_then(|t| t.lookup(&t.line, max_pressure, rate.abs()))
+    fn kernel(&self, kind: Kernel, max_pressure: f64, rate: f64) -> f64 {
+        let (rule, tabulated) = match kind {
+            Kernel::Line => (&self.line_rule, self.table.as_ref().map(|t| (t, &t.line))),
+            Kernel::Ellipse => (
+                &self.ellipse_rule,
+                self.table.as_ref().map(|t| (t, &t.ellipse)),
+            ),
+        };
+        tabulated
+            .and_then(|(t, values)| t.lookup(values, max_pressure, rate.abs()))
             .map(|v| v.copysign(rate))
-            .unwrap_or_else(|| self.line_kernel_direct(max_pressure, rate))
-    }
-
-    /// The ellipse kernel, from the table where there is one (odd in γ̇).
-    #[inline]
-    fn ellipse_kernel(&self, max_pressure: f64, rate: f64) -> f64 {
-        self.table
-            .as_ref()
-            .and_then(|t| t.lookup(&t.ellipse, max_pressure, rate.abs()))
-            .map(|v| v.copysign(rate))
-            .unwrap_or_else(|| self.ellipse_kernel_direct(max_pressure, rate))
+            .unwrap_or_else(|| self.kernel_direct(rule, max_pressure, rate))
     }
 
     /// Roelands viscosity at pressure p (eq. 19), from the prepared ln(η₀/η_p).
@@ -298,7 +292,7 @@ impl EhlTraction {
         sliding_speed: f64,
         film: f64,
     ) -> f64 {
-        2.0 * half_width * length * self.line_kernel(max_pressure, sliding_speed / film)
+        2.0 * half_width * length * self.kernel(Kernel::Line, max_pressure, sliding_speed / film)
     }
 
     /// Tangential force of an elliptical contact of semi-axes a, b. Signed like u_rel.
@@ -311,7 +305,10 @@ impl EhlTraction {
         sliding_speed: f64,
         film: f64,
     ) -> f64 {
-        2.0 * PI * semi_major * semi_minor * self.ellipse_kernel(max_pressure, sliding_speed / film)
+        2.0 * PI
+            * semi_major
+            * semi_minor
+            * self.kernel(Kernel::Ellipse, max_pressure, sliding_speed / film)
     }
 
     /// The paper's scheme for the ellipse: Gauss–Legendre (`across` nodes) across the
