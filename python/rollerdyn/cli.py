@@ -125,31 +125,111 @@ def check(
 
 @app.command()
 def bench(
+    target: Annotated[
+        str,
+        typer.Argument(
+            help="What to time: 'traction' (EHL traction integral), 'contact' (roller "
+            "end/flange detection: semi-analytical, pruned, gradient) or 'all'."
+        ),
+    ] = "all",
     repetitions: Annotated[
-        int, typer.Option(min=1000, help="Evaluations timed per contact type.")
+        int, typer.Option(min=1000, help="Traction evaluations timed per contact type.")
     ] = 200_000,
+    steps: Annotated[
+        int, typer.Option(min=10, help="Trajectory steps of the contact benchmark.")
+    ] = 6283,
     config: ConfigOption = None,
 ) -> None:
-    """Time the EHL traction integral, the hot path of the dynamic model.
+    """Time the hot paths on one core and print tables (times in ns per evaluation).
 
-    Reports nanoseconds per line-slice and per elliptical-contact evaluation with the
-    configuration's traction model (default: examples/b1.toml), single-threaded.
-    For statistically careful numbers use ``cargo bench -p rollerdyn-core``.
+    traction: one line slice and one elliptical contact with the configuration's
+    traction model. contact: one roller end passing once around the bearing against an
+    inner-ring flange of the configuration (steps of 1e-3 rad of roller-set azimuth),
+    every method evaluating all six pairings; the gradient method warm-started from the
+    previous step; accuracy against the reference solver every 100th step. For
+    statistically careful numbers use ``cargo bench -p rollerdyn-core``.
     """
     from .model import Model
     from .validation import default_config_path
 
+    if target not in ("traction", "contact", "all"):
+        console.print(f"[red]target = {target!r}: must be traction, contact or all[/red]")
+        raise typer.Exit(2)
     cfg = _load(config if config is not None else default_config_path())
-    traction = Model(cfg).traction
-    traction.time_per_evaluation(10_000)  # warm-up
-    line, ellipse = traction.time_per_evaluation(repetitions)
-    table = Table(title="EHL traction evaluation (one core)")
-    for col in ("contact", "time per evaluation [ns]", "scheme"):
+    if target in ("traction", "all"):
+        traction = Model(cfg).traction
+        traction.time_per_evaluation(10_000)  # warm-up
+        line, ellipse = traction.time_per_evaluation(repetitions)
+        table = Table(title="EHL traction evaluation (one core)")
+        for col in ("contact", "time per evaluation [ns]", "scheme"):
+            table.add_column(col)
+        scheme = f"{cfg.solver.traction} ({cfg.solver.traction_nodes} nodes direct)"
+        table.add_row("line slice", f"{line:.0f}", scheme)
+        table.add_row("ellipse", f"{ellipse:.0f}", scheme)
+        console.print(table)
+    if target in ("contact", "all"):
+        _bench_contact(cfg, steps)
+
+
+def _bench_contact(cfg, steps: int) -> None:
+    from . import _core
+
+    g = cfg.geometry
+    fl = g.inner_flange
+    with console.status("timing roller end / flange detection..."):
+        r = _core.contact_benchmark(
+            roller_diameter=g.roller_diameter,
+            roller_length=g.roller.length,
+            edge_radius=g.roller.edge_radius,
+            end_face_radius=g.roller.end_face_radius,
+            opening_angle=fl.opening_angle,
+            flange_height=fl.height,
+            root_radius=fl.root_radius,
+            rim_radius=fl.rim_radius,
+            raceway_radius=g.inner_raceway_diameter / 2,
+            pitch_radius=g.pitch_diameter / 2,
+            axial_play=fl.axial_play,
+            steps=steps,
+            mesh_every=max(1, steps // 8),
+            mesh_resolutions=[(32, 8), (64, 16), (128, 32)],
+        )
+    table = Table(title=f"Roller end / flange detection, {r['evaluations']} trajectory steps")
+    for col in ("method", "time per evaluation [ns]", "relative to semi-analytical"):
         table.add_column(col)
-    scheme = f"{cfg.solver.traction} ({cfg.solver.traction_nodes} nodes direct)"
-    table.add_row("line slice", f"{line:.0f}", scheme)
-    table.add_row("ellipse", f"{ellipse:.0f}", scheme)
+    semi = r["semi_analytical_ns"]
+    for name, key in (
+        ("semi-analytical (6 pairings)", "semi_analytical_ns"),
+        ("semi-analytical, pruned", "pruned_ns"),
+        ("gradient (Koch), warm-started", "gradient_ns"),
+    ):
+        table.add_row(name, f"{r[key]:.0f}", f"{r[key] / semi:.2f}x")
     console.print(table)
+    facts = Table(title="Detection details")
+    facts.add_column("quantity")
+    facts.add_column("value")
+    facts.add_row("steps with overlap", str(r["steps_in_contact"]))
+    facts.add_row("gradient: mean Newton iterations per pairing", f"{r['gradient_mean_iterations']:.2f}")
+    facts.add_row("gradient: pairing solves not converged", str(r["gradient_not_converged"]))
+    facts.add_row(
+        "gradient: steps whose composite differs from semi-analytical",
+        str(r["gradient_wrong_composite"]),
+    )
+    facts.add_row("pruning: pairings skipped", f"{r['pruned_pairings']} of {6 * r['evaluations']}")
+    facts.add_row("pruning: whole flange skipped", f"{r['pruned_flanges']} of {r['evaluations']}")
+    facts.add_row(
+        "semi-analytical vs reference: max |dPm| [m]", f"{r['semi_max_location_error']:.2e}"
+    )
+    facts.add_row(
+        "semi-analytical vs reference: max |d delta| [m]",
+        f"{r['semi_max_penetration_error']:.2e} ({r['reference_checks']} checks)",
+    )
+    console.print(facts)
+    mesh = Table(title="Mesh baseline (parry3d-f64 triangle meshes, meshing included)")
+    for col in ("segments around x along", "time per evaluation [ms]", "max |d delta| [m]", "samples"):
+        mesh.add_column(col)
+    for around, along, ns, error, samples in r.get("mesh", []):
+        mesh.add_row(f"{around} x {along}", f"{ns / 1e6:.2f}", f"{error:.2e}", str(samples))
+    console.print(mesh)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -10,9 +10,11 @@
 //!
 //! * [`tribology`]: contact mechanics (Hertz, Tripp), lubricant rheology, film
 //!   thickness, traction, boundary and mixed friction, rolling resistance.
-//! * [`geometry`]: roller and flange shapes and their derived properties.
+//! * [`geometry`]: roller and flange shapes, the basic figures (sphere, cone, torus).
+//! * [`contact`]: roller end–flange contact detection.
 //! * [`numerics`]: quadrature, root finding, complete elliptic integrals, fitting.
 
+pub mod contact;
 pub mod error;
 pub mod geometry;
 pub mod numerics;

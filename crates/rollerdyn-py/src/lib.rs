@@ -825,12 +825,112 @@ impl PyEhlTraction {
     }
 }
 
+/// Roller end / flange detection benchmark on a roller's trajectory against one inner-ring
+/// flange (see core `contact::benchmark`). Lengths in m, angles in rad.
+#[pyfunction]
+#[pyo3(signature = (*, roller_diameter, roller_length, edge_radius, end_face_radius, opening_angle, flange_height, root_radius, rim_radius, raceway_radius, pitch_radius, axial_play, steps=6283, step=1e-3, push=22e-6, wobble=1e-3, reference_every=100, mesh_every=0, mesh_resolutions=Vec::new()))]
+#[allow(clippy::too_many_arguments)]
+fn contact_benchmark<'py>(
+    py: Python<'py>,
+    roller_diameter: f64,
+    roller_length: f64,
+    edge_radius: f64,
+    end_face_radius: f64,
+    opening_angle: f64,
+    flange_height: f64,
+    root_radius: f64,
+    rim_radius: f64,
+    raceway_radius: f64,
+    pitch_radius: f64,
+    axial_play: f64,
+    steps: usize,
+    step: f64,
+    push: f64,
+    wobble: f64,
+    reference_every: usize,
+    mesh_every: usize,
+    mesh_resolutions: Vec<(usize, usize)>,
+) -> PyResult<Bound<'py, PyDict>> {
+    use rollerdyn_core::contact::benchmark::{mesh_study, run, Trajectory};
+    use rollerdyn_core::contact::mesh::MeshResolution;
+    use rollerdyn_core::geometry::end_flange::{Flange, FlangePlacement, FlangeShape};
+    use rollerdyn_core::geometry::primitives::Vec3;
+    if steps == 0 {
+        return Err(PyValueError::new_err("steps = 0: must be at least 1"));
+    }
+    let shape = RollerShape::new(
+        0.5 * roller_diameter,
+        roller_length,
+        edge_radius,
+        end_face_radius,
+    )
+    .map_err(core_err)?;
+    let flange_shape = FlangeShape::new(opening_angle, flange_height, root_radius, rim_radius)
+        .map_err(core_err)?;
+    let flange = Flange::new(
+        &flange_shape,
+        &FlangePlacement {
+            origin: Vec3::zeros(),
+            axis: Vec3::x(),
+            raceway_radius,
+            rises: 1.0,
+            face_position: 0.5 * roller_length + axial_play,
+            facing: -1.0,
+        },
+    );
+    let trajectory = Trajectory {
+        pitch_radius,
+        step,
+        steps,
+        push,
+        wobble,
+    };
+    let r = py.detach(|| run(&shape, &flange, &trajectory, reference_every));
+    let d = PyDict::new(py);
+    d.set_item("evaluations", r.evaluations)?;
+    d.set_item("semi_analytical_ns", r.semi_analytical_ns)?;
+    d.set_item("pruned_ns", r.pruned_ns)?;
+    d.set_item("gradient_ns", r.gradient_ns)?;
+    d.set_item("gradient_mean_iterations", r.gradient_mean_iterations)?;
+    d.set_item("gradient_not_converged", r.gradient_not_converged)?;
+    d.set_item("gradient_wrong_composite", r.gradient_wrong_composite)?;
+    d.set_item("pruned_pairings", r.pruned_pairings)?;
+    d.set_item("pruned_flanges", r.pruned_flanges)?;
+    d.set_item("steps_in_contact", r.steps_in_contact)?;
+    d.set_item("semi_max_location_error", r.semi_max_location_error)?;
+    d.set_item("semi_max_penetration_error", r.semi_max_penetration_error)?;
+    d.set_item("reference_checks", r.reference_checks)?;
+    if mesh_every > 0 && !mesh_resolutions.is_empty() {
+        let resolutions: Vec<MeshResolution> = mesh_resolutions
+            .iter()
+            .map(|&(around, along)| MeshResolution { around, along })
+            .collect();
+        let points =
+            py.detach(|| mesh_study(&shape, &flange, &trajectory, mesh_every, &resolutions));
+        let rows: Vec<(usize, usize, f64, f64, usize)> = points
+            .iter()
+            .map(|p| {
+                (
+                    p.resolution.around,
+                    p.resolution.along,
+                    p.ns,
+                    p.max_penetration_error,
+                    p.samples,
+                )
+            })
+            .collect();
+        d.set_item("mesh", rows)?;
+    }
+    Ok(d)
+}
+
 /// The module `rollerdyn._core`.
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<PyEhlTraction>()?;
     m.add_function(wrap_pyfunction!(roller_mass_properties, m)?)?;
+    m.add_function(wrap_pyfunction!(contact_benchmark, m)?)?;
     m.add_function(wrap_pyfunction!(elliptic_integrals, m)?)?;
     m.add_function(wrap_pyfunction!(ellipticity, m)?)?;
     m.add_function(wrap_pyfunction!(hertz_point, m)?)?;

@@ -1,0 +1,89 @@
+//! Criterion benchmarks of roller end / flange detection on B1's geometry: one composite
+//! evaluation (six pairings of one roller end against one flange) per method, over a
+//! roller's trajectory through the load zone (the gradient method warm-started from the
+//! previous step, as in a run). Run: `cargo bench -p rollerdyn-core --bench contact`.
+
+use criterion::{criterion_group, criterion_main, Criterion};
+use rollerdyn_core::contact::benchmark::Trajectory;
+use rollerdyn_core::contact::{gradient, pruning, semi_analytical};
+use rollerdyn_core::geometry::end_flange::{Flange, FlangePlacement, FlangeShape, RollerEnd};
+use rollerdyn_core::geometry::primitives::Vec3;
+use rollerdyn_core::geometry::roller::RollerShape;
+use std::hint::black_box;
+
+fn b1() -> (RollerShape, Flange, Vec<RollerEnd>) {
+    let shape = RollerShape::new(4.495e-3 / 2.0, 5e-3, 0.5e-3, 5.0).unwrap();
+    let flange_shape = FlangeShape::new(0.11f64.to_radians(), 1.1e-3, 0.2e-3, 0.3e-3).unwrap();
+    let flange = Flange::new(
+        &flange_shape,
+        &FlangePlacement {
+            origin: Vec3::zeros(),
+            axis: Vec3::x(),
+            raceway_radius: 10e-3,
+            rises: 1.0,
+            face_position: 2.52e-3,
+            facing: -1.0,
+        },
+    );
+    let trajectory = Trajectory {
+        pitch_radius: 12.25e-3,
+        step: 1e-3,
+        steps: 6283,
+        push: 22e-6,
+        wobble: 1e-3,
+    };
+    let ends = (0..trajectory.steps)
+        .map(|k| trajectory.end(&shape, k))
+        .collect();
+    (shape, flange, ends)
+}
+
+fn detection(c: &mut Criterion) {
+    let (_, flange, ends) = b1();
+    let n = ends.len();
+    let mut k = 0;
+    c.bench_function("semi-analytical composite (6 pairings)", |b| {
+        b.iter(|| {
+            k = (k + 1) % n;
+            semi_analytical::detect(black_box(&ends[k]), &flange)
+        })
+    });
+    c.bench_function("semi-analytical composite, pruned", |b| {
+        b.iter(|| {
+            k = (k + 1) % n;
+            pruning::detect(black_box(&ends[k]), &flange)
+        })
+    });
+    let mut previous = [None; 6];
+    c.bench_function("gradient composite (6 pairings), warm-started", |b| {
+        b.iter(|| {
+            k = (k + 1) % n;
+            let o = gradient::detect(black_box(&ends[k]), &flange, &previous);
+            previous = std::array::from_fn(|i| Some(o[i].unknowns));
+            o
+        })
+    });
+    let end = &ends[n / 2];
+    c.bench_function("torus-cone", |b| {
+        b.iter(|| semi_analytical::torus_cone(black_box(&end.torus), &flange.cone))
+    });
+    c.bench_function("torus-torus (rim)", |b| {
+        b.iter(|| {
+            semi_analytical::torus_torus(
+                black_box(&end.torus),
+                &flange.rim,
+                rollerdyn_core::contact::Pairing::TorusRim,
+            )
+        })
+    });
+    c.bench_function("sphere-cone", |b| {
+        b.iter(|| semi_analytical::sphere_cone(black_box(&end.sphere), &flange.cone))
+    });
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(2));
+    targets = detection
+}
+criterion_main!(benches);

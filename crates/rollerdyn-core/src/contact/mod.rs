@@ -1,0 +1,176 @@
+//! Contact detection between a roller end and a flange (paper sect. 2).
+//!
+//! Each pairing of a roller figure (edge torus, end sphere) with a flange figure (cone,
+//! root torus, rim torus) yields a [`Contact`]: the contact points P₁ (roller) and P₂
+//! (flange), the contact location P_m = (P₁ + P₂)/2 (eq. 1), the signed penetration δ
+//! (positive = overlap, negative = gap), the unit contact normal n (from the flange towards
+//! the roller), and the relative principal radii R_x ≤ R_y with the direction of the
+//! ellipse's major axis (along R_y), as Hertz (eqs. 5–8) and Chittenden's ξ (eq. 46) need.
+//!
+//! * [`benchmark`]: time and accuracy of the methods on a roller's trajectory.
+//! * [`semi_analytical`]: the method of Wolf, Sanner & Fatemi (2020) used by the paper.
+//! * [`gradient`]: Koch's gradient method (8 × 8 Newton, warm-started).
+//! * [`pruning`]: conservative bounds that skip pairings and flanges that cannot touch.
+//! * [`reference`]: brute force plus local refinement, slow and sure, to check the others.
+
+pub mod benchmark;
+pub mod gradient;
+pub mod mesh;
+pub mod pruning;
+pub mod reference;
+pub mod semi_analytical;
+#[cfg(test)]
+mod tests;
+
+use crate::geometry::primitives::{relative_curvature, Curvature, Vec3};
+
+/// The six pairings of roller figure × flange figure (paper fig. 1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Pairing {
+    /// Roller edge torus – flange face cone (Gupta's pairing).
+    TorusCone,
+    /// Roller edge torus – flange root torus.
+    TorusRoot,
+    /// Roller edge torus – flange rim torus.
+    TorusRim,
+    /// Roller end sphere – flange face cone.
+    SphereCone,
+    /// Roller end sphere – flange root torus.
+    SphereRoot,
+    /// Roller end sphere – flange rim torus.
+    SphereRim,
+}
+
+impl Pairing {
+    /// All six, in a fixed order (the composite's tie-break order).
+    pub const ALL: [Pairing; 6] = [
+        Pairing::TorusCone,
+        Pairing::TorusRoot,
+        Pairing::TorusRim,
+        Pairing::SphereCone,
+        Pairing::SphereRoot,
+        Pairing::SphereRim,
+    ];
+
+    /// Short label as in the paper's figs. 8, 9 (TO-CO, ...).
+    pub fn label(&self) -> &'static str {
+        match self {
+            Pairing::TorusCone => "TO-CO",
+            Pairing::TorusRoot => "TO-TO(root)",
+            Pairing::TorusRim => "TO-TO(rim)",
+            Pairing::SphereCone => "SP-CO",
+            Pairing::SphereRoot => "SP-TO(root)",
+            Pairing::SphereRim => "SP-TO(rim)",
+        }
+    }
+}
+
+/// The result of one pairing's detection.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Contact {
+    /// Which figures.
+    pub pairing: Pairing,
+    /// Contact point on the roller [m].
+    pub p1: Vec3,
+    /// Contact point on the flange [m].
+    pub p2: Vec3,
+    /// Signed penetration δ: positive overlap, negative gap [m].
+    pub penetration: f64,
+    /// Unit contact normal, from the flange towards the roller.
+    pub normal: Vec3,
+    /// Smaller relative principal radius R_x [m] (∞ for a flat relative shape). Like
+    /// `ry` and `major_axis`, computed only for valid overlapping contacts (the only ones
+    /// that carry load); NaN otherwise.
+    pub rx: f64,
+    /// Larger relative principal radius R_y [m].
+    pub ry: f64,
+    /// Unit direction of the contact ellipse's major axis (along R_y).
+    pub major_axis: Vec3,
+    /// True if both points lie on their patches (otherwise the contact does not count).
+    pub valid: bool,
+    /// True if the extremum is not unique (symmetric poses: two mirror-image closest
+    /// pairs of two circles, or a circle parallel to a plane); the points are then one
+    /// representative of several with the same penetration.
+    pub multiple: bool,
+}
+
+impl Contact {
+    /// Contact location P_m = (P₁ + P₂)/2, paper eq. 1.
+    pub fn location(&self) -> Vec3 {
+        0.5 * (self.p1 + self.p2)
+    }
+
+    /// Assembles a contact from its points, normal and the two surfaces' curvatures.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn from_parts(
+        pairing: Pairing,
+        p1: Vec3,
+        p2: Vec3,
+        normal: Vec3,
+        penetration: f64,
+        roller: &Curvature,
+        flange: &Curvature,
+        valid: bool,
+    ) -> Self {
+        Self::assemble(
+            pairing,
+            p1,
+            p2,
+            normal,
+            penetration,
+            || (*roller, *flange),
+            valid,
+        )
+    }
+
+    /// As [`Contact::from_parts`], with the curvatures evaluated only where they are used
+    /// (valid overlapping contacts).
+    pub(crate) fn assemble(
+        pairing: Pairing,
+        p1: Vec3,
+        p2: Vec3,
+        normal: Vec3,
+        penetration: f64,
+        curvatures: impl FnOnce() -> (Curvature, Curvature),
+        valid: bool,
+    ) -> Self {
+        let (kx, ky, major_axis) = if valid && penetration > 0.0 {
+            let (roller, flange) = curvatures();
+            relative_curvature(&normal, &roller, &flange)
+        } else {
+            (f64::NAN, f64::NAN, Vec3::repeat(f64::NAN))
+        };
+        let radius = |k: f64| {
+            if k > 0.0 || k.is_nan() {
+                1.0 / k
+            } else {
+                f64::INFINITY
+            }
+        };
+        Self {
+            pairing,
+            p1,
+            p2,
+            penetration,
+            normal,
+            rx: radius(kx),
+            ry: radius(ky),
+            major_axis,
+            valid,
+            multiple: false,
+        }
+    }
+}
+
+/// The composite result of one roller end against one flange: the valid pairing with
+/// the largest penetration (ties: the first in [`Pairing::ALL`]), or None if no pairing
+/// is valid.
+pub fn deepest(contacts: &[Contact]) -> Option<Contact> {
+    contacts
+        .iter()
+        .filter(|c| c.valid && c.penetration.is_finite())
+        .fold(None, |best: Option<Contact>, c| match best {
+            Some(b) if b.penetration >= c.penetration => Some(b),
+            _ => Some(*c),
+        })
+}

@@ -1,0 +1,195 @@
+//! Pruning, which the paper only proposes (sect. 5.3): skip pairings that cannot touch and
+//! flanges that cannot be reached, by conservative bounds that provably miss no contact.
+//!
+//! Both bounds work in the flange's meridian plane (axial coordinate s and radius ρ about
+//! the ring axis). For any two points p, q: |p − q| ≥ |(s_p − s_q, ρ_p − ρ_q)|, since the
+//! azimuthal separation only adds to the distance. So if the meridian boxes that contain
+//! a roller figure and a flange figure are apart, the figures cannot overlap.
+//!
+//! * A roller figure's box: s from its support function along ±a (exact for the torus of
+//!   which the patch is a part, and for the spherical cap), ρ within ρ(centre) ± (extent)
+//!   by the triangle inequality.
+//! * A flange figure's box: exact s and ρ ranges of the patch (cone ends; torus arcs with
+//!   their interior extrema).
+//!
+//! A pairing whose boxes are apart is skipped; a flange whose box (the union of its
+//! three) is apart from the roller end's box is skipped whole.
+
+use super::{semi_analytical, Contact};
+use crate::geometry::end_flange::{Flange, RollerEnd};
+use crate::geometry::primitives::{meridian, ConePatch, SpherePatch, TorusPatch, Vec3};
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// A box [s_lo, s_hi] × [ρ_lo, ρ_hi] in a flange's meridian plane.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MeridianBox {
+    /// Axial range.
+    pub s: (f64, f64),
+    /// Radial range.
+    pub rho: (f64, f64),
+}
+
+impl MeridianBox {
+    /// The smallest box containing both.
+    pub fn union(&self, other: &Self) -> Self {
+        Self {
+            s: (self.s.0.min(other.s.0), self.s.1.max(other.s.1)),
+            rho: (self.rho.0.min(other.rho.0), self.rho.1.max(other.rho.1)),
+        }
+    }
+
+    /// True if the two boxes are apart by more than `margin` (so that their contents
+    /// cannot come closer than `margin`).
+    pub fn apart(&self, other: &Self, margin: f64) -> bool {
+        let gap = |a: (f64, f64), b: (f64, f64)| (a.0 - b.1).max(b.0 - a.1).max(0.0);
+        let (ds, dr) = (gap(self.s, other.s), gap(self.rho, other.rho));
+        ds * ds + dr * dr > margin * margin
+    }
+}
+
+/// Range of x·sin φ + y·cos φ ... over an arc: the extent of c + r·m(φ) components.
+fn arc_extent(
+    mid: f64,
+    half: f64,
+    component: impl Fn(f64) -> f64,
+    extrema: [f64; 2],
+) -> (f64, f64) {
+    let mut lo = component(mid - half).min(component(mid + half));
+    let mut hi = component(mid - half).max(component(mid + half));
+    for phi in extrema {
+        let offset = (phi - mid + PI).rem_euclid(2.0 * PI) - PI;
+        if offset.abs() <= half {
+            lo = lo.min(component(phi));
+            hi = hi.max(component(phi));
+        }
+    }
+    (lo, hi)
+}
+
+/// Meridian box of a flange torus patch (its axis is the ring axis).
+pub fn torus_box(t: &TorusPatch, ring_origin: &Vec3, ring_axis: &Vec3) -> MeridianBox {
+    let s_c = ring_axis.dot(&(t.origin - ring_origin));
+    let r = t.minor_radius;
+    let s = arc_extent(
+        t.phi_mid,
+        t.phi_half,
+        |p| s_c + r * p.sin(),
+        [FRAC_PI_2, -FRAC_PI_2],
+    );
+    let rho = arc_extent(
+        t.phi_mid,
+        t.phi_half,
+        |p| t.major_radius + r * p.cos(),
+        [0.0, PI],
+    );
+    MeridianBox { s, rho }
+}
+
+/// Meridian box of a cone patch about its own axis.
+pub fn cone_box(c: &ConePatch) -> MeridianBox {
+    let ends = [c.g_min, c.g_max].map(|g| (c.s0 + g * c.ds, c.rho0 + g * c.drho));
+    MeridianBox {
+        s: (ends[0].0.min(ends[1].0), ends[0].0.max(ends[1].0)),
+        rho: (ends[0].1.min(ends[1].1), ends[0].1.max(ends[1].1)),
+    }
+}
+
+/// Meridian box of a flange: the union of its three patches.
+pub fn flange_box(f: &Flange) -> MeridianBox {
+    let (o, a) = (f.cone.origin, f.cone.axis);
+    cone_box(&f.cone)
+        .union(&torus_box(&f.root, &o, &a))
+        .union(&torus_box(&f.rim, &o, &a))
+}
+
+/// Support h(d) = max p·d over the whole torus of which the roller's edge patch is part.
+fn torus_support(t: &TorusPatch, d: &Vec3) -> f64 {
+    let along = t.axis.dot(d);
+    t.origin.dot(d) + t.major_radius * (d - t.axis * along).norm() + t.minor_radius * d.norm()
+}
+
+/// Support of a spherical cap: the full sphere's if d lies within the cap's cone of
+/// directions, else the cap's boundary circle's.
+fn cap_support(s: &SpherePatch, d: &Vec3) -> f64 {
+    let dn = d.norm();
+    let along = s.pole.dot(d);
+    if along >= dn * s.cap_angle.cos() {
+        return s.center.dot(d) + s.radius * dn;
+    }
+    let base = s.center + s.pole * (s.radius * s.cap_angle.cos());
+    base.dot(d) + s.radius * s.cap_angle.sin() * (d - s.pole * along).norm()
+}
+
+/// Meridian box of a roller figure with the given supports and extent about `center`.
+fn roller_box(
+    support: impl Fn(&Vec3) -> f64,
+    center: &Vec3,
+    extent: f64,
+    ring_origin: &Vec3,
+    ring_axis: &Vec3,
+) -> MeridianBox {
+    let o_dot = ring_origin.dot(ring_axis);
+    let (_, rho, _) = meridian(center, ring_origin, ring_axis);
+    MeridianBox {
+        s: (-support(&(-ring_axis)) - o_dot, support(ring_axis) - o_dot),
+        rho: ((rho - extent).max(0.0), rho + extent),
+    }
+}
+
+/// Meridian boxes of the roller end's torus and sphere cap in the flange's frame.
+pub fn end_boxes(end: &RollerEnd, flange: &Flange) -> [MeridianBox; 2] {
+    let (o, a) = (flange.cone.origin, flange.cone.axis);
+    let t = &end.torus;
+    let s = &end.sphere;
+    let cap_center = s.center + s.pole * (s.radius * s.cap_angle.cos());
+    [
+        roller_box(
+            |d| torus_support(t, d),
+            &t.origin,
+            t.major_radius + t.minor_radius,
+            &o,
+            &a,
+        ),
+        roller_box(
+            |d| cap_support(s, d),
+            &cap_center,
+            s.radius * s.cap_angle.sin(),
+            &o,
+            &a,
+        ),
+    ]
+}
+
+/// The six pairings with those that provably cannot overlap skipped (None), in
+/// [`super::Pairing::ALL`] order, and whether the whole flange was skipped.
+pub fn detect(end: &RollerEnd, flange: &Flange) -> ([Option<Contact>; 6], bool) {
+    let ends = end_boxes(end, flange);
+    let whole = flange_box(flange);
+    if ends[0].union(&ends[1]).apart(&whole, 0.0) {
+        return ([None; 6], true);
+    }
+    let (o, a) = (flange.cone.origin, flange.cone.axis);
+    let figures = [
+        cone_box(&flange.cone),
+        torus_box(&flange.root, &o, &a),
+        torus_box(&flange.rim, &o, &a),
+    ];
+    let skip: [bool; 6] = std::array::from_fn(|k| ends[k / 3].apart(&figures[k % 3], 0.0));
+    let contacts = [
+        (!skip[0]).then(|| semi_analytical::torus_cone(&end.torus, &flange.cone)),
+        (!skip[1]).then(|| {
+            semi_analytical::torus_torus(&end.torus, &flange.root, super::Pairing::TorusRoot)
+        }),
+        (!skip[2]).then(|| {
+            semi_analytical::torus_torus(&end.torus, &flange.rim, super::Pairing::TorusRim)
+        }),
+        (!skip[3]).then(|| semi_analytical::sphere_cone(&end.sphere, &flange.cone)),
+        (!skip[4]).then(|| {
+            semi_analytical::sphere_torus(&end.sphere, &flange.root, super::Pairing::SphereRoot)
+        }),
+        (!skip[5]).then(|| {
+            semi_analytical::sphere_torus(&end.sphere, &flange.rim, super::Pairing::SphereRim)
+        }),
+    ];
+    (contacts, false)
+}

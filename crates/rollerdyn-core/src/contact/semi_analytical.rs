@@ -1,0 +1,209 @@
+//! The semi-analytical roller end–flange contact detection of Wolf, Sanner & Fatemi
+//! (Proc. IMechE J, 2020), as described in the reference paper, sect. 2:
+//!
+//! * sphere–cone and sphere–torus in closed form, in the plane through the sphere's centre
+//!   and the other figure's axis (the meridian plane, where the contact points lie);
+//! * torus–cone by the one-dimensional extremum of the penetration over the torus angle
+//!   (Gupta 1984), bracketed on the half circle around the plane-model estimate so that it
+//!   cannot settle on the wrong extremum;
+//! * torus–torus by the minimum distance of the two tube-centre circles (Eberly, see
+//!   [`crate::geometry::circle`]) followed by sphere–sphere with the two tube radii.
+//!
+//! Every function returns a [`Contact`] whether or not the points lie on their patches;
+//! [`Contact::valid`] says whether the pairing counts.
+
+use super::{Contact, Pairing};
+use crate::geometry::circle::{circle_circle_distance, Circle3, ClosestPairs};
+use crate::geometry::end_flange::{Flange, RollerEnd};
+use crate::geometry::primitives::{
+    any_perpendicular, meridian, ConePatch, SpherePatch, TorusPatch, Vec3,
+};
+use std::f64::consts::FRAC_PI_2;
+
+/// All six pairings of a roller end against a flange, in [`Pairing::ALL`] order.
+pub fn detect(end: &RollerEnd, flange: &Flange) -> [Contact; 6] {
+    [
+        torus_cone(&end.torus, &flange.cone),
+        torus_torus(&end.torus, &flange.root, Pairing::TorusRoot),
+        torus_torus(&end.torus, &flange.rim, Pairing::TorusRim),
+        sphere_cone(&end.sphere, &flange.cone),
+        sphere_torus(&end.sphere, &flange.root, Pairing::SphereRoot),
+        sphere_torus(&end.sphere, &flange.rim, Pairing::SphereRim),
+    ]
+}
+
+/// Roller end sphere against the flange face: the foot of the sphere's centre on the cone.
+pub fn sphere_cone(sphere: &SpherePatch, cone: &ConePatch) -> Contact {
+    let foot = cone.foot(&sphere.center);
+    let n = foot.normal;
+    let p1 = sphere.center - n * sphere.radius;
+    Contact::assemble(
+        Pairing::SphereCone,
+        p1,
+        foot.point,
+        n,
+        sphere.radius - foot.distance,
+        || (sphere.curvature(&(-n)), cone.curvature(&foot.point, &n)),
+        foot.on_patch && sphere.contains_direction(&(-n)),
+    )
+}
+
+/// Roller end sphere against a flange torus: the tube centre in the sphere centre's
+/// meridian plane, then sphere–sphere.
+pub fn sphere_torus(sphere: &SpherePatch, torus: &TorusPatch, pairing: Pairing) -> Contact {
+    let (q, _) = torus.tube_center_towards(&sphere.center);
+    sphere_sphere(
+        pairing,
+        (sphere.center, sphere.radius),
+        (q, torus.minor_radius),
+        |_, n| sphere.curvature(&(-n)),
+        |p2, n| torus.curvature(&p2, &n),
+        |n| sphere.contains_direction(&(-n)),
+        |n| torus.contains_normal(&q, &n),
+    )
+}
+
+/// Roller edge torus against a flange torus: Eberly's closest points of the two
+/// tube-centre circles, then sphere–sphere with the tube radii. Where the circles have a
+/// continuum of closest pairs (coaxial), the representative pair Eberly's solver returns
+/// is used (every pair gives the same penetration).
+pub fn torus_torus(roller: &TorusPatch, flange: &TorusPatch, pairing: Pairing) -> Contact {
+    let c1 = Circle3 {
+        center: roller.origin,
+        normal: roller.axis,
+        radius: roller.major_radius,
+    };
+    let c2 = Circle3 {
+        center: flange.origin,
+        normal: flange.axis,
+        radius: flange.major_radius,
+    };
+    let closest = circle_circle_distance(&c1, &c2).pairs;
+    let (q1, q2) = closest.first();
+    let mut contact = sphere_sphere(
+        pairing,
+        (q1, roller.minor_radius),
+        (q2, flange.minor_radius),
+        |p1, n| roller.curvature(&p1, &(-n)),
+        |p2, n| flange.curvature(&p2, &n),
+        |n| roller.contains_normal(&q1, &(-n)),
+        |n| flange.contains_normal(&q2, &n),
+    );
+    contact.multiple = !matches!(closest, ClosestPairs::Unique(..));
+    contact
+}
+
+/// Roller edge torus against the flange face (Gupta): the penetration r − d(q(β)) of the
+/// tube-centre point q(β) is maximal where d(q(β)), its distance from the cone, is
+/// minimal. Its stationarity h(β) = n(q)·q'(β) = 0 is solved by Newton's method with the
+/// exact derivative h' = q'ᵀ·H·q' + n·q'' (H the Hessian of the cone's distance,
+/// (n_ρ/ρ)·(projector on the circumferential direction)), started from the estimate of a
+/// plane through the cone's tangent at the torus centre and safeguarded by bisection on the
+/// half circle around it, on which the distance has exactly one minimum.
+pub fn torus_cone(torus: &TorusPatch, cone: &ConePatch) -> Contact {
+    let e = torus.axis;
+    let u = any_perpendicular(&e);
+    let v = e.cross(&u);
+    let big = torus.major_radius;
+    // h(β) and h'(β).
+    let slope = |beta: f64| {
+        let (sb, cb) = beta.sin_cos();
+        let radial = u * cb + v * sb;
+        let q = torus.origin + radial * big;
+        let tangent = (v * cb - u * sb) * big;
+        let (_, rho, e_rho) = meridian(&q, &cone.origin, &cone.axis);
+        let (ns, nr) = cone.meridian_normal();
+        let n = cone.axis * ns + e_rho * nr;
+        let circumferential = cone.axis.cross(&e_rho).dot(&tangent);
+        let h = n.dot(&tangent);
+        let dh = nr / rho * circumferential * circumferential - n.dot(&radial) * big;
+        (h, dh)
+    };
+    // Plane model: the distance falls fastest along −n₀ projected on the circle's plane.
+    let n0 = cone.foot(&torus.origin).normal;
+    let w = -(n0 - e * e.dot(&n0));
+    let parallel = w.norm() <= 1e-14;
+    let beta0 = if parallel {
+        0.0 // circle parallel to the face: every β is a minimum of the plane model
+    } else {
+        w.dot(&v).atan2(w.dot(&u))
+    };
+    let beta = safeguarded_newton(beta0, beta0 - FRAC_PI_2, beta0 + FRAC_PI_2, slope);
+    let q = torus.origin + (u * beta.cos() + v * beta.sin()) * big;
+    let foot = cone.foot(&q);
+    let n = foot.normal;
+    let p1 = q - n * torus.minor_radius;
+    let mut contact = Contact::assemble(
+        Pairing::TorusCone,
+        p1,
+        foot.point,
+        n,
+        torus.minor_radius - foot.distance,
+        || (torus.curvature(&p1, &(-n)), cone.curvature(&foot.point, &n)),
+        foot.on_patch && torus.contains_normal(&q, &(-n)),
+    );
+    contact.multiple = parallel;
+    contact
+}
+
+/// Root of an increasing function h on [lo, hi] (h(lo) ≤ 0 ≤ h(hi)) by Newton's method
+/// from x0, falling back to bisection whenever a step leaves the current bracket or h'
+/// is not positive. Returns x0 if h has no sign change on the bracket.
+fn safeguarded_newton(x0: f64, mut lo: f64, mut hi: f64, f: impl Fn(f64) -> (f64, f64)) -> f64 {
+    let mut x = x0;
+    for _ in 0..100 {
+        let (h, dh) = f(x);
+        let step = h / dh;
+        if dh > 0.0 && step.abs() <= 1e-15 * (1.0 + x.abs()) {
+            return x - step;
+        }
+        if h <= 0.0 {
+            lo = x;
+        } else {
+            hi = x;
+        }
+        let newton = x - step;
+        x = if dh > 0.0 && newton >= lo && newton <= hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        if hi - lo <= 1e-15 * (1.0 + x.abs()) {
+            return x;
+        }
+    }
+    x
+}
+
+/// Two spheres (c₁, r₁) on the roller and (c₂, r₂) on the flange: n = (c₁ − c₂)/|c₁ − c₂|,
+/// δ = r₁ + r₂ − |c₁ − c₂|, P₁ = c₁ − r₁n, P₂ = c₂ + r₂n.
+#[allow(clippy::too_many_arguments)]
+fn sphere_sphere(
+    pairing: Pairing,
+    (c1, r1): (Vec3, f64),
+    (c2, r2): (Vec3, f64),
+    roller_curvature: impl Fn(Vec3, Vec3) -> crate::geometry::primitives::Curvature,
+    flange_curvature: impl Fn(Vec3, Vec3) -> crate::geometry::primitives::Curvature,
+    roller_patch: impl Fn(Vec3) -> bool,
+    flange_patch: impl Fn(Vec3) -> bool,
+) -> Contact {
+    let w = c1 - c2;
+    let d = w.norm();
+    let n = if d > 1e-300 {
+        w / d
+    } else {
+        any_perpendicular(&Vec3::x())
+    };
+    let p1 = c1 - n * r1;
+    let p2 = c2 + n * r2;
+    Contact::from_parts(
+        pairing,
+        p1,
+        p2,
+        n,
+        r1 + r2 - d,
+        &roller_curvature(p1, n),
+        &flange_curvature(p2, n),
+        roller_patch(n) && flange_patch(n),
+    )
+}

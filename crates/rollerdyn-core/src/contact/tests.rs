@@ -1,0 +1,337 @@
+//! Property tests of the detectors against the reference solver, on B1's roller ends
+//! and flanges in physically meaningful random poses.
+
+use super::{deepest, gradient, pruning, reference, semi_analytical, Contact, Pairing};
+use crate::geometry::end_flange::{Flange, FlangePlacement, FlangeShape, RollerEnd};
+use crate::geometry::primitives::Vec3;
+use crate::geometry::roller::RollerShape;
+use proptest::prelude::*;
+
+pub(crate) const PITCH_RADIUS: f64 = 12.25e-3;
+pub(crate) const PLAY: f64 = 20e-6;
+
+pub(crate) fn b1_roller() -> RollerShape {
+    RollerShape::new(4.495e-3 / 2.0, 5e-3, 0.5e-3, 5.0).unwrap()
+}
+
+/// One of B1's four flanges: inner or outer ring, at the +x or −x end.
+pub(crate) fn b1_flange(inner: bool, plus_end: bool) -> Flange {
+    let shape = FlangeShape::new(0.11f64.to_radians(), 1.1e-3, 0.2e-3, 0.3e-3).unwrap();
+    let side = if plus_end { 1.0 } else { -1.0 };
+    Flange::new(
+        &shape,
+        &FlangePlacement {
+            origin: Vec3::zeros(),
+            axis: Vec3::x(),
+            raceway_radius: if inner { 10e-3 } else { 14.5e-3 },
+            rises: if inner { 1.0 } else { -1.0 },
+            face_position: side * (2.5e-3 + PLAY),
+            facing: -side,
+        },
+    )
+}
+
+/// Roller end facing the flange at the `plus_end` side, for a roller at azimuth ψ,
+/// displaced axially by dx and radially by dr, tilted (about the circumferential
+/// direction) and skewed (about the radial direction) by the given angles.
+pub(crate) fn b1_end(
+    plus_end: bool,
+    psi: f64,
+    dx: f64,
+    dr: f64,
+    tilt: f64,
+    skew: f64,
+) -> RollerEnd {
+    let radial = Vec3::new(0.0, psi.cos(), psi.sin());
+    let circumferential = Vec3::x().cross(&radial);
+    let center = Vec3::x() * dx + radial * (PITCH_RADIUS + dr);
+    let axis = (Vec3::x() * (tilt.cos() * skew.cos())
+        + radial * tilt.sin()
+        + circumferential * skew.sin())
+    .normalize();
+    let outward = if plus_end { axis } else { -axis };
+    RollerEnd::new(&b1_roller(), center, outward)
+}
+
+/// Same contact: δ within 0.1 nm (or 1e-9 relative) and P_m within 1 nm, unless the
+/// detector reports several equally deep points (symmetric poses), where only δ is compared.
+fn agree(a: &Contact, b: &Contact) -> Result<(), TestCaseError> {
+    let dp = (a.location() - b.location()).norm();
+    let dd = (a.penetration - b.penetration).abs();
+    let tol_d = 0.1e-9f64.max(1e-9 * b.penetration.abs());
+    prop_assert!(
+        dp < 1e-9 || a.multiple,
+        "{:?}: Pm differs by {dp:e} m",
+        a.pairing
+    );
+    prop_assert!(
+        dd < tol_d,
+        "{:?}: δ {} vs {} ({dd:e})",
+        a.pairing,
+        a.penetration,
+        b.penetration
+    );
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 96, .. ProptestConfig::default() })]
+
+    /// Semi-analytical against the reference on every pairing and the composite: P_m
+    /// within 1 nm, δ within 0.1 nm (or 1e-9 relative), wherever either counts the
+    /// pairing, for all four flanges; translations from gap to overlap, tilt and skew up
+    /// to ±1°.
+    #[test]
+    fn semi_analytical_matches_reference(
+        inner in prop::bool::ANY,
+        plus_end in prop::bool::ANY,
+        psi in -3.2..3.2f64,
+        dx in -60e-6..60e-6f64,
+        dr in -20e-6..20e-6f64,
+        tilt in -1.0..1.0f64,
+        skew in -1.0..1.0f64,
+    ) {
+        let end = b1_end(plus_end, psi, dx, dr, tilt.to_radians(), skew.to_radians());
+        let flange = b1_flange(inner, plus_end);
+        let fast = semi_analytical::detect(&end, &flange);
+        let slow = reference::detect(&end, &flange);
+        for (a, b) in fast.iter().zip(&slow) {
+            prop_assert_eq!(a.pairing, b.pairing);
+            prop_assert_eq!(a.valid, b.valid, "{:?} validity", a.pairing);
+            if a.valid {
+                agree(a, b)?;
+            }
+        }
+        match (deepest(&fast), deepest(&slow)) {
+            (Some(a), Some(b)) => agree(&a, &b)?,
+            (None, None) => {}
+            (a, b) => prop_assert!(false, "composite differs: {:?} vs {:?}", a, b),
+        }
+    }
+}
+
+#[test]
+fn centred_roller_touches_the_cone_with_the_torus_at_the_play() {
+    // Roller centred, no tilt: the edge torus meets the inner flange face at the roller's
+    // bottom; the gap there is the play, plus the sag of the convex end face over the
+    // torus radius (ρ²/2R_s, the edge lies behind the apex), plus the face's recession
+    // between the raceway and the contact (θ·Δρ).
+    let end = b1_end(true, 0.3, 0.0, 0.0, 0.0, 0.0);
+    let flange = b1_flange(true, true);
+    let c = semi_analytical::detect(&end, &flange);
+    let best = deepest(&c).expect("a valid pairing");
+    assert_eq!(best.pairing, Pairing::TorusCone);
+    let rho = best.location().yz().norm();
+    let sag = 1.7475e-3f64.powi(2) / (2.0 * 5.0);
+    let expected = -(PLAY + sag + (rho - 10e-3) * 0.11f64.to_radians().tan());
+    assert!(
+        (best.penetration - expected).abs() < 1e-9,
+        "{} vs {expected}",
+        best.penetration
+    );
+    // Contact at the roller's bottom (smallest ρ of the edge): ρ ≈ 12.25 − 1.7475 mm.
+    assert!((rho - (PITCH_RADIUS - 1.7475e-3)).abs() < 1e-5, "ρ = {rho}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, .. ProptestConfig::default() })]
+
+    /// Koch's gradient method from its cold start agrees with the semi-analytical method
+    /// wherever it converges to a valid contact with opposite normals.
+    #[test]
+    fn gradient_matches_semi_analytical_where_it_converges(
+        inner in prop::bool::ANY,
+        plus_end in prop::bool::ANY,
+        psi in -3.2..3.2f64,
+        dx in -60e-6..60e-6f64,
+        dr in -20e-6..20e-6f64,
+        tilt in -1.0..1.0f64,
+        skew in -1.0..1.0f64,
+    ) {
+        let end = b1_end(plus_end, psi, dx, dr, tilt.to_radians(), skew.to_radians());
+        let flange = b1_flange(inner, plus_end);
+        let fast = semi_analytical::detect(&end, &flange);
+        let koch = gradient::detect(&end, &flange, &[None; 6]);
+        for (a, g) in fast.iter().zip(&koch) {
+            if g.converged && g.opposite_normals && g.contact.valid && a.valid {
+                agree(&g.contact, a)?;
+            }
+        }
+    }
+}
+
+#[test]
+fn gradient_method_follows_a_trajectory_with_warm_starts() {
+    // A roller passing through 90° of azimuth with slowly varying axial position, tilt
+    // and skew. Each pairing is cold-started once; where that start lands on the right
+    // stationary point (the semi-analytical one), warm-started Newton must keep tracking
+    // it with few iterations (paper sect. 2: the previous solution as initial guess),
+    // wherever the pairing counts (invalid pairings may pass through the cone's axis, a
+    // singularity of its implicit function, and are not checked).
+    let flange = b1_flange(true, true);
+    let steps = 400;
+    let pose = |k: usize| {
+        let t = k as f64 / steps as f64;
+        b1_end(
+            true,
+            -0.8 + 1.6 * t,
+            10e-6 * (6.0 * t).sin(),
+            0.0,
+            0.2f64.to_radians() * t,
+            0.1f64.to_radians(),
+        )
+    };
+    let same = |g: &gradient::GradientOutcome, a: &Contact| {
+        g.converged
+            && (g.contact.penetration - a.penetration).abs() < 1e-10
+            && (g.contact.location() - a.location()).norm() < 1e-9
+    };
+    let first = gradient::detect(&pose(0), &flange, &[None; 6]);
+    let fast = semi_analytical::detect(&pose(0), &flange);
+    let on_branch: Vec<bool> = first.iter().zip(&fast).map(|(g, a)| same(g, a)).collect();
+    assert!(
+        on_branch[0],
+        "the torus–cone pairing must start on its branch"
+    );
+    let mut previous = std::array::from_fn(|i| Some(first[i].unknowns));
+    let (mut iterations, mut cold_iterations) = (0, 0);
+    for k in 1..steps {
+        let koch = gradient::detect(&pose(k), &flange, &previous);
+        let cold = gradient::detect(&pose(k), &flange, &[None; 6]);
+        let fast = semi_analytical::detect(&pose(k), &flange);
+        for (i, (g, a)) in koch.iter().zip(&fast).enumerate() {
+            if on_branch[i] && a.valid {
+                assert!(same(g, a), "step {k}, {:?}: {g:?} vs {a:?}", a.pairing);
+                iterations += g.iterations;
+                cold_iterations += cold[i].iterations;
+            }
+        }
+        previous = std::array::from_fn(|i| Some(koch[i].unknowns));
+    }
+    let solves = (1..steps)
+        .map(|k| {
+            let fast = semi_analytical::detect(&pose(k), &flange);
+            fast.iter()
+                .zip(&on_branch)
+                .filter(|(a, b)| a.valid && **b)
+                .count()
+        })
+        .sum::<usize>();
+    let mean = iterations as f64 / solves.max(1) as f64;
+    let cold_mean = cold_iterations as f64 / solves.max(1) as f64;
+    assert!(
+        solves > 300,
+        "too few valid contacts on the trajectory: {solves}"
+    );
+    assert!(
+        mean < cold_mean,
+        "warm {mean} vs cold {cold_mean} iterations per solve"
+    );
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 2000, .. ProptestConfig::default() })]
+
+    /// Pruning misses no contact: every pairing it skips has no valid overlap in the
+    /// unpruned detection, and the composite's deepest overlapping contact is unchanged.
+    #[test]
+    fn pruning_misses_no_contact(
+        inner in prop::bool::ANY,
+        plus_end in prop::bool::ANY,
+        psi in -3.2..3.2f64,
+        dx in -60e-6..60e-6f64,
+        dr in -20e-6..20e-6f64,
+        tilt in -1.0..1.0f64,
+        skew in -1.0..1.0f64,
+    ) {
+        let end = b1_end(plus_end, psi, dx, dr, tilt.to_radians(), skew.to_radians());
+        let flange = b1_flange(inner, plus_end);
+        let full = semi_analytical::detect(&end, &flange);
+        let (pruned, _) = pruning::detect(&end, &flange);
+        for (c, p) in full.iter().zip(&pruned) {
+            match p {
+                None => prop_assert!(!(c.valid && c.penetration > 0.0), "{:?} pruned but overlaps by {}", c.pairing, c.penetration),
+                Some(p) => {
+                    prop_assert_eq!(p.penetration, c.penetration);
+                    prop_assert_eq!(p.location(), c.location());
+                    prop_assert_eq!(p.valid, c.valid);
+                }
+            }
+        }
+        let overlapping = |cs: &[Contact]| {
+            deepest(cs).filter(|c| c.penetration > 0.0).map(|c| (c.pairing, c.penetration))
+        };
+        let kept: Vec<Contact> = pruned.iter().flatten().copied().collect();
+        prop_assert_eq!(overlapping(&full), overlapping(&kept));
+    }
+}
+
+#[test]
+fn benchmark_runs_and_reports() {
+    use super::benchmark::{run, Trajectory};
+    let trajectory = Trajectory {
+        pitch_radius: PITCH_RADIUS,
+        step: 2e-2,
+        steps: 315,
+        push: 22e-6,
+        wobble: 0.05f64.to_radians(),
+    };
+    let r = run(&b1_roller(), &b1_flange(true, true), &trajectory, 15);
+    eprintln!("{r:#?}");
+    assert!(r.steps_in_contact > 0 && r.steps_in_contact < r.evaluations);
+    assert!(r.semi_max_location_error < 1e-9 && r.semi_max_penetration_error < 1e-10);
+}
+
+#[test]
+#[ignore]
+fn time_pairings() {
+    let end = b1_end(true, 0.1, 20e-6, 0.0, 0.01, 0.02);
+    let fl = b1_flange(true, true);
+    let n = 20000;
+    let t = std::time::Instant::now();
+    for _ in 0..n {
+        std::hint::black_box(semi_analytical::torus_cone(
+            std::hint::black_box(&end.torus),
+            &fl.cone,
+        ));
+    }
+    eprintln!(
+        "torus_cone {:.0} ns",
+        t.elapsed().as_secs_f64() * 1e9 / n as f64
+    );
+    let t = std::time::Instant::now();
+    for _ in 0..n {
+        std::hint::black_box(semi_analytical::torus_torus(
+            std::hint::black_box(&end.torus),
+            &fl.rim,
+            Pairing::TorusRim,
+        ));
+    }
+    eprintln!(
+        "torus_torus {:.0} ns",
+        t.elapsed().as_secs_f64() * 1e9 / n as f64
+    );
+    let t = std::time::Instant::now();
+    for _ in 0..n {
+        std::hint::black_box(semi_analytical::sphere_cone(
+            std::hint::black_box(&end.sphere),
+            &fl.cone,
+        ));
+    }
+    eprintln!(
+        "sphere_cone {:.0} ns",
+        t.elapsed().as_secs_f64() * 1e9 / n as f64
+    );
+    let t = std::time::Instant::now();
+    for _ in 0..n {
+        std::hint::black_box(semi_analytical::sphere_torus(
+            std::hint::black_box(&end.sphere),
+            &fl.rim,
+            Pairing::SphereRim,
+        ));
+    }
+    eprintln!(
+        "sphere_torus {:.0} ns",
+        t.elapsed().as_secs_f64() * 1e9 / n as f64
+    );
+}
