@@ -208,7 +208,9 @@ def _bench_contact(cfg, steps: int) -> None:
     facts.add_column("quantity")
     facts.add_column("value")
     facts.add_row("steps with overlap", str(r["steps_in_contact"]))
-    facts.add_row("gradient: mean Newton iterations per pairing", f"{r['gradient_mean_iterations']:.2f}")
+    facts.add_row(
+        "gradient: mean Newton iterations per pairing", f"{r['gradient_mean_iterations']:.2f}"
+    )
     facts.add_row("gradient: pairing solves not converged", str(r["gradient_not_converged"]))
     facts.add_row(
         "gradient: steps whose composite differs from semi-analytical",
@@ -225,7 +227,12 @@ def _bench_contact(cfg, steps: int) -> None:
     )
     console.print(facts)
     mesh = Table(title="Mesh baseline (parry3d-f64 triangle meshes, meshing included)")
-    for col in ("segments around x along", "time per evaluation [ms]", "max |d delta| [m]", "samples"):
+    for col in (
+        "segments around x along",
+        "time per evaluation [ms]",
+        "max |d delta| [m]",
+        "samples",
+    ):
         mesh.add_column(col)
     for around, along, ns, error, samples in r.get("mesh", []):
         mesh.add_row(f"{around} x {along}", f"{ns / 1e6:.2f}", f"{error:.2e}", str(samples))
