@@ -55,6 +55,23 @@ pub(crate) fn b1_end(
 
 /// Same contact: δ within 0.1 nm (or 1e-9 relative) and P_m within 1 nm, unless the
 /// detector reports several equally deep points (symmetric poses), where only δ is compared.
+prop_compose! {
+    /// A random B1 roller end and the flange it faces: any of the four flanges, azimuth
+    /// anywhere, axial shift ±60 µm (gap to overlap), radial ±20 µm, tilt and skew ±1°.
+    fn b1_pose()(
+        inner in prop::bool::ANY,
+        plus_end in prop::bool::ANY,
+        psi in -3.2..3.2f64,
+        dx in -60e-6..60e-6f64,
+        dr in -20e-6..20e-6f64,
+        tilt in -1.0..1.0f64,
+        skew in -1.0..1.0f64,
+    ) -> (RollerEnd, Flange) {
+        let end = b1_end(plus_end, psi, dx, dr, tilt.to_radians(), skew.to_radians());
+        (end, b1_flange(inner, plus_end))
+    }
+}
+
 fn agree(a: &Contact, b: &Contact) -> Result<(), TestCaseError> {
     let dp = (a.location() - b.location()).norm();
     let dd = (a.penetration - b.penetration).abs();
@@ -83,16 +100,8 @@ proptest! {
     /// to ±1°.
     #[test]
     fn semi_analytical_matches_reference(
-        inner in prop::bool::ANY,
-        plus_end in prop::bool::ANY,
-        psi in -3.2..3.2f64,
-        dx in -60e-6..60e-6f64,
-        dr in -20e-6..20e-6f64,
-        tilt in -1.0..1.0f64,
-        skew in -1.0..1.0f64,
+        (end, flange) in b1_pose(),
     ) {
-        let end = b1_end(plus_end, psi, dx, dr, tilt.to_radians(), skew.to_radians());
-        let flange = b1_flange(inner, plus_end);
         let fast = semi_analytical::detect(&end, &flange);
         let slow = reference::detect(&end, &flange);
         for (a, b) in fast.iter().zip(&slow) {
@@ -140,16 +149,8 @@ proptest! {
     /// wherever it converges to a valid contact with opposite normals.
     #[test]
     fn gradient_matches_semi_analytical_where_it_converges(
-        inner in prop::bool::ANY,
-        plus_end in prop::bool::ANY,
-        psi in -3.2..3.2f64,
-        dx in -60e-6..60e-6f64,
-        dr in -20e-6..20e-6f64,
-        tilt in -1.0..1.0f64,
-        skew in -1.0..1.0f64,
+        (end, flange) in b1_pose(),
     ) {
-        let end = b1_end(plus_end, psi, dx, dr, tilt.to_radians(), skew.to_radians());
-        let flange = b1_flange(inner, plus_end);
         let fast = semi_analytical::detect(&end, &flange);
         let koch = gradient::detect(&end, &flange, &[None; 6]);
         for (a, g) in fast.iter().zip(&koch) {
@@ -236,16 +237,8 @@ proptest! {
     /// unpruned detection, and the composite's deepest overlapping contact is unchanged.
     #[test]
     fn pruning_misses_no_contact(
-        inner in prop::bool::ANY,
-        plus_end in prop::bool::ANY,
-        psi in -3.2..3.2f64,
-        dx in -60e-6..60e-6f64,
-        dr in -20e-6..20e-6f64,
-        tilt in -1.0..1.0f64,
-        skew in -1.0..1.0f64,
+        (end, flange) in b1_pose(),
     ) {
-        let end = b1_end(plus_end, psi, dx, dr, tilt.to_radians(), skew.to_radians());
-        let flange = b1_flange(inner, plus_end);
         let full = semi_analytical::detect(&end, &flange);
         let (pruned, _) = pruning::detect(&end, &flange);
         for (c, p) in full.iter().zip(&pruned) {
