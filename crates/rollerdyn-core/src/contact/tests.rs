@@ -274,3 +274,47 @@ fn benchmark_runs_and_reports() {
     assert!(r.steps_in_contact > 0 && r.steps_in_contact < r.evaluations);
     assert!(r.semi_max_location_error < 1e-9 && r.semi_max_penetration_error < 1e-10);
 }
+
+fn finite(c: &Contact) -> bool {
+    c.p1.iter().chain(c.p2.iter()).chain(c.normal.iter()).all(|x| x.is_finite())
+        && !c.penetration.is_nan()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 3000, .. ProptestConfig::default() })]
+
+    /// Degenerate poses — a roller anywhere in a 40 mm box (on the ring axis, inside the
+    /// flange, far away), its axis in any direction (parallel, antiparallel or
+    /// perpendicular to the ring axis, or exactly along it) — give a defined answer from
+    /// every detector: no panic, finite points, normal and penetration.
+    #[test]
+    fn degenerate_poses_give_defined_answers(
+        x in -20e-3..20e-3f64,
+        y in -20e-3..20e-3f64,
+        z in prop::sample::select(vec![0.0, 1e-9, 5e-3, -12.25e-3]),
+        axis_kind in 0usize..4,
+        ax in -1.0..1.0f64,
+        ay in -1.0..1.0f64,
+        inner in prop::bool::ANY,
+        plus_end in prop::bool::ANY,
+    ) {
+        let axis = match axis_kind {
+            0 => Vec3::x(),
+            1 => -Vec3::x(),
+            2 => Vec3::new(0.0, 1.0, 0.0),
+            _ => Vec3::new(ax, ay, 0.3).normalize(),
+        };
+        let end = RollerEnd::new(&b1_roller(), Vec3::new(x, y, z), axis);
+        let flange = b1_flange(inner, plus_end);
+        for c in semi_analytical::detect(&end, &flange) {
+            prop_assert!(finite(&c), "semi-analytical {:?}: {:?}", c.pairing, c);
+        }
+        for o in gradient::detect(&end, &flange, &[None; 6]) {
+            prop_assert!(finite(&o.contact), "gradient {:?}: {:?}", o.contact.pairing, o);
+        }
+        let (pruned, _) = pruning::detect(&end, &flange);
+        for c in pruned.iter().flatten() {
+            prop_assert!(finite(c));
+        }
+    }
+}
