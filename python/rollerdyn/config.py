@@ -448,9 +448,16 @@ class VogelConfig(_Section):
     c: Quantity("temperature interval", example="101.5517 K")
 
     def eta0(self, temperature: float, k: float | None = None) -> float:
-        """Viscosity at ambient pressure, Pa*s, at absolute ``temperature`` (K)."""
-        theta = temperature - T0_CELSIUS
-        return (self.k if k is None else k) * math.exp(self.b / (theta + self.c))
+        """Viscosity at ambient pressure, Pa*s, at absolute ``temperature`` (K): eq. 20,
+        evaluated by the Rust core."""
+        import numpy as np
+
+        from rollerdyn import _core
+
+        eta, _ = _core.vogel_viscosity(
+            np.array([temperature]), self.k if k is None else k, self.b, self.c
+        )
+        return float(eta[0])
 
     def pole(self) -> float:
         """Absolute temperature (K) of the Vogel pole ``theta = -c``."""
@@ -520,10 +527,6 @@ class DickeConfig(_Section):
         theta = temperature - T0_CELSIUS
         return self.a1 + self.a2 * theta + (self.b1 + self.b2 * theta) * pressure
 
-    def viscosity_ratio_log(self, pressure: float, temperature: float) -> float:
-        """``ln(eta/eta0)`` at gauge ``pressure`` (Pa) and absolute ``temperature`` (K)."""
-        return pressure / self.denominator(pressure, temperature)
-
 
 class CarreauConfig(_Section):
     """Carreau shear thinning (eq. 21)."""
@@ -552,12 +555,6 @@ class LimitingShearStressConfig(_Section):
             )
         cross.raise_if_any()
         return self
-
-    def at(self, pressure: float) -> float:
-        """``tau_L(p)``, Pa."""
-        if pressure < self.p_star:
-            return self.chi * (pressure - self.p_star) + self.tau_l0
-        return self.tau_l0
 
 
 class AlphaStarFitConfig(_Section):
