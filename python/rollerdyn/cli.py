@@ -211,7 +211,14 @@ def _bench_contact(cfg, steps: int) -> None:
     facts.add_row(
         "gradient: mean Newton iterations per pairing", f"{r['gradient_mean_iterations']:.2f}"
     )
-    facts.add_row("gradient: pairing solves not converged", str(r["gradient_not_converged"]))
+    solves = 6 * r["evaluations"]
+    facts.add_row(
+        "gradient: pairing solves not converged", f"{r['gradient_not_converged']} of {solves}"
+    )
+    facts.add_row(
+        "gradient: converged to a wrong stationary point (normals not opposite)",
+        f"{r['gradient_wrong_stationary']} of {solves}",
+    )
     facts.add_row(
         "gradient: steps whose composite differs from semi-analytical",
         str(r["gradient_wrong_composite"]),

@@ -893,6 +893,7 @@ fn contact_benchmark<'py>(
     d.set_item("gradient_ns", r.gradient_ns)?;
     d.set_item("gradient_mean_iterations", r.gradient_mean_iterations)?;
     d.set_item("gradient_not_converged", r.gradient_not_converged)?;
+    d.set_item("gradient_wrong_stationary", r.gradient_wrong_stationary)?;
     d.set_item("gradient_wrong_composite", r.gradient_wrong_composite)?;
     d.set_item("pruned_pairings", r.pruned_pairings)?;
     d.set_item("pruned_flanges", r.pruned_flanges)?;

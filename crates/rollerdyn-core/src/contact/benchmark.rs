@@ -61,6 +61,9 @@ pub struct ContactBenchmark {
     pub gradient_mean_iterations: f64,
     /// Pairing solves that did not converge.
     pub gradient_not_converged: usize,
+    /// Pairing solves that converged to a wrong stationary point (outward normals not
+    /// opposite, e.g. the far side of a sphere: paper fig. 2).
+    pub gradient_wrong_stationary: usize,
     /// Composite results of the gradient method that differ from the semi-analytical one
     /// (wrong stationary point, or a pairing lost), out of `evaluations`.
     pub gradient_wrong_composite: usize,
@@ -117,6 +120,7 @@ pub fn run(
         gradient_ns,
         gradient_mean_iterations: 0.0,
         gradient_not_converged: 0,
+        gradient_wrong_stationary: 0,
         gradient_wrong_composite: 0,
         pruned_pairings: 0,
         pruned_flanges: 0,
@@ -132,6 +136,10 @@ pub fn run(
         let outcome = &outcomes[k];
         iterations += outcome.iter().map(|o| o.iterations).sum::<usize>();
         result.gradient_not_converged += outcome.iter().filter(|o| !o.converged).count();
+        result.gradient_wrong_stationary += outcome
+            .iter()
+            .filter(|o| o.converged && !o.opposite_normals)
+            .count();
         let koch: Vec<Contact> = outcome.iter().map(|o| o.contact).collect();
         if !same_composite(best, deepest(&koch)) {
             result.gradient_wrong_composite += 1;

@@ -167,8 +167,8 @@ pub fn solve(
             break;
         }
         let step = match jacobian.lu().solve(&residual) {
-            Some(s) => s,
-            None => break,
+            Some(s) if s.iter().all(|v| v.is_finite()) => s,
+            _ => break, // singular system: keep the last finite iterate
         };
         x -= step;
         iterations += 1;

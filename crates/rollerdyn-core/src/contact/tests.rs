@@ -53,8 +53,6 @@ pub(crate) fn b1_end(
     RollerEnd::new(&b1_roller(), center, outward)
 }
 
-/// Same contact: δ within 0.1 nm (or 1e-9 relative) and P_m within 1 nm, unless the
-/// detector reports several equally deep points (symmetric poses), where only δ is compared.
 prop_compose! {
     /// A random B1 roller end and the flange it faces: any of the four flanges, azimuth
     /// anywhere, axial shift ±60 µm (gap to overlap), radial ±20 µm, tilt and skew ±1°.
@@ -72,6 +70,8 @@ prop_compose! {
     }
 }
 
+/// Same contact: δ within 0.1 nm (or 1e-9 relative) and P_m within 1 nm, unless the
+/// detector reports several equally deep points (symmetric poses), where only δ is compared.
 fn agree(a: &Contact, b: &Contact) -> Result<(), TestCaseError> {
     let dp = (a.location() - b.location()).norm();
     let dd = (a.penetration - b.penetration).abs();
@@ -276,7 +276,10 @@ fn benchmark_runs_and_reports() {
 }
 
 fn finite(c: &Contact) -> bool {
-    c.p1.iter().chain(c.p2.iter()).chain(c.normal.iter()).all(|x| x.is_finite())
+    c.p1.iter()
+        .chain(c.p2.iter())
+        .chain(c.normal.iter())
+        .all(|x| x.is_finite())
         && !c.penetration.is_nan()
 }
 
