@@ -54,6 +54,15 @@ fn detection(c: &mut Criterion) {
             pruning::detect(black_box(&ends[k]), &flange)
         })
     });
+    c.bench_function(
+        "semi-analytical composite only (torus-torus when needed)",
+        |b| {
+            b.iter(|| {
+                k = (k + 1) % n;
+                semi_analytical::composite(black_box(&ends[k]), &flange)
+            })
+        },
+    );
     let mut previous = [None; 6];
     c.bench_function("gradient composite (6 pairings), warm-started", |b| {
         b.iter(|| {

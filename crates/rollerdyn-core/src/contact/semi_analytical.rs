@@ -32,6 +32,33 @@ pub fn detect(end: &RollerEnd, flange: &Flange) -> [Contact; 6] {
     ]
 }
 
+/// The composite of one roller end against one flange: the deepest valid pairing
+/// ([`super::deepest`] of [`detect`]), evaluated cheaply first.
+///
+/// The roller end (edge torus tangent to the end sphere) and the flange (cone face between
+/// tangent convex tori) are each a convex, tangent-continuous surface, so their extremal
+/// pair of points (closest, or deepest in overlap) is unique and lies on one pairing of
+/// patches; only at a border between tangent patches do two pairings find it, with equal
+/// penetration. So once a pairing is valid, no other pairing can be valid with a different
+/// result, and the expensive torus–torus pairings (Eberly's polynomial) are only solved
+/// when none of the four others is valid. The property tests check that this returns
+/// exactly what [`super::deepest`] of all six returns.
+pub fn composite(end: &RollerEnd, flange: &Flange) -> Option<Contact> {
+    let cheap = [
+        sphere_cone(&end.sphere, &flange.cone),
+        sphere_torus(&end.sphere, &flange.root, Pairing::SphereRoot),
+        sphere_torus(&end.sphere, &flange.rim, Pairing::SphereRim),
+        torus_cone(&end.torus, &flange.cone),
+    ];
+    if let Some(best) = super::deepest(&cheap) {
+        return Some(best);
+    }
+    super::deepest(&[
+        torus_torus(&end.torus, &flange.root, Pairing::TorusRoot),
+        torus_torus(&end.torus, &flange.rim, Pairing::TorusRim),
+    ])
+}
+
 /// Roller end sphere against the flange face: the foot of the sphere's centre on the cone.
 pub fn sphere_cone(sphere: &SpherePatch, cone: &ConePatch) -> Contact {
     let foot = cone.foot(&sphere.center);

@@ -321,3 +321,22 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 4000, .. ProptestConfig::default() })]
+
+    /// The cheap composite returns exactly the deepest valid pairing of all six.
+    #[test]
+    fn composite_equals_the_deepest_of_all_pairings((end, flange) in b1_pose()) {
+        let all = deepest(&semi_analytical::detect(&end, &flange));
+        let fast = semi_analytical::composite(&end, &flange);
+        match (all, fast) {
+            (None, None) => {}
+            (Some(a), Some(b)) => {
+                prop_assert!((a.penetration - b.penetration).abs() <= 1e-15, "{:?} vs {:?}", a, b);
+                prop_assert!((a.location() - b.location()).norm() <= 1e-12 || a.multiple || b.multiple, "{:?} vs {:?}", a, b);
+            }
+            (a, b) => prop_assert!(false, "{:?} vs {:?}", a, b),
+        }
+    }
+}
