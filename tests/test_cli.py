@@ -49,3 +49,15 @@ def test_help_explains_units():
     result = RUNNER.invoke(app, ["validate", "--help"])
     assert result.exit_code == 0
     assert "SI" in result.output
+
+
+def test_bench_contact_compares_the_methods():
+    result = RUNNER.invoke(app, ["bench", "contact", "--steps", "64"])
+    assert result.exit_code == 0, result.output
+    for row in ("semi-analytical (6 pairings)", "gradient (Koch)", "pruned", "Mesh baseline"):
+        assert row in result.output
+
+
+def test_bench_refuses_unknown_target():
+    result = RUNNER.invoke(app, ["bench", "everything"])
+    assert result.exit_code == 2
