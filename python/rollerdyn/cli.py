@@ -201,6 +201,7 @@ def _bench_contact(cfg, steps: int) -> None:
         ("semi-analytical (6 pairings)", "semi_analytical_ns"),
         ("semi-analytical, pruned", "pruned_ns"),
         ("semi-analytical composite only (torus-torus when needed)", "composite_ns"),
+        ("semi-analytical composite, pruned (overlap only)", "pruned_composite_ns"),
         ("gradient (Koch), warm-started", "gradient_ns"),
     ):
         table.add_row(name, f"{r[key]:.0f}", f"{r[key] / semi:.2f}x")

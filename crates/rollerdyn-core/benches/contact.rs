@@ -63,6 +63,12 @@ fn detection(c: &mut Criterion) {
             })
         },
     );
+    c.bench_function("semi-analytical composite, pruned (overlap only)", |b| {
+        b.iter(|| {
+            k = (k + 1) % n;
+            pruning::composite(black_box(&ends[k]), &flange)
+        })
+    });
     let mut previous = [None; 6];
     c.bench_function("gradient composite (6 pairings), warm-started", |b| {
         b.iter(|| {

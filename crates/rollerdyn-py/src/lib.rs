@@ -891,6 +891,7 @@ fn contact_benchmark<'py>(
     d.set_item("semi_analytical_ns", r.semi_analytical_ns)?;
     d.set_item("pruned_ns", r.pruned_ns)?;
     d.set_item("composite_ns", r.composite_ns)?;
+    d.set_item("pruned_composite_ns", r.pruned_composite_ns)?;
     d.set_item("gradient_ns", r.gradient_ns)?;
     d.set_item("gradient_mean_iterations", r.gradient_mean_iterations)?;
     d.set_item("gradient_not_converged", r.gradient_not_converged)?;

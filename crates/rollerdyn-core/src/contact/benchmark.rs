@@ -55,6 +55,8 @@ pub struct ContactBenchmark {
     pub semi_analytical_ns: f64,
     /// Semi-analytical with pruning [ns].
     pub pruned_ns: f64,
+    /// Pruned composite ([`pruning::composite`]: pruning and the torus–torus shortcut) [ns].
+    pub pruned_composite_ns: f64,
     /// Semi-analytical composite only ([`semi_analytical::composite`]: torus–torus solved
     /// only when no other pairing is valid) [ns].
     pub composite_ns: f64,
@@ -109,6 +111,9 @@ pub fn run(
     let pruned_ns = time_ns(n, |k| {
         black_box(pruning::detect(black_box(&ends[k]), flange));
     });
+    let pruned_composite_ns = time_ns(n, |k| {
+        black_box(pruning::composite(black_box(&ends[k]), flange));
+    });
     let composite_ns = time_ns(n, |k| {
         black_box(semi_analytical::composite(black_box(&ends[k]), flange));
     });
@@ -124,6 +129,7 @@ pub fn run(
         semi_analytical_ns,
         pruned_ns,
         composite_ns,
+        pruned_composite_ns,
         gradient_ns,
         gradient_mean_iterations: 0.0,
         gradient_not_converged: 0,

@@ -193,3 +193,45 @@ pub fn detect(end: &RollerEnd, flange: &Flange) -> ([Option<Contact>; 6], bool) 
     ];
     (contacts, false)
 }
+
+/// The composite with both shortcuts: flanges and pairings that provably cannot overlap
+/// are skipped, and the torus–torus pairings are solved only when no other pairing is valid
+/// (see [`semi_analytical::composite`]). Returns the deepest valid *overlapping* contact,
+/// None when nothing overlaps.
+pub fn composite(end: &RollerEnd, flange: &Flange) -> Option<Contact> {
+    let ends = end_boxes(end, flange);
+    if ends[0].union(&ends[1]).apart(&flange_box(flange), 0.0) {
+        return None;
+    }
+    let (o, a) = (flange.cone.origin, flange.cone.axis);
+    let figures = [
+        cone_box(&flange.cone),
+        torus_box(&flange.root, &o, &a),
+        torus_box(&flange.rim, &o, &a),
+    ];
+    let keep = |k: usize| !ends[k / 3].apart(&figures[k % 3], 0.0);
+    let cheap = [
+        keep(3).then(|| semi_analytical::sphere_cone(&end.sphere, &flange.cone)),
+        keep(4).then(|| {
+            semi_analytical::sphere_torus(&end.sphere, &flange.root, super::Pairing::SphereRoot)
+        }),
+        keep(5).then(|| {
+            semi_analytical::sphere_torus(&end.sphere, &flange.rim, super::Pairing::SphereRim)
+        }),
+        keep(0).then(|| semi_analytical::torus_cone(&end.torus, &flange.cone)),
+    ];
+    let cheap: Vec<Contact> = cheap.into_iter().flatten().collect();
+    let best = super::deepest(&cheap).or_else(|| {
+        let tori = [
+            keep(1).then(|| {
+                semi_analytical::torus_torus(&end.torus, &flange.root, super::Pairing::TorusRoot)
+            }),
+            keep(2).then(|| {
+                semi_analytical::torus_torus(&end.torus, &flange.rim, super::Pairing::TorusRim)
+            }),
+        ];
+        let tori: Vec<Contact> = tori.into_iter().flatten().collect();
+        super::deepest(&tori)
+    });
+    best.filter(|c| c.penetration > 0.0)
+}

@@ -340,3 +340,22 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 4000, .. ProptestConfig::default() })]
+
+    /// The pruned composite returns the same overlapping contact as all six pairings.
+    #[test]
+    fn pruned_composite_equals_the_deepest_overlap((end, flange) in b1_pose()) {
+        let all = deepest(&semi_analytical::detect(&end, &flange)).filter(|c| c.penetration > 0.0);
+        let fast = pruning::composite(&end, &flange);
+        match (all, fast) {
+            (None, None) => {}
+            (Some(a), Some(b)) => {
+                prop_assert!((a.penetration - b.penetration).abs() <= 1e-15, "{:?} vs {:?}", a, b);
+                prop_assert_eq!(a.pairing, b.pairing);
+            }
+            (a, b) => prop_assert!(false, "{:?} vs {:?}", a, b),
+        }
+    }
+}
