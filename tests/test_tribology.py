@@ -64,3 +64,15 @@ def test_traction_is_odd_and_saturates():
     )
     assert abs(f) <= 2e-4 * 2 * 1e-4 * 0.12e9
     assert bound > 0
+
+
+def test_circle_distance_kinds_and_bad_input():
+    # Eberly's special cases: coaxial equal circles have a continuum of closest pairs.
+    d2, kind, _, _ = _core.circle_circle_distance(
+        (0, 0, 0), (0, 0, 1), 1.0, (0, 0, 2), (0, 0, 1), 1.0
+    )
+    assert kind == "infinite" and d2 == pytest.approx(4.0, rel=1e-12)
+    with pytest.raises(ValueError, match="radii"):
+        _core.circle_circle_distance((0, 0, 0), (0, 0, 1), -1.0, (1, 0, 0), (0, 0, 1), 1.0)
+    with pytest.raises(ValueError, match="finite"):
+        _core.circle_circle_distance((np.nan, 0, 0), (0, 0, 1), 1.0, (1, 0, 0), (0, 0, 1), 1.0)

@@ -88,6 +88,7 @@ def cases(config: BearingConfig | None = None) -> list[Case]:
         *_traction_cases(model),
         *_friction_cases(),
         *_geometry_cases(cfg),
+        *_circle_cases(),
     ]
 
 
@@ -451,3 +452,57 @@ def _geometry_cases(cfg: BearingConfig) -> Iterator[Case]:
         1e-7,
         "exact up to quadrature (40 Gauss nodes per piece)",
     )
+
+
+# ----------------------------------------------------------------------------- contact geometry
+
+
+def _circle_cases() -> Iterator[Case]:
+    """Eberly's published circle-circle cases (Geometric Tools, unit tests of
+    DistCircle3Circle3; published-values.md), used by the torus-torus pairing."""
+    from . import _core
+
+    z = (0.0, 0.0, 1.0)
+    n = 1.0 / math.hypot(0.0625, 1.0)
+    cases = [
+        (
+            "tilted second circle",
+            (0.0, 0.0, 1.0),
+            (0.0625 * n, 0.0, n),
+            1.25,
+            0.911423385,
+            1e-6,
+            "published from a single-precision run (exact double: 0.9114228384)",
+        ),
+        ("separated coplanar-normal circles", (4.0, 0.0, 0.0), z, 2.0, 1.0, 1e-12, "exact"),
+        (
+            "one inside the other (seen along z)",
+            (0.25, 0.0, 1.0),
+            z,
+            0.125,
+            1.390625,
+            1e-12,
+            "exact",
+        ),
+        (
+            "overlapping projections, two closest pairs",
+            (1.0, 0.0, 1.0),
+            z,
+            1.25,
+            1.0,
+            1e-12,
+            "exact",
+        ),
+    ]
+    for name, center, normal, radius, expected, rtol, why in cases:
+        yield Case(
+            "Contact geometry",
+            f"Eberly circle-circle: {name} (squared distance)",
+            "PV (Eberly, DistCircle3Circle3 tests)",
+            expected,
+            lambda c=center, nn=normal, r=radius: _core.circle_circle_distance(
+                (0.0, 0.0, 0.0), z, 1.0, c, nn, r
+            )[0],
+            rtol,
+            why,
+        )

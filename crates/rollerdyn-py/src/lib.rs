@@ -927,6 +927,57 @@ fn contact_benchmark<'py>(
     Ok(d)
 }
 
+/// Closest points of two circles in 3D (Eberly's method, core `geometry::circle`):
+/// returns (squared distance, kind: "unique" | "several" | "infinite", point on circle 1,
+/// point on circle 2).
+#[pyfunction]
+#[allow(clippy::type_complexity)]
+fn circle_circle_distance(
+    center1: [f64; 3],
+    normal1: [f64; 3],
+    radius1: f64,
+    center2: [f64; 3],
+    normal2: [f64; 3],
+    radius2: f64,
+) -> PyResult<(f64, &'static str, [f64; 3], [f64; 3])> {
+    use rollerdyn_core::geometry::circle::{self as circle, Circle3, ClosestPairs};
+    use rollerdyn_core::geometry::primitives::Vec3;
+    let all = center1
+        .iter()
+        .chain(&normal1)
+        .chain(&center2)
+        .chain(&normal2)
+        .chain([&radius1, &radius2]);
+    if all.clone().any(|v| !v.is_finite()) || radius1 <= 0.0 || radius2 <= 0.0 {
+        return Err(PyValueError::new_err(
+            "circle centres and normals must be finite and radii finite and positive",
+        ));
+    }
+    let c1 = Circle3 {
+        center: Vec3::from(center1),
+        normal: Vec3::from(normal1),
+        radius: radius1,
+    };
+    let c2 = Circle3 {
+        center: Vec3::from(center2),
+        normal: Vec3::from(normal2),
+        radius: radius2,
+    };
+    let d = circle::circle_circle_distance(&c1, &c2);
+    let kind = match d.pairs {
+        ClosestPairs::Unique(..) => "unique",
+        ClosestPairs::Several(..) => "several",
+        ClosestPairs::Infinite(..) => "infinite",
+    };
+    let (p1, p2) = d.pairs.first();
+    Ok((
+        d.squared_distance,
+        kind,
+        [p1.x, p1.y, p1.z],
+        [p2.x, p2.y, p2.z],
+    ))
+}
+
 /// The module `rollerdyn._core`.
 #[pymodule]
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -934,6 +985,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyEhlTraction>()?;
     m.add_function(wrap_pyfunction!(roller_mass_properties, m)?)?;
     m.add_function(wrap_pyfunction!(contact_benchmark, m)?)?;
+    m.add_function(wrap_pyfunction!(circle_circle_distance, m)?)?;
     m.add_function(wrap_pyfunction!(elliptic_integrals, m)?)?;
     m.add_function(wrap_pyfunction!(ellipticity, m)?)?;
     m.add_function(wrap_pyfunction!(hertz_point, m)?)?;
