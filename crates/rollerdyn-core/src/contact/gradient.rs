@@ -113,11 +113,8 @@ impl Figure<'_> {
     fn on_patch(&self, p: &Vec3, n: &Vec3) -> bool {
         match self {
             Figure::Sphere(s) => s.contains_direction(n),
-            Figure::Cone(c) => c.foot(&(p + n * 1e-6)).on_patch,
-            Figure::Torus(t) => {
-                let (q, _) = t.tube_center_towards(p);
-                t.contains_normal(&q, n)
-            }
+            Figure::Cone(c) => c.contains_point(p),
+            Figure::Torus(t) => t.contains_surface_point(p, n),
         }
     }
 }

@@ -93,11 +93,8 @@ impl FlangeSurface<'_> {
 
     fn on_patch(&self, p2: &Vec3, n: &Vec3) -> bool {
         match self {
-            FlangeSurface::Cone(c) => c.foot(&(p2 + n * 1e-6)).on_patch,
-            FlangeSurface::Torus(t) => {
-                let (q, _) = t.tube_center_towards(p2);
-                t.contains_normal(&q, n)
-            }
+            FlangeSurface::Cone(c) => c.contains_point(p2),
+            FlangeSurface::Torus(t) => t.contains_surface_point(p2, n),
         }
     }
 }

@@ -169,6 +169,13 @@ impl ConePatch {
         }
     }
 
+    /// True if the surface point p (in its meridian plane) lies on the patch.
+    pub fn contains_point(&self, p: &Vec3) -> bool {
+        let (s, rho, _) = meridian(p, &self.origin, &self.axis);
+        let g = (s - self.s0) * self.ds + (rho - self.rho0) * self.drho;
+        in_range(g, self.g_min, self.g_max)
+    }
+
     /// Principal curvatures at a surface point with outward normal n: zero along the
     /// generator, n_ρ/ρ around the axis (Meusnier's theorem: the parallel circle's
     /// curvature 1/ρ times the cosine between its principal normal −e_ρ and −n).
@@ -241,6 +248,13 @@ impl TorusPatch {
         let offset = (phi - self.phi_mid + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
             - std::f64::consts::PI;
         in_range(offset, -self.phi_half, self.phi_half)
+    }
+
+    /// True if the surface point p with outward normal n lies on the patch.
+    #[inline]
+    pub fn contains_surface_point(&self, p: &Vec3, n: &Vec3) -> bool {
+        let (q, _) = self.tube_center_towards(p);
+        self.contains_normal(&q, n)
     }
 
     /// True if the outward normal n at the tube point facing it lies on the patch.
