@@ -711,6 +711,7 @@ class SurfacesConfig(_Section):
     roller_roller: SurfacePairConfig | None = None
     boundary_friction: BoundaryFrictionConfig
     hysteresis_coefficient: Number(ge=0.0)
+    damping_ratio: Number(ge=0.0, le=2.0) = 0.1
 
     @property
     def roller_roller_pair(self) -> SurfacePairConfig:
@@ -762,6 +763,7 @@ class OperatingConfig(_Section):
     load_ramp: RampConfig | None = None
     speed_ramp: RampConfig | None = None
     end_time: Quantity("time", positive=True, example="1.3 s") | None = None
+    gravity: Quantity("acceleration", ge=0.0, example="9.81 m/s^2") = "9.81 m/s^2"
 
     @model_validator(mode="after")
     def _check(self) -> OperatingConfig:
@@ -860,6 +862,10 @@ class SolverConfig(_Section):
     dt_max: Quantity("time", positive=True) = "1e-4 s"
     output_interval: Quantity("time", positive=True) = "1e-4 s"
     detector: Literal["semi-analytical", "gradient", "mesh"] = "semi-analytical"
+    method: Literal["tr-bdf2", "esdirk34"] = "tr-bdf2"
+    pruning: bool = True
+    mesh_around: Integer(ge=8, le=1024) = 64
+    mesh_along: Integer(ge=2, le=256) = 16
     traction_nodes: Integer(ge=1, le=200) = 12
     traction: Literal["tabulated", "direct"] = "tabulated"
     line_fit: LineFitConfig = Field(default_factory=LineFitConfig)

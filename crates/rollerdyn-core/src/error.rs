@@ -14,6 +14,16 @@ pub enum Error {
         /// The rule it broke, e.g. "must be positive".
         rule: &'static str,
     },
+    /// A model setting that cannot be simulated (named field, value, rule).
+    #[error("{name} = {value}: {rule}")]
+    Invalid {
+        /// The field.
+        name: String,
+        /// The offending value, as shown to the user.
+        value: String,
+        /// The rule it broke.
+        rule: String,
+    },
     /// An iterative method that did not converge.
     #[error("{what} did not converge: {detail}")]
     NoConvergence {
@@ -22,6 +32,21 @@ pub enum Error {
         /// Why it stopped.
         detail: String,
     },
+}
+
+impl Error {
+    /// A refusal of `name` = `value` by `rule`.
+    pub fn invalid(
+        name: impl Into<String>,
+        value: impl std::fmt::Display,
+        rule: impl Into<String>,
+    ) -> Self {
+        Error::Invalid {
+            name: name.into(),
+            value: value.to_string(),
+            rule: rule.into(),
+        }
+    }
 }
 
 /// Result alias of the core.

@@ -14,8 +14,10 @@
 //! * [`contact`]: roller end–flange contact detection.
 //! * [`numerics`]: quadrature, root finding, complete elliptic integrals, fitting.
 
+pub mod bearing;
 pub mod contact;
 pub mod error;
+pub mod dynamics;
 pub mod geometry;
 pub mod numerics;
 pub mod tribology;

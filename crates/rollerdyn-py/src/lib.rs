@@ -983,6 +983,9 @@ fn circle_circle_distance(
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<PyEhlTraction>()?;
+    m.add_function(wrap_pyfunction!(simulation::simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(simulation::initial_state, m)?)?;
+    m.add_function(wrap_pyfunction!(simulation::model_rhs, m)?)?;
     m.add_function(wrap_pyfunction!(roller_mass_properties, m)?)?;
     m.add_function(wrap_pyfunction!(contact_benchmark, m)?)?;
     m.add_function(wrap_pyfunction!(circle_circle_distance, m)?)?;
@@ -1010,4 +1013,290 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(hysteresis_moment, m)?)?;
     m.add_function(wrap_pyfunction!(ehl_rolling_force, m)?)?;
     Ok(())
+}
+
+// ----- The dynamic model -------------------------------------------------------------
+
+mod simulation {
+    use super::*;
+    use pyo3::types::PyList;
+    use rollerdyn_core::bearing::run::{run, Progress, RunOptions, RunOutput};
+    use rollerdyn_core::bearing::{BearingModel, BearingParams, Detector, History, SurfacePair};
+    use rollerdyn_core::dynamics::integrate::Method;
+    use rollerdyn_core::geometry::end_flange::FlangeShape;
+    use std::ops::ControlFlow;
+
+    fn get<'py, T: pyo3::conversion::FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<T> {
+        match d.get_item(key)? {
+            Some(v) => v.extract::<T>().map_err(|_| {
+                PyValueError::new_err(format!("model parameter {key} = {v}: wrong type"))
+            }),
+            None => Err(PyValueError::new_err(format!("model parameter {key} is missing"))),
+        }
+    }
+
+    fn history(d: &Bound<'_, PyDict>, key: &str) -> PyResult<History> {
+        let h: Bound<'_, PyDict> = get(d, key)?;
+        let kind: String = get(&h, "kind")?;
+        match kind.as_str() {
+            "ramp" => Ok(History::Ramp {
+                value: get(&h, "value")?,
+                start: get(&h, "start")?,
+                end: get(&h, "end")?,
+                cosine: get::<String>(&h, "shape")? == "cosine",
+            }),
+            "table" => {
+                let t: Vec<f64> = get(&h, "times")?;
+                let v: Vec<f64> = get(&h, "values")?;
+                Ok(History::Table(t.into_iter().zip(v).collect()))
+            }
+            other => Err(PyValueError::new_err(format!(
+                "{key}.kind = {other}: must be 'ramp' or 'table'"
+            ))),
+        }
+    }
+
+    fn flange(d: &Bound<'_, PyDict>, ring: &str) -> PyResult<FlangeShape> {
+        let g = |k: &str| get::<f64>(d, &format!("{ring}_flange_{k}"));
+        FlangeShape::new(g("opening_angle")?, g("height")?, g("root_radius")?, g("rim_radius")?)
+            .map_err(core_err)
+    }
+
+    fn surface(d: &Bound<'_, PyDict>, name: &str) -> PyResult<SurfacePair> {
+        Ok(SurfacePair {
+            roughness: get(d, &format!("{name}_roughness"))?,
+            sharing: LoadSharing {
+                b: get(d, &format!("{name}_zh_b"))?,
+                c: get(d, &format!("{name}_zh_c"))?,
+            },
+        })
+    }
+
+    fn params(d: &Bound<'_, PyDict>, traction: &EhlTraction) -> PyResult<BearingParams> {
+        let roller = RollerShape::new(
+            get(d, "roller_radius")?,
+            get(d, "roller_length")?,
+            get(d, "edge_radius")?,
+            get(d, "end_face_radius")?,
+        )
+        .map_err(core_err)?;
+        let law = |k: &str| -> PyResult<LinePowerLaw> {
+            Ok(LinePowerLaw {
+                k1: get(d, &format!("k1_{k}"))?,
+                k2: get(d, &format!("k2_{k}"))?,
+            })
+        };
+        let detector = match get::<String>(d, "detector")?.as_str() {
+            "semi-analytical" => Detector::SemiAnalytical,
+            "gradient" => Detector::Gradient,
+            "mesh" => Detector::Mesh,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "detector = {other}: must be semi-analytical, gradient or mesh"
+                )))
+            }
+        };
+        Ok(BearingParams {
+            roller_count: get(d, "roller_count")?,
+            roller,
+            slices: get(d, "slices")?,
+            crown_drop: get(d, "crown_drop")?,
+            crown_length: get(d, "crown_length")?,
+            roller_density: get(d, "roller_density")?,
+            inner_raceway_radius: get(d, "inner_raceway_radius")?,
+            outer_raceway_radius: get(d, "outer_raceway_radius")?,
+            inner_flange: flange(d, "inner")?,
+            outer_flange: flange(d, "outer")?,
+            inner_axial_play: get(d, "inner_axial_play")?,
+            outer_axial_play: get(d, "outer_axial_play")?,
+            e_prime: [
+                get(d, "e_prime_inner")?,
+                get(d, "e_prime_outer")?,
+                get(d, "e_prime_roller")?,
+            ],
+            line_laws: [law("inner")?, law("outer")?, law("roller")?],
+            inner_ring_mass: get(d, "inner_ring_mass")?,
+            inner_ring_axial_inertia: get(d, "inner_ring_axial_inertia")?,
+            inner_ring_transverse_inertia: get(d, "inner_ring_transverse_inertia")?,
+            inner_ring_tilt_free: get(d, "inner_ring_tilt_free")?,
+            traction: traction.clone(),
+            eta0: get(d, "eta0")?,
+            viscosity_slope: get(d, "viscosity_slope")?,
+            alpha_star: get(d, "alpha_star")?,
+            thermal_conductivity: get(d, "thermal_conductivity")?,
+            raceway: surface(d, "raceway")?,
+            flange_surface: surface(d, "flange")?,
+            roller_roller: surface(d, "roller_roller")?,
+            boundary: BoundaryFriction {
+                mu_b0: get(d, "mu_b0")?,
+                s0: get(d, "s0")?,
+                smoothing_speed: get(d, "smoothing_speed")?,
+            },
+            hysteresis_coefficient: get(d, "hysteresis_coefficient")?,
+            damping_ratio: get(d, "damping_ratio")?,
+            gravity: get(d, "gravity")?,
+            radial_load: history(d, "radial_load")?,
+            axial_load: history(d, "axial_load")?,
+            inner_ring_speed: history(d, "inner_ring_speed")?,
+            detector,
+            mesh_resolution: (get(d, "mesh_around")?, get(d, "mesh_along")?),
+            pruning: get(d, "pruning")?,
+        })
+    }
+
+    fn options(d: &Bound<'_, PyDict>) -> PyResult<RunOptions> {
+        let method = match get::<String>(d, "method")?.as_str() {
+            "tr-bdf2" => Method::TrBdf2,
+            "esdirk34" => Method::Esdirk34,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "method = {other}: must be tr-bdf2 or esdirk34"
+                )))
+            }
+        };
+        Ok(RunOptions {
+            t_end: get(d, "t_end")?,
+            rtol: get(d, "rtol")?,
+            atol: get(d, "atol")?,
+            dt_max: get(d, "dt_max")?,
+            output_interval: get(d, "output_interval")?,
+            method,
+        })
+    }
+
+    /// Checks a parameter set and returns the initial state (or raises ValueError).
+    #[pyfunction]
+    pub fn initial_state(params: &Bound<'_, PyDict>, traction: &PyEhlTraction) -> PyResult<Vec<f64>> {
+        let model = BearingModel::new(self::params(params, &traction.inner)?).map_err(core_err)?;
+        model.initial_state().map_err(core_err)
+    }
+
+    /// f(t, y) and the structured Jacobian of the model at (t, y) (for tests).
+    #[pyfunction]
+    pub fn model_rhs(
+        params: &Bound<'_, PyDict>,
+        traction: &PyEhlTraction,
+        t: f64,
+        y: Vec<f64>,
+    ) -> PyResult<(Vec<f64>, Vec<f64>)> {
+        use rollerdyn_core::dynamics::integrate::OdeSystem;
+        let model = BearingModel::new(self::params(params, &traction.inner)?).map_err(core_err)?;
+        let n = model.len();
+        if y.len() != n {
+            return Err(PyValueError::new_err(format!("y has {} states: the model has {n}", y.len())));
+        }
+        let mut dy = vec![0.0; n];
+        model.rhs(t, &y, &mut dy);
+        let mut jac = nalgebra::DMatrix::zeros(n, n);
+        model.jacobian(t, &y, &mut jac);
+        Ok((dy, jac.transpose().as_slice().to_vec()))
+    }
+
+    /// Runs the dynamic model. `progress(time, t_end, steps, rhs, jac)` is called at every
+    /// output time; returning True stops the run. Returns a dict of flat arrays (see
+    /// `rollerdyn.simulation`), the solver counters, the profile, the final state and the
+    /// error (None if the run completed).
+    #[pyfunction]
+    #[pyo3(signature = (params, traction, options, progress=None, start=None))]
+    pub fn simulate<'py>(
+        py: Python<'py>,
+        params: &Bound<'py, PyDict>,
+        traction: &PyEhlTraction,
+        options: &Bound<'py, PyDict>,
+        progress: Option<Bound<'py, PyAny>>,
+        start: Option<(f64, Vec<f64>)>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let model = BearingModel::new(self::params(params, &traction.inner)?).map_err(core_err)?;
+        let opts = self::options(options)?;
+        let mut callback_error: Option<PyErr> = None;
+        let output = run(&model, start, &opts, |p: &Progress| {
+            if let Err(e) = py.check_signals() {
+                callback_error = Some(e);
+                return ControlFlow::Break(());
+            }
+            if let Some(cb) = &progress {
+                let s = &p.stats;
+                match cb.call1((p.time, p.t_end, s.steps, s.rhs_evaluations, s.jacobian_evaluations)) {
+                    Ok(r) if r.is_truthy().unwrap_or(false) => return ControlFlow::Break(()),
+                    Ok(_) => {}
+                    Err(e) => {
+                        callback_error = Some(e);
+                        return ControlFlow::Break(());
+                    }
+                }
+            }
+            ControlFlow::Continue(())
+        })
+        .map_err(core_err)?;
+        let out = to_dict(py, &output, model.layout.rollers)?;
+        if let Some(e) = callback_error {
+            out.set_item("interruption", e.to_string())?;
+        }
+        Ok(out)
+    }
+
+    fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        let recs = &o.records;
+        let put = |name: &str, v: Vec<f64>| d.set_item(name, PyArray1::from_vec(py, v));
+        put("time", recs.iter().map(|r| r.time).collect())?;
+        put("ring_position", recs.iter().flat_map(|r| r.ring_position.iter().copied().collect::<Vec<_>>()).collect())?;
+        put("ring_tilt", recs.iter().flat_map(|r| [r.ring_tilt.0, r.ring_tilt.1]).collect())?;
+        put("ring_speed", recs.iter().map(|r| r.ring_speed).collect())?;
+        put("radial_load", recs.iter().map(|r| r.loads.0).collect())?;
+        put("axial_load", recs.iter().map(|r| r.loads.1).collect())?;
+        put("frictional_torque", recs.iter().map(|r| r.frictional_torque).collect())?;
+        put("outer_ring_torque", recs.iter().map(|r| r.outer_ring_torque).collect())?;
+        macro_rules! per_roller {
+            ($name:literal, $f:expr) => {
+                put($name, recs.iter().flat_map(|r| r.rollers.iter().map($f)).collect())?
+            };
+        }
+        per_roller!("azimuth", |x| x.azimuth);
+        per_roller!("tilt", |x| x.tilt);
+        per_roller!("skew", |x| x.skew);
+        per_roller!("spin_speed", |x| x.spin_speed);
+        per_roller!("orbital_speed", |x| x.orbital_speed);
+        per_roller!("srr_inner", |x| x.srr_inner);
+        per_roller!("srr_outer", |x| x.srr_outer);
+        per_roller!("inner_normal_force", |x| x.inner_normal);
+        per_roller!("outer_normal_force", |x| x.outer_normal);
+        per_roller!("inner_tangential_force", |x| x.inner_tangential);
+        per_roller!("outer_tangential_force", |x| x.outer_tangential);
+        per_roller!("roller_roller_normal_force", |x| x.pair_normal);
+        per_roller!("roller_roller_tangential_force", |x| x.pair_tangential);
+        put("position", recs.iter().flat_map(|r| r.rollers.iter().flat_map(|x| x.position.iter().copied().collect::<Vec<_>>())).collect())?;
+        macro_rules! per_flange {
+            ($name:literal, $f:expr) => {
+                put($name, recs.iter().flat_map(|r| r.rollers.iter().flat_map(|x| x.flanges.iter().map($f))).collect())?
+            };
+        }
+        per_flange!("flange_pairing", |f| f.pairing as f64);
+        per_flange!("flange_penetration", |f| if f.penetration.is_finite() { f.penetration } else { f64::NAN });
+        per_flange!("flange_normal_force", |f| f.normal_force);
+        per_flange!("flange_friction_force", |f| f.friction_force);
+        per_flange!("flange_axial_force", |f| f.axial_force);
+        put("flange_location", recs.iter().flat_map(|r| r.rollers.iter().flat_map(|x| x.flanges.iter().flat_map(|f| f.location.iter().copied().collect::<Vec<_>>()))).collect())?;
+        d.set_item("rollers", z)?;
+        let s = &o.stats;
+        let stats = PyDict::new(py);
+        stats.set_item("steps", s.steps)?;
+        stats.set_item("rhs_evaluations", s.rhs_evaluations)?;
+        stats.set_item("jacobian_evaluations", s.jacobian_evaluations)?;
+        stats.set_item("rhs_seconds", s.rhs_seconds)?;
+        stats.set_item("jacobian_seconds", s.jacobian_seconds)?;
+        stats.set_item("total_seconds", s.total_seconds)?;
+        stats.set_item("t_reached", s.t_reached)?;
+        let p = &o.profile;
+        stats.set_item("detection_seconds", p.detection)?;
+        stats.set_item("line_contact_seconds", p.line_contacts)?;
+        stats.set_item("flange_force_seconds", p.flange_forces)?;
+        stats.set_item("detections", p.detections)?;
+        d.set_item("stats", stats)?;
+        d.set_item("final_state", PyList::new(py, &o.final_state)?)?;
+        d.set_item("final_time", o.final_time)?;
+        d.set_item("error", o.error.clone())?;
+        d.set_item("interrupted", o.interrupted)?;
+        Ok(d)
+    }
 }

@@ -1,0 +1,303 @@
+//! Forces at one contact of the bearing: a line-contact slice (roller–race, roller–roller)
+//! or a roller end–flange ellipse. Pure functions of the two bodies' kinematics and the
+//! contact geometry; the model sums them.
+//!
+//! Conventions: body A and body B, the unit normal `n` points from A towards B, the
+//! penetration δ > 0 is overlap, and the force on B is +F_n·n + F_t (A gets the
+//! opposite). Surface speeds are taken relative to the moving contact location
+//! (model-notes, "Kinematics at a contact"): u_i = tangential part of
+//! (v_material,i − v_frame), sliding u_rel = u_B − u_A.
+
+use super::state::Kinematics;
+use crate::geometry::primitives::Vec3;
+use crate::tribology::film::{thermal_correction, FilmInputs};
+use crate::tribology::friction::{BoundaryFriction, LoadSharing};
+use crate::tribology::hertz::{line_half_width, line_max_pressure, EllipticalContact, EllipticalMethod};
+use crate::tribology::line_contact::LinePowerLaw;
+use crate::tribology::rolling_resistance::{ehl_rolling_force, hysteresis_moment};
+use crate::tribology::traction::EhlTraction;
+
+/// Smallest film used in the shear rate u_rel/h [m]: keeps the EHL traction finite where
+/// the film vanishes (no entrainment); there the boundary share φ of eq. 53 is 1 anyway.
+pub const FILM_FLOOR: f64 = 1e-9;
+
+/// Regularisation of |u_rel| in the sliding direction u_rel/|u_rel| [m/s]; far below any
+/// speed that matters (the traction is linear in u_rel there, so F_t·u_rel/|u_rel| is smooth).
+const SLIP_FLOOR: f64 = 1e-12;
+
+/// Relative width ε of the smooth lower bound of the damped normal force, see
+/// [`damped_normal_force`].
+const DAMPING_CLIP: f64 = 0.02;
+
+/// What all contacts share: lubricant, friction and damping settings.
+#[derive(Debug, Clone)]
+pub struct Tribology {
+    /// EHL traction.
+    pub traction: EhlTraction,
+    /// Boundary friction.
+    pub boundary: BoundaryFriction,
+    /// η₀ [Pa s].
+    pub eta0: f64,
+    /// α* [1/Pa].
+    pub alpha_star: f64,
+    /// dη₀/dT [Pa s/K].
+    pub viscosity_slope: f64,
+    /// λ_F [W/(m K)].
+    pub thermal_conductivity: f64,
+    /// α_v of eq. 55.
+    pub hysteresis_coefficient: f64,
+    /// Damping ratio ζ.
+    pub damping_ratio: f64,
+}
+
+impl Tribology {
+    /// Thermal correction φ_th (eqs. 47, 48).
+    #[inline]
+    fn thermal(&self, u0: f64, sliding: f64) -> f64 {
+        thermal_correction(self.viscosity_slope, self.thermal_conductivity, u0, sliding)
+    }
+
+    fn film(&self, e_prime: f64) -> FilmInputs {
+        FilmInputs {
+            e_prime,
+            alpha_star: self.alpha_star,
+            eta0: self.eta0,
+        }
+    }
+}
+
+/// The elastic and surface data of one kind of line contact.
+#[derive(Debug, Clone, Copy)]
+pub struct LineKind {
+    /// Eq. 11.
+    pub law: LinePowerLaw,
+    /// E' [Pa].
+    pub e_prime: f64,
+    /// Equivalent radius R' in the rolling direction [m].
+    pub r_eff: f64,
+    /// Roughness and load sharing.
+    pub roughness: f64,
+    /// Zhou–Hoeprich.
+    pub sharing: LoadSharing,
+    /// Film of counter-rotating surfaces: the greater of Moes and ZEV (roller–roller).
+    pub counter_rotating: bool,
+    /// Rolling resistance (race contacts only, sect. 3.3).
+    pub rolling_resistance: bool,
+    /// Mass moving against this contact, per unit slice length [kg/m] (for damping).
+    pub mass_per_length: f64,
+}
+
+/// Forces of one contact.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ContactForces {
+    /// Normal force F_n ≥ 0 [N].
+    pub normal: f64,
+    /// Tangential force on B [N] (A gets the opposite).
+    pub tangential: Vec3,
+    /// Pure moment on A (rolling resistance) [N m].
+    pub moment_a: Vec3,
+    /// Pure moment on B (rolling resistance) [N m].
+    pub moment_b: Vec3,
+    /// Central film thickness h_c (thermally corrected) [m].
+    pub film: f64,
+}
+
+impl ContactForces {
+    /// Total force on B.
+    #[inline]
+    pub fn force_on_b(&self, normal: &Vec3) -> Vec3 {
+        self.normal * normal + self.tangential
+    }
+}
+
+/// Normal force with contact damping: F_el + c·δ̇, with c = 2ζ·sqrt(k·m) for the local
+/// stiffness k = dF_el/dδ and the mass m against the contact, bounded below by zero
+/// smoothly: F = ½(F_d + sqrt(F_d² + (ε F_el)²)), F_d = F_el + c δ̇, ε = 0.02 (it adds at
+/// most 1e-4·F_el at rest). The force is zero and continuous at zero penetration, since
+/// both F_el and k vanish there.
+#[inline]
+pub fn damped_normal_force(elastic: f64, stiffness: f64, mass: f64, zeta: f64, rate: f64) -> f64 {
+    if elastic <= 0.0 {
+        return 0.0;
+    }
+    let damped = elastic + 2.0 * zeta * (stiffness * mass).sqrt() * rate;
+    0.5 * (damped + (damped * damped + (DAMPING_CLIP * elastic).powi(2)).sqrt())
+}
+
+/// Surface speeds of A and B relative to the contact frame, in the tangent plane.
+#[inline]
+fn tangential_speeds(a: &Kinematics, b: &Kinematics, p: &Vec3, n: &Vec3, frame: &Vec3) -> (Vec3, Vec3, f64) {
+    let va = a.point_velocity(p);
+    let vb = b.point_velocity(p);
+    let rate = -(vb - va).dot(n);
+    let ua = va - frame;
+    let ub = vb - frame;
+    (ua - ua.dot(n) * n, ub - ub.dot(n) * n, rate)
+}
+
+/// Direction of the rolling-resistance moment on a body whose surface moves along
+/// `rolling` at `p`: the axis d with d × (p − c) along `rolling`.
+#[inline]
+fn rolling_axis(body: &Kinematics, p: &Vec3, rolling: &Vec3) -> Vec3 {
+    (p - body.center).cross(rolling).normalize()
+}
+
+/// One slice of a line contact (paper sect. 3.1.3, 3.2, 3.3): normal force by eq. 11 with
+/// damping, film by Moes (eqs. 33–38; for counter-rotating surfaces the greater of Moes
+/// and ZEV, eqs. 39–44) with the thermal correction (eq. 47), EHL traction (sect. 3.2.1),
+/// boundary friction (eqs. 51, 52), mixed by eqs. 53, 54, and for race contacts rolling
+/// resistance (eqs. 55–57) as pure moments on both bodies against their rolling.
+///
+/// `rolling` is the unit rolling direction (n × roller axis), `frame` the velocity of the
+/// contact location, `length` the slice length.
+#[allow(clippy::too_many_arguments)]
+pub fn line_slice(
+    tri: &Tribology,
+    kind: &LineKind,
+    a: &Kinematics,
+    b: &Kinematics,
+    normal: &Vec3,
+    location: &Vec3,
+    penetration: f64,
+    length: f64,
+    rolling: &Vec3,
+    frame: &Vec3,
+) -> ContactForces {
+    if penetration <= 0.0 {
+        return ContactForces::default();
+    }
+    let elastic = kind.law.force(penetration, length);
+    let stiffness = elastic / (kind.law.k2 * penetration);
+    let (ua, ub, rate) = tangential_speeds(a, b, location, normal, frame);
+    let f_n = damped_normal_force(
+        elastic,
+        stiffness,
+        kind.mass_per_length * length,
+        tri.damping_ratio,
+        rate,
+    );
+    let (ua_r, ub_r) = (ua.dot(rolling), ub.dot(rolling));
+    let slip = ub - ua;
+    let slip_norm = (slip.norm_squared() + SLIP_FLOOR * SLIP_FLOOR).sqrt();
+    let u0 = 0.5 * (ua_r + ub_r);
+    let q = f_n / length;
+    let film = tri.film(kind.e_prime);
+    let isothermal = if kind.counter_rotating {
+        film.line(kind.r_eff, ua_r, ub_r, q)
+    } else {
+        film.moes_line(kind.r_eff, u0, q)
+    };
+    let phi_th = tri.thermal(u0, slip_norm);
+    let h = isothermal * phi_th;
+    let half_width = line_half_width(f_n, length, kind.r_eff, kind.e_prime);
+    let p0 = line_max_pressure(f_n, half_width, length);
+    let fluid = tri.traction.line_force(p0, half_width, length, slip_norm, h + FILM_FLOOR);
+    let boundary = tri.boundary.force(f_n, slip_norm, u0);
+    let lambda = h / kind.roughness;
+    let f_t = kind.sharing.mix(lambda, boundary, fluid);
+    let mut out = ContactForces {
+        normal: f_n,
+        tangential: -(f_t / slip_norm) * slip,
+        film: h,
+        ..Default::default()
+    };
+    if kind.rolling_resistance {
+        let m_b = hysteresis_moment(tri.hysteresis_coefficient, f_n, half_width);
+        let f_r = ehl_rolling_force(kind.e_prime, kind.r_eff, length, tri.eta0, u0, f_n) * phi_th;
+        let v_s = tri.boundary.smoothing_speed;
+        for (body, u, moment) in [(a, ua_r, &mut out.moment_a), (b, ub_r, &mut out.moment_b)] {
+            let arm = (location - body.center).norm();
+            let size = kind.sharing.mix(lambda, m_b, f_r * arm);
+            *moment = -(size * (u / v_s).tanh()) * rolling_axis(body, location, rolling);
+        }
+    }
+    out
+}
+
+/// The data of the roller end–flange contacts.
+#[derive(Debug, Clone, Copy)]
+pub struct EllipseKind {
+    /// E' [Pa].
+    pub e_prime: f64,
+    /// Roughness [m].
+    pub roughness: f64,
+    /// Zhou–Hoeprich.
+    pub sharing: LoadSharing,
+    /// Mass against the contact [kg] (for damping).
+    pub mass: f64,
+}
+
+/// A roller end–flange contact (sect. 3.1.2, 3.2): Hertz with Brewe–Hamrock (eqs. 5–8)
+/// and damping, Chittenden's film (eqs. 45, 46) for the entrainment angle ξ measured from
+/// the ellipse's major axis, EHL, boundary and mixed friction; no rolling resistance.
+/// A is the ring (flange), B the roller; `normal` from the flange to the roller.
+#[allow(clippy::too_many_arguments)]
+pub fn end_flange(
+    tri: &Tribology,
+    kind: &EllipseKind,
+    ring: &Kinematics,
+    roller: &Kinematics,
+    normal: &Vec3,
+    location: &Vec3,
+    penetration: f64,
+    radii: (f64, f64),
+    major_axis: &Vec3,
+    frame: &Vec3,
+) -> ContactForces {
+    if penetration <= 0.0 || !(radii.0 > 0.0 && radii.1 > 0.0) {
+        return ContactForces::default();
+    }
+    let hertz = EllipticalContact::new(radii.0, radii.1, kind.e_prime, EllipticalMethod::BreweHamrock);
+    let elastic = hertz.force(penetration);
+    let stiffness = 1.5 * elastic / penetration;
+    let (ua, ub, rate) = tangential_speeds(ring, roller, location, normal, frame);
+    let f_n = damped_normal_force(elastic, stiffness, kind.mass, tri.damping_ratio, rate);
+    let ellipse = hertz.at_force(f_n);
+    let slip = ub - ua;
+    let slip_norm = (slip.norm_squared() + SLIP_FLOOR * SLIP_FLOOR).sqrt();
+    let entrainment = 0.5 * (ua + ub);
+    let u0 = entrainment.norm();
+    let xi = if u0 > 0.0 {
+        (entrainment.dot(major_axis).abs() / u0).min(1.0).acos()
+    } else {
+        0.0
+    };
+    let film = tri.film(kind.e_prime);
+    let phi_th = tri.thermal(u0, slip_norm);
+    let h = film.chittenden(hertz.rx, hertz.ry, xi, u0, f_n) * phi_th;
+    let fluid = tri.traction.ellipse_force(
+        ellipse.max_pressure,
+        ellipse.semi_major,
+        ellipse.semi_minor,
+        slip_norm,
+        h + FILM_FLOOR,
+    );
+    let boundary = tri.boundary.force(f_n, slip_norm, u0);
+    let f_t = kind.sharing.mix(h / kind.roughness, boundary, fluid);
+    ContactForces {
+        normal: f_n,
+        tangential: -(f_t / slip_norm) * slip,
+        film: h,
+        ..Default::default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn damped_force_is_elastic_at_rest_and_never_negative() {
+        let f = damped_normal_force(100.0, 1e8, 1e-3, 0.1, 0.0);
+        // ½(1 + sqrt(1 + ε²)) − 1 = ε²/4 = 1e-4.
+        assert!((f / 100.0 - 1.0).abs() < 1.01e-4);
+        for rate in [-10.0, -1.0, -0.1, 0.1, 1.0] {
+            let f = damped_normal_force(100.0, 1e8, 1e-3, 0.1, rate);
+            assert!(f > 0.0 && f.is_finite());
+        }
+        assert_eq!(damped_normal_force(0.0, 0.0, 1e-3, 0.1, -5.0), 0.0);
+        // Approaching: c δ̇ with c = 2ζ sqrt(k m) = 2·0.1·sqrt(1e5) = 63.2 N s/m.
+        let f = damped_normal_force(100.0, 1e8, 1e-3, 0.1, 0.1);
+        assert!((f - (100.0 + 6.3246)).abs() < 0.02);
+    }
+}

@@ -1,0 +1,721 @@
+//! The bearing model: bodies, the contacts between them, and the equations of motion
+//! y' = f(t, y) with a Jacobian built from the problem's structure.
+//!
+//! Contacts ("elements"), for every roller i: the inner race and the outer race (line
+//! contacts by slices, eqs. 2, 3, 11), the neighbour i+1 (slices, eq. 11), and its two
+//! ends against the two inner-ring and the two outer-ring flanges (the detector of the
+//! configuration, Hertz eqs. 5–8). Every force acts at its own contact location; the
+//! moment on each body is (P_m − c) × F (model-notes, "Forces and moments").
+//!
+//! The Jacobian is built by finite differences per body: perturbing one state of
+//! roller i re-evaluates only roller i's eight contacts, and changes only the rows of
+//! roller i, its two neighbours and the inner ring (issue 4: "a roller couples only to
+//! its neighbours and the rings").
+
+use super::forces::{end_flange, line_slice, ContactForces, EllipseKind, LineKind, Tribology};
+use super::params::{BearingParams, Detector};
+use super::state::{ring_kinematics, roller_kinematics, Kinematics, Layout, ROLLER_STATES};
+use crate::contact::gradient::{self, Unknowns};
+use crate::contact::mesh::{MeshDetector, MeshResolution};
+use crate::contact::{deepest, pruning, semi_analytical, Contact, Pairing};
+use crate::dynamics::integrate::OdeSystem;
+use crate::dynamics::rigid::{angle_rates, angular_acceleration, driven_transverse_acceleration};
+use crate::error::{Error, Result};
+use crate::geometry::end_flange::{Flange, FlangePlacement, RollerEnd};
+use crate::geometry::primitives::Vec3;
+use crate::geometry::roller::MassProperties;
+use crate::tribology::line_contact::LinePowerLaw;
+use nalgebra::DMatrix;
+use std::cell::{Cell, RefCell};
+use std::time::Instant;
+
+/// A force and a moment about the body's centre.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Wrench {
+    /// Force [N].
+    pub force: Vec3,
+    /// Moment about the body's centre of mass [N m].
+    pub moment: Vec3,
+}
+
+impl Wrench {
+    fn add(&mut self, other: &Wrench) {
+        self.force += other.force;
+        self.moment += other.moment;
+    }
+    fn sub(&mut self, other: &Wrench) {
+        self.force -= other.force;
+        self.moment -= other.moment;
+    }
+    /// Force `f` at point `p` on a body centred at `c`, plus a pure moment.
+    fn at(f: Vec3, p: &Vec3, c: &Vec3, pure: Vec3) -> Self {
+        Self {
+            force: f,
+            moment: (p - c).cross(&f) + pure,
+        }
+    }
+}
+
+/// A body of the bearing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Body {
+    /// The inner ring (with its shaft).
+    InnerRing,
+    /// The fixed outer ring.
+    OuterRing,
+    /// Roller i.
+    Roller(usize),
+}
+
+/// A contact of the bearing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Element {
+    /// Roller i on the inner race.
+    Inner(usize),
+    /// Roller i on the outer race.
+    Outer(usize),
+    /// Roller i against roller i+1 (mod Z).
+    Pair(usize),
+    /// Roller i's end against a flange: 0 inner ring −x, 1 inner ring +x, 2 outer ring −x,
+    /// 3 outer ring +x.
+    End(usize, usize),
+}
+
+/// Names of the four roller end / flange contacts of a roller.
+pub const FLANGE_NAMES: [&str; 4] = ["inner-x", "inner+x", "outer-x", "outer+x"];
+
+/// What one contact did.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ElementResult {
+    /// Wrench on body A (ring, or roller i for a pair).
+    pub on_a: Wrench,
+    /// Wrench on body B (roller i, or roller i+1 for a pair).
+    pub on_b: Wrench,
+    /// Sum of the normal forces [N].
+    pub normal: f64,
+    /// Sum of the tangential forces on B [N].
+    pub tangential: Vec3,
+    /// Largest penetration [m] (−∞ if no pairing was valid).
+    pub penetration: f64,
+    /// Roller end / flange: the active pairing (index in [`Pairing::ALL`]), if any overlaps.
+    pub pairing: Option<usize>,
+    /// Contact location (roller end / flange) [m].
+    pub location: Vec3,
+}
+
+/// Where the time of a right-hand side goes.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Profile {
+    /// Roller end–flange detection [s].
+    pub detection: f64,
+    /// Line contacts (slices: geometry, films, traction) [s].
+    pub line_contacts: f64,
+    /// Roller end–flange forces (Hertz, film, traction) [s].
+    pub flange_forces: f64,
+    /// Detections made.
+    pub detections: usize,
+}
+
+/// The bearing model (immutable parameters plus the gradient method's warm starts).
+pub struct BearingModel {
+    /// The parameters.
+    pub params: BearingParams,
+    /// The state layout.
+    pub layout: Layout,
+    /// Roller mass properties.
+    pub roller_mass: MassProperties,
+    tribology: Tribology,
+    kinds: [LineKind; 3],
+    ellipse: EllipseKind,
+    /// Slice centres along the roller axis and their radii (crowning) [m].
+    slices: Vec<(f64, f64)>,
+    slice_length: f64,
+    pitch_radius: f64,
+    elements: Vec<Element>,
+    /// Elements of each roller, and of the inner ring.
+    roller_elements: Vec<Vec<usize>>,
+    ring_elements: Vec<usize>,
+    warm_starts: RefCell<Vec<[Option<Unknowns>; 6]>>,
+    profile: Cell<Profile>,
+}
+
+/// Per-state scale for tolerances and difference steps: lengths are measured in metres,
+/// angles by the roller radius, velocities over a 1 ms time scale.
+const TIME_SCALE: f64 = 1e-3;
+
+impl BearingModel {
+    /// Builds the model, refusing parameters that cannot be simulated.
+    pub fn new(params: BearingParams) -> Result<Self> {
+        params.check()?;
+        let layout = Layout {
+            rollers: params.roller_count,
+            tilt_free: params.inner_ring_tilt_free,
+        };
+        let roller_mass = params.roller.mass_properties(params.roller_density)?;
+        let r = params.roller.radius;
+        let straight = params.roller.straight_length();
+        let slice_length = straight / params.slices as f64;
+        let slices = (0..params.slices)
+            .map(|j| {
+                let s = -0.5 * straight + (j as f64 + 0.5) * slice_length;
+                (s, r - params.crown_drop(s, straight))
+            })
+            .collect();
+        let per_length = roller_mass.mass / straight;
+        let line = |k: usize, r_other: f64, surface: &super::params::SurfacePair| LineKind {
+            law: params.line_laws[k],
+            e_prime: params.e_prime[k],
+            r_eff: 1.0 / (1.0 / r + 1.0 / r_other),
+            roughness: surface.roughness,
+            sharing: surface.sharing,
+            counter_rotating: k == 2,
+            rolling_resistance: k < 2,
+            mass_per_length: if k == 2 { 0.5 * per_length } else { per_length },
+        };
+        let kinds = [
+            line(0, params.inner_raceway_radius, &params.raceway),
+            line(1, -params.outer_raceway_radius, &params.raceway),
+            line(2, r, &params.roller_roller),
+        ];
+        let ellipse = EllipseKind {
+            e_prime: params.e_prime[0].min(params.e_prime[1]),
+            roughness: params.flange_surface.roughness,
+            sharing: params.flange_surface.sharing,
+            mass: roller_mass.mass,
+        };
+        let tribology = Tribology {
+            traction: params.traction.clone(),
+            boundary: params.boundary,
+            eta0: params.eta0,
+            alpha_star: params.alpha_star,
+            viscosity_slope: params.viscosity_slope,
+            thermal_conductivity: params.thermal_conductivity,
+            hysteresis_coefficient: params.hysteresis_coefficient,
+            damping_ratio: params.damping_ratio,
+        };
+        let z = params.roller_count;
+        let mut elements = Vec::with_capacity(7 * z);
+        for i in 0..z {
+            elements.extend([Element::Inner(i), Element::Outer(i), Element::Pair(i)]);
+            elements.extend((0..4).map(|k| Element::End(i, k)));
+        }
+        let mut roller_elements = vec![Vec::new(); z];
+        let mut ring_elements = Vec::new();
+        for (e, element) in elements.iter().enumerate() {
+            for body in Self::bodies_of(element, z) {
+                match body {
+                    Body::Roller(i) => roller_elements[i].push(e),
+                    Body::InnerRing => ring_elements.push(e),
+                    Body::OuterRing => {}
+                }
+            }
+        }
+        let pitch_radius = 0.5 * (params.inner_raceway_radius + params.outer_raceway_radius);
+        Ok(Self {
+            layout,
+            roller_mass,
+            tribology,
+            kinds,
+            ellipse,
+            slices,
+            slice_length,
+            pitch_radius,
+            elements,
+            roller_elements,
+            ring_elements,
+            warm_starts: RefCell::new(vec![[None; 6]; 4 * z]),
+            profile: Cell::new(Profile::default()),
+            params,
+        })
+    }
+
+    /// Bodies (A, B) of an element.
+    fn bodies_of(element: &Element, z: usize) -> [Body; 2] {
+        match *element {
+            Element::Inner(i) => [Body::InnerRing, Body::Roller(i)],
+            Element::Outer(i) => [Body::OuterRing, Body::Roller(i)],
+            Element::Pair(i) => [Body::Roller(i), Body::Roller((i + 1) % z)],
+            Element::End(i, k) if k < 2 => [Body::InnerRing, Body::Roller(i)],
+            Element::End(i, _) => [Body::OuterRing, Body::Roller(i)],
+        }
+    }
+
+    /// All contacts, in the order of [`Self::evaluate_all`].
+    pub fn elements(&self) -> &[Element] {
+        &self.elements
+    }
+
+    /// Time spent so far, by kind of work.
+    pub fn profile(&self) -> Profile {
+        self.profile.get()
+    }
+
+    /// Pitch radius [m].
+    pub fn pitch_radius(&self) -> f64 {
+        self.pitch_radius
+    }
+
+    /// The consistent start: rollers on the pitch circle, roller 0 at the bottom (−y, ψ = π, the
+    /// centre of the load zone), axes along x, at rest; the inner ring centred. Nothing
+    /// overlaps (checked).
+    pub fn initial_state(&self) -> Result<Vec<f64>> {
+        let mut y = vec![0.0; self.layout.len()];
+        let z = self.params.roller_count;
+        for i in 0..z {
+            let psi = std::f64::consts::PI + 2.0 * std::f64::consts::PI * i as f64 / z as f64;
+            let s = self.layout.roller(i);
+            y[s + 1] = self.pitch_radius * psi.cos();
+            y[s + 2] = self.pitch_radius * psi.sin();
+        }
+        let kin = self.kinematics(0.0, &y);
+        for (e, element) in self.elements.iter().enumerate() {
+            let r = self.evaluate(element, &kin, e);
+            if r.normal > 0.0 {
+                return Err(Error::invalid(
+                    format!("{element:?}"),
+                    format!("penetration {:.3e} m at the start", r.penetration),
+                    "bodies must not overlap at the start (rollers on the pitch circle, rings centred)",
+                ));
+            }
+        }
+        Ok(y)
+    }
+
+    /// Absolute tolerances per state for a length tolerance `atol` [m] (lengths in m,
+    /// angles by the roller radius, velocities over 1 ms).
+    pub fn absolute_tolerances(&self, atol: f64) -> Vec<f64> {
+        let r = self.params.roller.radius;
+        (0..self.layout.len()).map(|k| atol * self.scale(k) / r).collect()
+    }
+
+    /// Typical magnitude of state k relative to a length of one roller radius.
+    fn scale(&self, k: usize) -> f64 {
+        let r = self.params.roller.radius;
+        let local = match self.layout.body_of(k) {
+            None => k,
+            Some(i) => k - self.layout.roller(i),
+        };
+        let ring = self.layout.body_of(k).is_none();
+        match (ring, local) {
+            (_, 0..=2) => r,
+            (true, 3..=5) | (false, 5..=7) => r / TIME_SCALE,
+            (true, 6..=7) | (false, 3..=4) => 1.0,
+            _ => 1.0 / TIME_SCALE,
+        }
+    }
+
+    /// Kinematics of all bodies: inner ring, then the rollers.
+    pub fn kinematics(&self, t: f64, y: &[f64]) -> (Kinematics, Vec<Kinematics>) {
+        let spin = self.params.inner_ring_speed.at(t).0;
+        let ring = ring_kinematics(&self.layout, y, spin);
+        let rollers = (0..self.layout.rollers)
+            .map(|i| roller_kinematics(&self.layout, y, i))
+            .collect();
+        (ring, rollers)
+    }
+
+    fn body<'a>(&self, b: Body, kin: &'a (Kinematics, Vec<Kinematics>), fixed: &'a Kinematics) -> &'a Kinematics {
+        match b {
+            Body::InnerRing => &kin.0,
+            Body::OuterRing => fixed,
+            Body::Roller(i) => &kin.1[i],
+        }
+    }
+
+    /// Velocity of the frame that carries roller i's contact locations: the roller's
+    /// centre velocity plus the orbital rotation about the bearing axis.
+    fn frame_velocity(roller: &Kinematics, p: &Vec3) -> Vec3 {
+        let c = roller.center;
+        let rho2 = c.y * c.y + c.z * c.z;
+        let orbit = (c.y * roller.velocity.z - c.z * roller.velocity.y) / rho2.max(1e-300);
+        roller.velocity + Vec3::new(orbit, 0.0, 0.0).cross(&(p - c))
+    }
+
+    /// Evaluates one contact.
+    pub fn evaluate(&self, element: &Element, kin: &(Kinematics, Vec<Kinematics>), index: usize) -> ElementResult {
+        let fixed = Kinematics::fixed();
+        let [ba, bb] = Self::bodies_of(element, self.layout.rollers);
+        let (a, b) = (self.body(ba, kin, &fixed), self.body(bb, kin, &fixed));
+        match *element {
+            Element::Inner(_) => self.line_element(0, a, b),
+            Element::Outer(_) => self.line_element(1, a, b),
+            Element::Pair(_) => self.line_element(2, a, b),
+            Element::End(_, k) => self.flange_element(k, a, b, index),
+        }
+    }
+
+    /// Slice geometry (eqs. 2, 3) of slice j of roller `b` against body `a`:
+    /// (normal A→B, location, penetration, rolling direction).
+    fn slice_geometry(&self, kind: usize, a: &Kinematics, b: &Kinematics, j: usize) -> (Vec3, Vec3, f64) {
+        let (s, radius) = self.slices[j];
+        let cb = b.center + s * b.axis;
+        match kind {
+            0 | 1 => {
+                let d = cb - a.center;
+                let perp = d - d.dot(&a.axis) * a.axis;
+                let dist = perp.norm();
+                let out = perp / dist;
+                if kind == 0 {
+                    let delta = radius + self.params.inner_raceway_radius - dist;
+                    (out, cb - out * (radius - 0.5 * delta), delta)
+                } else {
+                    let delta = dist + radius - self.params.outer_raceway_radius;
+                    (-out, cb + out * (radius - 0.5 * delta), delta)
+                }
+            }
+            _ => {
+                let ca = a.center + s * a.axis;
+                let mean = (a.axis + b.axis).normalize();
+                let d = cb - ca;
+                let perp = d - d.dot(&mean) * mean;
+                let dist = perp.norm();
+                let n = perp / dist;
+                let radius_a = self.slices[j].1;
+                let delta = radius + radius_a - dist;
+                (n, ca + n * (radius_a - 0.5 * delta), delta)
+            }
+        }
+    }
+
+    fn line_element(&self, kind: usize, a: &Kinematics, b: &Kinematics) -> ElementResult {
+        let start = Instant::now();
+        let mut out = ElementResult {
+            penetration: f64::NEG_INFINITY,
+            ..Default::default()
+        };
+        for j in 0..self.slices.len() {
+            let (n, p, delta) = self.slice_geometry(kind, a, b, j);
+            out.penetration = out.penetration.max(delta);
+            if delta <= 0.0 {
+                continue;
+            }
+            let rolling = n.cross(&b.axis).normalize();
+            let frame = if kind == 2 {
+                0.5 * (Self::frame_velocity(a, &p) + Self::frame_velocity(b, &p))
+            } else {
+                Self::frame_velocity(b, &p)
+            };
+            let f = line_slice(
+                &self.tribology,
+                &self.kinds[kind],
+                a,
+                b,
+                &n,
+                &p,
+                delta,
+                self.slice_length,
+                &rolling,
+                &frame,
+            );
+            self.accumulate(&mut out, &f, &n, &p, a, b);
+        }
+        self.spend(|pr| pr.line_contacts += start.elapsed().as_secs_f64());
+        out
+    }
+
+    fn accumulate(&self, out: &mut ElementResult, f: &ContactForces, n: &Vec3, p: &Vec3, a: &Kinematics, b: &Kinematics) {
+        let on_b = f.force_on_b(n);
+        out.on_b.add(&Wrench::at(on_b, p, &b.center, f.moment_b));
+        out.on_a.add(&Wrench::at(-on_b, p, &a.center, f.moment_a));
+        out.normal += f.normal;
+        out.tangential += f.tangential;
+    }
+
+    fn spend(&self, f: impl FnOnce(&mut Profile)) {
+        let mut p = self.profile.get();
+        f(&mut p);
+        self.profile.set(p);
+    }
+
+    /// The flange k of a ring body at its current pose.
+    fn flange(&self, k: usize, ring: &Kinematics) -> Flange {
+        let inner = k < 2;
+        let side = if k % 2 == 1 { 1.0 } else { -1.0 };
+        let (shape, play, radius) = if inner {
+            (&self.params.inner_flange, self.params.inner_axial_play, self.params.inner_raceway_radius)
+        } else {
+            (&self.params.outer_flange, self.params.outer_axial_play, self.params.outer_raceway_radius)
+        };
+        Flange::new(
+            shape,
+            &FlangePlacement {
+                origin: ring.center,
+                axis: ring.axis,
+                raceway_radius: radius,
+                rises: if inner { 1.0 } else { -1.0 },
+                face_position: side * (0.5 * self.params.roller.length + play),
+                facing: -side,
+            },
+        )
+    }
+
+    /// The composite contact of a roller end against a flange by the configured detector.
+    fn detect(&self, end: &RollerEnd, flange: &Flange, index: usize) -> Option<Contact> {
+        let start = Instant::now();
+        let found = match self.params.detector {
+            Detector::SemiAnalytical if self.params.pruning => pruning::composite(end, flange),
+            Detector::SemiAnalytical => semi_analytical::composite(end, flange),
+            Detector::Gradient => {
+                let slot = index_to_slot(index);
+                let mut memory = self.warm_starts.borrow_mut();
+                let outcomes = gradient::detect(end, flange, &memory[slot]);
+                let mut contacts = Vec::with_capacity(6);
+                for (k, o) in outcomes.iter().enumerate() {
+                    if o.converged {
+                        memory[slot][k] = Some(o.unknowns);
+                        contacts.push(o.contact);
+                    } else {
+                        memory[slot][k] = None;
+                    }
+                }
+                deepest(&contacts)
+            }
+            Detector::Mesh => {
+                let (around, along) = self.params.mesh_resolution;
+                let mesh = MeshDetector::new(end, flange, MeshResolution { around, along });
+                deepest(&mesh.detect())
+            }
+        };
+        self.spend(|p| {
+            p.detection += start.elapsed().as_secs_f64();
+            p.detections += 1;
+        });
+        found
+    }
+
+    fn flange_element(&self, k: usize, ring: &Kinematics, roller: &Kinematics, index: usize) -> ElementResult {
+        let side = if k % 2 == 1 { 1.0 } else { -1.0 };
+        let end = RollerEnd::new(&self.params.roller, roller.center, side * roller.axis);
+        let flange = self.flange(k, ring);
+        let mut out = ElementResult {
+            penetration: f64::NEG_INFINITY,
+            ..Default::default()
+        };
+        let Some(c) = self.detect(&end, &flange, index) else {
+            return out;
+        };
+        out.penetration = c.penetration;
+        if !(c.penetration > 0.0) {
+            return out;
+        }
+        let start = Instant::now();
+        let p = c.location();
+        out.location = p;
+        out.pairing = Pairing::ALL.iter().position(|q| *q == c.pairing);
+        let frame = Self::frame_velocity(roller, &p);
+        let f = end_flange(
+            &self.tribology,
+            &self.ellipse,
+            ring,
+            roller,
+            &c.normal,
+            &p,
+            c.penetration,
+            (c.rx, c.ry),
+            &c.major_axis,
+            &frame,
+        );
+        self.accumulate(&mut out, &f, &c.normal, &p, ring, roller);
+        self.spend(|pr| pr.flange_forces += start.elapsed().as_secs_f64());
+        out
+    }
+
+    /// Evaluates every contact.
+    pub fn evaluate_all(&self, kin: &(Kinematics, Vec<Kinematics>)) -> Vec<ElementResult> {
+        self.elements
+            .iter()
+            .enumerate()
+            .map(|(e, element)| self.evaluate(element, kin, e))
+            .collect()
+    }
+
+    /// Sums contact wrenches per body: (inner ring, outer ring, rollers).
+    pub fn loads(&self, results: &[ElementResult]) -> (Wrench, Wrench, Vec<Wrench>) {
+        let mut ring = Wrench::default();
+        let mut outer = Wrench::default();
+        let mut rollers = vec![Wrench::default(); self.layout.rollers];
+        for (element, r) in self.elements.iter().zip(results) {
+            let [a, b] = Self::bodies_of(element, self.layout.rollers);
+            for (body, w) in [(a, &r.on_a), (b, &r.on_b)] {
+                match body {
+                    Body::InnerRing => ring.add(w),
+                    Body::OuterRing => outer.add(w),
+                    Body::Roller(i) => rollers[i].add(w),
+                }
+            }
+        }
+        (ring, outer, rollers)
+    }
+
+    /// Rates of roller i's states.
+    fn roller_rates(&self, kin: &Kinematics, y: &[f64], w: &Wrench, dy: &mut [f64]) {
+        let m = &self.roller_mass;
+        let gravity = Vec3::new(0.0, -self.params.gravity, 0.0);
+        let acc = w.force / m.mass + gravity;
+        let alpha = angular_acceleration(&kin.axis, &kin.omega, &w.moment, m.axial_inertia, m.transverse_inertia);
+        let (dty, dtz) = angle_rates(y[3], y[4], &kin.omega);
+        dy[..3].copy_from_slice(kin.velocity.as_slice());
+        dy[3] = dty;
+        dy[4] = dtz;
+        dy[5..8].copy_from_slice(acc.as_slice());
+        dy[8..11].copy_from_slice(alpha.as_slice());
+    }
+
+    /// The external load on the inner ring at time t: axial +x, radial −y.
+    pub fn external_load(&self, t: f64) -> Vec3 {
+        Vec3::new(self.params.axial_load.at(t).0, -self.params.radial_load.at(t).0, 0.0)
+    }
+
+    /// Rates of the inner ring's states.
+    fn ring_rates(&self, t: f64, kin: &Kinematics, y: &[f64], w: &Wrench, dy: &mut [f64]) {
+        let p = &self.params;
+        let gravity = Vec3::new(0.0, -p.gravity, 0.0);
+        let acc = (w.force + self.external_load(t)) / p.inner_ring_mass + gravity;
+        dy[..3].copy_from_slice(kin.velocity.as_slice());
+        dy[3..6].copy_from_slice(acc.as_slice());
+        if self.layout.tilt_free {
+            let (dty, dtz) = angle_rates(y[6], y[7], &kin.omega);
+            let alpha = driven_transverse_acceleration(
+                &kin.axis,
+                &kin.omega,
+                &w.moment,
+                p.inner_ring_axial_inertia,
+                p.inner_ring_transverse_inertia,
+            );
+            dy[6] = dty;
+            dy[7] = dtz;
+            dy[8..11].copy_from_slice(alpha.as_slice());
+        }
+    }
+
+    /// f(t, y) from already summed loads.
+    fn rates(&self, t: f64, y: &[f64], kin: &(Kinematics, Vec<Kinematics>), loads: &(Wrench, Wrench, Vec<Wrench>), dy: &mut [f64]) {
+        let n = self.layout.ring_states();
+        self.ring_rates(t, &kin.0, &y[..n], &loads.0, &mut dy[..n]);
+        for i in 0..self.layout.rollers {
+            let s = self.layout.roller(i);
+            let r = s..s + ROLLER_STATES;
+            self.roller_rates(&kin.1[i], &y[r.clone()], &loads.2[i], &mut dy[r]);
+        }
+    }
+
+    /// The Jacobian by per-body finite differences (see the module doc).
+    fn structured_jacobian(&self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
+        let kin = self.kinematics(t, y);
+        let results = self.evaluate_all(&kin);
+        let loads = self.loads(&results);
+        let n = self.layout.len();
+        let mut f0 = vec![0.0; n];
+        self.rates(t, y, &kin, &loads, &mut f0);
+        jac.fill(0.0);
+        let mut yp = y.to_vec();
+        let mut fp = vec![0.0; n];
+        let z = self.layout.rollers;
+        for k in 0..n {
+            let h = 1.5e-8 * y[k].abs().max(self.scale(k));
+            yp[k] = y[k] + h;
+            let h = yp[k] - y[k];
+            let body = self.layout.body_of(k);
+            let mut kin_p = kin.clone();
+            let elements = match body {
+                None => {
+                    kin_p.0 = ring_kinematics(&self.layout, &yp, self.params.inner_ring_speed.at(t).0);
+                    &self.ring_elements
+                }
+                Some(i) => {
+                    kin_p.1[i] = roller_kinematics(&self.layout, &yp, i);
+                    &self.roller_elements[i]
+                }
+            };
+            let mut loads_p = loads.clone();
+            let mut touched_ring = body.is_none();
+            let mut touched = vec![false; z];
+            if let Some(i) = body {
+                touched[i] = true;
+            }
+            for &e in elements {
+                let element = &self.elements[e];
+                let new = self.evaluate(element, &kin_p, e);
+                let old = &results[e];
+                for (bd, wn, wo) in [
+                    (Self::bodies_of(element, z)[0], &new.on_a, &old.on_a),
+                    (Self::bodies_of(element, z)[1], &new.on_b, &old.on_b),
+                ] {
+                    match bd {
+                        Body::InnerRing => {
+                            loads_p.0.sub(wo);
+                            loads_p.0.add(wn);
+                            touched_ring = true;
+                        }
+                        Body::Roller(r) => {
+                            loads_p.2[r].sub(wo);
+                            loads_p.2[r].add(wn);
+                            touched[r] = true;
+                        }
+                        Body::OuterRing => {}
+                    }
+                }
+            }
+            if touched_ring {
+                let m = self.layout.ring_states();
+                self.ring_rates(t, &kin_p.0, &yp[..m], &loads_p.0, &mut fp[..m]);
+                for row in 0..m {
+                    jac[(row, k)] = (fp[row] - f0[row]) / h;
+                }
+            }
+            for (r, _) in touched.iter().enumerate().filter(|(_, t)| **t) {
+                let s = self.layout.roller(r);
+                let range = s..s + ROLLER_STATES;
+                self.roller_rates(&kin_p.1[r], &yp[range.clone()], &loads_p.2[r], &mut fp[range.clone()]);
+                for row in range {
+                    jac[(row, k)] = (fp[row] - f0[row]) / h;
+                }
+            }
+            yp[k] = y[k];
+        }
+    }
+}
+
+/// Warm-start slot of an element index (4 flange contacts per roller, after 3 line
+/// contacts: elements are ordered Inner, Outer, Pair, End×4 per roller).
+fn index_to_slot(index: usize) -> usize {
+    let roller = index / 7;
+    let k = index % 7 - 3;
+    4 * roller + k
+}
+
+impl OdeSystem for BearingModel {
+    fn len(&self) -> usize {
+        self.layout.len()
+    }
+
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        let kin = self.kinematics(t, y);
+        let results = self.evaluate_all(&kin);
+        let loads = self.loads(&results);
+        self.rates(t, y, &kin, &loads, dy);
+    }
+
+    fn jacobian(&self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
+        self.structured_jacobian(t, y, jac);
+    }
+}
+
+impl BearingParams {
+    /// Crown drop of the roller profile at axial position s (0 for a straight roller):
+    /// a circular-arc-like quadratic drop over `crown_length` at each end.
+    pub fn crown_drop(&self, s: f64, straight: f64) -> f64 {
+        if self.crown_drop <= 0.0 || self.crown_length <= 0.0 {
+            return 0.0;
+        }
+        let x = s.abs() - (0.5 * straight - self.crown_length);
+        if x <= 0.0 {
+            0.0
+        } else {
+            self.crown_drop * (x / self.crown_length).powi(2)
+        }
+    }
+}
+
+/// Re-export for the front end: the power law type of eq. 11.
+pub type LineLaw = LinePowerLaw;

@@ -1,0 +1,251 @@
+//! The model's immutable parameters, all SI, as the front end hands them over after
+//! validating and deriving them from a configuration file.
+
+use crate::error::{Error, Result};
+use crate::geometry::end_flange::FlangeShape;
+use crate::geometry::roller::RollerShape;
+use crate::tribology::friction::{BoundaryFriction, LoadSharing};
+use crate::tribology::line_contact::LinePowerLaw;
+use crate::tribology::traction::EhlTraction;
+
+/// A quantity over time: a ramp to a constant value, or a table (linear between rows,
+/// constant outside).
+#[derive(Debug, Clone, PartialEq)]
+pub enum History {
+    /// 0 before `start`, `value` after `end`; cosine or linear in between.
+    Ramp {
+        /// Final value.
+        value: f64,
+        /// Start of the ramp [s].
+        start: f64,
+        /// End of the ramp [s].
+        end: f64,
+        /// Cosine (C¹) rather than linear.
+        cosine: bool,
+    },
+    /// Rows (t, value), t increasing.
+    Table(Vec<(f64, f64)>),
+}
+
+impl History {
+    /// A constant.
+    pub fn constant(value: f64) -> Self {
+        History::Ramp {
+            value,
+            start: 0.0,
+            end: 0.0,
+            cosine: false,
+        }
+    }
+
+    /// (value, rate) at time t.
+    pub fn at(&self, t: f64) -> (f64, f64) {
+        match self {
+            History::Ramp {
+                value,
+                start,
+                end,
+                cosine,
+            } => {
+                if t <= *start {
+                    return (if end <= start { *value } else { 0.0 }, 0.0);
+                }
+                if t >= *end {
+                    return (*value, 0.0);
+                }
+                let span = end - start;
+                let x = (t - start) / span;
+                if *cosine {
+                    let arg = std::f64::consts::PI * x;
+                    (
+                        value * 0.5 * (1.0 - arg.cos()),
+                        value * 0.5 * std::f64::consts::PI * arg.sin() / span,
+                    )
+                } else {
+                    (value * x, value / span)
+                }
+            }
+            History::Table(rows) => {
+                let (first, last) = (rows[0], rows[rows.len() - 1]);
+                if t <= first.0 {
+                    return (first.1, 0.0);
+                }
+                if t >= last.0 {
+                    return (last.1, 0.0);
+                }
+                let i = rows.partition_point(|r| r.0 <= t) - 1;
+                let ((t0, v0), (t1, v1)) = (rows[i], rows[i + 1]);
+                let rate = (v1 - v0) / (t1 - t0);
+                (v0 + rate * (t - t0), rate)
+            }
+        }
+    }
+
+    fn check(&self, name: &str) -> Result<()> {
+        match self {
+            History::Ramp { value, start, end, .. } => {
+                if !(value.is_finite() && start.is_finite() && end.is_finite()) || end < start {
+                    return Err(Error::invalid(name, format!("ramp {start}..{end}"), "finite, end >= start"));
+                }
+            }
+            History::Table(rows) => {
+                if rows.is_empty() || rows.windows(2).any(|w| w[1].0 <= w[0].0) {
+                    return Err(Error::invalid(name, format!("{} rows", rows.len()), "at least one row, times increasing"));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Which roller end–flange detector the run uses.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Detector {
+    /// Semi-analytical (Wolf et al. 2020), with conservative pruning (sect. 5.3).
+    SemiAnalytical,
+    /// Koch's gradient method, warm-started from the previous evaluation.
+    Gradient,
+    /// The mesh baseline (parry3d), at the given resolution.
+    Mesh,
+}
+
+/// The friction data of one kind of contact surface pair.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SurfacePair {
+    /// Composite roughness σ [m].
+    pub roughness: f64,
+    /// Zhou–Hoeprich load sharing (eq. 53).
+    pub sharing: LoadSharing,
+}
+
+/// Everything the dynamic model needs.
+#[derive(Debug, Clone)]
+pub struct BearingParams {
+    /// Number of rollers Z.
+    pub roller_count: usize,
+    /// Roller shape.
+    pub roller: RollerShape,
+    /// Slices per roller.
+    pub slices: usize,
+    /// Crown drop at the ends of the straight part [m] (0: straight profile).
+    pub crown_drop: f64,
+    /// Length of the crowned zone at each end [m].
+    pub crown_length: f64,
+    /// Roller density [kg/m³].
+    pub roller_density: f64,
+    /// Inner raceway radius [m].
+    pub inner_raceway_radius: f64,
+    /// Outer raceway radius [m].
+    pub outer_raceway_radius: f64,
+    /// Inner ring flange shape (both sides).
+    pub inner_flange: FlangeShape,
+    /// Outer ring flange shape (both sides).
+    pub outer_flange: FlangeShape,
+    /// Axial play per roller end and flange at the raceway, roller centred [m].
+    pub inner_axial_play: f64,
+    /// Same for the outer ring [m].
+    pub outer_axial_play: f64,
+    /// E' of roller–inner ring, roller–outer ring, roller–roller contacts [Pa].
+    pub e_prime: [f64; 3],
+    /// Eq. 11 for roller–inner race, roller–outer race, roller–roller.
+    pub line_laws: [LinePowerLaw; 3],
+    /// Inner ring mass [kg], axial and transverse inertia [kg m²].
+    pub inner_ring_mass: f64,
+    /// Inner ring axial inertia [kg m²].
+    pub inner_ring_axial_inertia: f64,
+    /// Inner ring transverse inertia [kg m²].
+    pub inner_ring_transverse_inertia: f64,
+    /// Inner ring tilt free (else locked).
+    pub inner_ring_tilt_free: bool,
+    /// EHL traction (sect. 3.2.1).
+    pub traction: EhlTraction,
+    /// Ambient viscosity η₀ [Pa s].
+    pub eta0: f64,
+    /// dη₀/dT [Pa s/K] (eq. 48).
+    pub viscosity_slope: f64,
+    /// α* [1/Pa].
+    pub alpha_star: f64,
+    /// Lubricant thermal conductivity [W/(m K)].
+    pub thermal_conductivity: f64,
+    /// Raceway, flange and roller–roller surfaces.
+    pub raceway: SurfacePair,
+    /// Roller end / flange surfaces.
+    pub flange_surface: SurfacePair,
+    /// Roller–roller surfaces.
+    pub roller_roller: SurfacePair,
+    /// Boundary friction (eqs. 51, 52).
+    pub boundary: BoundaryFriction,
+    /// Hysteresis coefficient α_v (eq. 55).
+    pub hysteresis_coefficient: f64,
+    /// Damping ratio ζ of the normal contact damping [-].
+    pub damping_ratio: f64,
+    /// Gravity [m/s²], along −y.
+    pub gravity: f64,
+    /// Radial load on the inner ring [N], along −y.
+    pub radial_load: History,
+    /// Axial load on the inner ring [N], along +x.
+    pub axial_load: History,
+    /// Inner ring speed [rad/s] about +x.
+    pub inner_ring_speed: History,
+    /// Roller end–flange detector.
+    pub detector: Detector,
+    /// Mesh resolution (around, along) for [`Detector::Mesh`].
+    pub mesh_resolution: (usize, usize),
+    /// Skip pairings and flanges that cannot touch (semi-analytical only).
+    pub pruning: bool,
+}
+
+impl BearingParams {
+    /// Checks what the model relies on; the first violation is returned.
+    pub fn check(&self) -> Result<()> {
+        if self.roller_count < 3 {
+            return Err(Error::invalid("roller_count", self.roller_count, ">= 3"));
+        }
+        if self.slices == 0 {
+            return Err(Error::invalid("slices", self.slices, ">= 1"));
+        }
+        let r = self.roller.radius;
+        let gap = self.outer_raceway_radius - self.inner_raceway_radius - 2.0 * r;
+        if !(gap >= 0.0) {
+            return Err(Error::invalid(
+                "roller diameter",
+                2.0 * r,
+                "rollers must fit between the raceways (no overlap at the start)",
+            ));
+        }
+        let pitch = 0.5 * (self.inner_raceway_radius + self.outer_raceway_radius);
+        let chord = 2.0 * pitch * (std::f64::consts::PI / self.roller_count as f64).sin();
+        if chord <= 2.0 * r {
+            return Err(Error::invalid(
+                "roller_count",
+                self.roller_count,
+                format!("neighbouring rollers overlap on the pitch circle (chord {chord:.6e} m <= roller diameter {:.6e} m)", 2.0 * r),
+            ));
+        }
+        for (name, v) in [
+            ("roller_density", self.roller_density),
+            ("inner_ring_mass", self.inner_ring_mass),
+            ("inner_ring_axial_inertia", self.inner_ring_axial_inertia),
+            ("inner_ring_transverse_inertia", self.inner_ring_transverse_inertia),
+            ("eta0", self.eta0),
+            ("thermal_conductivity", self.thermal_conductivity),
+        ] {
+            if !(v > 0.0 && v.is_finite()) {
+                return Err(Error::invalid(name, v, "positive and finite"));
+            }
+        }
+        for (name, v) in [
+            ("damping_ratio", self.damping_ratio),
+            ("inner_axial_play", self.inner_axial_play),
+            ("outer_axial_play", self.outer_axial_play),
+        ] {
+            if !(v >= 0.0 && v.is_finite()) {
+                return Err(Error::invalid(name, v, "non-negative and finite"));
+            }
+        }
+        self.radial_load.check("radial_load")?;
+        self.axial_load.check("axial_load")?;
+        self.inner_ring_speed.check("inner_ring_speed")?;
+        Ok(())
+    }
+}

@@ -1,0 +1,320 @@
+//! A whole simulation: integrate the model and record what the figures need at every
+//! output time (issue 4, "Running it"); on a failure keep everything recorded so far and
+//! say when and where it happened.
+
+use super::model::{BearingModel, ElementResult, Element, Profile, FLANGE_NAMES};
+use super::state::{azimuth, tilt_and_skew, Kinematics};
+use crate::dynamics::integrate::{integrate, Method, Options, Stats};
+use crate::geometry::primitives::Vec3;
+use std::ops::ControlFlow;
+
+/// Settings of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunOptions {
+    /// End time [s].
+    pub t_end: f64,
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Absolute tolerance for lengths [m] (other states scaled, see
+    /// [`BearingModel::absolute_tolerances`]).
+    pub atol: f64,
+    /// Δt_max [s].
+    pub dt_max: f64,
+    /// Output interval [s].
+    pub output_interval: f64,
+    /// Method.
+    pub method: Method,
+}
+
+/// Outputs of one roller end / flange contact at one time.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FlangeRecord {
+    /// Active pairing (index in [`crate::contact::Pairing::ALL`]), −1 if none overlaps.
+    pub pairing: i32,
+    /// Penetration of the composite contact [m] (−∞ if no pairing is valid).
+    pub penetration: f64,
+    /// Contact location P_m [m] (zero without contact).
+    pub location: Vec3,
+    /// Normal force [N].
+    pub normal_force: f64,
+    /// Friction (tangential) force magnitude [N].
+    pub friction_force: f64,
+    /// Axial force on the roller (x) [N].
+    pub axial_force: f64,
+}
+
+/// Outputs of one roller at one time.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct RollerRecord {
+    /// Azimuth ψ from +y towards +z [rad].
+    pub azimuth: f64,
+    /// Centre [m].
+    pub position: Vec3,
+    /// Tilt [rad] (axis towards radial).
+    pub tilt: f64,
+    /// Skew [rad] (axis towards circumferential).
+    pub skew: f64,
+    /// Spin speed ω·a [rad/s].
+    pub spin_speed: f64,
+    /// Orbital speed about the bearing axis [rad/s].
+    pub orbital_speed: f64,
+    /// Slide-to-roll ratio at the inner race (eq. 49, 1 = race, 2 = roller, mid-roller).
+    pub srr_inner: f64,
+    /// Slide-to-roll ratio at the outer race.
+    pub srr_outer: f64,
+    /// Inner race normal force (sum over slices) [N].
+    pub inner_normal: f64,
+    /// Outer race normal force [N].
+    pub outer_normal: f64,
+    /// Inner race tangential force on the roller, magnitude of the slice sum [N].
+    pub inner_tangential: f64,
+    /// Outer race tangential force [N].
+    pub outer_tangential: f64,
+    /// Normal force between this roller and the next [N].
+    pub pair_normal: f64,
+    /// Tangential force between this roller and the next [N].
+    pub pair_tangential: f64,
+    /// The four roller end / flange contacts (see [`FLANGE_NAMES`]).
+    pub flanges: [FlangeRecord; 4],
+}
+
+/// Outputs of the bearing at one time.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Record {
+    /// Time [s].
+    pub time: f64,
+    /// Inner ring centre [m].
+    pub ring_position: Vec3,
+    /// Inner ring axis angles (θ_y, θ_z) [rad] (zero when tilt is locked).
+    pub ring_tilt: (f64, f64),
+    /// Inner ring speed [rad/s].
+    pub ring_speed: f64,
+    /// Radial and axial load applied [N].
+    pub loads: (f64, f64),
+    /// Bearing frictional torque: the moment of all contact forces on the inner ring about
+    /// its axis, positive when it resists a positive rotation [N m].
+    pub frictional_torque: f64,
+    /// The same taken from the outer ring's contact forces (reaction, about +x) [N m].
+    pub outer_ring_torque: f64,
+    /// Per roller.
+    pub rollers: Vec<RollerRecord>,
+}
+
+/// The result of a run, complete or not.
+#[derive(Debug, Clone)]
+pub struct RunOutput {
+    /// Records at the output times.
+    pub records: Vec<Record>,
+    /// Solver counters.
+    pub stats: Stats,
+    /// Where the right-hand-side time went.
+    pub profile: Profile,
+    /// The last state (for a restart).
+    pub final_state: Vec<f64>,
+    /// Time of the last state [s].
+    pub final_time: f64,
+    /// Why the run stopped early, if it did (says when and where).
+    pub error: Option<String>,
+    /// True if the progress callback stopped the run.
+    pub interrupted: bool,
+}
+
+/// What the progress callback sees.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Progress {
+    /// Simulated time reached [s].
+    pub time: f64,
+    /// End time [s].
+    pub t_end: f64,
+    /// Counters.
+    pub stats: Stats,
+}
+
+/// Runs the model from `start` (or its consistent initial state) at `t0` to
+/// `options.t_end`. `progress` is called at every output time and may stop the run.
+pub fn run(
+    model: &BearingModel,
+    start: Option<(f64, Vec<f64>)>,
+    options: &RunOptions,
+    mut progress: impl FnMut(&Progress) -> ControlFlow<()>,
+) -> crate::Result<RunOutput> {
+    let (t0, y0) = match start {
+        Some(s) => s,
+        None => (0.0, model.initial_state()?),
+    };
+    let settings = Options {
+        rtol: options.rtol,
+        atol: model.absolute_tolerances(options.atol),
+        dt_max: options.dt_max,
+        dt_initial: options.dt_max.min(1e-6),
+        output_interval: options.output_interval,
+        method: options.method,
+    };
+    let mut records = Vec::new();
+    let mut last = (t0, y0.clone());
+    let mut interrupted = false;
+    let outcome = integrate(model, &y0, t0, options.t_end, &settings, |t, y, stats| {
+        records.push(record(model, t, y));
+        last = (t, y.to_vec());
+        let p = Progress {
+            time: t,
+            t_end: options.t_end,
+            stats: *stats,
+        };
+        let flow = progress(&p);
+        interrupted = flow.is_break();
+        flow
+    });
+    Ok(match outcome {
+        Ok(stats) => RunOutput {
+            records,
+            stats,
+            profile: model.profile(),
+            final_state: last.1,
+            final_time: last.0,
+            error: None,
+            interrupted,
+        },
+        Err(failure) => RunOutput {
+            error: Some(format!(
+                "the integration failed at t = {:.6e} s: {}; {}",
+                failure.time,
+                failure.message,
+                diagnose(model, failure.time, &failure.state)
+            )),
+            records,
+            stats: failure.stats,
+            profile: model.profile(),
+            final_state: last.1,
+            final_time: last.0,
+            interrupted,
+        },
+    })
+}
+
+/// Evaluates the outputs at (t, y).
+pub fn record(model: &BearingModel, t: f64, y: &[f64]) -> Record {
+    let kin = model.kinematics(t, y);
+    let results = model.evaluate_all(&kin);
+    let (ring_w, outer_w, _) = model.loads(&results);
+    let ring = kin.0;
+    let layout = model.layout;
+    let ring_tilt = if layout.tilt_free { (y[6], y[7]) } else { (0.0, 0.0) };
+    let mut rollers = vec![RollerRecord::default(); layout.rollers];
+    for (element, r) in model.elements().iter().zip(&results) {
+        fill(&mut rollers, element, r);
+    }
+    for (i, rec) in rollers.iter_mut().enumerate() {
+        let k = &kin.1[i];
+        rec.azimuth = azimuth(&k.center);
+        rec.position = k.center;
+        (rec.tilt, rec.skew) = tilt_and_skew(&k.center, &k.axis);
+        rec.spin_speed = k.omega.dot(&k.axis);
+        let rho2 = k.center.y.powi(2) + k.center.z.powi(2);
+        rec.orbital_speed = (k.center.y * k.velocity.z - k.center.z * k.velocity.y) / rho2;
+        rec.srr_inner = slide_to_roll(model, &ring, k, true);
+        rec.srr_outer = slide_to_roll(model, &Kinematics::fixed(), k, false);
+    }
+    Record {
+        time: t,
+        ring_position: ring.center,
+        ring_tilt,
+        ring_speed: model.params.inner_ring_speed.at(t).0,
+        loads: (model.params.radial_load.at(t).0, model.params.axial_load.at(t).0),
+        frictional_torque: -ring_w.moment.dot(&ring.axis),
+        outer_ring_torque: outer_w.moment.x,
+        rollers,
+    }
+}
+
+fn fill(rollers: &mut [RollerRecord], element: &Element, r: &ElementResult) {
+    match *element {
+        Element::Inner(i) => {
+            rollers[i].inner_normal = r.normal;
+            rollers[i].inner_tangential = r.tangential.norm();
+        }
+        Element::Outer(i) => {
+            rollers[i].outer_normal = r.normal;
+            rollers[i].outer_tangential = r.tangential.norm();
+        }
+        Element::Pair(i) => {
+            rollers[i].pair_normal = r.normal;
+            rollers[i].pair_tangential = r.tangential.norm();
+        }
+        Element::End(i, k) => {
+            rollers[i].flanges[k] = FlangeRecord {
+                pairing: r.pairing.map_or(-1, |p| p as i32),
+                penetration: r.penetration,
+                location: r.location,
+                normal_force: r.normal,
+                friction_force: r.tangential.norm(),
+                axial_force: r.on_b.force.x,
+            };
+        }
+    }
+}
+
+/// Kinematic slide-to-roll ratio (eq. 49) at the middle of a roller against a race:
+/// S = 2(u_roller − u_race)/(u_race + u_roller), rolling components relative to the
+/// contact frame; 0 where both surfaces stand still.
+fn slide_to_roll(model: &BearingModel, race: &Kinematics, roller: &Kinematics, inner: bool) -> f64 {
+    let d = roller.center - race.center;
+    let out = (d - d.dot(&race.axis) * race.axis).normalize();
+    let r = model.params.roller.radius;
+    let (n, p) = if inner { (out, roller.center - out * r) } else { (-out, roller.center + out * r) };
+    let rolling = n.cross(&roller.axis).normalize();
+    let c = roller.center;
+    let rho2 = c.y * c.y + c.z * c.z;
+    let orbit = (c.y * roller.velocity.z - c.z * roller.velocity.y) / rho2;
+    let frame = roller.velocity + Vec3::new(orbit, 0.0, 0.0).cross(&(p - c));
+    let u1 = (race.point_velocity(&p) - frame).dot(&rolling);
+    let u2 = (roller.point_velocity(&p) - frame).dot(&rolling);
+    let sum = u1 + u2;
+    if sum.abs() < 1e-9 {
+        0.0
+    } else {
+        2.0 * (u2 - u1) / sum
+    }
+}
+
+/// Says where a failed run went wrong: non-finite states, a roller that left the
+/// bearing, or the deepest contact and the body with the largest acceleration.
+pub fn diagnose(model: &BearingModel, t: f64, y: &[f64]) -> String {
+    let layout = model.layout;
+    if let Some(k) = y.iter().position(|v| !v.is_finite()) {
+        return match layout.body_of(k) {
+            None => format!("inner ring state {k} is not finite"),
+            Some(i) => format!("roller {i} state {} is not finite", k - layout.roller(i)),
+        };
+    }
+    let kin = model.kinematics(t, y);
+    let p = &model.params;
+    let r = p.roller.radius;
+    for (i, k) in kin.1.iter().enumerate() {
+        let rho = (k.center.y.powi(2) + k.center.z.powi(2)).sqrt();
+        let radial_ok = rho > p.inner_raceway_radius && rho < p.outer_raceway_radius;
+        let axial_ok = k.center.x.abs() < p.roller.length;
+        if !(radial_ok && axial_ok) || k.axis.x.abs() < 0.9 {
+            return format!(
+                "roller {i} left the bearing (centre at x = {:.3e} m, radius {:.3e} m; raceways {:.3e}..{:.3e} m; axis {:?})",
+                k.center.x, rho, p.inner_raceway_radius, p.outer_raceway_radius, k.axis.as_slice()
+            );
+        }
+        let _ = r;
+    }
+    let results = model.evaluate_all(&kin);
+    let (deepest, result) = model
+        .elements()
+        .iter()
+        .zip(&results)
+        .max_by(|a, b| a.1.penetration.total_cmp(&b.1.penetration))
+        .expect("a bearing has contacts");
+    let name = match *deepest {
+        super::model::Element::End(i, k) => format!("roller {i} end / flange {}", FLANGE_NAMES[k]),
+        other => format!("{other:?}"),
+    };
+    format!(
+        "deepest contact: {name}, penetration {:.3e} m, normal force {:.3e} N",
+        result.penetration, result.normal
+    )
+}

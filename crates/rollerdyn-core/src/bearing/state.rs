@@ -1,0 +1,140 @@
+//! The state vector's layout and the bodies' kinematics read from it.
+//!
+//! Inner ring first: position (3), velocity (3); with tilt free also the axis angles
+//! (θ_y, θ_z) and the transverse angular velocity (3). Then per roller: centre (3), axis
+//! angles θ_y, θ_z (2), velocity (3), angular velocity ω (3, spin included) — 11 states.
+//! The inner ring's spin is prescribed and not a state; the outer ring is fixed.
+
+use crate::dynamics::rigid::axis_from_angles;
+use crate::geometry::primitives::Vec3;
+
+/// States per roller.
+pub const ROLLER_STATES: usize = 11;
+
+/// Where each body's states sit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Layout {
+    /// Number of rollers.
+    pub rollers: usize,
+    /// Inner ring tilt free.
+    pub tilt_free: bool,
+}
+
+impl Layout {
+    /// States of the inner ring.
+    pub fn ring_states(&self) -> usize {
+        if self.tilt_free {
+            11
+        } else {
+            6
+        }
+    }
+
+    /// First state of roller `i`.
+    pub fn roller(&self, i: usize) -> usize {
+        self.ring_states() + ROLLER_STATES * i
+    }
+
+    /// Total states.
+    pub fn len(&self) -> usize {
+        self.roller(self.rollers)
+    }
+
+    /// Never empty (a ring and at least three rollers).
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// Which body a state belongs to: None for the ring, Some(i) for roller i.
+    pub fn body_of(&self, state: usize) -> Option<usize> {
+        state
+            .checked_sub(self.ring_states())
+            .map(|k| k / ROLLER_STATES)
+    }
+}
+
+/// Position, orientation and velocities of a rigid body.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Kinematics {
+    /// Centre of mass [m].
+    pub center: Vec3,
+    /// Unit axis.
+    pub axis: Vec3,
+    /// Velocity of the centre [m/s].
+    pub velocity: Vec3,
+    /// Angular velocity [rad/s].
+    pub omega: Vec3,
+}
+
+impl Kinematics {
+    /// A body at rest at the origin with axis +x (the fixed outer ring).
+    pub fn fixed() -> Self {
+        Self {
+            center: Vec3::zeros(),
+            axis: Vec3::x(),
+            velocity: Vec3::zeros(),
+            omega: Vec3::zeros(),
+        }
+    }
+
+    /// Velocity of the material point at `p`: v + ω × (p − c).
+    #[inline]
+    pub fn point_velocity(&self, p: &Vec3) -> Vec3 {
+        self.velocity + self.omega.cross(&(p - self.center))
+    }
+}
+
+/// Reads roller `i` from the state.
+#[inline]
+pub fn roller_kinematics(layout: &Layout, y: &[f64], i: usize) -> Kinematics {
+    let s = &y[layout.roller(i)..layout.roller(i) + ROLLER_STATES];
+    Kinematics {
+        center: Vec3::new(s[0], s[1], s[2]),
+        axis: axis_from_angles(s[3], s[4]),
+        velocity: Vec3::new(s[5], s[6], s[7]),
+        omega: Vec3::new(s[8], s[9], s[10]),
+    }
+}
+
+/// Reads the inner ring from the state, with its prescribed spin Ω about its axis.
+#[inline]
+pub fn ring_kinematics(layout: &Layout, y: &[f64], spin: f64) -> Kinematics {
+    let center = Vec3::new(y[0], y[1], y[2]);
+    let velocity = Vec3::new(y[3], y[4], y[5]);
+    if layout.tilt_free {
+        let axis = axis_from_angles(y[6], y[7]);
+        let transverse = Vec3::new(y[8], y[9], y[10]);
+        let transverse = transverse - transverse.dot(&axis) * axis;
+        Kinematics {
+            center,
+            axis,
+            velocity,
+            omega: spin * axis + transverse,
+        }
+    } else {
+        Kinematics {
+            center,
+            axis: Vec3::x(),
+            velocity,
+            omega: Vec3::new(spin, 0.0, 0.0),
+        }
+    }
+}
+
+/// Azimuth ψ of a point about the bearing axis, from +y towards +z, in [0, 2π).
+#[inline]
+pub fn azimuth(p: &Vec3) -> f64 {
+    p.z.atan2(p.y).rem_euclid(2.0 * std::f64::consts::PI)
+}
+
+/// Tilt and skew of a roller axis in its azimuth frame: tilt turns the axis about the
+/// circumferential direction (towards radial), skew about the radial direction (towards
+/// circumferential) (model-notes, "Frames and state").
+#[inline]
+pub fn tilt_and_skew(center: &Vec3, axis: &Vec3) -> (f64, f64) {
+    let psi = azimuth(center);
+    let radial = Vec3::new(0.0, psi.cos(), psi.sin());
+    let circumferential = Vec3::x().cross(&radial);
+    let a = if axis.x < 0.0 { -axis } else { *axis };
+    (a.dot(&radial).asin(), a.dot(&circumferential).atan2(a.x))
+}

@@ -1,0 +1,284 @@
+"""Running the dynamic model: configuration -> Rust core -> xarray Dataset.
+
+:func:`simulate` mirrors ``rollerdyn run``: it derives the model's parameters from a
+validated configuration (:func:`model_parameters`, all SI), runs the core and returns an
+:class:`xarray.Dataset` whose variables carry their units in ``attrs["units"]``. A run that
+fails keeps everything computed until then: the Dataset holds those records and its
+``attrs["error"]`` says when and where the run failed; :func:`simulate` then raises
+:class:`SimulationError` carrying that partial Dataset.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+from . import _core
+from .config import BearingConfig, RampConfig, TimeTable
+from .model import Model
+
+PAIRINGS = ("TO-CO", "TO-TO(root)", "TO-TO(rim)", "SP-CO", "SP-TO(root)", "SP-TO(rim)")
+"""Roller end / flange pairings, in the order of ``flange_pairing`` (paper fig. 1)."""
+
+FLANGES = ("inner-x", "inner+x", "outer-x", "outer+x")
+"""The four roller end / flange contacts of a roller: ring and side of the flange."""
+
+
+class SimulationError(RuntimeError):
+    """A run that stopped early; :attr:`dataset` holds everything computed until then."""
+
+    def __init__(self, message: str, dataset: xr.Dataset):
+        super().__init__(message)
+        self.dataset = dataset
+
+
+def _e_prime(e1: float, nu1: float, e2: float, nu2: float) -> float:
+    """E' = 2/((1 - nu1^2)/E1 + (1 - nu2^2)/E2) (paper, nomenclature)."""
+    return 2.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2)
+
+
+def _history(value: float | TimeTable, ramp: RampConfig | None) -> dict:
+    if isinstance(value, TimeTable):
+        return {"kind": "table", "times": list(value.times), "values": list(value.values)}
+    if ramp is None:
+        return {"kind": "ramp", "value": float(value), "start": 0.0, "end": 0.0, "shape": "linear"}
+    return {
+        "kind": "ramp",
+        "value": float(value),
+        "start": ramp.start,
+        "end": ramp.end,
+        "shape": ramp.shape,
+    }
+
+
+def model_parameters(config: BearingConfig, detector: str | None = None) -> dict:
+    """The flat SI parameter set of the Rust model, derived from ``config``."""
+    cfg, model = config, Model(config)
+    g, m, s, op = cfg.geometry, cfg.materials, cfg.surfaces, cfg.operating
+    laws = model.line_contacts
+    rr = s.roller_roller_pair
+    roller = g.roller
+    params = {
+        "roller_count": int(g.roller_count),
+        "roller_radius": g.roller_diameter / 2.0,
+        "roller_length": roller.length,
+        "edge_radius": roller.edge_radius,
+        "end_face_radius": roller.end_face_radius,
+        "slices": int(roller.slices),
+        "crown_drop": roller.crown_drop if roller.profile == "crowned" else 0.0,
+        "crown_length": (roller.crown_length or 0.0) if roller.profile == "crowned" else 0.0,
+        "roller_density": m.roller.density,
+        "inner_raceway_radius": g.inner_raceway_diameter / 2.0,
+        "outer_raceway_radius": g.outer_raceway_diameter / 2.0,
+        "e_prime_inner": _e_prime(
+            m.roller.youngs_modulus,
+            m.roller.poisson_ratio,
+            m.inner_ring.youngs_modulus,
+            m.inner_ring.poisson_ratio,
+        ),
+        "e_prime_outer": _e_prime(
+            m.roller.youngs_modulus,
+            m.roller.poisson_ratio,
+            m.outer_ring.youngs_modulus,
+            m.outer_ring.poisson_ratio,
+        ),
+        "e_prime_roller": _e_prime(
+            m.roller.youngs_modulus, m.roller.poisson_ratio, m.roller.youngs_modulus, m.roller.poisson_ratio
+        ),
+        "inner_ring_mass": cfg.inner_ring.mass,
+        "inner_ring_axial_inertia": cfg.inner_ring_axial_inertia,
+        "inner_ring_transverse_inertia": cfg.inner_ring_transverse_inertia,
+        "inner_ring_tilt_free": cfg.inner_ring.tilt == "free",
+        "eta0": model.eta0,
+        "viscosity_slope": model.viscosity_slope,
+        "alpha_star": model.alpha_star,
+        "thermal_conductivity": cfg.lubricant.thermal_conductivity,
+        "mu_b0": s.boundary_friction.mu_b0,
+        "s0": s.boundary_friction.s0,
+        "smoothing_speed": s.boundary_friction.smoothing_speed,
+        "hysteresis_coefficient": s.hysteresis_coefficient,
+        "damping_ratio": s.damping_ratio,
+        "gravity": op.gravity,
+        "radial_load": _history(op.radial_load, op.load_ramp),
+        "axial_load": _history(op.axial_load, op.load_ramp),
+        "inner_ring_speed": _history(op.inner_ring_speed, op.speed_ramp),
+        "detector": detector or cfg.solver.detector,
+        "mesh_around": int(cfg.solver.mesh_around),
+        "mesh_along": int(cfg.solver.mesh_along),
+        "pruning": bool(cfg.solver.pruning),
+    }
+    for ring, flange, play_key in (
+        ("inner", g.inner_flange, "inner_axial_play"),
+        ("outer", g.outer_flange, "outer_axial_play"),
+    ):
+        params[f"{ring}_flange_opening_angle"] = flange.opening_angle
+        params[f"{ring}_flange_height"] = flange.height
+        params[f"{ring}_flange_root_radius"] = flange.root_radius
+        params[f"{ring}_flange_rim_radius"] = flange.rim_radius
+        params[play_key] = flange.axial_play
+    for key, law in (("inner", "inner"), ("outer", "outer"), ("roller", "roller")):
+        params[f"k1_{key}"] = laws[law].k1
+        params[f"k2_{key}"] = laws[law].k2
+    for name, pair in (("raceway", s.raceway), ("flange", s.flange), ("roller_roller", rr)):
+        params[f"{name}_roughness"] = pair.roughness
+        params[f"{name}_zh_b"] = pair.zh_b
+        params[f"{name}_zh_c"] = pair.zh_c
+    return params
+
+
+@dataclass(frozen=True)
+class Progress:
+    """What a progress callback receives at every output time."""
+
+    time: float
+    t_end: float
+    steps: int
+    rhs_evaluations: int
+    jacobian_evaluations: int
+
+
+_SCALARS = {
+    "ring_speed": ("rad/s", "inner ring angular velocity about +x"),
+    "radial_load": ("N", "radial load on the inner ring (along -y)"),
+    "axial_load": ("N", "axial load on the inner ring (along +x)"),
+    "frictional_torque": (
+        "N*m",
+        "bearing frictional torque: moment of all contact forces on the inner ring about "
+        "its axis, positive when it resists the rotation",
+    ),
+    "outer_ring_torque": ("N*m", "moment of the contact forces on the outer ring about +x"),
+}
+_PER_ROLLER = {
+    "azimuth": ("rad", "roller azimuth, from +y towards +z (load zone centre at pi, -y)"),
+    "tilt": ("rad", "roller tilt (axis towards radial, about the circumferential direction)"),
+    "skew": ("rad", "roller skew (axis towards circumferential, about the radial direction)"),
+    "spin_speed": ("rad/s", "roller angular velocity about its own axis"),
+    "orbital_speed": ("rad/s", "roller orbital angular velocity about the bearing axis"),
+    "srr_inner": ("1", "slide-to-roll ratio at the inner race, eq. 49 (1 = race, 2 = roller)"),
+    "srr_outer": ("1", "slide-to-roll ratio at the outer race, eq. 49 (1 = race, 2 = roller)"),
+    "inner_normal_force": ("N", "roller-inner race normal force (sum over slices)"),
+    "outer_normal_force": ("N", "roller-outer race normal force (sum over slices)"),
+    "inner_tangential_force": ("N", "roller-inner race tangential force on the roller"),
+    "outer_tangential_force": ("N", "roller-outer race tangential force on the roller"),
+    "roller_roller_normal_force": ("N", "normal force between this roller and the next"),
+    "roller_roller_tangential_force": ("N", "tangential force between this roller and the next"),
+}
+_PER_FLANGE = {
+    "flange_pairing": ("1", "active pairing index into the 'pairing' coordinate, -1 if none"),
+    "flange_penetration": ("m", "penetration of the composite end/flange contact (<0: gap)"),
+    "flange_normal_force": ("N", "roller end / flange normal force"),
+    "flange_friction_force": ("N", "roller end / flange friction force"),
+    "flange_axial_force": ("N", "axial (x) force of the flange contact on the roller"),
+}
+
+
+def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
+    """Builds the Dataset from the core's flat arrays."""
+    time = np.asarray(raw["time"])
+    nt, z = time.size, int(raw["rollers"])
+    data = {}
+
+    def var(name: str, dims: tuple, shape: tuple, units: str, text: str) -> None:
+        arr = np.asarray(raw[name], dtype=float).reshape(shape)
+        data[name] = xr.Variable(dims, arr, {"units": units, "long_name": text})
+
+    for name, (units, text) in _SCALARS.items():
+        var(name, ("time",), (nt,), units, text)
+    var("ring_position", ("time", "xyz"), (nt, 3), "m", "inner ring centre")
+    var("ring_tilt", ("time", "tilt_axis"), (nt, 2), "rad", "inner ring axis angles (theta_y, theta_z)")
+    for name, (units, text) in _PER_ROLLER.items():
+        var(name, ("time", "roller"), (nt, z), units, text)
+    var("position", ("time", "roller", "xyz"), (nt, z, 3), "m", "roller centre")
+    for name, (units, text) in _PER_FLANGE.items():
+        var(name, ("time", "roller", "flange"), (nt, z, 4), units, text)
+    var(
+        "flange_location",
+        ("time", "roller", "flange", "xyz"),
+        (nt, z, 4, 3),
+        "m",
+        "roller end / flange contact location P_m (eq. 1)",
+    )
+    data["flange_pairing"] = data["flange_pairing"].astype(np.int8)
+    data["flange_pairing"].attrs.update(
+        {"units": "1", "long_name": _PER_FLANGE["flange_pairing"][1]}
+    )
+    coords = {
+        "time": ("time", time, {"units": "s", "long_name": "simulated time"}),
+        "roller": ("roller", np.arange(z)),
+        "flange": ("flange", list(FLANGES)),
+        "pairing": ("pairing", list(PAIRINGS)),
+        "xyz": ("xyz", ["x", "y", "z"]),
+        "tilt_axis": ("tilt_axis", ["theta_y", "theta_z"]),
+    }
+    stats = raw["stats"]
+    attrs = {
+        "title": f"rollerdyn run of {config.name}",
+        "bearing": config.name,
+        "detector": detector,
+        "method": config.solver.method,
+        "rtol": config.solver.rtol,
+        "atol_m": config.solver.atol,
+        "dt_max_s": config.solver.dt_max,
+        "output_interval_s": config.solver.output_interval,
+        "final_time_s": float(raw["final_time"]),
+        "completed": int(raw["error"] is None and not raw["interrupted"]),
+        "conventions": "x = bearing axis; radial load along -y, axial load along +x on the inner ring",
+    }
+    for key, value in stats.items():
+        attrs[f"stats_{key}"] = value
+    if raw["error"] is not None:
+        attrs["error"] = raw["error"]
+    ds = xr.Dataset(data, coords=coords, attrs=attrs)
+    ds["final_state"] = xr.Variable(("state",), np.asarray(raw["final_state"]), {"units": "SI"})
+    return ds
+
+
+def simulate(
+    config: BearingConfig,
+    t_end: float | None = None,
+    detector: str | None = None,
+    progress: Callable[[Progress], bool | None] | None = None,
+) -> xr.Dataset:
+    """Runs ``config`` from its consistent start to ``t_end`` (default: the configuration's
+    end time) and returns the Dataset. ``progress(Progress)`` is called at every output
+    time; returning True stops the run (the Dataset then ends there). Raises
+    :class:`SimulationError` (with the partial Dataset) if the integration fails.
+    """
+    model = Model(config)
+    det = detector or config.solver.detector
+    params = model_parameters(config, det)
+    end = config.end_time if t_end is None else float(t_end)
+    if not (end > 0.0 and math.isfinite(end)):
+        raise ValueError(f"t_end = {end}: must be a positive number of seconds")
+    s = config.solver
+    options = {
+        "t_end": end,
+        "rtol": s.rtol,
+        "atol": s.atol,
+        "dt_max": s.dt_max,
+        "output_interval": min(s.output_interval, end),
+        "method": s.method,
+    }
+
+    def callback(t, t_end_, steps, rhs, jac):
+        if progress is None:
+            return False
+        return bool(progress(Progress(t, t_end_, steps, rhs, jac)))
+
+    raw = _core.simulate(params, model.traction, options, callback)
+    ds = to_dataset(raw, config, det)
+    if "interruption" in raw:
+        ds.attrs["error"] = f"interrupted at t = {raw['final_time']:.6g} s: {raw['interruption']}"
+        raise SimulationError(ds.attrs["error"], ds)
+    if raw["error"] is not None:
+        raise SimulationError(raw["error"], ds)
+    return ds
+
+
+def write(ds: xr.Dataset, path) -> None:
+    """Writes a result to netCDF (h5netcdf engine)."""
+    ds.to_netcdf(path, engine="h5netcdf")
