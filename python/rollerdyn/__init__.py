@@ -3,11 +3,27 @@
 The physics runs in a Rust core (``rollerdyn._core``); this package is its front end:
 configuration (:mod:`rollerdyn.config`), the force laws on numpy arrays
 (:mod:`rollerdyn.tribology`), the model's derived parameters (:mod:`rollerdyn.model`),
-the validation cases (:mod:`rollerdyn.validation`) and the command line
+the validation cases (:mod:`rollerdyn.validation`), runs of the dynamic model
+(:mod:`rollerdyn.simulation`), figures (:mod:`rollerdyn.plots`) and the command line
 (:mod:`rollerdyn.cli`).
 """
 
 from .config import BearingConfig, ConfigError, load_config, parse_config
 
-__all__ = ["BearingConfig", "ConfigError", "load_config", "parse_config", "__version__"]
+
+def simulate(config, t_end=None, detector=None, progress=None):
+    """Run the dynamic model; see :func:`rollerdyn.simulation.simulate`."""
+    from .simulation import simulate as _simulate
+
+    return _simulate(config, t_end=t_end, detector=detector, progress=progress)
+
+
+__all__ = [
+    "BearingConfig",
+    "ConfigError",
+    "load_config",
+    "parse_config",
+    "simulate",
+    "__version__",
+]
 __version__ = "0.1.0"

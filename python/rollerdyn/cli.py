@@ -129,7 +129,9 @@ def bench(
         str,
         typer.Argument(
             help="What to time: 'traction' (EHL traction integral), 'contact' (roller "
-            "end/flange detection: semi-analytical, pruned, gradient) or 'all'."
+            "end/flange detection: semi-analytical, pruned, gradient), 'mbs' (whole runs "
+            "with the semi-analytical and the gradient detector) or 'all' (traction and "
+            "contact)."
         ),
     ] = "all",
     repetitions: Annotated[
@@ -138,6 +140,13 @@ def bench(
     steps: Annotated[
         int, typer.Option(min=10, help="Trajectory steps of the contact benchmark.")
     ] = 6283,
+    t_end: Annotated[
+        float | None,
+        typer.Option(
+            "--t-end",
+            help="mbs: simulated end time in s (default: the configuration's, 1.288 s for B1).",
+        ),
+    ] = None,
     config: ConfigOption = None,
 ) -> None:
     """Time the hot paths on one core and print tables (times in ns per evaluation).
@@ -147,13 +156,16 @@ def bench(
     inner-ring flange of the configuration (steps of 1e-3 rad of roller-set azimuth),
     every method evaluating all six pairings; the gradient method warm-started from the
     previous step; accuracy against the reference solver every 100th step. For
-    statistically careful numbers use ``cargo bench -p rollerdyn-core``.
+    statistically careful numbers use ``cargo bench -p rollerdyn-core``. mbs: the whole run
+    (to --t-end) on one core with each detector: wall time, steps, right-hand-side and
+    Jacobian evaluations, and where the time goes (detection, line contacts, flange forces,
+    Jacobians, the rest: linear algebra and the solver).
     """
     from .model import Model
     from .validation import default_config_path
 
-    if target not in ("traction", "contact", "all"):
-        console.print(f"[red]target = {target!r}: must be traction, contact or all[/red]")
+    if target not in ("traction", "contact", "mbs", "all"):
+        console.print(f"[red]target = {target!r}: must be traction, contact, mbs or all[/red]")
         raise typer.Exit(2)
     cfg = _load(config if config is not None else default_config_path())
     if target in ("traction", "all"):
@@ -169,6 +181,57 @@ def bench(
         console.print(table)
     if target in ("contact", "all"):
         _bench_contact(cfg, steps)
+    if target == "mbs":
+        _bench_mbs(cfg, t_end)
+
+
+def _bench_mbs(cfg, t_end: float | None) -> None:
+    from .simulation import SimulationError, simulate
+
+    rows = []
+    for detector in ("semi-analytical", "gradient"):
+        with console.status(f"running {cfg.name} with the {detector} detector..."):
+            try:
+                ds = simulate(cfg, t_end=t_end, detector=detector)
+            except SimulationError as err:
+                ds = err.dataset
+        rows.append((detector, ds.attrs))
+    reached = rows[0][1]["final_time_s"]
+    table = Table(title=f"{cfg.name}: whole run to t = {reached:.4g} s, one core")
+    cols = (
+        "detector",
+        "wall [s]",
+        "steps",
+        "rhs",
+        "Jacobians",
+        "detection [s]",
+        "line contacts [s]",
+        "flange forces [s]",
+        "in Jacobians [s]",
+        "rest [s]",
+    )
+    for col in cols:
+        table.add_column(col)
+    for detector, a in rows:
+        rest = a["stats_total_seconds"] - a["stats_rhs_seconds"] - a["stats_jacobian_seconds"]
+        table.add_row(
+            detector,
+            f"{a['stats_total_seconds']:.2f}",
+            str(a["stats_steps"]),
+            str(a["stats_rhs_evaluations"]),
+            str(a["stats_jacobian_evaluations"]),
+            f"{a['stats_detection_seconds']:.2f}",
+            f"{a['stats_line_contact_seconds']:.2f}",
+            f"{a['stats_flange_force_seconds']:.2f}",
+            f"{a['stats_jacobian_seconds']:.2f}",
+            f"{rest:.2f}",
+        )
+    console.print(table)
+    semi, grad = rows[0][1]["stats_total_seconds"], rows[1][1]["stats_total_seconds"]
+    console.print(
+        f"semi-analytical run time {100 * (1 - semi / grad):.0f} % below the gradient method's "
+        "(paper sect. 5.3: 35 %)"
+    )
 
 
 def _bench_contact(cfg, steps: int) -> None:
@@ -250,3 +313,120 @@ def _bench_contact(cfg, steps: int) -> None:
 
 if __name__ == "__main__":  # pragma: no cover
     app()
+
+
+# --------------------------------------------------------------------------- runs
+
+
+@app.command()
+def run(
+    config: Annotated[Path, typer.Argument(help="Bearing configuration (TOML).")],
+    output: Annotated[
+        Path, typer.Option("--output", "-o", help="Result file (netCDF, xarray/h5netcdf).")
+    ] = Path("result.nc"),
+    t_end: Annotated[
+        float | None,
+        typer.Option(
+            "--t-end",
+            help="Simulated end time in seconds. Default: the configuration's end time "
+            "(speed ramp end + two roller-set revolutions, about 1.288 s for B1).",
+        ),
+    ] = None,
+    detector: Annotated[
+        str | None,
+        typer.Option(
+            "--detector",
+            help="Roller end / flange detector: semi-analytical, gradient or mesh. "
+            "Default: solver.detector of the configuration (semi-analytical).",
+        ),
+    ] = None,
+) -> None:
+    """Run the dynamic simulation and write its results to a netCDF file.
+
+    Units: SI throughout the file (every variable has a 'units' attribute; time in s,
+    forces in N, torques in N*m, angles in rad, speeds in rad/s). Outputs are saved every
+    solver.output_interval by interpolation. A progress bar shows simulated time, solver
+    steps, speed (simulated seconds per wall second) and the time left. If the run fails
+    or is interrupted (Ctrl-C), everything computed until then is written and the command
+    exits with status 1 (130 after Ctrl-C).
+    """
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    from .simulation import SimulationError, simulate, write
+
+    if detector is not None and detector not in ("semi-analytical", "gradient", "mesh"):
+        console.print(
+            f"[red]--detector = {detector!r}: must be semi-analytical, gradient or mesh[/red]"
+        )
+        raise typer.Exit(2)
+    cfg = _load(config)
+    end = cfg.end_time if t_end is None else t_end
+    if not end > 0.0:
+        console.print(f"[red]--t-end = {t_end}: must be a positive time in seconds[/red]")
+        raise typer.Exit(2)
+    columns = (
+        TextColumn("[bold]{task.description}"),
+        BarColumn(),
+        TextColumn("t = {task.completed:.4f} / {task.total:.4f} s"),
+        TextColumn("{task.fields[steps]} steps"),
+        TextColumn("{task.fields[rate]}"),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+    )
+    import time as _time
+
+    start = _time.perf_counter()
+    status = 0
+    with Progress(*columns, console=console, transient=False) as bar:
+        task = bar.add_task(cfg.name, total=end, steps=0, rate="")
+
+        def progress(p):
+            wall = _time.perf_counter() - start
+            rate = f"{p.time / wall * 1e3:.2f} ms/s" if wall > 0 else ""
+            bar.update(task, completed=p.time, steps=p.steps, rate=rate)
+
+        try:
+            ds = simulate(cfg, t_end=end, detector=detector, progress=progress)
+        except SimulationError as err:
+            ds = err.dataset
+            status = 130 if "KeyboardInterrupt" in str(err) else 1
+            console.print(f"[red]run stopped:[/red] {err}")
+    write(ds, output)
+    st = ds.attrs
+    console.print(
+        f"wrote {output}: {ds.sizes['time']} outputs to t = {st['final_time_s']:.6g} s; "
+        f"{st['stats_steps']} steps, {st['stats_rhs_evaluations']} right-hand sides, "
+        f"{st['stats_jacobian_evaluations']} Jacobians, {st['stats_total_seconds']:.1f} s wall"
+    )
+    if status:
+        raise typer.Exit(status)
+
+
+@app.command()
+def plot(
+    results: Annotated[list[Path], typer.Argument(help="Result files (netCDF) of rollerdyn run.")],
+    out: Annotated[Path, typer.Option("--output", "-o", help="Directory for the figures.")] = Path(
+        "plots"
+    ),
+) -> None:
+    """Draw the paper's figures from result files (PNG and SVG, axes in SI units):
+    bearing frictional torque over time (fig. 10), flange friction force of roller 0 over
+    time (fig. 11), axial force of a roller over its azimuth (fig. 12), slide-to-roll ratio
+    at the inner race over azimuth (fig. 13), roller loads over azimuth, and the roller end /
+    flange pairings in contact (figs. 8, 9).
+    """
+    from .plots import plot_results
+
+    for r in results:
+        if not r.is_file():
+            console.print(f"[red]{r}: result file not found[/red]")
+            raise typer.Exit(2)
+    written = plot_results(results, out)
+    for w in written:
+        console.print(f"wrote {w}")

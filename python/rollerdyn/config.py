@@ -712,6 +712,7 @@ class SurfacesConfig(_Section):
     boundary_friction: BoundaryFrictionConfig
     hysteresis_coefficient: Number(ge=0.0)
     damping_ratio: Number(ge=0.0, le=2.0) = 0.1
+    friction: bool = True
 
     @property
     def roller_roller_pair(self) -> SurfacePairConfig:
@@ -763,7 +764,7 @@ class OperatingConfig(_Section):
     load_ramp: RampConfig | None = None
     speed_ramp: RampConfig | None = None
     end_time: Quantity("time", positive=True, example="1.3 s") | None = None
-    gravity: Quantity("acceleration", ge=0.0, example="9.81 m/s^2") = "9.81 m/s^2"
+    gravity: Quantity("acceleration", ge=0.0, example="9.81 m/s^2") = "0 m/s^2"
 
     @model_validator(mode="after")
     def _check(self) -> OperatingConfig:

@@ -87,7 +87,10 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
             m.outer_ring.poisson_ratio,
         ),
         "e_prime_roller": _e_prime(
-            m.roller.youngs_modulus, m.roller.poisson_ratio, m.roller.youngs_modulus, m.roller.poisson_ratio
+            m.roller.youngs_modulus,
+            m.roller.poisson_ratio,
+            m.roller.youngs_modulus,
+            m.roller.poisson_ratio,
         ),
         "inner_ring_mass": cfg.inner_ring.mass,
         "inner_ring_axial_inertia": cfg.inner_ring_axial_inertia,
@@ -102,6 +105,7 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
         "smoothing_speed": s.boundary_friction.smoothing_speed,
         "hysteresis_coefficient": s.hysteresis_coefficient,
         "damping_ratio": s.damping_ratio,
+        "friction": bool(s.friction),
         "gravity": op.gravity,
         "radial_load": _history(op.radial_load, op.load_ramp),
         "axial_load": _history(op.axial_load, op.load_ramp),
@@ -189,7 +193,13 @@ def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
     for name, (units, text) in _SCALARS.items():
         var(name, ("time",), (nt,), units, text)
     var("ring_position", ("time", "xyz"), (nt, 3), "m", "inner ring centre")
-    var("ring_tilt", ("time", "tilt_axis"), (nt, 2), "rad", "inner ring axis angles (theta_y, theta_z)")
+    var(
+        "ring_tilt",
+        ("time", "tilt_axis"),
+        (nt, 2),
+        "rad",
+        "inner ring axis angles (theta_y, theta_z)",
+    )
     for name, (units, text) in _PER_ROLLER.items():
         var(name, ("time", "roller"), (nt, z), units, text)
     var("position", ("time", "roller", "xyz"), (nt, z, 3), "m", "roller centre")
@@ -226,7 +236,7 @@ def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
         "output_interval_s": config.solver.output_interval,
         "final_time_s": float(raw["final_time"]),
         "completed": int(raw["error"] is None and not raw["interrupted"]),
-        "conventions": "x = bearing axis; radial load along -y, axial load along +x on the inner ring",
+        "conventions": "x = bearing axis; on the inner ring: radial load -y, axial load +x",
     }
     for key, value in stats.items():
         attrs[f"stats_{key}"] = value

@@ -16,8 +16,8 @@
 
 pub mod bearing;
 pub mod contact;
-pub mod error;
 pub mod dynamics;
+pub mod error;
 pub mod geometry;
 pub mod numerics;
 pub mod tribology;

@@ -986,6 +986,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulation::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::initial_state, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::model_rhs, m)?)?;
+    m.add_function(wrap_pyfunction!(simulation::model_energy, m)?)?;
     m.add_function(wrap_pyfunction!(roller_mass_properties, m)?)?;
     m.add_function(wrap_pyfunction!(contact_benchmark, m)?)?;
     m.add_function(wrap_pyfunction!(circle_circle_distance, m)?)?;
@@ -1026,12 +1027,17 @@ mod simulation {
     use rollerdyn_core::geometry::end_flange::FlangeShape;
     use std::ops::ControlFlow;
 
-    fn get<'py, T: pyo3::conversion::FromPyObjectOwned<'py>>(d: &Bound<'py, PyDict>, key: &str) -> PyResult<T> {
+    fn get<'py, T: pyo3::conversion::FromPyObjectOwned<'py>>(
+        d: &Bound<'py, PyDict>,
+        key: &str,
+    ) -> PyResult<T> {
         match d.get_item(key)? {
             Some(v) => v.extract::<T>().map_err(|_| {
                 PyValueError::new_err(format!("model parameter {key} = {v}: wrong type"))
             }),
-            None => Err(PyValueError::new_err(format!("model parameter {key} is missing"))),
+            None => Err(PyValueError::new_err(format!(
+                "model parameter {key} is missing"
+            ))),
         }
     }
 
@@ -1058,8 +1064,13 @@ mod simulation {
 
     fn flange(d: &Bound<'_, PyDict>, ring: &str) -> PyResult<FlangeShape> {
         let g = |k: &str| get::<f64>(d, &format!("{ring}_flange_{k}"));
-        FlangeShape::new(g("opening_angle")?, g("height")?, g("root_radius")?, g("rim_radius")?)
-            .map_err(core_err)
+        FlangeShape::new(
+            g("opening_angle")?,
+            g("height")?,
+            g("root_radius")?,
+            g("rim_radius")?,
+        )
+        .map_err(core_err)
     }
 
     fn surface(d: &Bound<'_, PyDict>, name: &str) -> PyResult<SurfacePair> {
@@ -1134,6 +1145,7 @@ mod simulation {
             },
             hysteresis_coefficient: get(d, "hysteresis_coefficient")?,
             damping_ratio: get(d, "damping_ratio")?,
+            friction: get(d, "friction")?,
             gravity: get(d, "gravity")?,
             radial_load: history(d, "radial_load")?,
             axial_load: history(d, "axial_load")?,
@@ -1166,7 +1178,10 @@ mod simulation {
 
     /// Checks a parameter set and returns the initial state (or raises ValueError).
     #[pyfunction]
-    pub fn initial_state(params: &Bound<'_, PyDict>, traction: &PyEhlTraction) -> PyResult<Vec<f64>> {
+    pub fn initial_state(
+        params: &Bound<'_, PyDict>,
+        traction: &PyEhlTraction,
+    ) -> PyResult<Vec<f64>> {
         let model = BearingModel::new(self::params(params, &traction.inner)?).map_err(core_err)?;
         model.initial_state().map_err(core_err)
     }
@@ -1183,13 +1198,36 @@ mod simulation {
         let model = BearingModel::new(self::params(params, &traction.inner)?).map_err(core_err)?;
         let n = model.len();
         if y.len() != n {
-            return Err(PyValueError::new_err(format!("y has {} states: the model has {n}", y.len())));
+            return Err(PyValueError::new_err(format!(
+                "y has {} states: the model has {n}",
+                y.len()
+            )));
         }
         let mut dy = vec![0.0; n];
         model.rhs(t, &y, &mut dy);
         let mut jac = nalgebra::DMatrix::zeros(n, n);
         model.jacobian(t, &y, &mut jac);
         Ok((dy, jac.transpose().as_slice().to_vec()))
+    }
+
+    /// Total mechanical energy of the model at (t, y) [J] (for conservation checks).
+    #[pyfunction]
+    pub fn model_energy(
+        params: &Bound<'_, PyDict>,
+        traction: &PyEhlTraction,
+        t: f64,
+        y: Vec<f64>,
+    ) -> PyResult<f64> {
+        use rollerdyn_core::dynamics::integrate::OdeSystem;
+        let model = BearingModel::new(self::params(params, &traction.inner)?).map_err(core_err)?;
+        if y.len() != model.len() {
+            return Err(PyValueError::new_err(format!(
+                "y has {} states: the model has {}",
+                y.len(),
+                model.len()
+            )));
+        }
+        Ok(model.energy(t, &y))
     }
 
     /// Runs the dynamic model. `progress(time, t_end, steps, rhs, jac)` is called at every
@@ -1216,7 +1254,13 @@ mod simulation {
             }
             if let Some(cb) = &progress {
                 let s = &p.stats;
-                match cb.call1((p.time, p.t_end, s.steps, s.rhs_evaluations, s.jacobian_evaluations)) {
+                match cb.call1((
+                    p.time,
+                    p.t_end,
+                    s.steps,
+                    s.rhs_evaluations,
+                    s.jacobian_evaluations,
+                )) {
                     Ok(r) if r.is_truthy().unwrap_or(false) => return ControlFlow::Break(()),
                     Ok(_) => {}
                     Err(e) => {
@@ -1240,16 +1284,35 @@ mod simulation {
         let recs = &o.records;
         let put = |name: &str, v: Vec<f64>| d.set_item(name, PyArray1::from_vec(py, v));
         put("time", recs.iter().map(|r| r.time).collect())?;
-        put("ring_position", recs.iter().flat_map(|r| r.ring_position.iter().copied().collect::<Vec<_>>()).collect())?;
-        put("ring_tilt", recs.iter().flat_map(|r| [r.ring_tilt.0, r.ring_tilt.1]).collect())?;
+        put(
+            "ring_position",
+            recs.iter()
+                .flat_map(|r| r.ring_position.iter().copied().collect::<Vec<_>>())
+                .collect(),
+        )?;
+        put(
+            "ring_tilt",
+            recs.iter()
+                .flat_map(|r| [r.ring_tilt.0, r.ring_tilt.1])
+                .collect(),
+        )?;
         put("ring_speed", recs.iter().map(|r| r.ring_speed).collect())?;
         put("radial_load", recs.iter().map(|r| r.loads.0).collect())?;
         put("axial_load", recs.iter().map(|r| r.loads.1).collect())?;
-        put("frictional_torque", recs.iter().map(|r| r.frictional_torque).collect())?;
-        put("outer_ring_torque", recs.iter().map(|r| r.outer_ring_torque).collect())?;
+        put(
+            "frictional_torque",
+            recs.iter().map(|r| r.frictional_torque).collect(),
+        )?;
+        put(
+            "outer_ring_torque",
+            recs.iter().map(|r| r.outer_ring_torque).collect(),
+        )?;
         macro_rules! per_roller {
             ($name:literal, $f:expr) => {
-                put($name, recs.iter().flat_map(|r| r.rollers.iter().map($f)).collect())?
+                put(
+                    $name,
+                    recs.iter().flat_map(|r| r.rollers.iter().map($f)).collect(),
+                )?
             };
         }
         per_roller!("azimuth", |x| x.azimuth);
@@ -1265,18 +1328,47 @@ mod simulation {
         per_roller!("outer_tangential_force", |x| x.outer_tangential);
         per_roller!("roller_roller_normal_force", |x| x.pair_normal);
         per_roller!("roller_roller_tangential_force", |x| x.pair_tangential);
-        put("position", recs.iter().flat_map(|r| r.rollers.iter().flat_map(|x| x.position.iter().copied().collect::<Vec<_>>())).collect())?;
+        put(
+            "position",
+            recs.iter()
+                .flat_map(|r| {
+                    r.rollers
+                        .iter()
+                        .flat_map(|x| x.position.iter().copied().collect::<Vec<_>>())
+                })
+                .collect(),
+        )?;
         macro_rules! per_flange {
             ($name:literal, $f:expr) => {
-                put($name, recs.iter().flat_map(|r| r.rollers.iter().flat_map(|x| x.flanges.iter().map($f))).collect())?
+                put(
+                    $name,
+                    recs.iter()
+                        .flat_map(|r| r.rollers.iter().flat_map(|x| x.flanges.iter().map($f)))
+                        .collect(),
+                )?
             };
         }
         per_flange!("flange_pairing", |f| f.pairing as f64);
-        per_flange!("flange_penetration", |f| if f.penetration.is_finite() { f.penetration } else { f64::NAN });
+        per_flange!("flange_penetration", |f| if f.penetration.is_finite() {
+            f.penetration
+        } else {
+            f64::NAN
+        });
         per_flange!("flange_normal_force", |f| f.normal_force);
         per_flange!("flange_friction_force", |f| f.friction_force);
         per_flange!("flange_axial_force", |f| f.axial_force);
-        put("flange_location", recs.iter().flat_map(|r| r.rollers.iter().flat_map(|x| x.flanges.iter().flat_map(|f| f.location.iter().copied().collect::<Vec<_>>()))).collect())?;
+        put(
+            "flange_location",
+            recs.iter()
+                .flat_map(|r| {
+                    r.rollers.iter().flat_map(|x| {
+                        x.flanges
+                            .iter()
+                            .flat_map(|f| f.location.iter().copied().collect::<Vec<_>>())
+                    })
+                })
+                .collect(),
+        )?;
         d.set_item("rollers", z)?;
         let s = &o.stats;
         let stats = PyDict::new(py);

@@ -10,9 +10,12 @@
 
 use super::state::Kinematics;
 use crate::geometry::primitives::Vec3;
+use crate::numerics::smooth::smooth_max;
 use crate::tribology::film::{thermal_correction, FilmInputs};
 use crate::tribology::friction::{BoundaryFriction, LoadSharing};
-use crate::tribology::hertz::{line_half_width, line_max_pressure, EllipticalContact, EllipticalMethod};
+use crate::tribology::hertz::{
+    line_half_width, line_max_pressure, EllipticalContact, EllipticalMethod,
+};
 use crate::tribology::line_contact::LinePowerLaw;
 use crate::tribology::rolling_resistance::{ehl_rolling_force, hysteresis_moment};
 use crate::tribology::traction::EhlTraction;
@@ -48,9 +51,34 @@ pub struct Tribology {
     pub hysteresis_coefficient: f64,
     /// Damping ratio ζ.
     pub damping_ratio: f64,
+    /// Tangential forces and rolling resistance on (false: frictionless, for checks).
+    pub friction: bool,
 }
 
 impl Tribology {
+    /// |u| regularised as sqrt(u² + v_s²) with the boundary-friction smoothing speed v_s:
+    /// the film formulas (∝ u₀^0.5…0.7), the thermal correction (∝ u₀^0.46) and the
+    /// rolling resistance have infinite slopes at u₀ = 0, which stall Newton's method
+    /// where rollers start rolling; below v_s (1 mm/s for B1) the films are those of v_s.
+    #[inline]
+    pub fn regularised(&self, u: f64) -> f64 {
+        let v = self.boundary.smoothing_speed;
+        (u * u + v * v).sqrt()
+    }
+
+    /// The EHL traction's sliding speed and scale: F(u) = F_EHL(u_e)·u/u_e with
+    /// u_e = sqrt(u² + v_s²). Above v_s this is the traction of sect. 3.2.1; below it the
+    /// traction falls linearly to zero, as the boundary friction does (paper fig. 5). At GPa
+    /// pressures the Carreau/limiting-shear-stress curve rises to its plateau within
+    /// nanometres per second of sliding, a near-Coulomb switch that stalls any implicit
+    /// integrator (model-notes, "Stiffness and the integrator"); v_s (config
+    /// `surfaces.boundary_friction.smoothing_speed`) sets the width of this creep zone.
+    #[inline]
+    pub fn creep(&self, sliding: f64) -> (f64, f64) {
+        let effective = self.regularised(sliding);
+        (effective, sliding / effective)
+    }
+
     /// Thermal correction φ_th (eqs. 47, 48).
     #[inline]
     fn thermal(&self, u0: f64, sliding: f64) -> f64 {
@@ -126,7 +154,13 @@ pub fn damped_normal_force(elastic: f64, stiffness: f64, mass: f64, zeta: f64, r
 
 /// Surface speeds of A and B relative to the contact frame, in the tangent plane.
 #[inline]
-fn tangential_speeds(a: &Kinematics, b: &Kinematics, p: &Vec3, n: &Vec3, frame: &Vec3) -> (Vec3, Vec3, f64) {
+fn tangential_speeds(
+    a: &Kinematics,
+    b: &Kinematics,
+    p: &Vec3,
+    n: &Vec3,
+    frame: &Vec3,
+) -> (Vec3, Vec3, f64) {
     let va = a.point_velocity(p);
     let vb = b.point_velocity(p);
     let rate = -(vb - va).dot(n);
@@ -176,14 +210,24 @@ pub fn line_slice(
         tri.damping_ratio,
         rate,
     );
+    if !tri.friction {
+        return ContactForces {
+            normal: f_n,
+            ..Default::default()
+        };
+    }
     let (ua_r, ub_r) = (ua.dot(rolling), ub.dot(rolling));
     let slip = ub - ua;
     let slip_norm = (slip.norm_squared() + SLIP_FLOOR * SLIP_FLOOR).sqrt();
-    let u0 = 0.5 * (ua_r + ub_r);
+    let u0 = tri.regularised(0.5 * (ua_r + ub_r));
     let q = f_n / length;
     let film = tri.film(kind.e_prime);
     let isothermal = if kind.counter_rotating {
-        film.line(kind.r_eff, ua_r, ub_r, q)
+        let zev = 0.5 * (tri.regularised(ua_r) + tri.regularised(ub_r));
+        smooth_max(
+            film.moes_line(kind.r_eff, u0, q),
+            film.zev_line(kind.r_eff, zev, q),
+        )
     } else {
         film.moes_line(kind.r_eff, u0, q)
     };
@@ -191,7 +235,11 @@ pub fn line_slice(
     let h = isothermal * phi_th;
     let half_width = line_half_width(f_n, length, kind.r_eff, kind.e_prime);
     let p0 = line_max_pressure(f_n, half_width, length);
-    let fluid = tri.traction.line_force(p0, half_width, length, slip_norm, h + FILM_FLOOR);
+    let (rate, scale) = tri.creep(slip_norm);
+    let fluid = scale
+        * tri
+            .traction
+            .line_force(p0, half_width, length, rate, h + FILM_FLOOR);
     let boundary = tri.boundary.force(f_n, slip_norm, u0);
     let lambda = h / kind.roughness;
     let f_t = kind.sharing.mix(lambda, boundary, fluid);
@@ -247,31 +295,42 @@ pub fn end_flange(
     if penetration <= 0.0 || !(radii.0 > 0.0 && radii.1 > 0.0) {
         return ContactForces::default();
     }
-    let hertz = EllipticalContact::new(radii.0, radii.1, kind.e_prime, EllipticalMethod::BreweHamrock);
+    let hertz = EllipticalContact::new(
+        radii.0,
+        radii.1,
+        kind.e_prime,
+        EllipticalMethod::BreweHamrock,
+    );
     let elastic = hertz.force(penetration);
     let stiffness = 1.5 * elastic / penetration;
     let (ua, ub, rate) = tangential_speeds(ring, roller, location, normal, frame);
     let f_n = damped_normal_force(elastic, stiffness, kind.mass, tri.damping_ratio, rate);
+    if !tri.friction {
+        return ContactForces {
+            normal: f_n,
+            ..Default::default()
+        };
+    }
     let ellipse = hertz.at_force(f_n);
     let slip = ub - ua;
     let slip_norm = (slip.norm_squared() + SLIP_FLOOR * SLIP_FLOOR).sqrt();
     let entrainment = 0.5 * (ua + ub);
-    let u0 = entrainment.norm();
-    let xi = if u0 > 0.0 {
-        (entrainment.dot(major_axis).abs() / u0).min(1.0).acos()
-    } else {
-        0.0
-    };
+    let u0 = tri.regularised(entrainment.norm());
+    // ξ from the major axis; only cos²ξ = (u₀·m)²/u₀² enters eq. 45, smooth in u₀.
+    let along = entrainment.dot(major_axis);
+    let xi = (u0 * u0 - along * along).max(0.0).sqrt().atan2(along.abs());
     let film = tri.film(kind.e_prime);
     let phi_th = tri.thermal(u0, slip_norm);
     let h = film.chittenden(hertz.rx, hertz.ry, xi, u0, f_n) * phi_th;
-    let fluid = tri.traction.ellipse_force(
-        ellipse.max_pressure,
-        ellipse.semi_major,
-        ellipse.semi_minor,
-        slip_norm,
-        h + FILM_FLOOR,
-    );
+    let (rate, scale) = tri.creep(slip_norm);
+    let fluid = scale
+        * tri.traction.ellipse_force(
+            ellipse.max_pressure,
+            ellipse.semi_major,
+            ellipse.semi_minor,
+            rate,
+            h + FILM_FLOOR,
+        );
     let boundary = tri.boundary.force(f_n, slip_norm, u0);
     let f_t = kind.sharing.mix(h / kind.roughness, boundary, fluid);
     ContactForces {

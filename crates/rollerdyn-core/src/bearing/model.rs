@@ -192,6 +192,7 @@ impl BearingModel {
             thermal_conductivity: params.thermal_conductivity,
             hysteresis_coefficient: params.hysteresis_coefficient,
             damping_ratio: params.damping_ratio,
+            friction: params.friction,
         };
         let z = params.roller_count;
         let mut elements = Vec::with_capacity(7 * z);
@@ -285,7 +286,9 @@ impl BearingModel {
     /// angles by the roller radius, velocities over 1 ms).
     pub fn absolute_tolerances(&self, atol: f64) -> Vec<f64> {
         let r = self.params.roller.radius;
-        (0..self.layout.len()).map(|k| atol * self.scale(k) / r).collect()
+        (0..self.layout.len())
+            .map(|k| atol * self.scale(k) / r)
+            .collect()
     }
 
     /// Typical magnitude of state k relative to a length of one roller radius.
@@ -314,7 +317,12 @@ impl BearingModel {
         (ring, rollers)
     }
 
-    fn body<'a>(&self, b: Body, kin: &'a (Kinematics, Vec<Kinematics>), fixed: &'a Kinematics) -> &'a Kinematics {
+    fn body<'a>(
+        &self,
+        b: Body,
+        kin: &'a (Kinematics, Vec<Kinematics>),
+        fixed: &'a Kinematics,
+    ) -> &'a Kinematics {
         match b {
             Body::InnerRing => &kin.0,
             Body::OuterRing => fixed,
@@ -332,7 +340,12 @@ impl BearingModel {
     }
 
     /// Evaluates one contact.
-    pub fn evaluate(&self, element: &Element, kin: &(Kinematics, Vec<Kinematics>), index: usize) -> ElementResult {
+    pub fn evaluate(
+        &self,
+        element: &Element,
+        kin: &(Kinematics, Vec<Kinematics>),
+        index: usize,
+    ) -> ElementResult {
         let fixed = Kinematics::fixed();
         let [ba, bb] = Self::bodies_of(element, self.layout.rollers);
         let (a, b) = (self.body(ba, kin, &fixed), self.body(bb, kin, &fixed));
@@ -346,7 +359,13 @@ impl BearingModel {
 
     /// Slice geometry (eqs. 2, 3) of slice j of roller `b` against body `a`:
     /// (normal A→B, location, penetration, rolling direction).
-    fn slice_geometry(&self, kind: usize, a: &Kinematics, b: &Kinematics, j: usize) -> (Vec3, Vec3, f64) {
+    fn slice_geometry(
+        &self,
+        kind: usize,
+        a: &Kinematics,
+        b: &Kinematics,
+        j: usize,
+    ) -> (Vec3, Vec3, f64) {
         let (s, radius) = self.slices[j];
         let cb = b.center + s * b.axis;
         match kind {
@@ -413,7 +432,15 @@ impl BearingModel {
         out
     }
 
-    fn accumulate(&self, out: &mut ElementResult, f: &ContactForces, n: &Vec3, p: &Vec3, a: &Kinematics, b: &Kinematics) {
+    fn accumulate(
+        &self,
+        out: &mut ElementResult,
+        f: &ContactForces,
+        n: &Vec3,
+        p: &Vec3,
+        a: &Kinematics,
+        b: &Kinematics,
+    ) {
         let on_b = f.force_on_b(n);
         out.on_b.add(&Wrench::at(on_b, p, &b.center, f.moment_b));
         out.on_a.add(&Wrench::at(-on_b, p, &a.center, f.moment_a));
@@ -432,9 +459,17 @@ impl BearingModel {
         let inner = k < 2;
         let side = if k % 2 == 1 { 1.0 } else { -1.0 };
         let (shape, play, radius) = if inner {
-            (&self.params.inner_flange, self.params.inner_axial_play, self.params.inner_raceway_radius)
+            (
+                &self.params.inner_flange,
+                self.params.inner_axial_play,
+                self.params.inner_raceway_radius,
+            )
         } else {
-            (&self.params.outer_flange, self.params.outer_axial_play, self.params.outer_raceway_radius)
+            (
+                &self.params.outer_flange,
+                self.params.outer_axial_play,
+                self.params.outer_raceway_radius,
+            )
         };
         Flange::new(
             shape,
@@ -483,7 +518,13 @@ impl BearingModel {
         found
     }
 
-    fn flange_element(&self, k: usize, ring: &Kinematics, roller: &Kinematics, index: usize) -> ElementResult {
+    fn flange_element(
+        &self,
+        k: usize,
+        ring: &Kinematics,
+        roller: &Kinematics,
+        index: usize,
+    ) -> ElementResult {
         let side = if k % 2 == 1 { 1.0 } else { -1.0 };
         let end = RollerEnd::new(&self.params.roller, roller.center, side * roller.axis);
         let flange = self.flange(k, ring);
@@ -495,7 +536,7 @@ impl BearingModel {
             return out;
         };
         out.penetration = c.penetration;
-        if !(c.penetration > 0.0) {
+        if c.penetration.is_nan() || c.penetration <= 0.0 {
             return out;
         }
         let start = Instant::now();
@@ -518,6 +559,79 @@ impl BearingModel {
         self.accumulate(&mut out, &f, &c.normal, &p, ring, roller);
         self.spend(|pr| pr.flange_forces += start.elapsed().as_secs_f64());
         out
+    }
+
+    /// Elastic energy stored in all contacts [J]: ∫F dδ of eq. 11 per slice,
+    /// (l/k₁)·δ^(1/k₂+1)/(1/k₂+1), and 2/5·F·δ for a Hertz contact (F ∝ δ^1.5).
+    pub fn contact_energy(&self, kin: &(Kinematics, Vec<Kinematics>)) -> f64 {
+        let fixed = Kinematics::fixed();
+        let mut energy = 0.0;
+        for (index, element) in self.elements.iter().enumerate() {
+            let [ba, bb] = Self::bodies_of(element, self.layout.rollers);
+            let (a, b) = (self.body(ba, kin, &fixed), self.body(bb, kin, &fixed));
+            match *element {
+                Element::End(_, k) => {
+                    let side = if k % 2 == 1 { 1.0 } else { -1.0 };
+                    let end = RollerEnd::new(&self.params.roller, b.center, side * b.axis);
+                    if let Some(c) = self.detect(&end, &self.flange(k, a), index) {
+                        if c.penetration > 0.0 {
+                            let hertz = crate::tribology::hertz::EllipticalContact::new(
+                                c.rx,
+                                c.ry,
+                                self.ellipse.e_prime,
+                                crate::tribology::hertz::EllipticalMethod::BreweHamrock,
+                            );
+                            energy += 0.4 * hertz.force(c.penetration) * c.penetration;
+                        }
+                    }
+                }
+                _ => {
+                    let kind = match element {
+                        Element::Inner(_) => 0,
+                        Element::Outer(_) => 1,
+                        _ => 2,
+                    };
+                    let law = &self.kinds[kind].law;
+                    let e = 1.0 / law.k2 + 1.0;
+                    for j in 0..self.slices.len() {
+                        let delta = self.slice_geometry(kind, a, b, j).2;
+                        if delta > 0.0 {
+                            energy += self.slice_length / law.k1 * delta.powf(e) / e;
+                        }
+                    }
+                }
+            }
+        }
+        energy
+    }
+
+    /// Total mechanical energy [J]: kinetic energy of rollers and inner ring (its prescribed
+    /// spin excluded), gravity, the contacts' elastic energy, and the potential −F·x of the
+    /// external load at time t (conserved for constant loads without friction and damping).
+    pub fn energy(&self, t: f64, y: &[f64]) -> f64 {
+        let kin = self.kinematics(t, y);
+        let m = &self.roller_mass;
+        let g = self.params.gravity;
+        let mut energy = self.contact_energy(&kin);
+        for k in &kin.1 {
+            let h = crate::dynamics::rigid::angular_momentum(
+                &k.axis,
+                &k.omega,
+                m.axial_inertia,
+                m.transverse_inertia,
+            );
+            energy += 0.5 * m.mass * k.velocity.norm_squared()
+                + 0.5 * k.omega.dot(&h)
+                + m.mass * g * k.center.y;
+        }
+        let ring = &kin.0;
+        let mr = self.params.inner_ring_mass;
+        energy += 0.5 * mr * ring.velocity.norm_squared() + mr * g * ring.center.y;
+        if self.layout.tilt_free {
+            let transverse = ring.omega - ring.omega.dot(&ring.axis) * ring.axis;
+            energy += 0.5 * self.params.inner_ring_transverse_inertia * transverse.norm_squared();
+        }
+        energy - self.external_load(t).dot(&ring.center)
     }
 
     /// Evaluates every contact.
@@ -552,7 +666,13 @@ impl BearingModel {
         let m = &self.roller_mass;
         let gravity = Vec3::new(0.0, -self.params.gravity, 0.0);
         let acc = w.force / m.mass + gravity;
-        let alpha = angular_acceleration(&kin.axis, &kin.omega, &w.moment, m.axial_inertia, m.transverse_inertia);
+        let alpha = angular_acceleration(
+            &kin.axis,
+            &kin.omega,
+            &w.moment,
+            m.axial_inertia,
+            m.transverse_inertia,
+        );
         let (dty, dtz) = angle_rates(y[3], y[4], &kin.omega);
         dy[..3].copy_from_slice(kin.velocity.as_slice());
         dy[3] = dty;
@@ -563,7 +683,11 @@ impl BearingModel {
 
     /// The external load on the inner ring at time t: axial +x, radial −y.
     pub fn external_load(&self, t: f64) -> Vec3 {
-        Vec3::new(self.params.axial_load.at(t).0, -self.params.radial_load.at(t).0, 0.0)
+        Vec3::new(
+            self.params.axial_load.at(t).0,
+            -self.params.radial_load.at(t).0,
+            0.0,
+        )
     }
 
     /// Rates of the inner ring's states.
@@ -589,7 +713,14 @@ impl BearingModel {
     }
 
     /// f(t, y) from already summed loads.
-    fn rates(&self, t: f64, y: &[f64], kin: &(Kinematics, Vec<Kinematics>), loads: &(Wrench, Wrench, Vec<Wrench>), dy: &mut [f64]) {
+    fn rates(
+        &self,
+        t: f64,
+        y: &[f64],
+        kin: &(Kinematics, Vec<Kinematics>),
+        loads: &(Wrench, Wrench, Vec<Wrench>),
+        dy: &mut [f64],
+    ) {
         let n = self.layout.ring_states();
         self.ring_rates(t, &kin.0, &y[..n], &loads.0, &mut dy[..n]);
         for i in 0..self.layout.rollers {
@@ -619,7 +750,8 @@ impl BearingModel {
             let mut kin_p = kin.clone();
             let elements = match body {
                 None => {
-                    kin_p.0 = ring_kinematics(&self.layout, &yp, self.params.inner_ring_speed.at(t).0);
+                    kin_p.0 =
+                        ring_kinematics(&self.layout, &yp, self.params.inner_ring_speed.at(t).0);
                     &self.ring_elements
                 }
                 Some(i) => {
@@ -666,7 +798,12 @@ impl BearingModel {
             for (r, _) in touched.iter().enumerate().filter(|(_, t)| **t) {
                 let s = self.layout.roller(r);
                 let range = s..s + ROLLER_STATES;
-                self.roller_rates(&kin_p.1[r], &yp[range.clone()], &loads_p.2[r], &mut fp[range.clone()]);
+                self.roller_rates(
+                    &kin_p.1[r],
+                    &yp[range.clone()],
+                    &loads_p.2[r],
+                    &mut fp[range.clone()],
+                );
                 for row in range {
                     jac[(row, k)] = (fp[row] - f0[row]) / h;
                 }

@@ -83,14 +83,24 @@ impl History {
 
     fn check(&self, name: &str) -> Result<()> {
         match self {
-            History::Ramp { value, start, end, .. } => {
+            History::Ramp {
+                value, start, end, ..
+            } => {
                 if !(value.is_finite() && start.is_finite() && end.is_finite()) || end < start {
-                    return Err(Error::invalid(name, format!("ramp {start}..{end}"), "finite, end >= start"));
+                    return Err(Error::invalid(
+                        name,
+                        format!("ramp {start}..{end}"),
+                        "finite, end >= start",
+                    ));
                 }
             }
             History::Table(rows) => {
                 if rows.is_empty() || rows.windows(2).any(|w| w[1].0 <= w[0].0) {
-                    return Err(Error::invalid(name, format!("{} rows", rows.len()), "at least one row, times increasing"));
+                    return Err(Error::invalid(
+                        name,
+                        format!("{} rows", rows.len()),
+                        "at least one row, times increasing",
+                    ));
                 }
             }
         }
@@ -179,6 +189,8 @@ pub struct BearingParams {
     pub hysteresis_coefficient: f64,
     /// Damping ratio ζ of the normal contact damping [-].
     pub damping_ratio: f64,
+    /// Friction (tangential forces, rolling resistance) on; off only for checks.
+    pub friction: bool,
     /// Gravity [m/s²], along −y.
     pub gravity: f64,
     /// Radial load on the inner ring [N], along −y.
@@ -206,7 +218,7 @@ impl BearingParams {
         }
         let r = self.roller.radius;
         let gap = self.outer_raceway_radius - self.inner_raceway_radius - 2.0 * r;
-        if !(gap >= 0.0) {
+        if gap.is_nan() || gap < 0.0 {
             return Err(Error::invalid(
                 "roller diameter",
                 2.0 * r,
@@ -226,7 +238,10 @@ impl BearingParams {
             ("roller_density", self.roller_density),
             ("inner_ring_mass", self.inner_ring_mass),
             ("inner_ring_axial_inertia", self.inner_ring_axial_inertia),
-            ("inner_ring_transverse_inertia", self.inner_ring_transverse_inertia),
+            (
+                "inner_ring_transverse_inertia",
+                self.inner_ring_transverse_inertia,
+            ),
             ("eta0", self.eta0),
             ("thermal_conductivity", self.thermal_conductivity),
         ] {

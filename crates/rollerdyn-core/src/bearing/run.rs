@@ -2,7 +2,7 @@
 //! output time (issue 4, "Running it"); on a failure keep everything recorded so far and
 //! say when and where it happened.
 
-use super::model::{BearingModel, ElementResult, Element, Profile, FLANGE_NAMES};
+use super::model::{BearingModel, Element, ElementResult, Profile, FLANGE_NAMES};
 use super::state::{azimuth, tilt_and_skew, Kinematics};
 use crate::dynamics::integrate::{integrate, Method, Options, Stats};
 use crate::geometry::primitives::Vec3;
@@ -199,7 +199,11 @@ pub fn record(model: &BearingModel, t: f64, y: &[f64]) -> Record {
     let (ring_w, outer_w, _) = model.loads(&results);
     let ring = kin.0;
     let layout = model.layout;
-    let ring_tilt = if layout.tilt_free { (y[6], y[7]) } else { (0.0, 0.0) };
+    let ring_tilt = if layout.tilt_free {
+        (y[6], y[7])
+    } else {
+        (0.0, 0.0)
+    };
     let mut rollers = vec![RollerRecord::default(); layout.rollers];
     for (element, r) in model.elements().iter().zip(&results) {
         fill(&mut rollers, element, r);
@@ -220,7 +224,10 @@ pub fn record(model: &BearingModel, t: f64, y: &[f64]) -> Record {
         ring_position: ring.center,
         ring_tilt,
         ring_speed: model.params.inner_ring_speed.at(t).0,
-        loads: (model.params.radial_load.at(t).0, model.params.axial_load.at(t).0),
+        loads: (
+            model.params.radial_load.at(t).0,
+            model.params.axial_load.at(t).0,
+        ),
         frictional_torque: -ring_w.moment.dot(&ring.axis),
         outer_ring_torque: outer_w.moment.x,
         rollers,
@@ -261,7 +268,11 @@ fn slide_to_roll(model: &BearingModel, race: &Kinematics, roller: &Kinematics, i
     let d = roller.center - race.center;
     let out = (d - d.dot(&race.axis) * race.axis).normalize();
     let r = model.params.roller.radius;
-    let (n, p) = if inner { (out, roller.center - out * r) } else { (-out, roller.center + out * r) };
+    let (n, p) = if inner {
+        (out, roller.center - out * r)
+    } else {
+        (-out, roller.center + out * r)
+    };
     let rolling = n.cross(&roller.axis).normalize();
     let c = roller.center;
     let rho2 = c.y * c.y + c.z * c.z;

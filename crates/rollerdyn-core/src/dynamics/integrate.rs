@@ -228,7 +228,14 @@ pub fn integrate<S: OdeSystem>(
             let to = next_output(k);
             let y = match on!(&solver, s => s.interpolate(to.min(t))) {
                 Ok(y) => y.clone_as_vec(),
-                Err(e) => return Err(fail(t, e.to_string(), on!(&solver, s => s.state().y.clone_as_vec()), &counters)),
+                Err(e) => {
+                    return Err(fail(
+                        t,
+                        e.to_string(),
+                        on!(&solver, s => s.state().y.clone_as_vec()),
+                        &counters,
+                    ))
+                }
             };
             if !y.iter().all(|v| v.is_finite()) {
                 return Err(fail(
@@ -328,11 +335,23 @@ mod tests {
                 let (y1, y3) = exact(*t);
                 // Tolerance 1e-8 relative per step over ~400 steps, plus interpolation
                 // error of the dense output: 2e-5 is 100x the expected global error.
-                assert!((y[0] - y1).abs() < 2e-5, "{method:?} t={t}: {} vs {y1}", y[0]);
+                assert!(
+                    (y[0] - y1).abs() < 2e-5,
+                    "{method:?} t={t}: {} vs {y1}",
+                    y[0]
+                );
                 // The fast mode follows cos t with lag sin(t)/λ ~ 1e-7.
-                assert!((y[2] - y3).abs() < 1e-5, "{method:?} t={t}: {} vs {y3}", y[2]);
+                assert!(
+                    (y[2] - y3).abs() < 1e-5,
+                    "{method:?} t={t}: {} vs {y3}",
+                    y[2]
+                );
             }
-            assert!(stats.steps >= 400, "Δt_max = 5 ms caps the steps: {}", stats.steps);
+            assert!(
+                stats.steps >= 400,
+                "Δt_max = 5 ms caps the steps: {}",
+                stats.steps
+            );
             assert!(stats.jacobian_evaluations >= 1);
         }
     }

@@ -1,0 +1,107 @@
+"""The paper's figures (sect. 5.2) from result files, with matplotlib (PNG and SVG)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from .simulation import FLANGES, PAIRINGS
+
+
+def _label(ds: xr.Dataset, path: Path) -> str:
+    return f"{path.stem} (F_a = {float(ds.axial_load[-1]):.0f} N)"
+
+
+def _full_speed(ds: xr.Dataset) -> xr.Dataset:
+    """The part of the run at (at least 99 % of) full inner ring speed."""
+    speed = np.abs(ds.ring_speed.values)
+    if speed.max() <= 0:
+        return ds
+    return ds.isel(time=np.nonzero(speed >= 0.99 * speed.max())[0])
+
+
+def plot_results(paths: list[Path], out: Path) -> list[Path]:
+    """Writes every figure for the given results into ``out``; returns the files."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out.mkdir(parents=True, exist_ok=True)
+    sets = [(p, xr.open_dataset(p, engine="h5netcdf")) for p in paths]
+    written: list[Path] = []
+
+    def save(fig, name: str) -> None:
+        for ext in ("png", "svg"):
+            f = out / f"{name}.{ext}"
+            fig.savefig(f, dpi=120, bbox_inches="tight")
+            written.append(f)
+        plt.close(fig)
+
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for p, ds in sets:
+        ax.plot(ds.time, ds.frictional_torque, label=_label(ds, p))
+    ax.set(xlabel="time t [s]", ylabel="bearing frictional torque [N m]", title="fig. 10")
+    ax.legend()
+    save(fig, "fig10_frictional_torque")
+
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for p, ds in sets:
+        f = ds.flange_friction_force.isel(roller=0).sum("flange")
+        ax.plot(ds.time, f, label=_label(ds, p))
+    ax.set(xlabel="time t [s]", ylabel="flange friction force, roller 0 [N]", title="fig. 11")
+    ax.legend()
+    save(fig, "fig11_flange_friction")
+
+    for name, var, ylabel, title in (
+        ("fig12_axial_force_over_azimuth", "axial", "axial force on roller [N]", "fig. 12"),
+        (
+            "fig13_srr_inner_over_azimuth",
+            "srr_inner",
+            "slide-to-roll ratio, inner race [-]",
+            "fig. 13",
+        ),
+        (
+            "roller_load_over_azimuth",
+            "inner_normal_force",
+            "roller-inner race load [N]",
+            "roller loads",
+        ),
+    ):
+        fig, ax = plt.subplots(figsize=(7, 4))
+        for p, ds in sets:
+            d = _full_speed(ds)
+            psi = np.degrees(d.azimuth.values.ravel())
+            if var == "axial":
+                v = d.flange_axial_force.sum("flange").values.ravel()
+            else:
+                v = d[var].values.ravel()
+            ax.plot(psi, v, ".", ms=2, label=_label(ds, p))
+        ax.axvline(180.0, color="0.6", lw=0.8, ls="--")
+        ax.set(
+            xlabel="roller azimuth psi [deg] (load zone centre at 180 deg)",
+            ylabel=ylabel,
+            title=title,
+        )
+        ax.legend(markerscale=5)
+        save(fig, name)
+
+    for ring, title in (("inner", "fig. 8"), ("outer", "fig. 9")):
+        fig, ax = plt.subplots(figsize=(7, 4))
+        width = 0.8 / max(1, len(sets))
+        for j, (p, ds) in enumerate(sets):
+            idx = [k for k, f in enumerate(FLANGES) if f.startswith(ring)]
+            pairing = ds.flange_pairing.isel(flange=idx).values.ravel()
+            counts = [(pairing == k).sum() for k in range(len(PAIRINGS))]
+            total = max(1, (pairing >= 0).sum())
+            x = np.arange(len(PAIRINGS)) + j * width
+            ax.bar(x, np.array(counts) / total, width, label=_label(ds, p))
+        ax.set_xticks(np.arange(len(PAIRINGS)) + 0.4 - width / 2, PAIRINGS)
+        ax.set(ylabel="share of contact outputs [-]", title=f"{title}: pairings at the {ring} ring")
+        ax.legend()
+        save(fig, f"fig{8 if ring == 'inner' else 9}_pairings_{ring}")
+    for _, ds in sets:
+        ds.close()
+    return written
