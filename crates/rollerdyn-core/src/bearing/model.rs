@@ -493,14 +493,35 @@ impl BearingModel {
             Detector::Gradient => {
                 let slot = index_to_slot(index);
                 let mut memory = self.warm_starts.borrow_mut();
-                let outcomes = gradient::detect(end, flange, &memory[slot]);
+                let mut outcomes = gradient::detect(end, flange, &memory[slot]);
+                // A pairing whose warm start failed is tried once more from the cold start.
+                let failed: [Option<Unknowns>; 6] = std::array::from_fn(|k| {
+                    let o = &outcomes[k];
+                    (memory[slot][k].is_some() && !(o.converged && o.opposite_normals))
+                        .then_some(None)
+                        .flatten()
+                });
+                if outcomes
+                    .iter()
+                    .zip(&memory[slot])
+                    .any(|(o, m)| m.is_some() && !(o.converged && o.opposite_normals))
+                {
+                    let cold = gradient::detect(end, flange, &failed);
+                    for k in 0..6 {
+                        let o = &outcomes[k];
+                        if memory[slot][k].is_some() && !(o.converged && o.opposite_normals) {
+                            outcomes[k] = cold[k];
+                        }
+                    }
+                }
                 let mut contacts = Vec::with_capacity(6);
+                // Only converged solutions with opposite outward normals count and become
+                // the next warm start; after a failure (no convergence, or a wrong stationary
+                // point, paper fig. 2) the last good solution stays the warm start.
                 for (k, o) in outcomes.iter().enumerate() {
-                    if o.converged {
+                    if o.converged && o.opposite_normals {
                         memory[slot][k] = Some(o.unknowns);
                         contacts.push(o.contact);
-                    } else {
-                        memory[slot][k] = None;
                     }
                 }
                 deepest(&contacts)
