@@ -143,6 +143,7 @@ class Progress:
     steps: int
     rhs_evaluations: int
     jacobian_evaluations: int
+    step_size: float
 
 
 _SCALARS = {
@@ -274,10 +275,10 @@ def simulate(
         "method": s.method,
     }
 
-    def callback(t, t_end_, steps, rhs, jac):
+    def callback(t, t_end_, steps, rhs, jac, step):
         if progress is None:
             return False
-        return bool(progress(Progress(t, t_end_, steps, rhs, jac)))
+        return bool(progress(Progress(t, t_end_, steps, rhs, jac, step)))
 
     raw = _core.simulate(params, model.traction, options, callback)
     ds = to_dataset(raw, config, det)

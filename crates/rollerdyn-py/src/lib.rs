@@ -1230,7 +1230,7 @@ mod simulation {
         Ok(model.energy(t, &y))
     }
 
-    /// Runs the dynamic model. `progress(time, t_end, steps, rhs, jac)` is called at every
+    /// Runs the dynamic model. `progress(time, t_end, steps, rhs, jac, step)` is called at every
     /// output time; returning True stops the run. Returns a dict of flat arrays (see
     /// `rollerdyn.simulation`), the solver counters, the profile, the final state and the
     /// error (None if the run completed).
@@ -1260,6 +1260,7 @@ mod simulation {
                     s.steps,
                     s.rhs_evaluations,
                     s.jacobian_evaluations,
+                    s.last_step,
                 )) {
                     Ok(r) if r.is_truthy().unwrap_or(false) => return ControlFlow::Break(()),
                     Ok(_) => {}
