@@ -264,3 +264,39 @@ impl BearingParams {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cosine_ramp_is_c1_and_reaches_its_value() {
+        let h = History::Ramp {
+            value: 5000.0,
+            start: 0.5,
+            end: 0.7,
+            cosine: true,
+        };
+        assert_eq!(h.at(0.2), (0.0, 0.0));
+        assert_eq!(h.at(0.9), (5000.0, 0.0));
+        assert!((h.at(0.6).0 - 2500.0).abs() < 1e-9);
+        // Rate = d(value)/dt by central differences; zero rate at both ends (C¹).
+        for t in [0.5001, 0.55, 0.6, 0.65, 0.6999] {
+            let d = (h.at(t + 1e-7).0 - h.at(t - 1e-7).0) / 2e-7;
+            assert!((d - h.at(t).1).abs() < 1e-4 * 5000.0 / 0.2, "{t}");
+        }
+        assert!(h.at(0.5 + 1e-9).1 < 1e-3 && h.at(0.7 - 1e-9).1 < 1e-3);
+    }
+
+    #[test]
+    fn table_interpolates_linearly_and_holds_outside() {
+        let h = History::Table(vec![(0.0, 0.0), (1.0, 10.0), (2.0, 10.0)]);
+        assert_eq!(h.at(-1.0), (0.0, 0.0));
+        assert_eq!(h.at(0.25), (2.5, 10.0));
+        assert_eq!(h.at(1.5), (10.0, 0.0));
+        assert_eq!(h.at(3.0), (10.0, 0.0));
+        assert!(History::Table(vec![(1.0, 0.0), (0.5, 1.0)])
+            .check("x")
+            .is_err());
+    }
+}

@@ -138,3 +138,33 @@ pub fn tilt_and_skew(center: &Vec3, axis: &Vec3) -> (f64, f64) {
     let a = if axis.x < 0.0 { -axis } else { *axis };
     (a.dot(&radial).asin(), a.dot(&circumferential).atan2(a.x))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tilt_and_skew_are_the_axis_components_in_the_azimuth_frame() {
+        // Roller at the bottom (ψ = π): radial is −y, circumferential e_x × radial = −z.
+        let c = Vec3::new(0.0, -0.01225, 0.0);
+        assert!((azimuth(&c) - std::f64::consts::PI).abs() < 1e-12);
+        let (tilt, skew) = tilt_and_skew(&c, &Vec3::new(1.0, -0.01, 0.0).normalize());
+        assert!((tilt - 0.01f64.atan()).abs() < 1e-9 && skew.abs() < 1e-12);
+        let (tilt, skew) = tilt_and_skew(&c, &Vec3::new(1.0, 0.0, -0.02).normalize());
+        assert!(tilt.abs() < 1e-12 && (skew - 0.02f64.atan()).abs() < 1e-9);
+    }
+
+    #[test]
+    fn layout_maps_states_to_bodies() {
+        for tilt_free in [false, true] {
+            let l = Layout {
+                rollers: 17,
+                tilt_free,
+            };
+            assert_eq!(l.len(), l.ring_states() + 17 * ROLLER_STATES);
+            assert_eq!(l.body_of(0), None);
+            assert_eq!(l.body_of(l.roller(5) + 10), Some(5));
+            assert_eq!(l.body_of(l.len() - 1), Some(16));
+        }
+    }
+}
