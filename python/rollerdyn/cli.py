@@ -158,8 +158,9 @@ def bench(
     previous step; accuracy against the reference solver every 100th step. For
     statistically careful numbers use ``cargo bench -p rollerdyn-core``. mbs: the whole run
     (to --t-end) on one core with each detector: wall time, steps, right-hand-side and
-    Jacobian evaluations, and where the time goes (detection, line contacts, flange forces,
-    Jacobians, the rest: linear algebra and the solver).
+    Jacobian evaluations, and where the time goes: detection, line contacts and flange
+    forces (summed over every contact evaluation, in right-hand sides and Jacobians alike),
+    the time inside Jacobians, and the rest (linear algebra and the solver's own work).
     """
     from .model import Model
     from .validation import default_config_path
