@@ -24,7 +24,6 @@ use crate::error::{Error, Result};
 use crate::geometry::end_flange::{Flange, FlangePlacement, RollerEnd};
 use crate::geometry::primitives::Vec3;
 use crate::geometry::roller::MassProperties;
-use crate::tribology::line_contact::LinePowerLaw;
 use nalgebra::DMatrix;
 use std::cell::{Cell, RefCell};
 use std::time::Instant;
@@ -874,6 +873,3 @@ impl BearingParams {
         }
     }
 }
-
-/// Re-export for the front end: the power law type of eq. 11.
-pub type LineLaw = LinePowerLaw;

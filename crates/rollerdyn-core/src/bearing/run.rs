@@ -300,7 +300,6 @@ pub fn diagnose(model: &BearingModel, t: f64, y: &[f64]) -> String {
     }
     let kin = model.kinematics(t, y);
     let p = &model.params;
-    let r = p.roller.radius;
     for (i, k) in kin.1.iter().enumerate() {
         let rho = (k.center.y.powi(2) + k.center.z.powi(2)).sqrt();
         let radial_ok = rho > p.inner_raceway_radius && rho < p.outer_raceway_radius;
@@ -311,7 +310,6 @@ pub fn diagnose(model: &BearingModel, t: f64, y: &[f64]) -> String {
                 k.center.x, rho, p.inner_raceway_radius, p.outer_raceway_radius, k.axis.as_slice()
             );
         }
-        let _ = r;
     }
     let results = model.evaluate_all(&kin);
     let (deepest, result) = model
