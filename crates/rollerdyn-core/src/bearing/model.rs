@@ -357,7 +357,7 @@ impl BearingModel {
     }
 
     /// Slice geometry (eqs. 2, 3) of slice j of roller `b` against body `a`:
-    /// (normal A→B, location, penetration, rolling direction).
+    /// (normal A→B, location P_m, penetration δ).
     fn slice_geometry(
         &self,
         kind: usize,
