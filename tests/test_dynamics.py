@@ -279,3 +279,32 @@ def test_structured_jacobian_matches_central_differences_of_the_whole_rhs():
     # Forward differences with steps of 1.5e-8 of each state's scale: truncation errors
     # up to ~1e-3 of a row's largest entry where a slice just touches (measured 1.2e-3).
     assert (np.abs(jac - central) / scale).max() < 5e-3
+
+
+def test_run_writes_netcdf_with_units_and_plot_draws_every_figure(tmp_path):
+    from typer.testing import CliRunner
+
+    from rollerdyn.cli import app
+
+    result = CliRunner().invoke(
+        app, ["run", str(B1), "-o", str(tmp_path / "r.nc"), "--t-end", "0.002"]
+    )
+    assert result.exit_code == 0, result.output
+    import xarray as xr
+
+    ds = xr.open_dataset(tmp_path / "r.nc", engine="h5netcdf")
+    assert ds.sizes["roller"] == 17 and ds.sizes["flange"] == 4
+    assert float(ds.time[-1]) == pytest.approx(0.002)
+    for name in ("frictional_torque", "inner_normal_force", "flange_penetration", "srr_inner"):
+        assert ds[name].attrs["units"]
+    ds.close()
+    result = CliRunner().invoke(app, ["plot", str(tmp_path / "r.nc"), "-o", str(tmp_path / "p")])
+    assert result.exit_code == 0, result.output
+    names = {p.stem for p in (tmp_path / "p").glob("*.png")}
+    assert {
+        "fig10_frictional_torque",
+        "fig12_axial_force_over_azimuth",
+        "fig8_pairings_inner",
+    } <= names
+    bad = CliRunner().invoke(app, ["run", str(B1), "--detector", "magic", "--t-end", "0.001"])
+    assert bad.exit_code == 2 and "semi-analytical, gradient or mesh" in bad.output
