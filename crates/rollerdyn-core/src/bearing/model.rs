@@ -329,15 +329,6 @@ impl BearingModel {
         }
     }
 
-    /// Velocity of the frame that carries roller i's contact locations: the roller's
-    /// centre velocity plus the orbital rotation about the bearing axis.
-    fn frame_velocity(roller: &Kinematics, p: &Vec3) -> Vec3 {
-        let c = roller.center;
-        let rho2 = c.y * c.y + c.z * c.z;
-        let orbit = (c.y * roller.velocity.z - c.z * roller.velocity.y) / rho2.max(1e-300);
-        roller.velocity + Vec3::new(orbit, 0.0, 0.0).cross(&(p - c))
-    }
-
     /// Evaluates one contact.
     pub fn evaluate(
         &self,
@@ -409,9 +400,9 @@ impl BearingModel {
             }
             let rolling = n.cross(&b.axis).normalize();
             let frame = if kind == 2 {
-                0.5 * (Self::frame_velocity(a, &p) + Self::frame_velocity(b, &p))
+                0.5 * (a.frame_velocity(&p) + b.frame_velocity(&p))
             } else {
-                Self::frame_velocity(b, &p)
+                b.frame_velocity(&p)
             };
             let f = line_slice(
                 &self.tribology,
@@ -563,7 +554,7 @@ impl BearingModel {
         let p = c.location();
         out.location = p;
         out.pairing = Pairing::ALL.iter().position(|q| *q == c.pairing);
-        let frame = Self::frame_velocity(roller, &p);
+        let frame = roller.frame_velocity(&p);
         let f = end_flange(
             &self.tribology,
             &self.ellipse,
@@ -789,9 +780,10 @@ impl BearingModel {
                 let element = &self.elements[e];
                 let new = self.evaluate(element, &kin_p, e);
                 let old = &results[e];
+                let [body_a, body_b] = Self::bodies_of(element, z);
                 for (bd, wn, wo) in [
-                    (Self::bodies_of(element, z)[0], &new.on_a, &old.on_a),
-                    (Self::bodies_of(element, z)[1], &new.on_b, &old.on_b),
+                    (body_a, &new.on_a, &old.on_a),
+                    (body_b, &new.on_b, &old.on_b),
                 ] {
                     match bd {
                         Body::InnerRing => {

@@ -214,8 +214,7 @@ pub fn record(model: &BearingModel, t: f64, y: &[f64]) -> Record {
         rec.position = k.center;
         (rec.tilt, rec.skew) = tilt_and_skew(&k.center, &k.axis);
         rec.spin_speed = k.omega.dot(&k.axis);
-        let rho2 = k.center.y.powi(2) + k.center.z.powi(2);
-        rec.orbital_speed = (k.center.y * k.velocity.z - k.center.z * k.velocity.y) / rho2;
+        rec.orbital_speed = k.orbital_speed();
         rec.srr_inner = slide_to_roll(model, &ring, k, true);
         rec.srr_outer = slide_to_roll(model, &Kinematics::fixed(), k, false);
     }
@@ -274,10 +273,7 @@ fn slide_to_roll(model: &BearingModel, race: &Kinematics, roller: &Kinematics, i
         (-out, roller.center + out * r)
     };
     let rolling = n.cross(&roller.axis).normalize();
-    let c = roller.center;
-    let rho2 = c.y * c.y + c.z * c.z;
-    let orbit = (c.y * roller.velocity.z - c.z * roller.velocity.y) / rho2;
-    let frame = roller.velocity + Vec3::new(orbit, 0.0, 0.0).cross(&(p - c));
+    let frame = roller.frame_velocity(&p);
     let u1 = (race.point_velocity(&p) - frame).dot(&rolling);
     let u2 = (roller.point_velocity(&p) - frame).dot(&rolling);
     let sum = u1 + u2;

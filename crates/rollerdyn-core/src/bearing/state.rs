@@ -77,6 +77,21 @@ impl Kinematics {
         }
     }
 
+    /// Orbital angular velocity of the centre about the bearing axis (x) [rad/s].
+    #[inline]
+    pub fn orbital_speed(&self) -> f64 {
+        let c = &self.center;
+        let rho2 = c.y * c.y + c.z * c.z;
+        (c.y * self.velocity.z - c.z * self.velocity.y) / rho2.max(1e-300)
+    }
+
+    /// Velocity of the frame that carries this roller's contact locations, at `p`: the
+    /// centre velocity plus the orbital rotation about the bearing axis.
+    #[inline]
+    pub fn frame_velocity(&self, p: &Vec3) -> Vec3 {
+        self.velocity + Vec3::new(self.orbital_speed(), 0.0, 0.0).cross(&(p - self.center))
+    }
+
     /// Velocity of the material point at `p`: v + ω × (p − c).
     #[inline]
     pub fn point_velocity(&self, p: &Vec3) -> Vec3 {

@@ -42,6 +42,12 @@ pub fn angular_momentum(axis: &Vec3, omega: &Vec3, axial: f64, transverse: f64) 
     transverse * omega + (axial - transverse) * spin * axis
 }
 
+/// The right-hand side of Euler's equations, M − ω × I·ω.
+#[inline]
+fn euler_rhs(axis: &Vec3, omega: &Vec3, moment: &Vec3, axial: f64, transverse: f64) -> Vec3 {
+    moment - omega.cross(&angular_momentum(axis, omega, axial, transverse))
+}
+
 /// ω̇ = I⁻¹·(M − ω × I·ω) for an axisymmetric body (axial inertia I_a, transverse I_t).
 #[inline]
 pub fn angular_acceleration(
@@ -51,8 +57,7 @@ pub fn angular_acceleration(
     axial: f64,
     transverse: f64,
 ) -> Vec3 {
-    let h = angular_momentum(axis, omega, axial, transverse);
-    let rhs = moment - omega.cross(&h);
+    let rhs = euler_rhs(axis, omega, moment, axial, transverse);
     let along = rhs.dot(axis);
     (rhs - along * axis) / transverse + along / axial * axis
 }
@@ -69,8 +74,7 @@ pub fn driven_transverse_acceleration(
     axial: f64,
     transverse: f64,
 ) -> Vec3 {
-    let h = angular_momentum(axis, omega, axial, transverse);
-    let rhs = moment - omega.cross(&h);
+    let rhs = euler_rhs(axis, omega, moment, axial, transverse);
     let spin = omega.dot(axis);
     (rhs - rhs.dot(axis) * axis) / transverse - spin * omega.cross(axis)
 }
