@@ -105,6 +105,8 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
         "smoothing_speed": s.boundary_friction.smoothing_speed,
         "hysteresis_coefficient": s.hysteresis_coefficient,
         "damping_ratio": s.damping_ratio,
+        "border_band_roller": s.border_band_roller,
+        "border_band_flange": s.border_band_flange,
         "friction": bool(s.friction),
         "gravity": op.gravity,
         "radial_load": _history(op.radial_load, op.load_ramp),

@@ -1023,6 +1023,7 @@ mod simulation {
     use pyo3::types::PyList;
     use rollerdyn_core::bearing::run::{run, Progress, RunOptions, RunOutput};
     use rollerdyn_core::bearing::{BearingModel, BearingParams, Detector, History, SurfacePair};
+    use rollerdyn_core::contact::border::BorderBands;
     use rollerdyn_core::dynamics::integrate::Method;
     use rollerdyn_core::geometry::end_flange::FlangeShape;
     use std::ops::ControlFlow;
@@ -1153,6 +1154,10 @@ mod simulation {
             detector,
             mesh_resolution: (get(d, "mesh_around")?, get(d, "mesh_along")?),
             pruning: get(d, "pruning")?,
+            border_bands: BorderBands {
+                roller_angle: get(d, "border_band_roller")?,
+                flange_length: get(d, "border_band_flange")?,
+            },
         })
     }
 

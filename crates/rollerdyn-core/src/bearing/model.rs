@@ -17,7 +17,7 @@ use super::params::{BearingParams, Detector};
 use super::state::{ring_kinematics, roller_kinematics, Kinematics, Layout, ROLLER_STATES};
 use crate::contact::gradient::{self, Unknowns};
 use crate::contact::mesh::{MeshDetector, MeshResolution};
-use crate::contact::{deepest, pruning, semi_analytical, Contact, Pairing};
+use crate::contact::{border, deepest, pruning, semi_analytical, Contact, Pairing};
 use crate::dynamics::integrate::OdeSystem;
 use crate::dynamics::rigid::{angle_rates, angular_acceleration, driven_transverse_acceleration};
 use crate::error::{Error, Result};
@@ -529,6 +529,13 @@ impl BearingModel {
         found
     }
 
+    /// The detected roller end–flange contact with its curvature blended across patch
+    /// borders ([`border::blend`]), so that the force is continuous in the pose.
+    fn end_contact(&self, end: &RollerEnd, flange: &Flange, index: usize) -> Option<Contact> {
+        self.detect(end, flange, index)
+            .map(|c| border::blend(&c, end, flange, &self.params.border_bands))
+    }
+
     fn flange_element(
         &self,
         k: usize,
@@ -543,7 +550,7 @@ impl BearingModel {
             penetration: f64::NEG_INFINITY,
             ..Default::default()
         };
-        let Some(c) = self.detect(&end, &flange, index) else {
+        let Some(c) = self.end_contact(&end, &flange, index) else {
             return out;
         };
         out.penetration = c.penetration;
@@ -584,7 +591,7 @@ impl BearingModel {
                 Element::End(_, k) => {
                     let side = if k % 2 == 1 { 1.0 } else { -1.0 };
                     let end = RollerEnd::new(&self.params.roller, b.center, side * b.axis);
-                    if let Some(c) = self.detect(&end, &self.flange(k, a), index) {
+                    if let Some(c) = self.end_contact(&end, &self.flange(k, a), index) {
                         if c.penetration > 0.0 {
                             let hertz = crate::tribology::hertz::EllipticalContact::new(
                                 c.rx,

@@ -1,6 +1,7 @@
 //! The model's immutable parameters, all SI, as the front end hands them over after
 //! validating and deriving them from a configuration file.
 
+use crate::contact::border::BorderBands;
 use crate::error::{Error, Result};
 use crate::geometry::end_flange::FlangeShape;
 use crate::geometry::roller::RollerShape;
@@ -205,6 +206,9 @@ pub struct BearingParams {
     pub mesh_resolution: (usize, usize),
     /// Skip pairings and flanges that cannot touch (semi-analytical only).
     pub pruning: bool,
+    /// Half-widths of the bands over which the roller end–flange curvature is blended
+    /// across patch borders ([`crate::contact::border`]).
+    pub border_bands: BorderBands,
 }
 
 impl BearingParams {
@@ -250,6 +254,8 @@ impl BearingParams {
             }
         }
         for (name, v) in [
+            ("border_band_roller", self.border_bands.roller_angle),
+            ("border_band_flange", self.border_bands.flange_length),
             ("damping_ratio", self.damping_ratio),
             ("inner_axial_play", self.inner_axial_play),
             ("outer_axial_play", self.outer_axial_play),

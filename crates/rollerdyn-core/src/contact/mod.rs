@@ -8,12 +8,14 @@
 //! ellipse's major axis (along R_y), as Hertz (eqs. 5–8) and Chittenden's ξ (eq. 46) need.
 //!
 //! * [`benchmark`]: time and accuracy of the methods on a roller's trajectory.
+//! * [`border`]: the roller's curvature blended across its torus/sphere border.
 //! * [`semi_analytical`]: the method of Wolf, Sanner & Fatemi (2020) used by the paper.
 //! * [`gradient`]: Koch's gradient method (8 × 8 Newton, warm-started).
 //! * [`pruning`]: conservative bounds that skip pairings and flanges that cannot touch.
 //! * [`reference`]: brute force plus local refinement, slow and sure, to check the others.
 
 pub mod benchmark;
+pub mod border;
 pub mod gradient;
 pub mod mesh;
 pub mod pruning;

@@ -284,11 +284,17 @@ impl TorusPatch {
 /// Returns (1/R_x, 1/R_y, major-axis direction): 1/R_x ≥ 1/R_y, so R_x ≤ R_y, and the
 /// contact ellipse's major axis lies along the direction of R_y.
 pub fn relative_curvature(n: &Vec3, a: &Curvature, b: &Curvature) -> (f64, f64, Vec3) {
+    relative_curvature_of(n, &[(1.0, a), (1.0, b)])
+}
+
+/// As [`relative_curvature`], for a weighted sum of curvature tensors Σ wᵢ·Kᵢ (used to
+/// blend a body's curvature across a patch border, [`crate::contact::border`]).
+pub fn relative_curvature_of(n: &Vec3, weighted: &[(f64, &Curvature)]) -> (f64, f64, Vec3) {
     let e1 = any_perpendicular(n);
     let e2 = n.cross(&e1);
     let mut m = [[0.0; 2]; 2];
-    for c in [a, b] {
-        for (t, k) in [(&c.t1, c.k1), (&c.t2, c.k2)] {
+    for (w, c) in weighted {
+        for (t, k) in [(&c.t1, w * c.k1), (&c.t2, w * c.k2)] {
             let (u, v) = (t.dot(&e1), t.dot(&e2));
             m[0][0] += k * u * u;
             m[0][1] += k * u * v;
