@@ -11,11 +11,11 @@ the validation cases (:mod:`rollerdyn.validation`), runs of the dynamic model
 from .config import BearingConfig, ConfigError, load_config, parse_config
 
 
-def simulate(config, t_end=None, detector=None, progress=None):
+def simulate(config, t_end=None, detector=None, progress=None, resume=None):
     """Run the dynamic model; see :func:`rollerdyn.simulation.simulate`."""
     from .simulation import simulate as _simulate
 
-    return _simulate(config, t_end=t_end, detector=detector, progress=progress)
+    return _simulate(config, t_end=t_end, detector=detector, progress=progress, resume=resume)
 
 
 __all__ = [

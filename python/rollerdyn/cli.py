@@ -341,6 +341,15 @@ def run(
             "Default: solver.detector of the configuration (semi-analytical).",
         ),
     ] = None,
+    resume: Annotated[
+        Path | None,
+        typer.Option(
+            "--resume",
+            help="Continue an unfinished run (interrupted, failed, or stopped by --t-end) "
+            "from the final state saved in its result file; the output holds both parts. "
+            "Same configuration and detector required. -o may name the same file.",
+        ),
+    ] = None,
 ) -> None:
     """Run the dynamic simulation and write its results to a netCDF file.
 
@@ -371,6 +380,22 @@ def run(
     if not end > 0.0:
         console.print(f"[red]--t-end = {t_end}: must be a positive time in seconds[/red]")
         raise typer.Exit(2)
+    previous = None
+    if resume is not None:
+        import xarray as xr
+
+        if not resume.is_file():
+            console.print(f"[red]--resume = {resume}: result file not found[/red]")
+            raise typer.Exit(2)
+        with xr.open_dataset(resume, engine="h5netcdf") as opened:
+            previous = opened.load()
+        t_prev = float(previous.attrs.get("final_time_s", float("nan")))
+        if not end > t_prev:
+            console.print(
+                f"[red]--resume: the run in {resume} already reached t = {t_prev} s; "
+                f"--t-end = {end} s must lie after it[/red]"
+            )
+            raise typer.Exit(2)
     columns = (
         TextColumn("[bold]{task.description}"),
         BarColumn(),
@@ -393,7 +418,10 @@ def run(
             bar.update(task, completed=p.time, steps=p.steps, rate=rate)
 
         try:
-            ds = simulate(cfg, t_end=end, detector=detector, progress=progress)
+            ds = simulate(cfg, t_end=end, detector=detector, progress=progress, resume=previous)
+        except ValueError as err:
+            console.print(f"[red]{err}[/red]")
+            raise typer.Exit(2) from None
         except SimulationError as err:
             ds = err.dataset
             status = 130 if "KeyboardInterrupt" in str(err) else 1

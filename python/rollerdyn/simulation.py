@@ -255,11 +255,18 @@ def simulate(
     t_end: float | None = None,
     detector: str | None = None,
     progress: Callable[[Progress], bool | None] | None = None,
+    resume: xr.Dataset | None = None,
 ) -> xr.Dataset:
     """Runs ``config`` from its consistent start to ``t_end`` (default: the configuration's
     end time) and returns the Dataset. ``progress(Progress)`` is called at every output
     time; returning True stops the run (the Dataset then ends there). Raises
     :class:`SimulationError` (with the partial Dataset) if the integration fails.
+
+    ``resume``: the Dataset of an earlier, unfinished run of the same configuration (an
+    interrupted or failed run, or one stopped early by ``t_end``). The run continues from
+    its saved final state and time, and the result holds both parts. The continued part
+    starts with fresh step-size history, so it equals an uninterrupted run to within the
+    integration tolerance, not bit for bit.
     """
     model = Model(config)
     det = detector or config.solver.detector
@@ -267,6 +274,9 @@ def simulate(
     end = config.end_time if t_end is None else float(t_end)
     if not (end > 0.0 and math.isfinite(end)):
         raise ValueError(f"t_end = {end}: must be a positive number of seconds")
+    start = None
+    if resume is not None:
+        start = _resume_point(resume, config, det, end)
     s = config.solver
     options = {
         "t_end": end,
@@ -282,14 +292,59 @@ def simulate(
             return False
         return bool(progress(Progress(t, t_end_, steps, rhs, jac, step)))
 
-    raw = _core.simulate(params, model.traction, options, callback)
+    if start is None:
+        raw = _core.simulate(params, model.traction, options, callback)
+    else:
+        raw = _core.simulate(params, model.traction, options, callback, start)
     ds = to_dataset(raw, config, det)
+    if resume is not None:
+        ds = _join(resume, ds)
     if "interruption" in raw:
         ds.attrs["error"] = f"interrupted at t = {raw['final_time']:.6g} s: {raw['interruption']}"
         raise SimulationError(ds.attrs["error"], ds)
     if raw["error"] is not None:
         raise SimulationError(raw["error"], ds)
     return ds
+
+
+def _resume_point(previous: xr.Dataset, config: BearingConfig, detector: str, end: float):
+    """(t, y) to continue ``previous`` from, after checking that it fits ``config``."""
+    for key, expected in (("bearing", config.name), ("detector", detector)):
+        found = previous.attrs.get(key)
+        if found != expected:
+            raise ValueError(
+                f"resume: the earlier run's {key} is {found!r}, this run's {expected!r}: "
+                "a run can only be continued with the same configuration and detector"
+            )
+    if "final_state" not in previous:
+        raise ValueError("resume: the earlier result has no final_state to continue from")
+    t0 = float(previous.attrs["final_time_s"])
+    if not end > t0:
+        raise ValueError(
+            f"resume: t_end = {end} s must lie after the earlier run's end, t = {t0} s"
+        )
+    y0 = [float(v) for v in previous["final_state"].values]
+    return t0, y0
+
+
+def _join(previous: xr.Dataset, continued: xr.Dataset) -> xr.Dataset:
+    """The earlier run's outputs followed by the continued run's (the output at the
+    resume time, present in both, is kept once); counters are summed."""
+    t0 = float(previous.time[-1])
+    later = continued.sel(time=continued.time > t0)
+    joined = xr.concat(
+        [previous.drop_vars("final_state"), later.drop_vars("final_state")],
+        dim="time",
+        data_vars="all",
+        combine_attrs="override",
+    )
+    joined["final_state"] = continued["final_state"]
+    joined.attrs = dict(continued.attrs)
+    for key, value in previous.attrs.items():
+        if key.startswith("stats_") and key != "stats_t_reached" and key in joined.attrs:
+            joined.attrs[key] = type(value)(joined.attrs[key] + value)
+    joined.attrs["resumed_at_s"] = float(previous.attrs["final_time_s"])
+    return joined
 
 
 def write(ds: xr.Dataset, path) -> None:
