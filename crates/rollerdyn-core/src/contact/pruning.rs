@@ -96,10 +96,18 @@ pub fn cone_box(c: &ConePatch) -> MeridianBox {
 
 /// Meridian box of a flange: the union of its three patches.
 pub fn flange_box(f: &Flange) -> MeridianBox {
+    let [cone, root, rim] = figure_boxes(f);
+    cone.union(&root).union(&rim)
+}
+
+/// Meridian boxes of the flange's cone, root torus and rim torus.
+fn figure_boxes(f: &Flange) -> [MeridianBox; 3] {
     let (o, a) = (f.cone.origin, f.cone.axis);
-    cone_box(&f.cone)
-        .union(&torus_box(&f.root, &o, &a))
-        .union(&torus_box(&f.rim, &o, &a))
+    [
+        cone_box(&f.cone),
+        torus_box(&f.root, &o, &a),
+        torus_box(&f.rim, &o, &a),
+    ]
 }
 
 /// Support h(d) = max p·d over the whole torus of which the roller's edge patch is part.
@@ -164,16 +172,11 @@ pub fn end_boxes(end: &RollerEnd, flange: &Flange) -> [MeridianBox; 2] {
 /// [`super::Pairing::ALL`] order, and whether the whole flange was skipped.
 pub fn detect(end: &RollerEnd, flange: &Flange) -> ([Option<Contact>; 6], bool) {
     let ends = end_boxes(end, flange);
-    let whole = flange_box(flange);
+    let figures = figure_boxes(flange);
+    let whole = figures[0].union(&figures[1]).union(&figures[2]);
     if ends[0].union(&ends[1]).apart(&whole, 0.0) {
         return ([None; 6], true);
     }
-    let (o, a) = (flange.cone.origin, flange.cone.axis);
-    let figures = [
-        cone_box(&flange.cone),
-        torus_box(&flange.root, &o, &a),
-        torus_box(&flange.rim, &o, &a),
-    ];
     let skip: [bool; 6] = std::array::from_fn(|k| ends[k / 3].apart(&figures[k % 3], 0.0));
     let contacts = [
         (!skip[0]).then(|| semi_analytical::torus_cone(&end.torus, &flange.cone)),
@@ -200,15 +203,11 @@ pub fn detect(end: &RollerEnd, flange: &Flange) -> ([Option<Contact>; 6], bool) 
 /// None when nothing overlaps.
 pub fn composite(end: &RollerEnd, flange: &Flange) -> Option<Contact> {
     let ends = end_boxes(end, flange);
-    if ends[0].union(&ends[1]).apart(&flange_box(flange), 0.0) {
+    let figures = figure_boxes(flange);
+    let whole = figures[0].union(&figures[1]).union(&figures[2]);
+    if ends[0].union(&ends[1]).apart(&whole, 0.0) {
         return None;
     }
-    let (o, a) = (flange.cone.origin, flange.cone.axis);
-    let figures = [
-        cone_box(&flange.cone),
-        torus_box(&flange.root, &o, &a),
-        torus_box(&flange.rim, &o, &a),
-    ];
     let keep = |k: usize| !ends[k / 3].apart(&figures[k % 3], 0.0);
     let cheap = [
         keep(3).then(|| semi_analytical::sphere_cone(&end.sphere, &flange.cone)),
@@ -220,18 +219,28 @@ pub fn composite(end: &RollerEnd, flange: &Flange) -> Option<Contact> {
         }),
         keep(0).then(|| semi_analytical::torus_cone(&end.torus, &flange.cone)),
     ];
-    let cheap: Vec<Contact> = cheap.into_iter().flatten().collect();
-    let best = super::deepest(&cheap).or_else(|| {
-        let tori = [
+    let best = deepest_of(&cheap).or_else(|| {
+        deepest_of(&[
             keep(1).then(|| {
                 semi_analytical::torus_torus(&end.torus, &flange.root, super::Pairing::TorusRoot)
             }),
             keep(2).then(|| {
                 semi_analytical::torus_torus(&end.torus, &flange.rim, super::Pairing::TorusRim)
             }),
-        ];
-        let tori: Vec<Contact> = tori.into_iter().flatten().collect();
-        super::deepest(&tori)
+        ])
     });
     best.filter(|c| c.penetration > 0.0)
+}
+
+/// [`super::deepest`] of the computed (Some) contacts, without collecting them: the valid
+/// one with the largest finite penetration, ties to the first.
+fn deepest_of(contacts: &[Option<Contact>]) -> Option<Contact> {
+    contacts
+        .iter()
+        .flatten()
+        .filter(|c| c.valid && c.penetration.is_finite())
+        .fold(None, |best: Option<Contact>, c| match best {
+            Some(b) if b.penetration >= c.penetration => Some(b),
+            _ => Some(*c),
+        })
 }

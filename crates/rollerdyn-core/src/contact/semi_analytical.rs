@@ -13,11 +13,10 @@
 //! [`Contact::valid`] says whether the pairing counts.
 
 use super::{Contact, Pairing};
-use crate::geometry::circle::{circle_circle_distance, Circle3, ClosestPairs};
+use crate::geometry::circle::{Circle3, ClosestPairs};
+use crate::geometry::circle_fast::{circle_circle_distance_fast, rotate};
 use crate::geometry::end_flange::{Flange, RollerEnd};
-use crate::geometry::primitives::{
-    any_perpendicular, meridian, ConePatch, SpherePatch, TorusPatch, Vec3,
-};
+use crate::geometry::primitives::{any_perpendicular, ConePatch, SpherePatch, TorusPatch, Vec3};
 use std::f64::consts::FRAC_PI_2;
 
 /// All six pairings of a roller end against a flange, in [`Pairing::ALL`] order.
@@ -105,7 +104,7 @@ pub fn torus_torus(roller: &TorusPatch, flange: &TorusPatch, pairing: Pairing) -
         normal: flange.axis,
         radius: flange.major_radius,
     };
-    let closest = circle_circle_distance(&c1, &c2).pairs;
+    let closest = circle_circle_distance_fast(&c1, &c2).pairs;
     let (q1, q2) = closest.first();
     let mut contact = sphere_sphere(
         pairing,
@@ -127,36 +126,83 @@ pub fn torus_torus(roller: &TorusPatch, flange: &TorusPatch, pairing: Pairing) -
 /// (n_ρ/ρ)·(projector on the circumferential direction)), started from the estimate of a
 /// plane through the cone's tangent at the torus centre and safeguarded by bisection on the
 /// half circle around it, on which the distance has exactly one minimum.
+///
+/// Evaluated without trigonometric calls: in the cone's frame the tube-centre point has
+/// the axial coordinate s(β) and in-plane coordinates X(β), Y(β), all sinusoids in β; with
+/// ρ = √(X² + Y²) and (n_s, n_ρ) the cone's meridian normal, d = n_s·s + n_ρ·ρ + const,
+/// so h = d' = n_s s' + n_ρ ρ' with ρ' = (XX' + YY')/ρ, and h' = n_s s'' + n_ρ ρ'' with
+/// ρ'' = (X'² + Y'² + XX'' + YY'' − ρ'²)/ρ (the same h and h' as above). The angle is
+/// advanced by rotating (cos β, sin β) ([`crate::geometry::circle_fast::rotate`]).
 pub fn torus_cone(torus: &TorusPatch, cone: &ConePatch) -> Contact {
     let e = torus.axis;
     let u = any_perpendicular(&e);
     let v = e.cross(&u);
     let big = torus.major_radius;
-    // h(β) and h'(β).
-    let slope = |beta: f64| {
-        let (sb, cb) = beta.sin_cos();
-        let radial = u * cb + v * sb;
-        let q = torus.origin + radial * big;
-        let tangent = (v * cb - u * sb) * big;
-        let (_, rho, e_rho) = meridian(&q, &cone.origin, &cone.axis);
-        let (ns, nr) = cone.meridian_normal();
-        let n = cone.axis * ns + e_rho * nr;
-        let circumferential = cone.axis.cross(&e_rho).dot(&tangent);
-        let h = n.dot(&tangent);
-        let dh = nr / rho * circumferential * circumferential - n.dot(&radial) * big;
-        (h, dh)
+    let a = cone.axis;
+    let e1 = any_perpendicular(&a);
+    let e2 = a.cross(&e1);
+    let w = torus.origin - cone.origin;
+    // Sinusoids g(β) = g₀ + g_c cos β + g_s sin β of the tube-centre point's coordinates.
+    let sinusoid = |k: &Vec3| (k.dot(&w), big * k.dot(&u), big * k.dot(&v));
+    let (sx, sy, ss) = (sinusoid(&e1), sinusoid(&e2), sinusoid(&a));
+    let (ns, nr) = cone.meridian_normal();
+    // h(β) and h'(β) at (cos β, sin β).
+    let slope = |c: f64, sn: f64| {
+        let at = |g: (f64, f64, f64)| {
+            let val = g.0 + g.1 * c + g.2 * sn;
+            (val, g.2 * c - g.1 * sn, g.0 - val)
+        };
+        let ((x, xp, xpp), (y, yp, ypp), (_, sp, spp)) = (at(sx), at(sy), at(ss));
+        let inv = 1.0 / (x * x + y * y).sqrt();
+        let rp = (x * xp + y * yp) * inv;
+        let rpp = (xp * xp + yp * yp + x * xpp + y * ypp - rp * rp) * inv;
+        (ns * sp + nr * rp, ns * spp + nr * rpp)
     };
     // Plane model: the distance falls fastest along −n₀ projected on the circle's plane.
     let n0 = cone.foot(&torus.origin).normal;
-    let w = -(n0 - e * e.dot(&n0));
-    let parallel = w.norm() <= 1e-14;
-    let beta0 = if parallel {
-        0.0 // circle parallel to the face: every β is a minimum of the plane model
+    let w0 = -(n0 - e * e.dot(&n0));
+    let parallel = w0.norm() <= 1e-14;
+    let (c0, s0) = if parallel {
+        (1.0, 0.0) // circle parallel to the face: every β is a minimum of the plane model
     } else {
-        w.dot(&v).atan2(w.dot(&u))
+        let (wu, wv) = (w0.dot(&u), w0.dot(&v));
+        let m = (wu * wu + wv * wv).sqrt();
+        (wu / m, wv / m)
     };
-    let beta = safeguarded_newton(beta0, beta0 - FRAC_PI_2, beta0 + FRAC_PI_2, slope);
-    let q = torus.origin + (u * beta.cos() + v * beta.sin()) * big;
+    // Safeguarded Newton on the offset t of β from the estimate, t ∈ [−π/2, π/2].
+    let (mut lo, mut hi) = (-FRAC_PI_2, FRAC_PI_2);
+    let (mut t, mut c, mut sn) = (0.0, c0, s0);
+    for _ in 0..100 {
+        let (h, dh) = slope(c, sn);
+        let step = h / dh;
+        if dh > 0.0 && step.abs() <= 1e-9 {
+            // Quadratic convergence: the error after this step is O(step²).
+            (c, sn) = rotate(c, sn, -step);
+            break;
+        }
+        if h <= 0.0 {
+            lo = t;
+        } else {
+            hi = t;
+        }
+        let newton = t - step;
+        let target = if dh > 0.0 && newton >= lo && newton <= hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        (c, sn) = if (target - t).abs() <= 0.4 {
+            rotate(c, sn, target - t)
+        } else {
+            rotate(c0, s0, target)
+        };
+        t = target;
+        if hi - lo <= 1e-15 {
+            break;
+        }
+    }
+    let m = (c * c + sn * sn).sqrt();
+    let q = torus.origin + (u * (c / m) + v * (sn / m)) * big;
     let foot = cone.foot(&q);
     let n = foot.normal;
     let p1 = q - n * torus.minor_radius;
@@ -171,35 +217,6 @@ pub fn torus_cone(torus: &TorusPatch, cone: &ConePatch) -> Contact {
     );
     contact.multiple = parallel;
     contact
-}
-
-/// Root of an increasing function h on [lo, hi] (h(lo) ≤ 0 ≤ h(hi)) by Newton's method
-/// from x0, falling back to bisection whenever a step leaves the current bracket or h'
-/// is not positive. Returns x0 if h has no sign change on the bracket.
-fn safeguarded_newton(x0: f64, mut lo: f64, mut hi: f64, f: impl Fn(f64) -> (f64, f64)) -> f64 {
-    let mut x = x0;
-    for _ in 0..100 {
-        let (h, dh) = f(x);
-        let step = h / dh;
-        if dh > 0.0 && step.abs() <= 1e-15 * (1.0 + x.abs()) {
-            return x - step;
-        }
-        if h <= 0.0 {
-            lo = x;
-        } else {
-            hi = x;
-        }
-        let newton = x - step;
-        x = if dh > 0.0 && newton >= lo && newton <= hi {
-            newton
-        } else {
-            0.5 * (lo + hi)
-        };
-        if hi - lo <= 1e-15 * (1.0 + x.abs()) {
-            return x;
-        }
-    }
-    x
 }
 
 /// Two spheres (c₁, r₁) on the roller and (c₂, r₂) on the flange: n = (c₁ − c₂)/|c₁ − c₂|,

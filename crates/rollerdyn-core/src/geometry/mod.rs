@@ -2,6 +2,7 @@
 //! faces) and its derived mass properties.
 
 pub mod circle;
+pub mod circle_fast;
 pub mod end_flange;
 pub mod primitives;
 pub mod roller;
