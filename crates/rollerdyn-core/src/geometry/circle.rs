@@ -1011,12 +1011,12 @@ fn general(c1: V3, r1: f64, u1: V3, v1: V3, c2: V3, n2: V3, r2: f64, scale: f64)
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use proptest::prelude::*;
     use std::f64::consts::{PI, TAU};
 
-    fn circle(center: [f64; 3], normal: [f64; 3], radius: f64) -> Circle3 {
+    pub(crate) fn circle(center: [f64; 3], normal: [f64; 3], radius: f64) -> Circle3 {
         Circle3 {
             center: V3::from(center),
             normal: V3::from(normal),
@@ -1024,7 +1024,7 @@ mod tests {
         }
     }
 
-    fn scale(c1: &Circle3, c2: &Circle3) -> f64 {
+    pub(crate) fn scale(c1: &Circle3, c2: &Circle3) -> f64 {
         c1.radius.max(c2.radius).max((c1.center - c2.center).norm())
     }
 
@@ -1041,7 +1041,7 @@ mod tests {
 
     /// An in-plane frame built independently of the code under test (Gram–Schmidt
     /// against the coordinate axis least aligned with the normal, other order).
-    fn frame(c: &Circle3) -> (V3, V3) {
+    pub(crate) fn frame(c: &Circle3) -> (V3, V3) {
         let n = c.normal.normalize();
         let k = (0..3)
             .min_by(|&i, &j| n[i].abs().total_cmp(&n[j].abs()))
@@ -1052,14 +1052,14 @@ mod tests {
         (v.cross(&n), v)
     }
 
-    fn point(c: &Circle3, frame: &(V3, V3), t: f64) -> V3 {
+    pub(crate) fn point(c: &Circle3, frame: &(V3, V3), t: f64) -> V3 {
         c.center + (frame.0 * t.cos() + frame.1 * t.sin()) * c.radius
     }
 
     /// Brute-force reference: circle 1 sampled at `n` points with the exact point-circle
     /// distance, then every sampled local minimum refined by golden-section search over
     /// its two neighbouring intervals.
-    fn brute_force(c1: &Circle3, c2: &Circle3, n: usize) -> f64 {
+    pub(crate) fn brute_force(c1: &Circle3, c2: &Circle3, n: usize) -> f64 {
         let fr = frame(c1);
         let f = |t: f64| point_circle_sq(&point(c1, &fr, t), c2);
         let h = TAU / n as f64;
@@ -1373,14 +1373,14 @@ mod tests {
 
     // ---- 2. brute-force reference over random circles ---------------------------------
 
-    fn unit_vector() -> impl Strategy<Value = V3> {
+    pub(crate) fn unit_vector() -> impl Strategy<Value = V3> {
         (-1.0f64..1.0, 0.0..TAU).prop_map(|(z, phi)| {
             let s = (1.0 - z * z).sqrt();
             V3::new(s * phi.cos(), s * phi.sin(), z)
         })
     }
 
-    fn any_circle() -> impl Strategy<Value = Circle3> {
+    pub(crate) fn any_circle() -> impl Strategy<Value = Circle3> {
         (
             prop::array::uniform3(-0.5f64..0.5),
             unit_vector(),
@@ -1511,11 +1511,11 @@ mod tests {
     // roller whose axis follows the ring axis; zero tilt takes the parallel-plane branch).
     // Reference: the brute force of both parameterisations, to 1e-15 m².
 
-    fn rotation(axis: V3, angle: f64) -> nalgebra::Rotation3<f64> {
+    pub(crate) fn rotation(axis: V3, angle: f64) -> nalgebra::Rotation3<f64> {
         nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(axis), angle)
     }
 
-    fn roller_cases(perpendicular: bool) -> Vec<(Circle3, Circle3)> {
+    pub(crate) fn roller_cases(perpendicular: bool) -> Vec<(Circle3, Circle3)> {
         let deg = PI / 180.0;
         let mut cases = Vec::new();
         for &tx in &[-1.0, -0.37, 0.0, 0.5, 1.0] {
