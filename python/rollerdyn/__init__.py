@@ -9,6 +9,7 @@ the validation cases (:mod:`rollerdyn.validation`), runs of the dynamic model
 """
 
 from .config import BearingConfig, ConfigError, load_config, parse_config
+from .sweep import sweep  # the function; its module: from rollerdyn.sweep import ...
 
 
 def simulate(config, t_end=None, detector=None, progress=None, resume=None):
@@ -24,6 +25,7 @@ __all__ = [
     "load_config",
     "parse_config",
     "simulate",
+    "sweep",
     "__version__",
 ]
 __version__ = "0.1.0"

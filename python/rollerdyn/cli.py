@@ -459,3 +459,10 @@ def plot(
     written = plot_results(results, out)
     for w in written:
         console.print(f"wrote {w}")
+
+
+# --------------------------------------------------------------------------- sweeps
+
+from .sweep import sweep_command  # noqa: E402
+
+app.command("sweep")(sweep_command)

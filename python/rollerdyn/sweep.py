@@ -1,0 +1,635 @@
+"""Parameter sweeps: one configuration, a grid of changes, every run on Dask distributed.
+
+:func:`sweep` mirrors ``rollerdyn sweep``. The grid is the cartesian product of the
+swept values (dotted configuration paths such as ``operating.axial_load``); every grid
+point's configuration is validated before any run starts. Each run is one Dask task that
+simulates in its worker process and writes its own result file ``run_XXXX.nc`` (netCDF,
+h5netcdf, the same content as ``rollerdyn run`` writes) into the output directory; only a
+small dict of summary numbers travels back. The summary (one row per run, see
+:data:`SUMMARY_COLUMNS`) is returned as a :class:`pandas.DataFrame` and written to
+``summary.parquet``. A run that fails still writes what it computed and is listed with its
+error; the sweep goes on. See ``docs/sweeps.md``.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import time
+import tomllib
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Annotated, Any
+
+import numpy as np
+import typer
+
+from .config import BearingConfig, ConfigError, _field_at, parse_config
+from .units import IntegerSpec, NumberSpec, QuantitySpec
+
+__all__ = [
+    "SUMMARY_COLUMNS",
+    "GridPoint",
+    "SweepError",
+    "build_grid",
+    "parse_set",
+    "run_one",
+    "summarize",
+    "sweep",
+    "sweep_command",
+]
+
+#: The summary's result columns and their meaning (units in the column names).
+SUMMARY_COLUMNS = {
+    "run": "run number, 0, 1, ... in grid order (the last --set varies fastest)",
+    "status": "completed or failed",
+    "error": "why a run failed (empty if it completed)",
+    "final_time [s]": "simulated time reached",
+    "mean_frictional_torque [N*m]": "mean bearing frictional torque over the last 20 % "
+    "of the simulated time (outputs with t >= t0 + 0.8 (t_final - t0))",
+    "max_race_load [N]": "largest roller-race normal force (inner or outer, any roller, "
+    "any output time)",
+    "max_flange_normal_force [N]": "largest roller end / flange normal force (any roller, "
+    "any flange, any output time)",
+    "max_abs_srr_inner [1]": "largest |slide-to-roll ratio| at the inner race (eq. 49, "
+    "any roller, any output time; NaN outputs ignored)",
+    "steps": "integrator steps",
+    "wall [s]": "wall time of the run in its worker (simulation and writing its file)",
+    "file": "result file in the output directory (empty if none was written)",
+}
+
+SUMMARY_FILE = "summary.parquet"
+
+DETECTORS = ("semi-analytical", "gradient", "mesh")
+
+
+class SweepError(ValueError):
+    """A sweep that cannot start: a malformed --set, or a grid point that fails validation.
+
+    ``str(err)`` names the --set path, the value and the rule broken (the configuration's
+    own messages, see :class:`rollerdyn.ConfigError`).
+    """
+
+
+# --------------------------------------------------------------------------- the grid
+
+
+def split_values(text: str) -> list[str]:
+    """``"0 N,500 N"`` -> ``["0 N", "500 N"]``: split at commas that are outside quotes,
+    brackets and braces (so a TOML array or inline table stays one value)."""
+    out, cur, depth, quote = [], [], 0, ""
+    for ch in text:
+        if quote:
+            cur.append(ch)
+            if ch == quote:
+                quote = ""
+        elif ch in "\"'":
+            quote = ch
+            cur.append(ch)
+        elif ch in "[{":
+            depth += 1
+            cur.append(ch)
+        elif ch in "]}":
+            depth -= 1
+            cur.append(ch)
+        elif ch == "," and depth == 0:
+            out.append("".join(cur).strip())
+            cur = []
+        else:
+            cur.append(ch)
+    out.append("".join(cur).strip())
+    return out
+
+
+def toml_value(text: str) -> Any:
+    """A --set value as it would appear in the TOML file: text that is a TOML value (a
+    number ``0.3``, an integer ``20``, ``true``/``false``, a quoted string, an array or an
+    inline table) is that value; anything else (``500 N``, ``gradient``) is a string."""
+    try:
+        return tomllib.loads(f"v = {text}")["v"]
+    except tomllib.TOMLDecodeError:
+        return text
+
+
+def parse_set(option: str) -> tuple[str, list[Any]]:
+    """``"operating.axial_load=0 N,500 N"`` -> ``("operating.axial_load", ["0 N", "500 N"])``
+    (values read by :func:`toml_value`)."""
+    path, sep, values = option.partition("=")
+    path = path.strip()
+    parts = path.split(".")
+    if not sep or not path or not all(p.strip() for p in parts):
+        raise SweepError(
+            f"--set {option!r}: expected PATH=VALUE[,VALUE...], e.g. "
+            '--set operating.axial_load="0 N,500 N"'
+        )
+    texts = split_values(values)
+    if any(not t for t in texts):
+        raise SweepError(f"--set {path}={values}: an empty value (two commas, or none given)")
+    return path, [toml_value(t) for t in texts]
+
+
+def _show(value: Any) -> str:
+    """A swept value as typed (strings bare, booleans as in TOML)."""
+    if isinstance(value, str):
+        return value
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    return str(value)
+
+
+@dataclass(frozen=True)
+class GridPoint:
+    """One run of a sweep: its number, file name, swept values (as given and SI) and the
+    full configuration data to parse in the worker."""
+
+    run: int
+    values: dict[str, Any]
+    si_values: dict[str, Any]
+    data: dict
+    si_numbers: bool
+
+    @property
+    def file(self) -> str:
+        return f"run_{self.run:04d}.nc"
+
+    def label(self) -> str:
+        return ", ".join(f"{p}={_show(v)}" for p, v in self.values.items())
+
+
+def _changed(data: Mapping, changes: Mapping[str, Any]) -> dict:
+    """A deep copy of ``data`` with dotted-path changes."""
+    import copy
+
+    out = copy.deepcopy(dict(data))
+    for path, value in changes.items():
+        section = out
+        *parents, key = path.split(".")
+        for i, p in enumerate(parents):
+            nxt = section.setdefault(p, {})
+            if not isinstance(nxt, dict):
+                where = ".".join(parents[: i + 1])
+                raise SweepError(
+                    f"--set {path}: {where} is {_show(nxt)!r} in the configuration, not a "
+                    "table, so it has no keys to set"
+                )
+            section = nxt
+        section[key] = value
+    return out
+
+
+def _si_unit(path: str) -> str | None:
+    """SI unit of the numeric field at ``path`` (None: not a number field)."""
+    info = _field_at(path.split("."))
+    if info is None:
+        return None
+    for meta in info.metadata:
+        if isinstance(meta, QuantitySpec):
+            return meta.family.si_unit or "1"
+        if isinstance(meta, NumberSpec | IntegerSpec):
+            return "1"
+    stack = [info.annotation]
+    while stack:
+        ann = stack.pop()
+        for meta in getattr(ann, "__metadata__", ()):
+            if isinstance(meta, QuantitySpec):
+                return meta.family.si_unit or "1"
+            if isinstance(meta, NumberSpec | IntegerSpec):
+                return "1"
+        stack.extend(getattr(ann, "__args__", ()))
+    return None
+
+
+def _si_value(cfg: BearingConfig, path: str) -> Any:
+    cur: Any = cfg
+    for part in path.split("."):
+        cur = getattr(cur, part, None)
+    if isinstance(cur, bool | int | float | str) or cur is None:
+        return cur
+    return str(cur)
+
+
+def _source(config: Any) -> tuple[dict, bool, str | None]:
+    """(TOML data, si_numbers, source name) of a path, a mapping or a BearingConfig."""
+    if isinstance(config, BearingConfig):
+        return config.model_dump(), True, None
+    if isinstance(config, Mapping):
+        return dict(config), False, None
+    from .config import load_config
+
+    path = Path(config)
+    load_config(path)  # the same clean ConfigError as `rollerdyn run` for a bad file
+    return tomllib.loads(path.read_text(encoding="utf-8")), False, str(path)
+
+
+def build_grid(
+    config: str | Path | Mapping | BearingConfig, parameters: Mapping[str, Sequence[Any]]
+) -> list[GridPoint]:
+    """Every grid point of the cartesian product of ``parameters`` (the last path varies
+    fastest), each validated; raises :class:`SweepError` listing every point that fails."""
+    data, si_numbers, source = _source(config)
+    paths = list(parameters)
+    for path in paths:
+        values = parameters[path]
+        if isinstance(values, str | bytes) or not isinstance(values, Sequence) or not values:
+            raise SweepError(f"--set {path}: expected a non-empty list of values")
+    points, failures = [], []
+    for run, combo in enumerate(itertools.product(*(parameters[p] for p in paths))):
+        values = dict(zip(paths, combo, strict=True))
+        changed = _changed(data, values)
+        label = ", ".join(f"{p}={_show(v)}" for p, v in values.items())
+        try:
+            cfg = parse_config(changed, source=source, si_numbers=si_numbers)
+        except ConfigError as err:
+            lines = []
+            for prob in err.problems or ():
+                swept = " (--set " + prob.path + ")" if prob.path in values else ""
+                lines.append(f"  {prob}{swept}")
+            failures.append(f"run {run} ({label}):\n" + ("\n".join(lines) or f"  {err}"))
+            continue
+        si = {p: _si_value(cfg, p) for p in paths}
+        points.append(GridPoint(run, values, si, changed, si_numbers))
+    if failures:
+        total = len(points) + len(failures)
+        head = (
+            f"invalid sweep: {len(failures)} of {total} grid point"
+            f"{'s' if total != 1 else ''} fail validation (no run was started):"
+        )
+        raise SweepError("\n".join([head, *failures]))
+    return points
+
+
+# --------------------------------------------------------------------------- one run
+
+
+def summarize(ds) -> dict:
+    """The summary numbers of one result Dataset (see :data:`SUMMARY_COLUMNS`)."""
+
+    def finite_max(values) -> float:
+        arr = np.asarray(values, dtype=float)
+        arr = arr[np.isfinite(arr)]
+        return float(arr.max()) if arr.size else math.nan
+
+    time_ = np.asarray(ds["time"].values, dtype=float)
+    torque = math.nan
+    if time_.size:
+        t0, t1 = time_[0], time_[-1]
+        last = time_ >= t0 + 0.8 * (t1 - t0)
+        sel = np.asarray(ds["frictional_torque"].values, dtype=float)[last]
+        sel = sel[np.isfinite(sel)]
+        torque = float(sel.mean()) if sel.size else math.nan
+    race = np.concatenate(
+        [
+            np.ravel(ds["inner_normal_force"].values),
+            np.ravel(ds["outer_normal_force"].values),
+        ]
+    )
+    return {
+        "final_time [s]": float(ds.attrs.get("final_time_s", math.nan)),
+        "mean_frictional_torque [N*m]": torque,
+        "max_race_load [N]": finite_max(race),
+        "max_flange_normal_force [N]": finite_max(ds["flange_normal_force"].values),
+        "max_abs_srr_inner [1]": finite_max(np.abs(ds["srr_inner"].values)),
+        "steps": int(ds.attrs.get("stats_steps", 0)),
+    }
+
+
+def _empty_numbers() -> dict:
+    return {
+        "final_time [s]": math.nan,
+        "mean_frictional_torque [N*m]": math.nan,
+        "max_race_load [N]": math.nan,
+        "max_flange_normal_force [N]": math.nan,
+        "max_abs_srr_inner [1]": math.nan,
+        "steps": 0,
+    }
+
+
+def run_one(
+    data: dict,
+    si_numbers: bool,
+    outdir: str,
+    file: str,
+    t_end: float | None = None,
+    detector: str | None = None,
+) -> dict:
+    """One sweep run, as executed in a Dask worker: parse, simulate, write
+    ``outdir/file``, return the summary numbers, status and error (never raises)."""
+    from .simulation import SimulationError, simulate, write
+
+    start = time.perf_counter()
+    status, error, written = "completed", "", ""
+    numbers = _empty_numbers()
+    try:
+        cfg = parse_config(data, si_numbers=si_numbers)
+        try:
+            ds = simulate(cfg, t_end=t_end, detector=detector)
+        except SimulationError as err:
+            ds, status, error = err.dataset, "failed", str(err)
+        numbers = summarize(ds)
+        write(ds, Path(outdir) / file)
+        written = file
+    except Exception as err:  # a run's failure must not stop the sweep
+        status, error = "failed", f"{type(err).__name__}: {err}"
+    return {
+        "status": status,
+        "error": error,
+        **numbers,
+        "wall [s]": time.perf_counter() - start,
+        "file": written,
+    }
+
+
+# --------------------------------------------------------------------------- the sweep
+
+
+def _row(point: GridPoint, result: dict) -> dict:
+    row: dict[str, Any] = {"run": point.run}
+    for path, value in point.values.items():
+        row[path] = _show(value)
+        unit = _si_unit(path)
+        if unit is not None:
+            si = point.si_values[path]
+            numeric = isinstance(si, int | float) and not isinstance(si, bool)
+            row[f"{path} [{unit}]"] = float(si) if numeric else math.nan  # NaN: a time table
+    row.update(result)
+    return row
+
+
+def sweep(
+    config: str | Path | Mapping | BearingConfig,
+    parameters: Mapping[str, Sequence[Any]],
+    outdir: str | Path,
+    scheduler: Any = None,
+    workers: int = 2,
+    t_end: float | None = None,
+    detector: str | None = None,
+    progress: Callable[[int, int, dict | None], Any] | None = None,
+):
+    """Run the grid of ``parameters`` over ``config`` on Dask; return the summary.
+
+    ``config``: a TOML file, its data as a mapping, or a :class:`BearingConfig` (then the
+    paths address ``config.model_dump()`` and bare numbers are taken as SI).
+    ``parameters``: ``{"operating.axial_load": ["0 N", "500 N"], ...}``, each value as it
+    would appear in the TOML data; several paths make the full grid (cartesian product,
+    the last path varying fastest). Every grid point is validated before any run starts
+    (:class:`SweepError` otherwise). ``scheduler``: None starts a ``LocalCluster`` of
+    ``workers`` processes with one thread each; an address (``"tcp://host:8786"``) or a
+    ``distributed.Client`` uses that cluster instead (its workers must see ``outdir``).
+    ``t_end`` (s) and ``detector`` as in :func:`rollerdyn.simulate`. ``progress(done,
+    total, row)`` is called once with ``row=None`` when the runs are submitted and then
+    after each run. Returns a :class:`pandas.DataFrame`, one row per run in run order
+    (columns: :data:`SUMMARY_COLUMNS` and, per path, the value as given and, for numeric
+    fields, its SI value in ``"<path> [<unit>]"``), also written to
+    ``outdir/summary.parquet``.
+    """
+    import pandas as pd
+    from distributed import Client, LocalCluster, as_completed
+
+    if detector is not None and detector not in DETECTORS:
+        raise SweepError(f"detector = {detector!r}: must be {', '.join(DETECTORS)}")
+    if t_end is not None and not (t_end > 0.0 and math.isfinite(t_end)):
+        raise SweepError(f"t_end = {t_end}: must be a positive time in seconds")
+    if scheduler is None and workers < 1:
+        raise SweepError(f"workers = {workers}: must be at least 1")
+    points = build_grid(config, parameters)
+    out = Path(outdir).resolve()
+    out.mkdir(parents=True, exist_ok=True)
+    for p in points:  # no stale result of an earlier sweep can pass for this one's
+        (out / p.file).unlink(missing_ok=True)
+
+    cluster = None
+    if scheduler is None:
+        cluster = LocalCluster(
+            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
+        )
+        client = Client(cluster)
+    elif isinstance(scheduler, Client):
+        client = scheduler
+    else:
+        client = Client(scheduler)
+    rows: dict[int, dict] = {}
+    try:
+        futures, by_key = [], {}
+        for p in points:
+            fut = client.submit(
+                run_one, p.data, p.si_numbers, str(out), p.file, t_end, detector, pure=False
+            )
+            futures.append(fut)
+            by_key[fut.key] = p
+        total = len(points)
+        if progress is not None:
+            progress(0, total, None)
+        for fut in as_completed(futures):
+            p = by_key[fut.key]
+            try:
+                result = fut.result()
+            except Exception as err:  # a lost worker fails one run only
+                result = {
+                    "status": "failed",
+                    "error": f"{type(err).__name__}: {err}",
+                    **_empty_numbers(),
+                    "wall [s]": math.nan,
+                    "file": p.file if (out / p.file).is_file() else "",
+                }
+            rows[p.run] = _row(p, result)
+            if progress is not None:
+                progress(len(rows), total, rows[p.run])
+    finally:
+        if client is not scheduler:
+            client.close()
+        if cluster is not None:
+            cluster.close()
+    frame = pd.DataFrame([rows[p.run] for p in points])
+    frame.to_parquet(out / SUMMARY_FILE, engine="pyarrow", index=False)
+    return frame
+
+
+# --------------------------------------------------------------------------- command line
+
+
+def _fmt(value: Any, spec: str = ".6g") -> str:
+    if isinstance(value, float):
+        return "-" if math.isnan(value) else format(value, spec)
+    return str(value)
+
+
+def sweep_command(
+    config: Annotated[Path, typer.Argument(help="Bearing configuration (TOML) to vary.")],
+    sets: Annotated[
+        list[str],
+        typer.Option(
+            "--set",
+            help="PATH=VALUE[,VALUE...]: a dotted configuration path and the values it "
+            'takes, e.g. --set operating.axial_load="0 N,500 N,1000 N". Each value is '
+            "written as in the TOML file: with its unit for dimensional fields "
+            '("500 N", "3000 rpm", "80 degC"); bare numbers (0.3, 20) and true/false '
+            "are numbers and booleans, valid only for dimensionless fields (a bare 500 "
+            "for a force is refused: no unit); anything else is a string. Commas inside "
+            "quotes, [arrays] or {inline tables} do not split. Repeat --set for more "
+            "paths: the runs are the full grid (cartesian product).",
+        ),
+    ],
+    output: Annotated[
+        Path,
+        typer.Option(
+            "--output",
+            "-o",
+            help="Output directory: run_0000.nc, run_0001.nc, ... (netCDF, SI units, as "
+            "written by rollerdyn run) and summary.parquet. Created if missing; existing "
+            "files of the same names are overwritten.",
+        ),
+    ] = Path("sweep"),
+    scheduler: Annotated[
+        str | None,
+        typer.Option(
+            "--scheduler",
+            help="Address of a running Dask scheduler (e.g. tcp://10.0.0.5:8786); its "
+            "workers need rollerdyn installed and must see the output directory. "
+            "Default: a local cluster of --workers processes.",
+        ),
+    ] = None,
+    workers: Annotated[
+        int,
+        typer.Option(
+            "--workers",
+            min=1,
+            help="Worker processes of the local cluster (one thread, so one run, each). "
+            "Ignored with --scheduler.",
+        ),
+    ] = 2,
+    t_end: Annotated[
+        float | None,
+        typer.Option(
+            "--t-end",
+            help="Simulated end time of every run in seconds. Default: each configuration's "
+            "end time (speed ramp end + two roller-set revolutions, about 1.288 s for B1).",
+        ),
+    ] = None,
+    detector: Annotated[
+        str | None,
+        typer.Option(
+            "--detector",
+            help="Roller end / flange detector: semi-analytical, gradient or mesh. "
+            "Default: solver.detector of each configuration (semi-analytical).",
+        ),
+    ] = None,
+) -> None:
+    """Run a grid of variants of a configuration on Dask and summarise them.
+
+    Every grid point is validated before any run starts; a bad one exits with status 2
+    naming the --set path, the value and the rule. Each run writes its own result file.
+    The summary (one row per run; units SI, given in the column names: run, each swept
+    value as given and in SI, status, error, final time [s], mean frictional torque over
+    the last 20 % of the run [N*m], maximum roller race load [N], maximum flange normal
+    force [N], maximum |slide-to-roll ratio| at the inner race [1], steps, wall time [s],
+    file) is written to summary.parquet and printed. A failed run keeps its partial
+    result and its error in the summary, and the sweep goes on; the command then exits
+    with status 1.
+    """
+    from rich.markup import escape
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+    from rich.table import Table
+
+    from .cli import _load, console
+
+    parameters: dict[str, list[Any]] = {}
+    try:
+        for option in sets:
+            path, values = parse_set(option)
+            if path in parameters:
+                raise SweepError(f"--set {path}: given twice; list all its values in one --set")
+            parameters[path] = values
+    except SweepError as err:
+        console.print(f"[red]{escape(str(err))}[/red]", highlight=False, soft_wrap=True)
+        raise typer.Exit(2) from None
+    _load(config)  # a bad file: the same message and exit status as rollerdyn run
+    if detector is not None and detector not in DETECTORS:
+        console.print(
+            f"[red]--detector = {detector!r}: must be semi-analytical, gradient or mesh[/red]"
+        )
+        raise typer.Exit(2)
+    if t_end is not None and not t_end > 0.0:
+        console.print(f"[red]--t-end = {t_end}: must be a positive time in seconds[/red]")
+        raise typer.Exit(2)
+    try:
+        build_grid(config, parameters)  # validate every grid point before the cluster starts
+    except SweepError as err:
+        console.print(str(err), markup=False, highlight=False, soft_wrap=True)
+        raise typer.Exit(2) from None
+
+    columns = (
+        TextColumn("[bold]{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TextColumn("runs"),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+        TextColumn("{task.fields[last]}"),
+    )
+    with Progress(*columns, console=console, transient=False) as bar:
+        task = bar.add_task("starting Dask workers", total=None, last="")
+
+        def progress(done: int, total: int, row: dict | None) -> None:
+            last = ""
+            if row is not None:
+                last = f"run {row['run']} {row['status']}"
+            bar.update(task, description="sweep", completed=done, total=total, last=last)
+
+        frame = sweep(
+            config,
+            parameters,
+            output,
+            scheduler=scheduler,
+            workers=workers,
+            t_end=t_end,
+            detector=detector,
+            progress=progress,
+        )
+
+    table = Table(title=escape(f"sweep of {config.name}: {len(frame)} runs, in {output}"))
+    swept = list(parameters)  # as given; their SI values are in summary.parquet
+    headers = {
+        "final_time [s]": "final t [s]",
+        "mean_frictional_torque [N*m]": "mean torque, last 20 % [N*m]",
+        "max_race_load [N]": "max race load [N]",
+        "max_flange_normal_force [N]": "max flange force [N]",
+        "max_abs_srr_inner [1]": "max |SRR| inner",
+        "steps": "steps",
+        "wall [s]": "wall [s]",
+        "file": "file",
+    }
+    shown = ["run", *swept, "status", *headers]
+    for col in shown:
+        table.add_column(escape(headers.get(col, col)), overflow="fold")
+    for _, row in frame.iterrows():
+        cells = []
+        for col in shown:
+            value = row[col]
+            if col == "status":
+                ok = value == "completed"
+                cells.append("[green]completed[/green]" if ok else "[red]failed[/red]")
+                continue
+            cells.append(escape(_fmt(value, ".1f" if col == "wall [s]" else ".6g")))
+        table.add_row(*cells)
+    console.print(table)
+    failed = frame[frame["status"] != "completed"]
+    for _, row in failed.iterrows():
+        console.print(
+            f"[red]run {row['run']} failed:[/red] {escape(row['error'])}",
+            highlight=False,
+            soft_wrap=True,
+        )
+    console.print(
+        f"wrote {output / SUMMARY_FILE} and {int((frame['file'] != '').sum())} result files; "
+        f"{len(frame) - len(failed)} completed, {len(failed)} failed"
+    )
+    if len(failed):
+        raise typer.Exit(1)

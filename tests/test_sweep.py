@@ -1,0 +1,238 @@
+"""Sweeps on Dask (issue 5, item 3): the grid, its validation, the runs on worker processes
+against the same runs in series, the summary and the command line.
+
+The runs are short static B1 variants (loads ramped over 1 ms, 3 ms simulated) so that the
+whole module takes well under a minute on two cores.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from functools import cache
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+import xarray as xr
+from typer.testing import CliRunner
+
+import rollerdyn
+from rollerdyn.cli import app
+from rollerdyn.simulation import SimulationError
+from rollerdyn.sweep import (
+    SUMMARY_COLUMNS,
+    SweepError,
+    build_grid,
+    parse_set,
+    run_one,
+    summarize,
+    toml_value,
+)
+
+B1 = Path(__file__).resolve().parents[1] / "examples" / "b1.toml"
+RUNNER = CliRunner()
+
+SHORT = {
+    "operating.gravity": "0 m/s^2",
+    "operating.inner_ring_speed": "0 rpm",
+    "operating.speed_ramp": None,
+    "operating.load_ramp.end": "1 ms",
+    "operating.end_time": "3 ms",
+    "solver.output_interval": "0.25 ms",
+}
+AXIAL = ["0 N", "500 N"]
+
+
+def changed(base: dict, changes: dict) -> dict:
+    """A copy of ``base`` (B1's TOML data if empty) with dotted-path changes (None removes)."""
+    data = _deep(base) if base else tomllib.loads(B1.read_text())
+    for path, value in changes.items():
+        section = data
+        *parents, key = path.split(".")
+        for p in parents:
+            section = section.setdefault(p, {})
+        if value is None:
+            section.pop(key, None)
+        else:
+            section[key] = value
+    return data
+
+
+def _deep(d):
+    return {k: _deep(v) if isinstance(v, dict) else v for k, v in d.items()}
+
+
+SHORT_DATA = changed({}, SHORT)
+
+
+@cache
+def serial(axial: str) -> xr.Dataset:
+    """The same run in this process, in series."""
+    cfg = rollerdyn.parse_config(changed(SHORT_DATA, {"operating.axial_load": axial}))
+    return rollerdyn.simulate(cfg)
+
+
+@pytest.fixture(scope="module")
+def swept(tmp_path_factory):
+    out = tmp_path_factory.mktemp("sweep")
+    calls = []
+    frame = rollerdyn.sweep(
+        SHORT_DATA,
+        {"operating.axial_load": AXIAL},
+        out,
+        workers=2,
+        progress=lambda done, total, row: calls.append((done, total, row)),
+    )
+    return out, frame, calls
+
+
+# --------------------------------------------------------------------------- the grid
+
+
+def test_set_values_are_read_as_in_toml():
+    assert parse_set("operating.axial_load=0 N, 500 N") == ("operating.axial_load", AXIAL)
+    assert parse_set("materials.roller.poisson_ratio=0.29,0.3")[1] == [0.29, 0.3]
+    assert parse_set("solver.pruning=true,false")[1] == [True, False]
+    assert parse_set("solver.detector=gradient")[1] == ["gradient"]
+    assert toml_value('"17"') == "17" and toml_value("17") == 17
+    path, values = parse_set('operating.axial_load={table = [[0, "0 N"], [1, "5 N"]]},"9 N"')
+    assert values == [{"table": [[0, "0 N"], [1, "5 N"]]}, "9 N"]
+    with pytest.raises(SweepError, match="PATH=VALUE"):
+        parse_set("operating.axial_load")
+
+
+def test_grid_is_the_cartesian_product_validated_up_front():
+    grid = build_grid(
+        SHORT_DATA,
+        {"operating.axial_load": AXIAL, "materials.roller.poisson_ratio": [0.29, 0.3, 0.31]},
+    )
+    assert len(grid) == 6 and [p.run for p in grid] == list(range(6))
+    assert grid[4].values == {
+        "operating.axial_load": "500 N",
+        "materials.roller.poisson_ratio": 0.3,
+    }
+    assert grid[4].si_values == {
+        "operating.axial_load": 500.0,
+        "materials.roller.poisson_ratio": 0.3,
+    }
+    assert grid[4].file == "run_0004.nc"
+    with pytest.raises(SweepError) as err:
+        build_grid(SHORT_DATA, {"operating.axial_load": ["500 N", 0, "3 mm"]})
+    text = str(err.value)
+    assert "2 of 3 grid points fail" in text and "no run was started" in text
+    assert "operating.axial_load: 0 — a bare number is ambiguous" in text
+    assert 'operating.axial_load: "3 mm" — expected a force' in text
+
+
+# --------------------------------------------------------------------------- runs on Dask
+
+
+def test_sweep_on_two_workers_equals_the_runs_in_series(swept):
+    out, frame, calls = swept
+    assert list(frame["run"]) == [0, 1]
+    assert list(frame["operating.axial_load"]) == AXIAL
+    assert list(frame["operating.axial_load [N]"]) == [0.0, 500.0]
+    assert set(SUMMARY_COLUMNS) <= set(frame.columns)
+    assert list(frame["status"]) == ["completed", "completed"]
+    assert list(frame["file"]) == ["run_0000.nc", "run_0001.nc"]
+    for i, axial in enumerate(AXIAL):
+        ref = serial(axial)
+        with xr.open_dataset(out / f"run_{i:04d}.nc", engine="h5netcdf") as opened:
+            got = opened.load()
+        assert got.attrs["final_time_s"] == ref.attrs["final_time_s"] == pytest.approx(3e-3)
+        for name in (
+            "time",
+            "frictional_torque",
+            "position",
+            "flange_normal_force",
+            "inner_normal_force",
+            "srr_inner",
+            "final_state",
+        ):
+            np.testing.assert_array_equal(got[name].values, ref[name].values, err_msg=name)
+        assert got.attrs["stats_steps"] == ref.attrs["stats_steps"]
+        expected = summarize(ref)
+        for column, value in expected.items():
+            assert frame[column][i] == value or (math.isnan(value) and math.isnan(frame[column][i]))
+        # the summary's definitions, checked directly
+        t = ref.time.values
+        last = t >= 0.8 * t[-1]
+        assert expected["mean_frictional_torque [N*m]"] == float(
+            ref.frictional_torque.values[last].mean()
+        )
+        race = max(float(ref.inner_normal_force.max()), float(ref.outer_normal_force.max()))
+        assert expected["max_race_load [N]"] == race > 0
+        assert expected["max_flange_normal_force [N]"] == float(ref.flange_normal_force.max())
+        assert expected["max_abs_srr_inner [1]"] == float(np.nanmax(np.abs(ref.srr_inner.values)))
+    # progress: once at submission, then once per finished run
+    assert calls[0] == (0, 2, None)
+    assert [c[0] for c in calls[1:]] == [1, 2] and all(c[1] == 2 for c in calls)
+    # the Parquet file holds the same table
+    pd.testing.assert_frame_equal(pd.read_parquet(out / "summary.parquet"), frame)
+
+
+def test_a_failed_run_keeps_its_partial_file_and_its_error(tmp_path, monkeypatch):
+    partial = serial("0 N").isel(time=slice(0, 3))
+
+    def failing(cfg, t_end=None, detector=None, progress=None, resume=None):
+        raise SimulationError("step size too small at t = 0.5 ms", partial)
+
+    monkeypatch.setattr("rollerdyn.simulation.simulate", failing)
+    result = run_one(SHORT_DATA, False, str(tmp_path), "run_0007.nc")
+    assert result["status"] == "failed" and "step size too small" in result["error"]
+    assert result["file"] == "run_0007.nc" and (tmp_path / "run_0007.nc").is_file()
+    assert result["steps"] == partial.attrs["stats_steps"]
+
+
+# --------------------------------------------------------------------------- command line
+
+
+def test_cli_bad_set_value_is_exit_2_naming_path_and_value(tmp_path):
+    result = RUNNER.invoke(
+        app,
+        ["sweep", str(B1), "--set", "operating.axial_load=0,250", "-o", str(tmp_path / "s")],
+    )
+    assert result.exit_code == 2, result.output
+    assert "operating.axial_load: 0 — a bare number is ambiguous (no unit)" in result.output
+    assert "--set operating.axial_load" in result.output and "250" in result.output
+    assert "Traceback" not in result.output
+    assert not (tmp_path / "s").exists()  # nothing started
+    bad = RUNNER.invoke(app, ["sweep", str(B1), "--set", "operating.axial_lod=5 N"])
+    assert bad.exit_code == 2 and "did you mean 'axial_load'" in bad.output
+
+
+def test_cli_sweep_writes_the_summary(tmp_path):
+    out = tmp_path / "sweep"
+    result = RUNNER.invoke(
+        app,
+        [
+            "sweep",
+            str(B1),
+            "--set",
+            "operating.load_ramp.end=1 ms",
+            "--set",
+            "operating.axial_load=500 N",
+            "--t-end",
+            "0.001",
+            "--workers",
+            "1",
+            "-o",
+            str(out),
+        ],
+    )
+    assert result.exit_code == 0, result.output
+    assert "1 completed, 0 failed" in result.output and "summary.parquet" in result.output
+    frame = pd.read_parquet(out / "summary.parquet")
+    assert list(frame["operating.axial_load"]) == ["500 N"]
+    assert list(frame["operating.load_ramp.end [s]"]) == [0.001]
+    assert frame["status"][0] == "completed" and frame["final_time [s]"][0] == 0.001
+    assert (out / "run_0000.nc").is_file()
+
+
+def test_cli_sweep_help_explains_units_and_defaults():
+    result = RUNNER.invoke(app, ["sweep", "--help"])
+    assert result.exit_code == 0
+    for text in ("--set", "unit", "--workers", "--scheduler", "N*m", "summary.parquet"):
+        assert text in result.output
