@@ -14,7 +14,7 @@
 
 use super::{Contact, Pairing};
 use crate::geometry::circle::{Circle3, ClosestPairs};
-use crate::geometry::circle_fast::{circle_circle_distance_fast, rotate};
+use crate::geometry::circle_fast::{circle_circle_distance_fast, converged, rotate};
 use crate::geometry::end_flange::{Flange, RollerEnd};
 use crate::geometry::primitives::{any_perpendicular, ConePatch, SpherePatch, TorusPatch, Vec3};
 use std::f64::consts::FRAC_PI_2;
@@ -135,12 +135,10 @@ pub fn torus_torus(roller: &TorusPatch, flange: &TorusPatch, pairing: Pairing) -
 /// advanced by rotating (cos β, sin β) ([`crate::geometry::circle_fast::rotate`]).
 pub fn torus_cone(torus: &TorusPatch, cone: &ConePatch) -> Contact {
     let e = torus.axis;
-    let u = any_perpendicular(&e);
-    let v = e.cross(&u);
+    let (u, v) = basis(&e);
     let big = torus.major_radius;
     let a = cone.axis;
-    let e1 = any_perpendicular(&a);
-    let e2 = a.cross(&e1);
+    let (e1, e2) = basis(&a);
     let w = torus.origin - cone.origin;
     // Sinusoids g(β) = g₀ + g_c cos β + g_s sin β of the tube-centre point's coordinates.
     let sinusoid = |k: &Vec3| (k.dot(&w), big * k.dot(&u), big * k.dot(&v));
@@ -172,11 +170,15 @@ pub fn torus_cone(torus: &TorusPatch, cone: &ConePatch) -> Contact {
     // Safeguarded Newton on the offset t of β from the estimate, t ∈ [−π/2, π/2].
     let (mut lo, mut hi) = (-FRAC_PI_2, FRAC_PI_2);
     let (mut t, mut c, mut sn) = (0.0, c0, s0);
+    let mut previous = f64::INFINITY;
     for _ in 0..100 {
         let (h, dh) = slope(c, sn);
         let step = h / dh;
-        if dh > 0.0 && step.abs() <= 1e-9 {
-            // Quadratic convergence: the error after this step is O(step²).
+        // Quadratic convergence: the error after this step is about K·step², with
+        // K ≈ |step|/|previous step|²; done when that is below 1e-18 rad (or the step
+        // itself below 1e-9).
+        let a = step.abs();
+        if dh > 0.0 && (a <= 1e-9 || converged(a, previous, 1e-18)) {
             (c, sn) = rotate(c, sn, -step);
             break;
         }
@@ -187,8 +189,10 @@ pub fn torus_cone(torus: &TorusPatch, cone: &ConePatch) -> Contact {
         }
         let newton = t - step;
         let target = if dh > 0.0 && newton >= lo && newton <= hi {
+            previous = a;
             newton
         } else {
+            previous = f64::INFINITY;
             0.5 * (lo + hi)
         };
         (c, sn) = if (target - t).abs() <= 0.4 {
@@ -217,6 +221,19 @@ pub fn torus_cone(torus: &TorusPatch, cone: &ConePatch) -> Contact {
     );
     contact.multiple = parallel;
     contact
+}
+
+/// Two unit vectors completing the unit `n` to a right-handed orthonormal frame, without
+/// square root (Duff et al., *Building an orthonormal basis, revisited*, JCGT 2017).
+#[inline]
+fn basis(n: &Vec3) -> (Vec3, Vec3) {
+    let sign = 1f64.copysign(n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    (
+        Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        Vec3::new(b, sign + n.y * n.y * a, -n.y),
+    )
 }
 
 /// Two spheres (c₁, r₁) on the roller and (c₂, r₂) on the flange: n = (c₁ − c₂)/|c₁ − c₂|,

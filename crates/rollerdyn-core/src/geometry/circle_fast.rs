@@ -256,6 +256,14 @@ pub(crate) fn rotate(c: f64, s: f64, h: f64) -> (f64, f64) {
     (c * ch - s * sh, s * ch + c * sh)
 }
 
+/// True if, after a Newton step of size `a` following one of size `previous`, the error
+/// K·a² (K ≈ a/previous², quadratic convergence) is below `tol`; only trusted in the
+/// asymptotic regime (previous ≤ 1e-2 and a contraction a/previous ≤ 1e-3).
+#[inline]
+pub(crate) fn converged(a: f64, previous: f64, tol: f64) -> bool {
+    previous <= 1e-2 && a <= 1e-3 * previous && a * a * a <= tol * previous * previous
+}
+
 /// g(t) = offset + cos·cos t + sin·sin t.
 #[derive(Debug, Clone, Copy)]
 struct Sinusoid {
@@ -491,6 +499,7 @@ impl Problem {
     /// bisection (`rtsafe`). Returns (t, cos t, sin t, F).
     fn bracketed_min(&self, start: &Sample, mut lo: f64, mut hi: f64) -> (f64, f64, f64, f64) {
         let (mut t, mut c, mut s) = (start.t, start.c, start.s);
+        let mut previous = f64::INFINITY;
         for _ in 0..80 {
             let (_, f1, f2) = self.derivs(c, s);
             if f1 == 0.0 || !f1.is_finite() {
@@ -510,11 +519,14 @@ impl Problem {
             let step = target - t;
             (c, s) = rotate(c, s, step);
             t = target;
-            // After a Newton step of h the error is O(h²): done below 1e-8 (as Eberly's
-            // polish); bisection stops on a bracket at rounding level.
-            if (is_newton && step.abs() < 1e-8) || hi - lo <= 1e-15 {
+            // After a Newton step h the error is about K·h², K ≈ |h|/|previous h|²: done
+            // when that is below 1e-16 (or h below 1e-8, as Eberly's polish); bisection
+            // stops on a bracket at rounding level.
+            let a = step.abs();
+            if (is_newton && (a < 1e-8 || converged(a, previous, 1e-16))) || hi - lo <= 1e-15 {
                 break;
             }
+            previous = if is_newton { a } else { f64::INFINITY };
         }
         let m = (c * c + s * s).sqrt();
         let p = self.sample(t, c / m, s / m);
