@@ -7,6 +7,7 @@ All inputs and outputs are SI unless a column says otherwise.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Annotated
 
@@ -147,6 +148,20 @@ def bench(
             help="mbs: simulated end time in s (default: the configuration's, 1.288 s for B1).",
         ),
     ] = None,
+    sweep_dt_max: Annotated[
+        str | None,
+        typer.Option(
+            "--sweep-dt-max",
+            help="mbs: the runtime study of the paper's fig. 14. Comma-separated maximum "
+            "step sizes Δt_max in s (e.g. 1e-5,3e-5,1e-4); each is run with both detectors "
+            "to --t-end, and the table and a plot (runtime over Δt_max) are written to "
+            "--output.",
+        ),
+    ] = None,
+    output: Annotated[
+        Path,
+        typer.Option("--output", "-o", help="mbs --sweep-dt-max: directory for table and plot."),
+    ] = Path("runtime-study"),
     config: ConfigOption = None,
 ) -> None:
     """Time the hot paths on one core and print tables (times in ns per evaluation).
@@ -182,27 +197,101 @@ def bench(
         console.print(table)
     if target in ("contact", "all"):
         _bench_contact(cfg, steps)
-    if target == "mbs":
+    if target == "mbs" and sweep_dt_max is not None:
+        try:
+            values = [float(v) for v in sweep_dt_max.split(",") if v.strip()]
+        except ValueError:
+            values = []
+        if not values or not all(v > 0.0 and math.isfinite(v) for v in values):
+            console.print(
+                f"[red]--sweep-dt-max = {sweep_dt_max!r}: must be comma-separated positive "
+                "times in s, e.g. 1e-5,3e-5,1e-4[/red]"
+            )
+            raise typer.Exit(2)
+        _runtime_study(cfg, t_end, sorted(values), output)
+    elif target == "mbs":
         _bench_mbs(cfg, t_end)
 
 
-def _bench_mbs(cfg, t_end: float | None) -> None:
+def _mbs_runs(cfg, t_end: float | None, label: str = "") -> list:
+    """(detector, attrs) of one whole run with each detector."""
     from .simulation import SimulationError, simulate
 
     rows = []
     for detector in ("semi-analytical", "gradient"):
-        with console.status(f"running {cfg.name} with the {detector} detector..."):
+        with console.status(f"running {cfg.name}{label} with the {detector} detector..."):
             try:
                 ds = simulate(cfg, t_end=t_end, detector=detector)
             except SimulationError as err:
                 ds = err.dataset
         rows.append((detector, ds.attrs))
+    return rows
+
+
+def _runtime_study(cfg, t_end: float | None, dt_max_values: list, out: Path) -> None:
+    """The paper's fig. 14: wall time of whole runs over Δt_max, both detectors."""
+    import pandas as pd
+
+    from .plots import plot_runtime_study
+
+    records = []
+    for dt_max in dt_max_values:
+        solver = cfg.solver.model_copy(update={"dt_max": dt_max})
+        variant = cfg.model_copy(update={"solver": solver})
+        for detector, a in _mbs_runs(variant, t_end, f" (dt_max = {dt_max:g} s)"):
+            records.append(
+                {
+                    "dt_max_s": dt_max,
+                    "detector": detector,
+                    "wall_s": a["stats_total_seconds"],
+                    "t_reached_s": a["final_time_s"],
+                    "completed": int(a["completed"]),
+                    "steps": a["stats_steps"],
+                    "rejected_steps": a.get("stats_error_test_failures", 0),
+                    "rhs": a["stats_rhs_evaluations"],
+                    "jacobians": a["stats_jacobian_evaluations"],
+                    "gradient_fallbacks": a.get("stats_gradient_fallbacks", 0),
+                }
+            )
+    frame = pd.DataFrame.from_records(records)
+    out.mkdir(parents=True, exist_ok=True)
+    frame.to_csv(out / "runtime_study.csv", index=False)
+    paths = plot_runtime_study(frame, out, title=f"{cfg.name}: runtime over Δt_max")
+    table = Table(title=f"{cfg.name}: runtime study (paper fig. 14), one core")
+    cols = ("Δt_max [s]", "detector", "wall [s]", "t reached [s]", "steps", "rejected", "fallbacks")
+    for col in cols:
+        table.add_column(col)
+    for r in records:
+        table.add_row(
+            f"{r['dt_max_s']:g}",
+            r["detector"],
+            f"{r['wall_s']:.2f}",
+            f"{r['t_reached_s']:.4g}",
+            str(r["steps"]),
+            str(r["rejected_steps"]),
+            str(r["gradient_fallbacks"]),
+        )
+    console.print(table)
+    pivot = frame.pivot(index="dt_max_s", columns="detector", values=["wall_s", "t_reached_s"])
+    for dt_max, row in pivot.iterrows():
+        reached = row["t_reached_s"]
+        if reached["semi-analytical"] != reached["gradient"]:
+            console.print(f"Δt_max = {dt_max:g} s: the runs ended at different times")
+            continue
+        saving = 100 * (1 - row["wall_s"]["semi-analytical"] / row["wall_s"]["gradient"])
+        console.print(f"Δt_max = {dt_max:g} s: semi-analytical {saving:.0f} % below gradient")
+    console.print(f"wrote {out / 'runtime_study.csv'} and " + ", ".join(str(p) for p in paths))
+
+
+def _bench_mbs(cfg, t_end: float | None) -> None:
+    rows = _mbs_runs(cfg, t_end)
     reached = rows[0][1]["final_time_s"]
     table = Table(title=f"{cfg.name}: whole run to t = {reached:.4g} s, one core")
     cols = (
         "detector",
         "wall [s]",
         "steps",
+        "rejected",
         "rhs",
         "Jacobians",
         "detection [s]",
@@ -210,6 +299,7 @@ def _bench_mbs(cfg, t_end: float | None) -> None:
         "flange forces [s]",
         "in Jacobians [s]",
         "rest [s]",
+        "gradient fallbacks",
     )
     for col in cols:
         table.add_column(col)
@@ -219,6 +309,7 @@ def _bench_mbs(cfg, t_end: float | None) -> None:
             detector,
             f"{a['stats_total_seconds']:.2f}",
             str(a["stats_steps"]),
+            str(a.get("stats_error_test_failures", 0)),
             str(a["stats_rhs_evaluations"]),
             str(a["stats_jacobian_evaluations"]),
             f"{a['stats_detection_seconds']:.2f}",
@@ -226,6 +317,7 @@ def _bench_mbs(cfg, t_end: float | None) -> None:
             f"{a['stats_flange_force_seconds']:.2f}",
             f"{a['stats_jacobian_seconds']:.2f}",
             f"{rest:.2f}",
+            str(a.get("stats_gradient_fallbacks", 0)),
         )
     console.print(table)
     semi, grad = rows[0][1]["stats_total_seconds"], rows[1][1]["stats_total_seconds"]
@@ -430,7 +522,8 @@ def run(
     st = ds.attrs
     console.print(
         f"wrote {output}: {ds.sizes['time']} outputs to t = {st['final_time_s']:.6g} s; "
-        f"{st['stats_steps']} steps, {st['stats_rhs_evaluations']} right-hand sides, "
+        f"{st['stats_steps']} steps ({st.get('stats_error_test_failures', 0)} rejected), "
+        f"{st['stats_rhs_evaluations']} right-hand sides, "
         f"{st['stats_jacobian_evaluations']} Jacobians, {st['stats_total_seconds']:.1f} s wall"
     )
     if status:

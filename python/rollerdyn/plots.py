@@ -105,3 +105,31 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
     for _, ds in sets:
         ds.close()
     return written
+
+
+def plot_runtime_study(frame, out: Path, title: str = "runtime over Δt_max") -> list[Path]:
+    """The paper's fig. 14: wall time of whole runs over the maximum step size Δt_max, one
+    line per detector (``frame``: columns dt_max_s, detector, wall_s); PNG and SVG."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for detector, rows in frame.groupby("detector"):
+        rows = rows.sort_values("dt_max_s")
+        ax.plot(rows.dt_max_s, rows.wall_s, marker="o", label=detector)
+    ax.set(
+        xscale="log",
+        xlabel="maximum step size Δt_max [s]",
+        ylabel="wall time of the run [s]",
+        title=f"fig. 14: {title}",
+    )
+    ax.legend()
+    written = []
+    for ext in ("png", "svg"):
+        f = out / f"fig14_runtime_over_dt_max.{ext}"
+        fig.savefig(f, dpi=120, bbox_inches="tight")
+        written.append(f)
+    plt.close(fig)
+    return written

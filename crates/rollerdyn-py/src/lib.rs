@@ -1385,11 +1385,15 @@ mod simulation {
         stats.set_item("jacobian_seconds", s.jacobian_seconds)?;
         stats.set_item("total_seconds", s.total_seconds)?;
         stats.set_item("t_reached", s.t_reached)?;
+        stats.set_item("error_test_failures", s.error_test_failures)?;
+        stats.set_item("newton_failures", s.newton_failures)?;
+        stats.set_item("newton_iterations", s.newton_iterations)?;
         let p = &o.profile;
         stats.set_item("detection_seconds", p.detection)?;
         stats.set_item("line_contact_seconds", p.line_contacts)?;
         stats.set_item("flange_force_seconds", p.flange_forces)?;
         stats.set_item("detections", p.detections)?;
+        stats.set_item("gradient_fallbacks", p.gradient_fallbacks)?;
         d.set_item("stats", stats)?;
         d.set_item("final_state", PyList::new(py, &o.final_state)?)?;
         d.set_item("final_time", o.final_time)?;

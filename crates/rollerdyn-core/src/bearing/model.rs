@@ -113,6 +113,9 @@ pub struct Profile {
     pub flange_forces: f64,
     /// Detections made.
     pub detections: usize,
+    /// Gradient method: pairings that converged from neither the warm nor the cold start,
+    /// or only off their patch, and took the valid semi-analytical solution instead.
+    pub gradient_fallbacks: usize,
 }
 
 /// The bearing model (immutable parameters plus the gradient method's warm starts).
@@ -508,10 +511,26 @@ impl BearingModel {
                 // Only converged solutions with opposite outward normals count and become
                 // the next warm start; after a failure (no convergence, or a wrong stationary
                 // point, paper fig. 2) the last good solution stays the warm start.
+                // In runs, Newton also lands on stationary points off the patch where the
+                // true contact is on it (torus–torus has several), and the lost contact
+                // lets the roller pass through the flange. So a pairing that converged from
+                // neither start, or only off its patch, takes the semi-analytical solution
+                // of that pairing when that one counts; each is counted in
+                // `Profile::gradient_fallbacks` and reported with the run.
+                let mut semi: Option<[Contact; 6]> = None;
                 for (k, o) in outcomes.iter().enumerate() {
-                    if o.converged && o.opposite_normals {
+                    let converged = o.converged && o.opposite_normals;
+                    if converged {
                         memory[slot][k] = Some(o.unknowns);
-                        contacts.push(o.contact);
+                        if o.contact.valid {
+                            contacts.push(o.contact);
+                            continue;
+                        }
+                    }
+                    let all = semi.get_or_insert_with(|| semi_analytical::detect(end, flange));
+                    if all[k].valid {
+                        contacts.push(all[k]);
+                        self.spend(|p| p.gradient_fallbacks += 1);
                     }
                 }
                 deepest(&contacts)

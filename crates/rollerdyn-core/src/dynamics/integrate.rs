@@ -75,6 +75,12 @@ pub struct Stats {
     pub t_reached: f64,
     /// The last step size [s].
     pub last_step: f64,
+    /// Steps rejected by the local error test (diffsol's statistics).
+    pub error_test_failures: usize,
+    /// Newton convergence failures (each followed by a Jacobian update or a smaller step).
+    pub newton_failures: usize,
+    /// Newton iterations over all stages and steps.
+    pub newton_iterations: usize,
 }
 
 /// Why an integration stopped early.
@@ -221,7 +227,14 @@ pub fn integrate<S: OdeSystem>(
                 return Err(fail(t, e.to_string(), y, &counters));
             }
         };
-        counters.borrow_mut().stats.steps += 1;
+        {
+            let solver_stats = on!(&solver, s => s.get_statistics().clone());
+            let stats = &mut counters.borrow_mut().stats;
+            stats.steps += 1;
+            stats.error_test_failures = solver_stats.number_of_error_test_failures;
+            stats.newton_failures = solver_stats.number_of_nonlinear_solver_fails;
+            stats.newton_iterations = solver_stats.number_of_nonlinear_solver_iterations;
+        }
         let t = on!(&solver, s => s.state().t);
         let h = on!(&solver, s => s.state().h);
         while next_output(k) <= t + 1e-12 * t.abs().max(1.0) && next_output(k - 1) < t_end {
