@@ -61,3 +61,22 @@ def test_bench_contact_compares_the_methods():
 def test_bench_refuses_unknown_target():
     result = RUNNER.invoke(app, ["bench", "everything"])
     assert result.exit_code == 2
+
+
+def test_runtime_study_writes_table_csv_and_plot(tmp_path):
+    """bench mbs --sweep-dt-max (the paper's fig. 14): both detectors at each dt_max, a CSV
+    with one row per run and the plot; a bad list is refused with the rule named."""
+    import pandas as pd
+
+    out = tmp_path / "rt"
+    args = ["bench", "mbs", "--t-end", "0.0005", "--sweep-dt-max", "1e-5,1e-4", "-o", str(out)]
+    result = RUNNER.invoke(app, args)
+    assert result.exit_code == 0, result.output
+    frame = pd.read_csv(out / "runtime_study.csv")
+    assert len(frame) == 4
+    assert set(frame.detector) == {"semi-analytical", "gradient"}
+    assert set(frame.dt_max_s) == {1e-5, 1e-4}
+    assert (frame.t_reached_s == 0.0005).all() and (frame.wall_s > 0).all()
+    assert (out / "fig14_runtime_over_dt_max.png").is_file()
+    bad = RUNNER.invoke(app, ["bench", "mbs", "--sweep-dt-max", "1e-5,fast"])
+    assert bad.exit_code == 2 and "comma-separated positive" in bad.output
