@@ -5,7 +5,8 @@
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use rollerdyn_core::contact::benchmark::Trajectory;
-use rollerdyn_core::contact::{gradient, pruning, semi_analytical};
+use rollerdyn_core::contact::{gradient, pruning, semi_analytical, Pairing};
+use rollerdyn_core::geometry::circle::{circle_circle_distance, Circle3};
 use rollerdyn_core::geometry::end_flange::{Flange, FlangePlacement, FlangeShape, RollerEnd};
 use rollerdyn_core::geometry::primitives::Vec3;
 use rollerdyn_core::geometry::roller::RollerShape;
@@ -84,15 +85,59 @@ fn detection(c: &mut Criterion) {
     });
     c.bench_function("torus-torus (rim)", |b| {
         b.iter(|| {
-            semi_analytical::torus_torus(
-                black_box(&end.torus),
-                &flange.rim,
-                rollerdyn_core::contact::Pairing::TorusRim,
-            )
+            semi_analytical::torus_torus(black_box(&end.torus), &flange.rim, Pairing::TorusRim)
+        })
+    });
+    c.bench_function("torus-torus (root)", |b| {
+        b.iter(|| {
+            semi_analytical::torus_torus(black_box(&end.torus), &flange.root, Pairing::TorusRoot)
         })
     });
     c.bench_function("sphere-cone", |b| {
         b.iter(|| semi_analytical::sphere_cone(black_box(&end.sphere), &flange.cone))
+    });
+    c.bench_function("sphere-torus (root)", |b| {
+        b.iter(|| {
+            semi_analytical::sphere_torus(black_box(&end.sphere), &flange.root, Pairing::SphereRoot)
+        })
+    });
+    // Per pairing along the whole trajectory (the single poses above are one point of it).
+    c.bench_function("torus-cone, trajectory", |b| {
+        b.iter(|| {
+            k = (k + 1) % n;
+            semi_analytical::torus_cone(black_box(&ends[k].torus), &flange.cone)
+        })
+    });
+    c.bench_function("torus-torus (root + rim), trajectory", |b| {
+        b.iter(|| {
+            k = (k + 1) % n;
+            let t = black_box(&ends[k].torus);
+            (
+                semi_analytical::torus_torus(t, &flange.root, Pairing::TorusRoot),
+                semi_analytical::torus_torus(t, &flange.rim, Pairing::TorusRim),
+            )
+        })
+    });
+    c.bench_function("Eberly circle-circle (root + rim), trajectory", |b| {
+        b.iter(|| {
+            k = (k + 1) % n;
+            let t = black_box(&ends[k].torus);
+            let edge = Circle3 {
+                center: t.origin,
+                normal: t.axis,
+                radius: t.major_radius,
+            };
+            [flange.root, flange.rim].map(|f| {
+                circle_circle_distance(
+                    &edge,
+                    &Circle3 {
+                        center: f.origin,
+                        normal: f.axis,
+                        radius: f.major_radius,
+                    },
+                )
+            })
+        })
     });
 }
 

@@ -156,15 +156,27 @@ pub fn torus_cone(torus: &TorusPatch, cone: &ConePatch) -> Contact {
         let rpp = (xp * xp + yp * yp + x * xpp + y * ypp - rp * rp) * inv;
         (ns * sp + nr * rp, ns * spp + nr * rpp)
     };
-    // Plane model: the distance falls fastest along −n₀ projected on the circle's plane.
-    let n0 = cone.foot(&torus.origin).normal;
-    let w0 = -(n0 - e * e.dot(&n0));
-    let parallel = w0.norm() <= 1e-14;
+    // Plane model: the distance falls fastest along −n₀ projected on the circle's plane,
+    // n₀ = n_s·a + n_ρ·e_ρ₀ the cone's normal in the torus centre's meridian plane; its
+    // components along u and v follow from the sinusoids' coefficients (g_c = R k·u,
+    // g_s = R k·v).
+    let rho0 = (sx.0 * sx.0 + sy.0 * sy.0).sqrt();
+    let (wu, wv) = if rho0 > 1e-300 {
+        let k = nr / rho0;
+        (
+            -(ns * ss.1 + k * (sx.0 * sx.1 + sy.0 * sy.1)) / big,
+            -(ns * ss.2 + k * (sx.0 * sx.2 + sy.0 * sy.2)) / big,
+        )
+    } else {
+        // Torus centre on the cone's axis: the meridian plane as `ConePatch::foot` picks it.
+        let n0 = cone.foot(&torus.origin).normal;
+        (-n0.dot(&u), -n0.dot(&v))
+    };
+    let m = (wu * wu + wv * wv).sqrt();
+    let parallel = m <= 1e-14;
     let (c0, s0) = if parallel {
         (1.0, 0.0) // circle parallel to the face: every β is a minimum of the plane model
     } else {
-        let (wu, wv) = (w0.dot(&u), w0.dot(&v));
-        let m = (wu * wu + wv * wv).sqrt();
         (wu / m, wv / m)
     };
     // Safeguarded Newton on the offset t of β from the estimate, t ∈ [−π/2, π/2].
