@@ -6,7 +6,8 @@
 //! * torus–cone by the one-dimensional extremum of the penetration over the torus angle
 //!   (Gupta 1984), bracketed on the half circle around the plane-model estimate so that it
 //!   cannot settle on the wrong extremum;
-//! * torus–torus by the minimum distance of the two tube-centre circles (Eberly, see
+//! * torus–torus by the minimum distance of the two tube-centre circles (the certified
+//!   fast path of [`crate::geometry::circle_fast`], falling back to Eberly's solver,
 //!   [`crate::geometry::circle`]) followed by sphere–sphere with the two tube radii.
 //!
 //! Every function returns a [`Contact`] whether or not the points lie on their patches;
@@ -89,10 +90,11 @@ pub fn sphere_torus(sphere: &SpherePatch, torus: &TorusPatch, pairing: Pairing) 
     )
 }
 
-/// Roller edge torus against a flange torus: Eberly's closest points of the two
-/// tube-centre circles, then sphere–sphere with the tube radii. Where the circles have a
-/// continuum of closest pairs (coaxial), the representative pair Eberly's solver returns
-/// is used (every pair gives the same penetration).
+/// Roller edge torus against a flange torus: the closest points of the two tube-centre
+/// circles ([`circle_circle_distance_fast`]: a certified 1-D search, Eberly's solver where
+/// the certificate fails, with the same result), then sphere–sphere with the tube radii.
+/// Where the circles have a continuum of closest pairs (coaxial), the representative pair
+/// Eberly's solver returns is used (every pair gives the same penetration).
 pub fn torus_torus(roller: &TorusPatch, flange: &TorusPatch, pairing: Pairing) -> Contact {
     let c1 = Circle3 {
         center: roller.origin,
