@@ -134,7 +134,7 @@ pub fn torus_torus(roller: &TorusPatch, flange: &TorusPatch, pairing: Pairing) -
 /// ρ = √(X² + Y²) and (n_s, n_ρ) the cone's meridian normal, d = n_s·s + n_ρ·ρ + const,
 /// so h = d' = n_s s' + n_ρ ρ' with ρ' = (XX' + YY')/ρ, and h' = n_s s'' + n_ρ ρ'' with
 /// ρ'' = (X'² + Y'² + XX'' + YY'' − ρ'²)/ρ (the same h and h' as above). The angle is
-/// advanced by rotating (cos β, sin β) ([`crate::geometry::circle_fast::rotate`]).
+/// advanced by rotating (cos β, sin β) with a short Taylor series (`circle_fast::rotate`).
 pub fn torus_cone(torus: &TorusPatch, cone: &ConePatch) -> Contact {
     let e = torus.axis;
     let (u, v) = basis(&e);
