@@ -234,12 +234,14 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 2000, .. ProptestConfig::default() })]
 
     /// Pruning misses no contact: every pairing it skips has no valid overlap in the
-    /// unpruned detection, and the composite's deepest overlapping contact is unchanged.
+    /// unpruned detection, and the composite's deepest overlapping contact is unchanged
+    /// (for penetrations up to `pruning::PENETRATION_BOUND`, which the poses stay within).
     #[test]
     fn pruning_misses_no_contact(
         (end, flange) in b1_pose(),
     ) {
         let full = semi_analytical::detect(&end, &flange);
+        prop_assume!(full.iter().all(|c| !(c.valid && c.penetration > pruning::PENETRATION_BOUND)));
         let (pruned, _) = pruning::detect(&end, &flange);
         for (c, p) in full.iter().zip(&pruned) {
             match p {
