@@ -183,7 +183,7 @@ pub fn run(
                 diagnose(model, failure.time, &failure.state)
             )),
             records,
-            stats: failure.stats,
+            stats: *failure.stats,
             profile: model.profile(),
             final_state: last.1,
             final_time: last.0,

@@ -90,8 +90,8 @@ pub struct Failure {
     pub time: f64,
     /// The solver's message.
     pub message: String,
-    /// Counters until the failure.
-    pub stats: Stats,
+    /// Counters until the failure (boxed: keeps the error small).
+    pub stats: Box<Stats>,
     /// The last accepted state.
     pub state: Vec<f64>,
 }
@@ -167,7 +167,7 @@ pub fn integrate<S: OdeSystem>(
         Failure {
             time,
             message,
-            stats,
+            stats: Box::new(stats),
             state,
         }
     };
