@@ -9,6 +9,7 @@ the validation cases (:mod:`rollerdyn.validation`), runs of the dynamic model
 """
 
 from .config import BearingConfig, ConfigError, load_config, parse_config
+from .report import report  # the function; its module: from rollerdyn.report import ...
 from .sweep import sweep  # the function; its module: from rollerdyn.sweep import ...
 
 
@@ -24,6 +25,7 @@ __all__ = [
     "ConfigError",
     "load_config",
     "parse_config",
+    "report",
     "simulate",
     "sweep",
     "__version__",

@@ -559,3 +559,10 @@ def plot(
 from .sweep import sweep_command  # noqa: E402
 
 app.command("sweep")(sweep_command)
+
+
+# --------------------------------------------------------------------------- report
+
+from .report import report_command  # noqa: E402
+
+app.command("report")(report_command)

@@ -1,0 +1,249 @@
+"""The HTML report (issue 5, item 2): `rollerdyn report` on a short real run, opened in a
+real headless Chromium (Debian's `chromium`).
+
+The run is a short rolling B1 variant (loads ramped over 5 ms, the speed over the next
+3 ms, 10 ms simulated; about 15 s). Chromium must be installed when CI=true (scripts/test.sh
+installs it); elsewhere the browser tests are skipped without it.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+from test_dynamics import variant
+from typer.testing import CliRunner
+
+import rollerdyn
+from rollerdyn.cli import app
+from rollerdyn.report import MAX_FRAMES, animation_figure, pairing_shares, summary
+from rollerdyn.simulation import simulate, write
+
+RUNNER = CliRunner()
+
+ROLLING = {
+    "operating.gravity": "0 m/s^2",
+    "operating.load_ramp.end": "5 ms",
+    "operating.speed_ramp.start": "5 ms",
+    "operating.speed_ramp.end": "8 ms",
+    "operating.end_time": "10 ms",
+    "solver.output_interval": "0.25 ms",
+}
+
+# Records every console.error, uncaught exception and unhandled promise rejection of the
+# page in an attribute of <html>, so that --dump-dom shows them (Chromium's own log prints
+# every console message at level INFO, whatever its kind).
+ERROR_HOOK = """<script>
+(function () {
+  var errors = [];
+  function note(text) {
+    errors.push(String(text));
+    document.documentElement.setAttribute('data-errors', JSON.stringify(errors));
+  }
+  document.documentElement.setAttribute('data-errors', '[]');
+  window.addEventListener('error', function (e) { note('error: ' + e.message); });
+  window.addEventListener('unhandledrejection', function (e) { note('rejection: ' + e.reason); });
+  var original = console.error;
+  console.error = function () {
+    note('console.error: ' + Array.prototype.join.call(arguments, ' '));
+    return original.apply(console, arguments);
+  };
+})();
+</script>"""
+
+
+@pytest.fixture(scope="module")
+def result(tmp_path_factory) -> Path:
+    ds = simulate(variant(**ROLLING))
+    path = tmp_path_factory.mktemp("run") / "rolling.nc"
+    write(ds, path)
+    return path
+
+
+@pytest.fixture(scope="module")
+def page(result, tmp_path_factory) -> Path:
+    """The report of the run and of a copy of it (two results in one page), via the CLI."""
+    second = result.with_name("rolling_copy.nc")
+    shutil.copyfile(result, second)
+    out = tmp_path_factory.mktemp("report") / "report.html"
+    res = RUNNER.invoke(app, ["report", str(result), str(second), "-o", str(out)])
+    assert res.exit_code == 0, res.output
+    assert "wrote" in res.output and out.is_file()
+    return out
+
+
+def chromium() -> str:
+    exe = shutil.which("chromium") or shutil.which("chromium-browser")
+    if exe is None:
+        message = "chromium is not installed (scripts/test.sh installs Debian's chromium)"
+        if os.environ.get("CI", "").lower() == "true":
+            pytest.fail(message)
+        pytest.skip(message)
+    return exe
+
+
+def run_chromium(args: list[str], profile: Path) -> subprocess.CompletedProcess:
+    cmd = [
+        chromium(),
+        "--headless=new",
+        "--disable-gpu",
+        "--no-sandbox",
+        "--disable-dev-shm-usage",
+        "--no-first-run",
+        "--hide-scrollbars",
+        f"--user-data-dir={profile}",
+        "--enable-logging=stderr",
+        "--v=0",
+        "--virtual-time-budget=5000",
+        *args,
+    ]
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=120)
+
+
+def console_lines(stderr: str) -> list[str]:
+    return [line for line in stderr.splitlines() if "CONSOLE" in line or "Uncaught" in line]
+
+
+def test_page_is_self_contained_and_holds_every_part(page, result):
+    text = page.read_text(encoding="utf-8")
+    # No external script, style or image: everything inline.
+    assert not re.search(r"<script[^>]*\ssrc=", text)
+    assert not re.search(r"<link[^>]*\shref=", text)
+    assert not re.search(r"<img[^>]*\ssrc=[\"']?(https?:)?//", text)
+    assert text.count("<script") >= 10
+    # plotly.js inline exactly once.
+    assert text.count("plotly.js v") == 1
+    assert len(text) > 3_000_000
+    # plotly writes its labels in JSON with \uXXXX escapes (also for '/' and '<').
+    plain = re.sub(r"\\u([0-9a-fA-F]{4})", lambda m: chr(int(m.group(1), 16)), text)
+    for heading in ("Summary", "Inputs", "Figures of the paper", "Roller set over time"):
+        assert heading in text
+    for words in (
+        "mean bearing frictional torque, last 20 % of the run",
+        "max. roller-race load",
+        "max. roller end / flange normal force",
+        "max. |slide-to-roll ratio| at the inner race",
+        "fig. 10",
+        "fig. 11",
+        "fig. 12",
+        "fig. 13",
+        "fig. 8",
+        "fig. 9",
+        "bearing frictional torque [N·m]",
+        "roller azimuth ψ [deg]",
+        "inner ring speed [rad/s]",
+        "tr-bdf2",
+        "semi-analytical",
+        "holds no configuration text",
+    ):
+        assert words in plain, words
+    assert "rolling (F_a = 1000 N)" in text and "rolling_copy (F_a = 1000 N)" in text
+
+
+def test_page_renders_in_headless_chromium_without_errors(page, tmp_path):
+    checked = tmp_path / "checked.html"
+    text = page.read_text(encoding="utf-8")
+    checked.write_text(text.replace("<head>", "<head>" + ERROR_HOOK, 1), encoding="utf-8")
+    done = run_chromium(["--dump-dom", checked.as_uri()], tmp_path / "profile")
+    assert done.returncode == 0, done.stderr[-3000:]
+    dom = done.stdout
+    # The scripts ran: plotly built a plot container in each of the 10 figures (inputs,
+    # figs. 10, 11, 8, 9, 12, 13, loads over azimuth, one animation per result) and the
+    # page's last script counted them.
+    assert len(re.findall(r'class="plot-container', dom)) == 10
+    assert 'data-plots="10"' in dom
+    assert len(re.findall(r"class=\"slider-container", dom)) == 2  # one per animation
+    assert "updatemenu-button" in dom  # play / pause
+    errors = re.search(r'data-errors="([^"]*)"', dom)
+    assert errors is not None, "the error hook did not run"
+    assert json.loads(errors.group(1).replace("&quot;", '"')) == []
+    bad = [line for line in console_lines(done.stderr) if "rror" in line or "Uncaught" in line]
+    assert bad == []
+
+
+def test_screenshot_of_the_page_is_not_blank(page, tmp_path):
+    import matplotlib.image as mpimg
+
+    shot = tmp_path / "shot.png"
+    done = run_chromium(
+        [f"--screenshot={shot}", "--window-size=1280,2400", page.as_uri()], tmp_path / "p"
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert shot.is_file() and shot.stat().st_size > 10_000
+    img = mpimg.imread(shot)
+    assert img.shape[:2] == (2400, 1280)
+    rgb = (img[..., :3] * 255).round().astype(np.uint32)
+    packed = (rgb[..., 0] << 16) | (rgb[..., 1] << 8) | rgb[..., 2]
+    colours, counts = np.unique(packed, return_counts=True)
+    assert colours.size > 200, colours.size  # text, tables, lines of the plots
+    assert counts.max() / packed.size < 0.9  # not one flat background
+    bad = [line for line in console_lines(done.stderr) if "rror" in line or "Uncaught" in line]
+    assert bad == []
+
+
+def test_summary_matches_the_data(result):
+    with xr.open_dataset(result, engine="h5netcdf") as ds:
+        ds = ds.load()
+    s = summary(ds)
+    t = ds.time.values
+    last = t >= 0.8 * t[-1]
+    assert s["mean_torque"] == pytest.approx(float(ds.frictional_torque[last].mean()))
+    assert s["mean_torque"] > 0.0  # rolling at full speed: friction resists the rotation
+    race = max(float(ds.inner_normal_force.max()), float(ds.outer_normal_force.max()))
+    assert s["max_race_load"] == pytest.approx(race)
+    # The radial load of 5000 N is carried by a few rollers: the largest load is between
+    # the mean over the rollers in the load zone and the whole load.
+    assert 5000 / 17 < s["max_race_load"] < 5000
+    assert s["max_flange_force"] == pytest.approx(float(ds.flange_normal_force.max()))
+    assert s["max_flange_force"] > 0.0  # the axial load of 1000 N goes through flanges
+    assert s["final_time"] == pytest.approx(0.01)
+    assert s["steps"][0] == ds.attrs["stats_steps"] > 0
+    assert s["status"] == "completed"
+    for ring in ("inner", "outer"):
+        shares = pairing_shares(ds, ring)
+        assert sum(shares.values()) == pytest.approx(1.0)
+        assert shares["none"] < 1.0  # some roller end touched a flange
+
+
+def test_animation_is_subsampled_to_at_most_max_frames(result):
+    with xr.open_dataset(result, engine="h5netcdf") as ds:
+        ds = ds.load()
+    fig, n = animation_figure(ds, max_frames=7)
+    assert n == len(fig.frames) == 7
+    assert len(fig.layout.sliders[0].steps) == 7
+    # Every output when there are fewer than the default limit.
+    fig, n = animation_figure(ds)
+    assert n == ds.sizes["time"] <= MAX_FRAMES
+
+
+def test_python_api_writes_the_page(result, tmp_path):
+    out = rollerdyn.report([result], tmp_path / "sub" / "one.html", max_frames=5)
+    assert out == tmp_path / "sub" / "one.html" and out.is_file()
+    text = out.read_text(encoding="utf-8")
+    assert "(5 frames of" in text and text.count("plotly.js v") == 1
+
+
+def test_missing_or_foreign_files_exit_with_status_2_and_a_clear_message(tmp_path):
+    missing = RUNNER.invoke(app, ["report", str(tmp_path / "none.nc"), "-o", "x.html"])
+    assert missing.exit_code == 2 and "result file not found" in missing.output
+    assert isinstance(missing.exception, SystemExit)  # no traceback
+    garbage = tmp_path / "garbage.nc"
+    garbage.write_text("not a netCDF file")
+    res = RUNNER.invoke(app, ["report", str(garbage), "-o", str(tmp_path / "x.html")])
+    assert res.exit_code == 2 and "not a rollerdyn result" in res.output
+    assert isinstance(res.exception, SystemExit)
+    foreign = tmp_path / "foreign.nc"
+    xr.Dataset({"a": ("x", [1.0, 2.0])}).to_netcdf(foreign, engine="h5netcdf")
+    res = RUNNER.invoke(app, ["report", str(foreign), "-o", str(tmp_path / "x.html")])
+    assert res.exit_code == 2 and "not a rollerdyn result" in res.output
+    assert "frictional_torque" in res.output
+    assert not (tmp_path / "x.html").exists()
+    helped = RUNNER.invoke(app, ["report", "--help"])
+    assert helped.exit_code == 0 and "N*m" in helped.output and "report.html" in helped.output
