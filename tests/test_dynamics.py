@@ -466,3 +466,29 @@ def test_settled_loads_do_not_hinge_on_the_contact_damping():
         b = other[name].isel(time=-1).values
         scale = np.abs(a).max()
         assert np.abs(a - b).max() < 0.01 * scale, (name, np.abs(a - b).max(), scale)
+
+
+def test_sigterm_stops_a_run_and_keeps_its_results(tmp_path):
+    """A batch system's SIGTERM stops `rollerdyn run` like Ctrl-C: exit status 143 and the
+    result file holds every output until then (issue 6, point 3)."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    import xarray as xr
+
+    out = tmp_path / "term.nc"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "rollerdyn.cli", "run", str(B1), "-o", str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+    )
+    time.sleep(8.0)  # past the setup (traction table, line-contact fits) into the run
+    proc.send_signal(signal.SIGTERM)
+    output = proc.communicate(timeout=120)[0].decode()
+    assert proc.returncode == 143, output
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        assert ds.attrs["completed"] == 0
+        assert ds.sizes["time"] >= 2
+        assert "SIGTERM" in ds.attrs["error"]

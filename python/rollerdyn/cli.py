@@ -8,6 +8,7 @@ All inputs and outputs are SI unless a column says otherwise.
 from __future__ import annotations
 
 import math
+import signal
 from pathlib import Path
 from typing import Annotated
 
@@ -404,10 +405,6 @@ def _bench_contact(cfg, steps: int) -> None:
     console.print(mesh)
 
 
-if __name__ == "__main__":  # pragma: no cover
-    app()
-
-
 # --------------------------------------------------------------------------- runs
 
 
@@ -450,7 +447,7 @@ def run(
     solver.output_interval by interpolation. A progress bar shows simulated time, solver
     steps, speed (simulated seconds per wall second) and the time left. If the run fails
     or is interrupted (Ctrl-C), everything computed until then is written and the command
-    exits with status 1 (130 after Ctrl-C).
+    exits with status 1 (130 after Ctrl-C, 143 after SIGTERM).
     """
     from rich.progress import (
         BarColumn,
@@ -509,6 +506,9 @@ def run(
             rate = f"{p.time / wall * 1e3:.2f} ms/s" if wall > 0 else ""
             bar.update(task, completed=p.time, steps=p.steps, rate=rate)
 
+        # SIGTERM (a batch system or `kill`) stops the run like Ctrl-C: at the next output
+        # time, with everything computed so far written (exit status 143).
+        previous_handler = signal.signal(signal.SIGTERM, _terminate)
         try:
             ds = simulate(cfg, t_end=end, detector=detector, progress=progress, resume=previous)
         except ValueError as err:
@@ -516,8 +516,13 @@ def run(
             raise typer.Exit(2) from None
         except SimulationError as err:
             ds = err.dataset
-            status = 130 if "KeyboardInterrupt" in str(err) else 1
+            if "SIGTERM" in str(err):
+                status = 143
+            else:
+                status = 130 if "KeyboardInterrupt" in str(err) else 1
             console.print(f"[red]run stopped:[/red] {err}")
+        finally:
+            signal.signal(signal.SIGTERM, previous_handler)
     write(ds, output)
     st = ds.attrs
     console.print(
@@ -528,6 +533,11 @@ def run(
     )
     if status:
         raise typer.Exit(status)
+
+
+def _terminate(signum, frame) -> None:
+    """SIGTERM handler of `run`: raised inside the core's signal check, it stops the run."""
+    raise KeyboardInterrupt("terminated by SIGTERM")
 
 
 @app.command()
@@ -566,3 +576,7 @@ app.command("sweep")(sweep_command)
 from .report import report_command  # noqa: E402
 
 app.command("report")(report_command)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    app()
