@@ -1,34 +1,33 @@
-//! The relative curvature of a roller end contact across the border between the roller's
-//! edge torus and its end-face sphere, blended over a band so that the contact force is a
-//! continuous function of the roller's pose.
+//! The relative curvature of a roller end / flange contact blended across the borders
+//! between patches, so that the contact force is a continuous function of the pose.
 //!
-//! The roller end is tangent-continuous (G1) but not curvature-continuous: at the border
-//! the meridian radius jumps from the edge radius r_e (0.5 mm for B1) to the end-face
-//! radius R_s (5 m). Both pairings (TO-x and SP-x with the same flange figure x) find the
-//! same contact point and penetration there (the rule of `docs/contact.md`), but their
-//! Hertz forces (paper eqs. 5–8) at equal penetration differ by orders of magnitude, so a
-//! roller whose contact sits on the border makes the force jump between the two: the
-//! integrator's step collapses (a stiff system with a discontinuous right-hand side).
-//! A real contact patch there covers both patches anyway, so its effective curvature lies
-//! between the two.
+//! Both bodies are tangent-continuous (G1) but not curvature-continuous. On the roller the
+//! meridian radius jumps at the border between the edge torus (r_e, 0.5 mm for B1) and the
+//! end-face sphere (R_s, 5 m); on the flange between the face cone (∞) and the root and rim
+//! tori (0.2 and 0.3 mm). The two pairings that meet at a border find the same contact point
+//! and penetration there (the rule of `docs/contact.md`), but their Hertz forces (paper
+//! eqs. 5–8) at equal penetration differ, by orders of magnitude at the roller's border, so
+//! a contact sitting on a border makes the force jump and the integrator's step collapses
+//! (a stiff system with a discontinuous right-hand side). A real contact patch there covers
+//! both patches anyway, so its effective curvature lies between the two.
 //!
-//! The rule: let θ be the angle between the roller's outward surface normal at the contact
-//! (−n) and the end's axis; θ_b, the sphere's cap angle, is the border. The roller's
-//! curvature tensor is w·K_torus + (1 − w)·K_sphere, both evaluated at P₁, with
-//! w = smoothstep((θ − θ_b)/Δθ) rising from 0 at θ_b − Δθ to 1 at θ_b + Δθ (C¹). Outside the
-//! band the pairing's own curvature is used unchanged. The band half-width Δθ is a model
-//! parameter (`surfaces.border_band`); θ is the natural coordinate because the contact
-//! normal follows the roller's tilt and skew one to one, so the force changes smoothly
-//! over Δθ of tilt on either side, although the contact point moves by r_e·Δθ on the torus
-//! and R_s·Δθ on the sphere.
+//! The rule (each body separately, C¹ smoothsteps, see [`blend`]):
+//! * roller: K = w·K_torus + (1 − w)·K_sphere, both at P₁, w = smoothstep(θ − θ_b) over
+//!   ±Δθ, θ the angle of the roller's outward normal −n from its axis and θ_b the sphere's
+//!   cap angle. The angle is the natural coordinate because the contact normal follows the
+//!   roller's tilt one to one; the contact point moves by r_e·Δθ on the torus and R_s·Δθ on
+//!   the sphere.
+//! * flange: K = w_root·K_root + w_rim·K_rim + (1 − w_root − w_rim)·K_cone, both at P₂,
+//!   each w a smoothstep of the signed arc length of P₂ past that cone/torus border over
+//!   ±Δσ.
 //!
-//! The flange's own borders (cone to root and rim tori) are not blended: there the
-//! meridian radius changes from ∞ to 0.2–0.3 mm, which changes R_x of a torus–cone contact
-//! by less than a factor of 2 (documented in docs/dynamics.md).
+//! Δθ and Δσ are model parameters (`surfaces.border_band_roller`,
+//! `surfaces.border_band_flange`). Outside the bands the pairing's own curvature is used
+//! unchanged (B1's usual TO-CO contact, 0.11° from the roller axis, is far outside).
 
 use super::{Contact, Pairing};
 use crate::geometry::end_flange::{Flange, RollerEnd};
-use crate::geometry::primitives::{relative_curvature_of, Curvature};
+use crate::geometry::primitives::{meridian, relative_curvature_of, Curvature, Vec3};
 
 /// The half-widths of the blending bands.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -64,10 +63,7 @@ pub fn smoothstep(x: f64, band: f64) -> f64 {
 }
 
 /// Angle between two unit vectors, accurate also for tiny angles [rad].
-fn angle_between(
-    a: &crate::geometry::primitives::Vec3,
-    b: &crate::geometry::primitives::Vec3,
-) -> f64 {
+fn angle_between(a: &Vec3, b: &Vec3) -> f64 {
     a.cross(b).norm().atan2(a.dot(b))
 }
 
@@ -88,8 +84,7 @@ pub fn flange_weights(flange: &Flange, contact: &Contact, band: f64) -> [f64; 3]
     let (sigma_root, sigma_rim) = match contact.pairing {
         Pairing::TorusCone | Pairing::SphereCone => {
             let foot = cone.foot(&contact.p2);
-            let (s, rho, _) =
-                crate::geometry::primitives::meridian(&foot.point, &cone.origin, &cone.axis);
+            let (s, rho, _) = meridian(&foot.point, &cone.origin, &cone.axis);
             let g = (s - cone.s0) * cone.ds + (rho - cone.rho0) * cone.drho;
             (cone.g_min - g, g - cone.g_max)
         }
