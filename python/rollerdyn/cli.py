@@ -497,13 +497,14 @@ def run(
     import time as _time
 
     start = _time.perf_counter()
+    t_start = 0.0 if previous is None else float(previous.attrs["final_time_s"])
     status = 0
     with Progress(*columns, console=console, transient=False) as bar:
         task = bar.add_task(cfg.name, total=end, steps=0, rate="")
 
         def progress(p):
             wall = _time.perf_counter() - start
-            rate = f"{p.time / wall * 1e3:.2f} ms/s" if wall > 0 else ""
+            rate = f"{(p.time - t_start) / wall * 1e3:.2f} ms/s" if wall > 0 else ""
             bar.update(task, completed=p.time, steps=p.steps, rate=rate)
 
         # SIGTERM (a batch system or `kill`) stops the run like Ctrl-C: at the next output
