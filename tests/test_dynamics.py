@@ -331,6 +331,9 @@ def test_an_interrupted_run_resumes_to_the_uninterrupted_result(tmp_path):
     calls = []
     part = simulate(cfg, progress=lambda p: calls.append(p.time) or len(calls) >= 7)
     assert part.attrs["completed"] == 0 and float(part.time[-1]) < 0.012
+    broken = part.drop_vars("final_state").assign(final_state=("s", part.final_state.values[:-11]))
+    with pytest.raises(ValueError, match="start state"):
+        simulate(cfg, resume=broken)  # a state of another model (one roller less)
     path = tmp_path / "part.nc"
     part.to_netcdf(path, engine="h5netcdf")
     config_path = tmp_path / "variant.toml"

@@ -142,6 +142,14 @@ pub fn run(
         Some(s) => s,
         None => (0.0, model.initial_state()?),
     };
+    let n = model.layout.len();
+    if y0.len() != n || !y0.iter().all(|v| v.is_finite()) || !t0.is_finite() {
+        return Err(crate::Error::invalid(
+            "start state",
+            format!("{} values at t = {t0}", y0.len()),
+            format!("must be {n} finite values, the state of this model (same rollers and ring tilt mode)"),
+        ));
+    }
     let settings = Options {
         rtol: options.rtol,
         atol: model.absolute_tolerances(options.atol),
