@@ -47,42 +47,57 @@ impl MeridianBox {
     }
 }
 
-/// Range of x·sin φ + y·cos φ ... over an arc: the extent of c + r·m(φ) components.
-fn arc_extent(
-    mid: f64,
-    half: f64,
-    component: impl Fn(f64) -> f64,
-    extrema: [f64; 2],
-) -> (f64, f64) {
-    let mut lo = component(mid - half).min(component(mid + half));
-    let mut hi = component(mid - half).max(component(mid + half));
-    for phi in extrema {
+/// The unit meridian directions m(φ) = (sin φ, cos φ) in (s, ρ) at which the components of
+/// c + r·m(φ) over an arc of tube angles take their extremes: the arc's two ends, and the
+/// axis directions (±1, 0), (0, ±1) that lie inside it.
+fn arc_extreme_directions(mid: f64, half: f64) -> ([(f64, f64); 6], usize) {
+    let mut out = [(0.0, 0.0); 6];
+    out[0] = (mid - half).sin_cos();
+    out[1] = (mid + half).sin_cos();
+    let mut n = 2;
+    for (phi, dir) in [
+        (FRAC_PI_2, (1.0, 0.0)),
+        (-FRAC_PI_2, (-1.0, 0.0)),
+        (0.0, (0.0, 1.0)),
+        (PI, (0.0, -1.0)),
+    ] {
         let offset = (phi - mid + PI).rem_euclid(2.0 * PI) - PI;
         if offset.abs() <= half {
-            lo = lo.min(component(phi));
-            hi = hi.max(component(phi));
+            out[n] = dir;
+            n += 1;
         }
     }
-    (lo, hi)
+    (out, n)
+}
+
+/// Meridian box of the points c + ρ·m(φ) of a flange torus patch (its axis is the ring
+/// axis) for every tube radius ρ in `radii` and φ on the arc. Each coordinate is linear in
+/// ρ, so for a range of radii its two ends suffice.
+fn torus_box_radii(
+    t: &TorusPatch,
+    radii: &[f64],
+    ring_origin: &Vec3,
+    ring_axis: &Vec3,
+) -> MeridianBox {
+    let s_c = ring_axis.dot(&(t.origin - ring_origin));
+    let (dirs, n) = arc_extreme_directions(t.phi_mid, t.phi_half);
+    let mut b = MeridianBox {
+        s: (f64::INFINITY, f64::NEG_INFINITY),
+        rho: (f64::INFINITY, f64::NEG_INFINITY),
+    };
+    for &r in radii {
+        for &(sin, cos) in &dirs[..n] {
+            let (ps, pr) = (s_c + r * sin, t.major_radius + r * cos);
+            b.s = (b.s.0.min(ps), b.s.1.max(ps));
+            b.rho = (b.rho.0.min(pr), b.rho.1.max(pr));
+        }
+    }
+    b
 }
 
 /// Meridian box of a flange torus patch (its axis is the ring axis).
 pub fn torus_box(t: &TorusPatch, ring_origin: &Vec3, ring_axis: &Vec3) -> MeridianBox {
-    let s_c = ring_axis.dot(&(t.origin - ring_origin));
-    let r = t.minor_radius;
-    let s = arc_extent(
-        t.phi_mid,
-        t.phi_half,
-        |p| s_c + r * p.sin(),
-        [FRAC_PI_2, -FRAC_PI_2],
-    );
-    let rho = arc_extent(
-        t.phi_mid,
-        t.phi_half,
-        |p| t.major_radius + r * p.cos(),
-        [0.0, PI],
-    );
-    MeridianBox { s, rho }
+    torus_box_radii(t, &[t.minor_radius], ring_origin, ring_axis)
 }
 
 /// Meridian box of a cone patch about its own axis.
@@ -123,14 +138,10 @@ impl MeridianBox {
 }
 
 /// Meridian box of a flange torus patch with the tube's solid down to depth `d` (< r)
-/// beneath it: the points c + ρ·m(φ), ρ ∈ [r − d, r], φ on the arc. Each coordinate is
-/// linear in ρ, so its extremes lie at ρ = r or r − d: the union of the two arcs' boxes.
+/// beneath it: the points c + ρ·m(φ), ρ ∈ [r − d, r], φ on the arc.
 fn torus_solid_box(t: &TorusPatch, d: f64, o: &Vec3, a: &Vec3) -> MeridianBox {
-    let inner = TorusPatch {
-        minor_radius: (t.minor_radius - d).max(0.0),
-        ..*t
-    };
-    torus_box(t, o, a).union(&torus_box(&inner, o, a))
+    let r = t.minor_radius;
+    torus_box_radii(t, &[r, (r - d).max(0.0)], o, a)
 }
 
 /// Meridian boxes of the flange's cone, root torus and rim torus, each with the solid
