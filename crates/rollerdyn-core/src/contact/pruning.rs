@@ -17,7 +17,7 @@
 
 use super::{semi_analytical, Contact};
 use crate::geometry::end_flange::{Flange, RollerEnd};
-use crate::geometry::primitives::{meridian, ConePatch, SpherePatch, TorusPatch, Vec3};
+use crate::geometry::primitives::{meridian, wrap_angle, ConePatch, SpherePatch, TorusPatch, Vec3};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// A box [s_lo, s_hi] × [ρ_lo, ρ_hi] in a flange's meridian plane.
@@ -61,8 +61,7 @@ fn arc_extreme_directions(mid: f64, half: f64) -> ([(f64, f64); 6], usize) {
         (0.0, (0.0, 1.0)),
         (PI, (0.0, -1.0)),
     ] {
-        let offset = (phi - mid + PI).rem_euclid(2.0 * PI) - PI;
-        if offset.abs() <= half {
+        if wrap_angle(phi - mid).abs() <= half {
             out[n] = dir;
             n += 1;
         }
@@ -165,15 +164,15 @@ fn torus_support(t: &TorusPatch, d: &Vec3) -> f64 {
 }
 
 /// Support of a spherical cap: the full sphere's if d lies within the cap's cone of
-/// directions, else the cap's boundary circle's.
-fn cap_support(s: &SpherePatch, d: &Vec3) -> f64 {
+/// directions, else the cap's boundary circle's. `(sin, cos)` of the cap angle.
+fn cap_support(s: &SpherePatch, (sin, cos): (f64, f64), d: &Vec3) -> f64 {
     let dn = d.norm();
     let along = s.pole.dot(d);
-    if along >= dn * s.cap_angle.cos() {
+    if along >= dn * cos {
         return s.center.dot(d) + s.radius * dn;
     }
-    let base = s.center + s.pole * (s.radius * s.cap_angle.cos());
-    base.dot(d) + s.radius * s.cap_angle.sin() * (d - s.pole * along).norm()
+    let base = s.center + s.pole * (s.radius * cos);
+    base.dot(d) + s.radius * sin * (d - s.pole * along).norm()
 }
 
 /// Meridian box of a roller figure with the given supports and extent about `center`.
@@ -197,7 +196,8 @@ pub fn end_boxes(end: &RollerEnd, flange: &Flange) -> [MeridianBox; 2] {
     let (o, a) = (flange.cone.origin, flange.cone.axis);
     let t = &end.torus;
     let s = &end.sphere;
-    let cap_center = s.center + s.pole * (s.radius * s.cap_angle.cos());
+    let cap = s.cap_angle.sin_cos();
+    let cap_center = s.center + s.pole * (s.radius * cap.1);
     [
         roller_box(
             |d| torus_support(t, d),
@@ -207,9 +207,9 @@ pub fn end_boxes(end: &RollerEnd, flange: &Flange) -> [MeridianBox; 2] {
             &a,
         ),
         roller_box(
-            |d| cap_support(s, d),
+            |d| cap_support(s, cap, d),
             &cap_center,
-            s.radius * s.cap_angle.sin(),
+            s.radius * cap.0,
             &o,
             &a,
         ),

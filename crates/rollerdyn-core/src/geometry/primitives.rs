@@ -34,6 +34,25 @@ pub fn meridian(p: &Vec3, origin: &Vec3, axis: &Vec3) -> (f64, f64, Vec3) {
     (s, rho, e_rho)
 }
 
+/// The angle x wrapped into [−π, π): (x + π).rem_euclid(2π) − π, bit for bit, without the
+/// floating-point remainder where x + π lies within [−2π, 4π) (one addition or subtraction
+/// of 2π there is exact or rounds as `rem_euclid` does).
+#[inline]
+pub fn wrap_angle(x: f64) -> f64 {
+    use std::f64::consts::{PI, TAU};
+    let y = x + PI;
+    let r = if (0.0..TAU).contains(&y) {
+        y
+    } else if (TAU..2.0 * TAU).contains(&y) {
+        y - TAU
+    } else if (-TAU..0.0).contains(&y) {
+        y + TAU
+    } else {
+        y.rem_euclid(TAU)
+    };
+    r - PI
+}
+
 /// A unit vector perpendicular to the unit vector a.
 #[inline]
 pub fn any_perpendicular(a: &Vec3) -> Vec3 {
@@ -245,9 +264,11 @@ impl TorusPatch {
     /// True if the tube angle φ lies on the patch's arc (modulo 2π).
     #[inline]
     pub fn contains_angle(&self, phi: f64) -> bool {
-        let offset = (phi - self.phi_mid + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU)
-            - std::f64::consts::PI;
-        in_range(offset, -self.phi_half, self.phi_half)
+        in_range(
+            wrap_angle(phi - self.phi_mid),
+            -self.phi_half,
+            self.phi_half,
+        )
     }
 
     /// True if the surface point p with outward normal n lies on the patch.
@@ -315,6 +336,33 @@ pub fn relative_curvature_of(n: &Vec3, weighted: &[(f64, &Curvature)]) -> (f64, 
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    #[test]
+    fn wrap_angle_equals_the_remainder_formula() {
+        use std::f64::consts::{PI, TAU};
+        let reference = |x: f64| (x + PI).rem_euclid(TAU) - PI;
+        let mut x: f64 = -20.0;
+        while x < 20.0 {
+            for v in [x, x.next_up(), x.next_down()] {
+                assert_eq!(wrap_angle(v).to_bits(), reference(v).to_bits(), "{v}");
+            }
+            x += 1e-3 * PI;
+        }
+        for v in [
+            -PI,
+            PI,
+            TAU,
+            -TAU,
+            3.0 * PI,
+            -3.0 * PI,
+            0.0,
+            -0.0,
+            1e-300,
+            -1e-300,
+        ] {
+            assert_eq!(wrap_angle(v).to_bits(), reference(v).to_bits(), "{v}");
+        }
+    }
 
     #[test]
     fn relative_curvature_of_crossed_cylinders() {
