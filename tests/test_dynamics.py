@@ -6,6 +6,7 @@ takes seconds: loads ramp over 20 ms, the speed over the next 10 ms.
 
 from __future__ import annotations
 
+import copy
 import math
 import tomllib
 from functools import cache
@@ -43,9 +44,10 @@ def variant(**changes) -> rollerdyn.BearingConfig:
     return rollerdyn.parse_config(changed_b1(changes))
 
 
-def changed_b1(changes: dict) -> dict:
-    """B1's TOML data with dotted-path changes (None removes a key)."""
-    data = tomllib.loads(B1.read_text())
+def changed_b1(changes: dict, base: dict | None = None) -> dict:
+    """B1's TOML data (or a deep copy of ``base``) with dotted-path changes (None removes
+    a key)."""
+    data = copy.deepcopy(base) if base else tomllib.loads(B1.read_text())
     for path, value in changes.items():
         section = data
         *parents, key = path.split(".")

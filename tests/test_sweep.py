@@ -8,7 +8,6 @@ whole module takes well under a minute on two cores.
 from __future__ import annotations
 
 import math
-import tomllib
 from functools import cache
 from pathlib import Path
 
@@ -16,6 +15,7 @@ import numpy as np
 import pandas as pd
 import pytest
 import xarray as xr
+from test_dynamics import changed_b1
 from typer.testing import CliRunner
 
 import rollerdyn
@@ -47,21 +47,7 @@ AXIAL = ["0 N", "500 N"]
 
 def changed(base: dict, changes: dict) -> dict:
     """A copy of ``base`` (B1's TOML data if empty) with dotted-path changes (None removes)."""
-    data = _deep(base) if base else tomllib.loads(B1.read_text())
-    for path, value in changes.items():
-        section = data
-        *parents, key = path.split(".")
-        for p in parents:
-            section = section.setdefault(p, {})
-        if value is None:
-            section.pop(key, None)
-        else:
-            section[key] = value
-    return data
-
-
-def _deep(d):
-    return {k: _deep(v) if isinstance(v, dict) else v for k, v in d.items()}
+    return changed_b1(changes, base)
 
 
 SHORT_DATA = changed({}, SHORT)

@@ -443,49 +443,26 @@ def animation_figure(ds: xr.Dataset, max_frames: int = MAX_FRAMES):
                 pad=dict(t=70, r=10),
                 showactive=False,
                 buttons=[
-                    dict(
-                        label="play from start",
-                        method="animate",
-                        args=[
-                            None,
-                            dict(
-                                frame=dict(duration=60, redraw=False),
-                                transition=dict(duration=0),
-                                fromcurrent=False,
-                                mode="immediate",
-                            ),
-                        ],
-                    ),
-                    dict(
-                        label="play",
-                        method="animate",
-                        args=[
-                            None,
-                            dict(
-                                frame=dict(duration=60, redraw=False),
-                                transition=dict(duration=0),
-                                fromcurrent=True,
-                                mode="immediate",
-                            ),
-                        ],
-                    ),
-                    dict(
-                        label="pause",
-                        method="animate",
-                        args=[
-                            [None],
-                            dict(
-                                frame=dict(duration=0, redraw=False),
-                                transition=dict(duration=0),
-                                mode="immediate",
-                            ),
-                        ],
-                    ),
+                    _animate_button("play from start", None, 60, fromcurrent=False),
+                    _animate_button("play", None, 60, fromcurrent=True),
+                    _animate_button("pause", [None], 0),
                 ],
             )
         ],
     )
     return fig, len(frames_idx)
+
+
+def _animate_button(label: str, frames, duration_ms: int, fromcurrent: bool = True) -> dict:
+    """A plotly updatemenu button that animates ``frames`` (None: all; [None]: stop)."""
+    options = dict(
+        frame=dict(duration=duration_ms, redraw=False),
+        transition=dict(duration=0),
+        mode="immediate",
+    )
+    if frames is None:
+        options["fromcurrent"] = fromcurrent
+    return dict(label=label, method="animate", args=[frames, options])
 
 
 # --------------------------------------------------------------------------- page

@@ -114,14 +114,7 @@ pub fn blend(contact: &Contact, end: &RollerEnd, flange: &Flange, bands: &Border
     let w_torus = torus_weight(end, contact, bands.roller_angle);
     let roller_w = [w_torus, 1.0 - w_torus];
     let flange_w = flange_weights(flange, contact, bands.flange_length);
-    let (roller_own, flange_own) = match contact.pairing {
-        Pairing::TorusCone => (0, 0),
-        Pairing::TorusRoot => (0, 1),
-        Pairing::TorusRim => (0, 2),
-        Pairing::SphereCone => (1, 0),
-        Pairing::SphereRoot => (1, 1),
-        Pairing::SphereRim => (1, 2),
-    };
+    let (roller_own, flange_own) = contact.pairing.figures();
     if roller_w[roller_own] >= 1.0 && flange_w[flange_own] >= 1.0 {
         return *contact;
     }

@@ -372,14 +372,7 @@ impl MeshDetector {
     pub fn detect(&self) -> [Contact; 6] {
         std::array::from_fn(|k| {
             let pairing = Pairing::ALL[k];
-            let (r, f) = match pairing {
-                Pairing::TorusCone => (0, 0),
-                Pairing::TorusRoot => (0, 1),
-                Pairing::TorusRim => (0, 2),
-                Pairing::SphereCone => (1, 0),
-                Pairing::SphereRoot => (1, 1),
-                Pairing::SphereRim => (1, 2),
-            };
+            let (r, f) = pairing.figures();
             match (&self.roller[r], &self.flange[f]) {
                 (Some(roller), Some(flange)) => pair(pairing, roller, flange),
                 _ => not_found(pairing),

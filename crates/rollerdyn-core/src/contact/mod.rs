@@ -22,7 +22,7 @@ pub mod pruning;
 pub mod reference;
 pub mod semi_analytical;
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 
 use crate::geometry::primitives::{relative_curvature, Curvature, Vec3};
 
@@ -53,6 +53,20 @@ impl Pairing {
         Pairing::SphereRoot,
         Pairing::SphereRim,
     ];
+
+    /// The figures paired: (roller figure: 0 edge torus, 1 end sphere; flange figure:
+    /// 0 cone, 1 root torus, 2 rim torus). In [`Pairing::ALL`] order the index is
+    /// 3·roller + flange.
+    pub fn figures(&self) -> (usize, usize) {
+        match self {
+            Pairing::TorusCone => (0, 0),
+            Pairing::TorusRoot => (0, 1),
+            Pairing::TorusRim => (0, 2),
+            Pairing::SphereCone => (1, 0),
+            Pairing::SphereRoot => (1, 1),
+            Pairing::SphereRim => (1, 2),
+        }
+    }
 
     /// Short label as in the paper's figs. 8, 9 (TO-CO, ...).
     pub fn label(&self) -> &'static str {

@@ -180,7 +180,7 @@ fn unit_or_z(n: &V3) -> V3 {
 }
 
 /// Two unit vectors completing the unit `n` to a right-handed orthonormal frame.
-fn orthonormal_basis(n: &V3) -> (V3, V3) {
+pub(crate) fn orthonormal_basis(n: &V3) -> (V3, V3) {
     let a = n.abs();
     let axis = if a.x <= a.y && a.x <= a.z {
         V3::x()

@@ -57,7 +57,9 @@
 //! flange torus, typically 16 samples, one or two Newton runs of a few steps and 16 interval
 //! bounds, instead of the degree-8 polynomial's roots.
 
-use super::circle::{circle_circle_distance, Circle3, CircleDistance, ClosestPairs};
+use super::circle::{
+    circle_circle_distance, orthonormal_basis, Circle3, CircleDistance, ClosestPairs,
+};
 use nalgebra::Vector3;
 use std::f64::consts::{FRAC_1_SQRT_2, TAU};
 
@@ -194,20 +196,6 @@ pub fn certified_closest_pair(c1: &Circle3, c2: &Circle3) -> Option<CircleDistan
 fn unit(n: &V3) -> Option<V3> {
     let m = n.norm();
     (m > 0.0 && m.is_finite()).then(|| n / m)
-}
-
-/// Two unit vectors completing the unit `n` to a right-handed orthonormal frame.
-fn orthonormal_basis(n: &V3) -> (V3, V3) {
-    let a = n.abs();
-    let axis = if a.x <= a.y && a.x <= a.z {
-        V3::x()
-    } else if a.y <= a.z {
-        V3::y()
-    } else {
-        V3::z()
-    };
-    let u = (axis - n * n.dot(&axis)).normalize();
-    (u, n.cross(&u))
 }
 
 /// (cos h, sin h) by Taylor series of a degree chosen by |h| (truncation error below
@@ -907,21 +895,9 @@ mod tests {
         // The benchmark trajectory's edge circles against the inner-ring flange's root and
         // rim circles: the fast path must answer (nearly) always for the speed-up to count.
         use crate::contact::benchmark::Trajectory;
-        use crate::geometry::end_flange::{Flange, FlangePlacement, FlangeShape};
-        let shape =
-            crate::geometry::roller::RollerShape::new(4.495e-3 / 2.0, 5e-3, 0.5e-3, 5.0).unwrap();
-        let flange_shape = FlangeShape::new(0.11f64.to_radians(), 1.1e-3, 0.2e-3, 0.3e-3).unwrap();
-        let flange = Flange::new(
-            &flange_shape,
-            &FlangePlacement {
-                origin: V3::zeros(),
-                axis: V3::x(),
-                raceway_radius: 10e-3,
-                rises: 1.0,
-                face_position: 2.52e-3,
-                facing: -1.0,
-            },
-        );
+        use crate::contact::tests::{b1_flange, b1_roller};
+        let shape = b1_roller();
+        let flange = b1_flange(true, true); // inner ring, face at +2.52 mm facing -x
         let trajectory = Trajectory {
             pitch_radius: 12.25e-3,
             step: 1e-3,
