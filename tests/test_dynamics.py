@@ -171,8 +171,10 @@ def test_c_energy_is_conserved_without_friction_and_damping():
             "operating.end_time": "2 ms",
             "surfaces.damping_ratio": 0.0,
             "surfaces.friction": False,
+            "surfaces.squeeze_film.enabled": False,  # the squeeze film dissipates too
             "solver.rtol": 1e-8,
             "solver.atol": 1e-12,
+            "solver.atol_time_scale": "1 ms",  # velocities to 1e-9 m/s
             "solver.dt_max": "1e-6 s",
             "solver.output_interval": "0.1 ms",
         },

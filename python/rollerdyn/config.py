@@ -703,6 +703,16 @@ class BoundaryFrictionConfig(_Section):
     smoothing_speed: Quantity("speed", positive=True) = "1 mm/s"
 
 
+class SqueezeFilmConfig(_Section):
+    """``[surfaces.squeeze_film]``: squeeze-film damping of the oil between roller ends and
+    flanges (not in the paper; docs/dynamics.md). The gap is floored by the flange's
+    composite roughness ``surfaces.flange.roughness``."""
+
+    enabled: bool = True
+    half_width: Quantity("length", positive=True, le="10 mm") = "0.5 mm"
+    cutoff: Quantity("length", positive=True, le="1 mm") = "20 um"
+
+
 class SurfacesConfig(_Section):
     """``[surfaces]``."""
 
@@ -714,6 +724,7 @@ class SurfacesConfig(_Section):
     damping_ratio: Number(ge=0.0, le=2.0) = 0.1
     border_band_roller: Quantity("angle", ge=0.0, le="1 deg") = "5e-5 rad"
     border_band_flange: Quantity("length", ge=0.0, le="1 mm") = "50 um"
+    squeeze_film: SqueezeFilmConfig = Field(default_factory=SqueezeFilmConfig)
     friction: bool = True
 
     @property
@@ -862,6 +873,7 @@ class SolverConfig(_Section):
 
     rtol: Number(gt=0.0, lt=1.0) = 1e-5
     atol: Number(gt=0.0) = 1e-9
+    atol_time_scale: Quantity("time", positive=True, le="1 s") = "1e-5 s"
     dt_max: Quantity("time", positive=True) = "1e-4 s"
     output_interval: Quantity("time", positive=True) = "1e-4 s"
     detector: Literal["semi-analytical", "gradient", "mesh"] = "semi-analytical"

@@ -1026,6 +1026,7 @@ mod simulation {
     use rollerdyn_core::contact::border::BorderBands;
     use rollerdyn_core::dynamics::integrate::Method;
     use rollerdyn_core::geometry::end_flange::FlangeShape;
+    use rollerdyn_core::tribology::squeeze::SqueezeFilm;
     use std::ops::ControlFlow;
 
     fn get<'py, T: pyo3::conversion::FromPyObjectOwned<'py>>(
@@ -1158,6 +1159,12 @@ mod simulation {
                 roller_angle: get(d, "border_band_roller")?,
                 flange_length: get(d, "border_band_flange")?,
             },
+            squeeze_film: SqueezeFilm {
+                enabled: get(d, "squeeze_film")?,
+                half_width: get(d, "squeeze_film_half_width")?,
+                floor: get(d, "squeeze_film_floor")?,
+                cutoff: get(d, "squeeze_film_cutoff")?,
+            },
         })
     }
 
@@ -1175,6 +1182,7 @@ mod simulation {
             t_end: get(d, "t_end")?,
             rtol: get(d, "rtol")?,
             atol: get(d, "atol")?,
+            atol_time_scale: get(d, "atol_time_scale")?,
             dt_max: get(d, "dt_max")?,
             output_interval: get(d, "output_interval")?,
             method,

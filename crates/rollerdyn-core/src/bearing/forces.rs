@@ -164,9 +164,17 @@ fn tangential_speeds(
     let va = a.point_velocity(p);
     let vb = b.point_velocity(p);
     let rate = -(vb - va).dot(n);
+    debug_assert!(rate.is_nan() || rate == penetration_rate(a, b, p, n));
     let ua = va - frame;
     let ub = vb - frame;
     (ua - ua.dot(n) * n, ub - ub.dot(n) * n, rate)
+}
+
+/// Rate of penetration δ̇ = −(v_B − v_A)·n of the material points of A and B at `p`
+/// (positive while the bodies approach).
+#[inline]
+pub fn penetration_rate(a: &Kinematics, b: &Kinematics, p: &Vec3, n: &Vec3) -> f64 {
+    -(b.point_velocity(p) - a.point_velocity(p)).dot(n)
 }
 
 /// Direction of the rolling-resistance moment on a body whose surface moves along

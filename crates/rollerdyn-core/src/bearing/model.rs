@@ -12,7 +12,9 @@
 //! roller i, its two neighbours and the inner ring (issue 4: "a roller couples only to
 //! its neighbours and the rings").
 
-use super::forces::{end_flange, line_slice, ContactForces, EllipseKind, LineKind, Tribology};
+use super::forces::{
+    end_flange, line_slice, penetration_rate, ContactForces, EllipseKind, LineKind, Tribology,
+};
 use super::params::{BearingParams, Detector};
 use super::state::{ring_kinematics, roller_kinematics, Kinematics, Layout, ROLLER_STATES};
 use crate::contact::gradient::{self, Unknowns};
@@ -141,7 +143,7 @@ pub struct BearingModel {
     profile: Cell<Profile>,
 }
 
-/// Per-state scale for tolerances and difference steps: lengths are measured in metres,
+/// Per-state scale for the Jacobian's difference steps: lengths are measured in metres,
 /// angles by the roller radius, velocities over a 1 ms time scale.
 const TIME_SCALE: f64 = 1e-3;
 
@@ -284,17 +286,24 @@ impl BearingModel {
         Ok(y)
     }
 
-    /// Absolute tolerances per state for a length tolerance `atol` [m] (lengths in m,
-    /// angles by the roller radius, velocities over 1 ms).
-    pub fn absolute_tolerances(&self, atol: f64) -> Vec<f64> {
+    /// Absolute tolerances per state for a length tolerance `atol` [m]: lengths in m,
+    /// angles by the roller radius, velocities as the speed that moves a body by `atol`
+    /// within `time_scale` [s] (config `solver.atol_time_scale`).
+    pub fn absolute_tolerances(&self, atol: f64, time_scale: f64) -> Vec<f64> {
         let r = self.params.roller.radius;
         (0..self.layout.len())
-            .map(|k| atol * self.scale(k) / r)
+            .map(|k| atol * self.scale_over(k, time_scale) / r)
             .collect()
     }
 
-    /// Typical magnitude of state k relative to a length of one roller radius.
+    /// Typical magnitude of state k relative to a length of one roller radius, with
+    /// velocities over [`TIME_SCALE`] (the finite-difference steps of the Jacobian).
     fn scale(&self, k: usize) -> f64 {
+        self.scale_over(k, TIME_SCALE)
+    }
+
+    /// [`Self::scale`] with velocities over `time_scale` [s].
+    fn scale_over(&self, k: usize, time_scale: f64) -> f64 {
         let r = self.params.roller.radius;
         let local = match self.layout.body_of(k) {
             None => k,
@@ -303,9 +312,9 @@ impl BearingModel {
         let ring = self.layout.body_of(k).is_none();
         match (ring, local) {
             (_, 0..=2) => r,
-            (true, 3..=5) | (false, 5..=7) => r / TIME_SCALE,
+            (true, 3..=5) | (false, 5..=7) => r / time_scale,
             (true, 6..=7) | (false, 3..=4) => 1.0,
-            _ => 1.0 / TIME_SCALE,
+            _ => 1.0 / time_scale,
         }
     }
 
@@ -481,7 +490,9 @@ impl BearingModel {
     fn detect(&self, end: &RollerEnd, flange: &Flange, index: usize) -> Option<Contact> {
         let start = Instant::now();
         let found = match self.params.detector {
-            Detector::SemiAnalytical if self.params.pruning => pruning::composite(end, flange),
+            Detector::SemiAnalytical if self.params.pruning => {
+                pruning::composite_within(end, flange, self.params.squeeze_film.reach())
+            }
             Detector::SemiAnalytical => semi_analytical::composite(end, flange),
             Detector::Gradient => {
                 let slot = index_to_slot(index);
@@ -573,15 +584,31 @@ impl BearingModel {
             return out;
         };
         out.penetration = c.penetration;
-        if c.penetration.is_nan() || c.penetration <= 0.0 {
+        let squeeze = &self.params.squeeze_film;
+        if c.penetration.is_nan()
+            || c.penetration <= -squeeze.reach()
+            || (c.penetration <= 0.0 && !squeeze.enabled)
+        {
             return out;
         }
         let start = Instant::now();
         let p = c.location();
+        let frame = roller.frame_velocity(&p);
+        let squeeze_force = squeeze.damping(self.tribology.eta0, c.rx, c.ry, c.penetration)
+            * penetration_rate(ring, roller, &p, &c.normal);
+        if c.penetration <= 0.0 {
+            // A gap within the squeeze film's reach: only the film acts.
+            let film = ContactForces {
+                normal: squeeze_force,
+                ..Default::default()
+            };
+            self.accumulate(&mut out, &film, &c.normal, &p, ring, roller);
+            self.spend(|pr| pr.flange_forces += start.elapsed().as_secs_f64());
+            return out;
+        }
         out.location = p;
         out.pairing = Pairing::ALL.iter().position(|q| *q == c.pairing);
-        let frame = roller.frame_velocity(&p);
-        let f = end_flange(
+        let mut f = end_flange(
             &self.tribology,
             &self.ellipse,
             ring,
@@ -593,6 +620,7 @@ impl BearingModel {
             &c.major_axis,
             &frame,
         );
+        f.normal += squeeze_force;
         self.accumulate(&mut out, &f, &c.normal, &p, ring, roller);
         self.spend(|pr| pr.flange_forces += start.elapsed().as_secs_f64());
         out

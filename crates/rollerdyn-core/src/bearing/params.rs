@@ -7,6 +7,7 @@ use crate::geometry::end_flange::FlangeShape;
 use crate::geometry::roller::RollerShape;
 use crate::tribology::friction::{BoundaryFriction, LoadSharing};
 use crate::tribology::line_contact::LinePowerLaw;
+use crate::tribology::squeeze::SqueezeFilm;
 use crate::tribology::traction::EhlTraction;
 
 /// A quantity over time: a ramp to a constant value, or a table (linear between rows,
@@ -209,6 +210,9 @@ pub struct BearingParams {
     /// Half-widths of the bands over which the roller end–flange curvature is blended
     /// across patch borders ([`crate::contact::border`]).
     pub border_bands: BorderBands,
+    /// Squeeze-film damping of the roller end–flange gaps (not in the paper;
+    /// [`crate::tribology::squeeze`]).
+    pub squeeze_film: SqueezeFilm,
 }
 
 impl BearingParams {
@@ -262,6 +266,17 @@ impl BearingParams {
         ] {
             if !(v >= 0.0 && v.is_finite()) {
                 return Err(Error::invalid(name, v, "non-negative and finite"));
+            }
+        }
+        if self.squeeze_film.enabled {
+            for (name, v) in [
+                ("squeeze_film.half_width", self.squeeze_film.half_width),
+                ("squeeze_film.floor", self.squeeze_film.floor),
+                ("squeeze_film.cutoff", self.squeeze_film.cutoff),
+            ] {
+                if !(v > 0.0 && v.is_finite()) {
+                    return Err(Error::invalid(name, v, "positive and finite"));
+                }
             }
         }
         self.radial_load.check("radial_load")?;

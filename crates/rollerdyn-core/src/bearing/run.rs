@@ -18,6 +18,9 @@ pub struct RunOptions {
     /// Absolute tolerance for lengths [m] (other states scaled, see
     /// [`BearingModel::absolute_tolerances`]).
     pub atol: f64,
+    /// Time over which a velocity error moves a body by `atol` [s]: velocities are held to
+    /// atol / atol_time_scale (see [`BearingModel::absolute_tolerances`]).
+    pub atol_time_scale: f64,
     /// Δt_max [s].
     pub dt_max: f64,
     /// Output interval [s].
@@ -152,7 +155,7 @@ pub fn run(
     }
     let settings = Options {
         rtol: options.rtol,
-        atol: model.absolute_tolerances(options.atol),
+        atol: model.absolute_tolerances(options.atol, options.atol_time_scale),
         dt_max: options.dt_max,
         dt_initial: options.dt_max.min(1e-6),
         output_interval: options.output_interval,

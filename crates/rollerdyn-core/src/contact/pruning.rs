@@ -250,13 +250,21 @@ pub fn detect(end: &RollerEnd, flange: &Flange) -> ([Option<Contact>; 6], bool) 
 /// (see [`semi_analytical::composite`]). Returns the deepest valid *overlapping* contact,
 /// None when nothing overlaps.
 pub fn composite(end: &RollerEnd, flange: &Flange) -> Option<Contact> {
+    composite_within(end, flange, 0.0)
+}
+
+/// [`composite`] that also reports gaps narrower than `reach` [m] (for forces that act
+/// across a gap, the squeeze film): the deepest valid contact with penetration > −reach,
+/// None when everything is farther apart. The boxes are tested with `reach` as margin,
+/// so a skipped pairing is provably farther than `reach`.
+pub fn composite_within(end: &RollerEnd, flange: &Flange, reach: f64) -> Option<Contact> {
     let ends = end_boxes(end, flange);
     let figures = figure_boxes(flange);
     let whole = figures[0].union(&figures[1]).union(&figures[2]);
-    if ends[0].union(&ends[1]).apart(&whole, 0.0) {
+    if ends[0].union(&ends[1]).apart(&whole, reach) {
         return None;
     }
-    let keep = |k: usize| !ends[k / 3].apart(&figures[k % 3], 0.0);
+    let keep = |k: usize| !ends[k / 3].apart(&figures[k % 3], reach);
     let cheap = [
         keep(3).then(|| semi_analytical::sphere_cone(&end.sphere, &flange.cone)),
         keep(4).then(|| {
@@ -277,7 +285,7 @@ pub fn composite(end: &RollerEnd, flange: &Flange) -> Option<Contact> {
             }),
         ])
     });
-    best.filter(|c| c.penetration > 0.0)
+    best.filter(|c| c.penetration > -reach)
 }
 
 /// [`super::deepest`] of the computed (Some) contacts, without collecting them: the valid

@@ -361,3 +361,25 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 2000, .. ProptestConfig::default() })]
+
+    /// With a reach (the squeeze film's cutoff, 20 µm in B1), the pruned composite returns
+    /// the deepest of the six pairings whenever that one lies within the reach, gaps
+    /// included: no pairing within the reach is skipped.
+    #[test]
+    fn pruned_composite_within_a_reach_equals_the_deepest((end, flange) in b1_pose()) {
+        let reach = 20e-6;
+        let all = deepest(&semi_analytical::detect(&end, &flange)).filter(|c| c.penetration > -reach);
+        let fast = pruning::composite_within(&end, &flange, reach);
+        match (all, fast) {
+            (None, None) => {}
+            (Some(a), Some(b)) => {
+                prop_assert!((a.penetration - b.penetration).abs() <= 1e-15, "{:?} vs {:?}", a, b);
+                prop_assert_eq!(a.pairing, b.pairing);
+            }
+            (a, b) => prop_assert!(false, "{:?} vs {:?}", a, b),
+        }
+    }
+}

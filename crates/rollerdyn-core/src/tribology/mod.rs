@@ -11,6 +11,7 @@
 //! * [`friction`]: boundary friction with micro-slip (51, 52) and Zhou–Hoeprich load
 //!   sharing (53, 54).
 //! * [`rolling_resistance`]: hysteresis (55) and EHL (56, 57) rolling resistance.
+//! * [`squeeze`]: squeeze-film damping at the flanges (not in the paper; Reynolds).
 
 pub mod film;
 pub mod friction;
@@ -18,6 +19,7 @@ pub mod hertz;
 pub mod line_contact;
 pub mod lubricant;
 pub mod rolling_resistance;
+pub mod squeeze;
 pub mod traction;
 
 /// Effective Young's modulus E' = 2 / ((1 − ν₁²)/E₁ + (1 − ν₂²)/E₂) (paper, nomenclature;
