@@ -864,6 +864,7 @@ class SolverConfig(_Section):
     atol: Number(gt=0.0) = 1e-9
     dt_max: Quantity("time", positive=True) = "1e-4 s"
     output_interval: Quantity("time", positive=True) = "1e-4 s"
+    checkpoint_interval: Quantity("time", positive=True) = "10 ms"
     detector: Literal["semi-analytical", "gradient", "mesh"] = "semi-analytical"
     method: Literal["tr-bdf2", "esdirk34"] = "tr-bdf2"
     pruning: bool = True
