@@ -320,15 +320,18 @@ def test_run_writes_netcdf_with_units_and_plot_draws_every_figure(tmp_path):
 RESUMED = {
     **STATIC,
     "operating.axial_load": "1000 N",
-    "operating.end_time": "0.012 s",
-    "solver.checkpoint_interval": "4 ms",
+    "operating.end_time": "0.007 s",
+    "solver.output_interval": "0.5 ms",
+    "solver.checkpoint_interval": "1 ms",
 }
-"""A static B1 variant to 12 ms with checkpoints at 4 and 8 ms (and 12 ms)."""
+"""A static B1 variant to 7 ms with a checkpoint every 1 ms. The tests continue it from
+its checkpoint at 4 ms (:func:`resume_base`): the contacts' stiff start (0.5 to 3.5 ms, 5000
+steps) is computed once."""
 
-WALL_CLOCK = ("_seconds",)
+WALL_CLOCK = "_seconds"
 
 
-def assert_bit_identical(got, expected) -> None:
+def assert_bit_identical(got: xr.Dataset, expected: xr.Dataset) -> None:
     """Every data variable and coordinate equal bit for bit (NaN equal to NaN), the same
     variables, and the same attributes except wall-clock times and ``resumed_at_s``."""
     assert set(got.variables) == set(expected.variables)
@@ -350,47 +353,64 @@ def assert_bit_identical(got, expected) -> None:
 
 
 @cache
-def resumed_reference():
+def resume_base():
+    """RESUMED run to its checkpoint at 4 ms."""
     cfg = variant(**RESUMED)
-    return cfg, simulate(cfg)
+    return cfg, simulate(cfg, t_end=0.004)
+
+
+@cache
+def resumed_reference() -> xr.Dataset:
+    """RESUMED continued from 4 ms to its end without interruption."""
+    cfg, base = resume_base()
+    return simulate(cfg, resume=base)
 
 
 def test_a_run_resumed_from_a_checkpoint_equals_the_uninterrupted_run_bit_for_bit():
-    """Issue 6, point 4: a run stopped at a checkpoint (by t_end), or stopped between two
-    (by the progress callback, as Ctrl-C does) and resumed, equals the uninterrupted run
-    bit for bit in every variable, and its solver counters add up to the same totals."""
-    cfg, whole = resumed_reference()
-    assert float(whole.checkpoint_time) == pytest.approx(0.012, abs=1e-15)
+    """Issue 6, point 4: a run stopped by t_end between two checkpoints, then resumed from
+    its last checkpoint, equals the uninterrupted run bit for bit in every variable, and
+    its solver counters add up to the same totals."""
+    cfg, base = resume_base()
+    assert float(base.checkpoint_time) == pytest.approx(0.004, abs=1e-15)
+    whole = resumed_reference()
+    assert float(whole.checkpoint_time) == pytest.approx(0.007, abs=1e-15)
+    assert whole.attrs["resumed_at_s"] == float(base.checkpoint_time)
     seen = []
-    part = simulate(cfg, t_end=0.008, checkpoint=seen.append)
-    assert [float(d.checkpoint_time) for d in seen] == pytest.approx([0.004, 0.008], abs=1e-15)
-    assert all(d.attrs["completed"] == 0 for d in seen)
-    assert float(part.checkpoint_time) == pytest.approx(0.008, abs=1e-15)
+    part = simulate(cfg, t_end=0.0055, resume=base, checkpoint=seen.append)
+    assert [float(d.checkpoint_time) for d in seen] == pytest.approx([0.005], abs=1e-15)
+    assert seen[0].attrs["completed"] == 0
+    assert float(seen[0].time[-1]) == pytest.approx(0.005, abs=1e-15)
+    assert float(part.time[-1]) == 0.0055 and float(part.checkpoint_time) < 0.0055
     assert_bit_identical(simulate(cfg, resume=part), whole)
-    # Resumed from the checkpoint saved at 4 ms (as written by `rollerdyn run`).
-    assert_bit_identical(simulate(cfg, resume=seen[0]), whole)
-    calls = []
-    stopped = simulate(cfg, progress=lambda p: calls.append(p.time) or len(calls) >= 7)
-    assert stopped.attrs["completed"] == 0 and float(stopped.time[-1]) == pytest.approx(0.006)
-    assert float(stopped.checkpoint_time) == pytest.approx(0.004, abs=1e-15)
-    resumed = simulate(cfg, resume=stopped)
-    assert resumed.attrs["resumed_at_s"] == pytest.approx(0.004, abs=1e-15)
-    assert_bit_identical(resumed, whole)
     # The checkpoints matter: with another interval the trajectory differs in its last
-    # bits (so the comparisons above can fail), within the tolerances.
-    other = simulate(variant(**{**RESUMED, "solver.checkpoint_interval": "5 ms"}))
-    assert not np.array_equal(other.ring_position.values, whole.ring_position.values)
+    # bits (so the comparison above can fail), within the tolerances.
+    other = simulate(variant(**{**RESUMED, "solver.checkpoint_interval": "1.5 ms"}), resume=base)
+    assert not np.array_equal(other.position.values, whole.position.values)
     np.testing.assert_allclose(other.ring_position, whole.ring_position, rtol=0, atol=1e-9)
 
 
 def test_gradient_detector_runs_resume_bit_for_bit():
-    """The gradient detector keeps warm starts between calls; the restart at a checkpoint
-    clears them in every run, so its resumed runs are exact too."""
-    changes = {**RESUMED, "operating.end_time": "0.003 s", "solver.checkpoint_interval": "1 ms"}
+    """The gradient detector keeps warm starts between calls; the restart at every
+    checkpoint clears them, so its resumed runs are exact too. Also a run stopped before its
+    first checkpoint: it is resumed from its start (a fresh start, as in the first run)."""
+    changes = {
+        **RESUMED,
+        "operating.end_time": "0.0008 s",
+        "solver.output_interval": "0.2 ms",
+        "solver.checkpoint_interval": "0.4 ms",
+    }
     cfg = variant(**changes)
     whole = simulate(cfg, detector="gradient")
-    part = simulate(cfg, t_end=0.002, detector="gradient")
-    assert_bit_identical(simulate(cfg, resume=part, detector="gradient"), whole)
+    assert whole.attrs["stats_detections"] > 0
+    for outputs in (1, 3):  # stopped at 0.2 ms (no checkpoint yet), at 0.6 ms (after 0.4 ms)
+        calls: list = []
+        part = simulate(
+            cfg,
+            detector="gradient",
+            progress=lambda p, n=outputs, seen=calls: seen.append(p) or len(seen) > n,
+        )
+        assert float(part.checkpoint_time) == (0.0 if outputs == 1 else pytest.approx(0.0004))
+        assert_bit_identical(simulate(cfg, resume=part, detector="gradient"), whole)
 
 
 def test_an_interrupted_run_resumes_to_the_uninterrupted_result(tmp_path):
@@ -401,10 +421,11 @@ def test_an_interrupted_run_resumes_to_the_uninterrupted_result(tmp_path):
 
     from rollerdyn.cli import app
 
-    cfg, whole = resumed_reference()
+    cfg, base = resume_base()
     calls = []
-    part = simulate(cfg, progress=lambda p: calls.append(p.time) or len(calls) >= 7)
-    assert part.attrs["completed"] == 0 and float(part.time[-1]) < 0.012
+    part = simulate(cfg, resume=base, progress=lambda p: calls.append(p.time) or len(calls) >= 3)
+    assert part.attrs["completed"] == 0 and float(part.time[-1]) == pytest.approx(0.0055)
+    assert float(part.checkpoint_time) == pytest.approx(0.005, abs=1e-15)
     broken = part.drop_vars(["final_state", "checkpoint_state"]).assign(
         final_state=("s", part.final_state.values[:-11]),
         checkpoint_state=("s", part.checkpoint_state.values[:-11]),
@@ -427,16 +448,16 @@ def test_an_interrupted_run_resumes_to_the_uninterrupted_result(tmp_path):
     with xr.open_dataset(path, engine="h5netcdf") as resumed:
         resumed = resumed.load()
     assert resumed.attrs["completed"] == 1
-    with xr.open_dataset(write_and_read(whole, tmp_path / "whole.nc")) as reference:
-        assert_bit_identical(resumed, reference.load())
+    assert_bit_identical(resumed, written(resumed_reference(), tmp_path / "whole.nc"))
 
 
-def write_and_read(ds, path):
-    """``ds`` written by `rollerdyn run`'s writer; returns the path."""
+def written(ds: xr.Dataset, path: Path) -> xr.Dataset:
+    """``ds`` after a round trip through `rollerdyn run`'s writer (netCDF)."""
     from rollerdyn.simulation import write
 
     write(ds, path)
-    return path
+    with xr.open_dataset(path, engine="h5netcdf") as opened:
+        return opened.load()
 
 
 def test_kill_9_loses_at_most_a_checkpoint_interval_and_resume_finishes_the_run(tmp_path):
@@ -447,32 +468,35 @@ def test_kill_9_loses_at_most_a_checkpoint_interval_and_resume_finishes_the_run(
     import sys
     import time
 
-    changes = {**RESUMED, "operating.end_time": "0.03 s", "solver.checkpoint_interval": "2 ms"}
+    cfg, base = resume_base()
     config_path = tmp_path / "variant.toml"
-    config_path.write_text(_dump_toml(changed_b1(changes)))
+    config_path.write_text(_dump_toml(changed_b1(RESUMED)))
+    start = tmp_path / "base.nc"
+    base.to_netcdf(start, engine="h5netcdf")
     out = tmp_path / "killed.nc"
     command = [sys.executable, "-m", "rollerdyn.cli", "run", str(config_path), "-o", str(out)]
-    proc = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    proc = subprocess.Popen(
+        [*command, "--resume", str(start)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+    )
     deadline = time.monotonic() + 120.0
     while not out.exists() and time.monotonic() < deadline and proc.poll() is None:
-        time.sleep(0.02)
-    proc.kill()  # SIGKILL: no handler runs, nothing is flushed
+        time.sleep(0.01)
+    proc.kill()  # SIGKILL: no handler runs
     proc.wait(timeout=60)
-    assert proc.returncode == -9
+    assert proc.returncode == -9, "the run ended before the kill"
     with xr.open_dataset(out, engine="h5netcdf") as opened:
         killed = opened.load()
-    assert killed.attrs["completed"] == 0, "the run finished before the kill"
+    assert killed.attrs["completed"] == 0
     t_c = float(killed.checkpoint_time)
-    assert t_c > 0.0 and float(killed.time[-1]) == pytest.approx(t_c, abs=1e-12)
+    assert t_c == pytest.approx(0.005, abs=1e-15)  # the first checkpoint after 4 ms
+    assert float(killed.time[-1]) == pytest.approx(t_c, abs=1e-15)
     resumed = subprocess.run(
         [*command, "--resume", str(out)], capture_output=True, text=True, timeout=300
     )
     assert resumed.returncode == 0, resumed.stdout + resumed.stderr
     with xr.open_dataset(out, engine="h5netcdf") as opened:
         finished = opened.load()
-    whole = simulate(variant(**changes))
-    with xr.open_dataset(write_and_read(whole, tmp_path / "whole.nc")) as reference:
-        assert_bit_identical(finished, reference.load())
+    assert_bit_identical(finished, written(resumed_reference(), tmp_path / "whole.nc"))
 
 
 def _dump_toml(data: dict, prefix: str = "") -> str:

@@ -1022,11 +1022,13 @@ mod simulation {
     use super::*;
     use pyo3::types::PyList;
     use rollerdyn_core::bearing::model::Profile;
-    use rollerdyn_core::bearing::run::{run, Progress, Record, RunCheckpoint, RunOptions, RunOutput};
-    use rollerdyn_core::dynamics::integrate::{Start, Stats};
+    use rollerdyn_core::bearing::run::{
+        run, Progress, Record, RunCheckpoint, RunOptions, RunOutput,
+    };
     use rollerdyn_core::bearing::{BearingModel, BearingParams, Detector, History, SurfacePair};
     use rollerdyn_core::contact::border::BorderBands;
     use rollerdyn_core::dynamics::integrate::Method;
+    use rollerdyn_core::dynamics::integrate::{Start, Stats};
     use rollerdyn_core::geometry::end_flange::FlangeShape;
     use std::ops::ControlFlow;
 
@@ -1278,7 +1280,7 @@ mod simulation {
         };
         let output = run(
             &model,
-            start.clone(),
+            start,
             &opts,
             |p: &Progress| {
                 if let Err(e) = py.check_signals() {
@@ -1311,24 +1313,7 @@ mod simulation {
         )
         .map_err(core_err)?;
         let out = to_dict(py, &output, z)?;
-        let last = output.checkpoint.clone().unwrap_or_else(|| {
-            let s = start.unwrap_or(Start {
-                time: 0.0,
-                state: model.initial_state().unwrap_or_default(),
-                step: None,
-            });
-            RunCheckpoint {
-                checkpoint: rollerdyn_core::dynamics::integrate::Checkpoint {
-                    time: s.time,
-                    state: s.state,
-                    step: s.step.unwrap_or(f64::NAN),
-                    stats: Stats::default(),
-                },
-                profile: Profile::default(),
-                records: 0,
-            }
-        });
-        put_checkpoint(py, &out, &last)?;
+        put_checkpoint(py, &out, &output.checkpoint)?;
         if let Some(e) = callback_error.into_inner() {
             out.set_item("interruption", e.to_string())?;
         }
@@ -1351,7 +1336,7 @@ mod simulation {
             final_time: k.time,
             error: None,
             interrupted: true,
-            checkpoint: None,
+            checkpoint: c.clone(),
         };
         let d = to_dict(py, &partial, z)?;
         put_checkpoint(py, &d, c)?;

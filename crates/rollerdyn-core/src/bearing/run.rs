@@ -132,8 +132,9 @@ pub struct RunOutput {
     pub error: Option<String>,
     /// True if the progress callback stopped the run.
     pub interrupted: bool,
-    /// The last checkpoint reached, if any.
-    pub checkpoint: Option<RunCheckpoint>,
+    /// The last checkpoint reached, or the start (step NaN if fresh, zero counters, the
+    /// profile of the consistent initial state's evaluation): where a resumed run begins.
+    pub checkpoint: RunCheckpoint,
 }
 
 /// What the progress callback sees.
@@ -195,7 +196,16 @@ pub fn run(
     let mut records = Vec::new();
     let mut last = (t0, y0.clone());
     let mut interrupted = false;
-    let mut reached: Option<RunCheckpoint> = None;
+    let mut reached = RunCheckpoint {
+        checkpoint: Checkpoint {
+            time: t0,
+            state: y0.clone(),
+            step: start.step.unwrap_or(f64::NAN),
+            stats: Stats::default(),
+        },
+        profile: model.profile(),
+        records: 0,
+    };
     let outcome = integrate(model, &start, options.t_end, &settings, |event| {
         let flow = match event {
             Event::Output { time, state, stats } => {
@@ -214,7 +224,7 @@ pub fn run(
                     records: records.len(),
                 };
                 let flow = checkpoint(&r, &records);
-                reached = Some(r);
+                reached = r;
                 flow
             }
         };
