@@ -1255,7 +1255,6 @@ mod simulation {
     /// the run completed).
     #[pyfunction]
     #[pyo3(signature = (params, traction, options, progress=None, start=None, checkpoint=None))]
-    #[allow(clippy::too_many_arguments)]
     pub fn simulate<'py>(
         py: Python<'py>,
         params: &Bound<'py, PyDict>,
