@@ -225,9 +225,9 @@ fn first_after(origin: f64, interval: f64, t: f64) -> usize {
 /// t_end), interpolated, and at a fresh start's time. With a checkpoint interval, the
 /// integration runs in segments ending exactly at the checkpoint times origin + j·Δt_c
 /// (diffsol's stop time); at each it reports an [`Event::Checkpoint`] (after the outputs
-/// up to that time), then builds a fresh solver from (t, y, h) and calls
-/// [`OdeSystem::restart`]. A run resumed from a checkpoint does exactly the same from
-/// there, so it equals the uninterrupted run bit for bit (issue 6, point 4). The restarts
+/// up to that time), then calls [`OdeSystem::restart`] and builds a fresh solver from
+/// (t, y, h), as every run does at its start. A run resumed from a checkpoint does exactly
+/// the same from there, so it equals the uninterrupted run bit for bit (issue 6, point 4). The restarts
 /// cost a Newton matrix and a step-size history per segment, and make the result differ
 /// (within the tolerances) from a run with another checkpoint interval.
 pub fn integrate<S: OdeSystem>(
