@@ -392,7 +392,10 @@ def test_a_run_resumed_from_a_checkpoint_equals_the_uninterrupted_run_bit_for_bi
 def test_gradient_detector_runs_resume_bit_for_bit():
     """The gradient detector keeps warm starts between calls; the restart at every
     checkpoint clears them, so its resumed runs are exact too. Also a run stopped before its
-    first checkpoint: it is resumed from its start (a fresh start, as in the first run)."""
+    first checkpoint: it is resumed from its start (a fresh start, as in the first run).
+    (In this short window Newton converges to the same bits from the warm and the cold
+    start, so the test also passes without the clearing, measured; the Rust test
+    `restarts_clear_the_systems_memory_so_resumed_runs_match` shows why it is needed.)"""
     changes = {
         **RESUMED,
         "operating.end_time": "0.0008 s",
