@@ -1027,8 +1027,7 @@ mod simulation {
     };
     use rollerdyn_core::bearing::{BearingModel, BearingParams, Detector, History, SurfacePair};
     use rollerdyn_core::contact::border::BorderBands;
-    use rollerdyn_core::dynamics::integrate::Method;
-    use rollerdyn_core::dynamics::integrate::{Start, Stats};
+    use rollerdyn_core::dynamics::integrate::{Method, Start, Stats};
     use rollerdyn_core::geometry::end_flange::FlangeShape;
     use std::ops::ControlFlow;
 
