@@ -6,7 +6,7 @@ traction model). All values SI.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property
+from functools import cached_property, lru_cache
 
 from . import _core
 from .config import BearingConfig
@@ -140,7 +140,7 @@ class Model:
         """The EHL traction model at the run temperature (sect. 3.2.1)."""
         lub = self.config.lubricant
         lss = lub.limiting_shear_stress
-        return _core.EhlTraction(
+        return _ehl_traction(
             eta0=self.eta0,
             z=self.roelands_z,
             tau0=lub.carreau.tau0,
@@ -153,6 +153,14 @@ class Model:
             nodes=int(self.config.solver.traction_nodes),
             tabulated=self.config.solver.traction == "tabulated",
         )
+
+
+@lru_cache(maxsize=8)
+def _ehl_traction(**parameters) -> _core.EhlTraction:
+    """The traction model for these parameters, built once per process: its table takes
+    about 2 s, and runs of one configuration (resumed runs, tests, the runtime study) share
+    it. The model is immutable and depends on nothing else, so sharing changes no result."""
+    return _core.EhlTraction(**parameters)
 
 
 def _array(x: float):

@@ -6,11 +6,20 @@ validated configuration (:func:`model_parameters`, all SI), runs the core and re
 fails keeps everything computed until then: the Dataset holds those records and its
 ``attrs["error"]`` says when and where the run failed; :func:`simulate` then raises
 :class:`SimulationError` carrying that partial Dataset.
+
+Checkpoints (issue 6, point 4): every ``solver.checkpoint_interval`` of simulated time
+(from t = 0) the integration restarts its solver from the state reached, in every run. The
+Dataset keeps the last checkpoint (``checkpoint_time``, ``checkpoint_step``,
+``checkpoint_state``, counters in ``attrs["checkpoint_stats_*"]``); a run resumed from it
+(``resume=``) takes the same path as the uninterrupted run and so equals it bit for bit in
+every data variable. Attributes that measure wall time (``stats_*_seconds``,
+``checkpoint_stats_*_seconds``) differ, and a resumed result has ``resumed_at_s``.
 """
 
 from __future__ import annotations
 
 import math
+import os
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -241,6 +250,7 @@ def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
         "atol_m": config.solver.atol,
         "dt_max_s": config.solver.dt_max,
         "output_interval_s": config.solver.output_interval,
+        "checkpoint_interval_s": config.solver.checkpoint_interval,
         "final_time_s": float(raw["final_time"]),
         "completed": int(raw["error"] is None and not raw["interrupted"]),
         "conventions": "x = bearing axis; on the inner ring: radial load -y, axial load +x",
@@ -249,8 +259,23 @@ def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
         attrs[f"stats_{key}"] = value
     if raw["error"] is not None:
         attrs["error"] = raw["error"]
+    for key, value in raw["checkpoint_stats"].items():
+        attrs[f"checkpoint_stats_{key}"] = value
     ds = xr.Dataset(data, coords=coords, attrs=attrs)
     ds["final_state"] = xr.Variable(("state",), np.asarray(raw["final_state"]), {"units": "SI"})
+    ds["checkpoint_state"] = xr.Variable(
+        ("state",),
+        np.asarray(raw["checkpoint_state"], dtype=float),
+        {"units": "SI", "long_name": "state at the last checkpoint (resume point)"},
+    )
+    ds["checkpoint_time"] = xr.Variable(
+        (), float(raw["checkpoint_time"]), {"units": "s", "long_name": "last checkpoint time"}
+    )
+    ds["checkpoint_step"] = xr.Variable(
+        (),
+        float(raw["checkpoint_step"]),
+        {"units": "s", "long_name": "next step size at the last checkpoint (NaN: fresh start)"},
+    )
     return ds
 
 
@@ -260,17 +285,22 @@ def simulate(
     detector: str | None = None,
     progress: Callable[[Progress], bool | None] | None = None,
     resume: xr.Dataset | None = None,
+    checkpoint: Callable[[xr.Dataset], None] | None = None,
 ) -> xr.Dataset:
     """Runs ``config`` from its consistent start to ``t_end`` (default: the configuration's
     end time) and returns the Dataset. ``progress(Progress)`` is called at every output
     time; returning True stops the run (the Dataset then ends there). Raises
     :class:`SimulationError` (with the partial Dataset) if the integration fails.
 
+    ``checkpoint(ds)`` is called at every checkpoint (every ``solver.checkpoint_interval``
+    of simulated time) with the Dataset so far (``completed`` = 0), e.g. to save it.
+
     ``resume``: the Dataset of an earlier, unfinished run of the same configuration (an
     interrupted or failed run, or one stopped early by ``t_end``). The run continues from
-    its saved final state and time, and the result holds both parts. The continued part
-    starts with fresh step-size history, so it equals an uninterrupted run to within the
-    integration tolerance, not bit for bit.
+    its last checkpoint (outputs after it are computed again) and the result holds both
+    parts; it equals an uninterrupted run bit for bit in every data variable. (A Dataset
+    without checkpoint, from an older version, continues from its final state with a fresh
+    step-size history: equal to within the integration tolerance.)
     """
     model = Model(config)
     det = detector or config.solver.detector
@@ -290,6 +320,7 @@ def simulate(
         "dt_max": s.dt_max,
         "output_interval": min(s.output_interval, end),
         "method": s.method,
+        "checkpoint_interval": s.checkpoint_interval,
     }
 
     def callback(t, t_end_, steps, rhs, jac, step):
@@ -297,10 +328,21 @@ def simulate(
             return False
         return bool(progress(Progress(t, t_end_, steps, rhs, jac, step)))
 
-    if start is None:
-        raw = _core.simulate(params, model.traction, options, callback)
-    else:
-        raw = _core.simulate(params, model.traction, options, callback, start)
+    def at_checkpoint(raw_partial: dict) -> bool:
+        ds = to_dataset(raw_partial, config, det)
+        if resume is not None:
+            ds = _join(resume, ds)
+        checkpoint(ds)
+        return False
+
+    raw = _core.simulate(
+        params,
+        model.traction,
+        options,
+        callback,
+        start,
+        None if checkpoint is None else at_checkpoint,
+    )
     ds = to_dataset(raw, config, det)
     if resume is not None:
         ds = _join(resume, ds)
@@ -312,8 +354,14 @@ def simulate(
     return ds
 
 
+def _slack(t: float) -> float:
+    """Times this close count as equal (the core's rule for output and checkpoint times)."""
+    return 1e-12 * max(abs(t), 1.0)
+
+
 def _resume_point(previous: xr.Dataset, config: BearingConfig, detector: str, end: float):
-    """(t, y) to continue ``previous`` from, after checking that it fits ``config``."""
+    """(t, y, h) to continue ``previous`` from, after checking that it fits ``config``: its
+    last checkpoint (h None if that is the run's fresh start), else its final state."""
     for key, expected in (("bearing", config.name), ("detector", detector)):
         found = previous.attrs.get(key)
         if found != expected:
@@ -323,35 +371,71 @@ def _resume_point(previous: xr.Dataset, config: BearingConfig, detector: str, en
             )
     if "final_state" not in previous:
         raise ValueError("resume: the earlier result has no final_state to continue from")
-    t0 = float(previous.attrs["final_time_s"])
-    if not end > t0:
+    t_final = float(previous.attrs["final_time_s"])
+    if not end > t_final:
         raise ValueError(
-            f"resume: t_end = {end} s must lie after the earlier run's end, t = {t0} s"
+            f"resume: t_end = {end} s must lie after the earlier run's end, t = {t_final} s"
         )
-    y0 = [float(v) for v in previous["final_state"].values]
-    return t0, y0
+    t0, step, state = resume_state(previous)
+    return t0, [float(v) for v in state], step
+
+
+def resume_state(previous: xr.Dataset) -> tuple[float, float | None, np.ndarray]:
+    """Time, step (None: fresh start) and state to continue ``previous`` from."""
+    if "checkpoint_state" in previous:
+        step = float(previous["checkpoint_step"])
+        return (
+            float(previous["checkpoint_time"]),
+            None if math.isnan(step) else step,
+            previous["checkpoint_state"].values,
+        )
+    return float(previous.attrs["final_time_s"]), None, previous["final_state"].values
+
+
+_STATE_VARS = ("final_state", "checkpoint_state", "checkpoint_time", "checkpoint_step")
 
 
 def _join(previous: xr.Dataset, continued: xr.Dataset) -> xr.Dataset:
-    """The earlier run's outputs followed by the continued run's (the output at the
-    resume time, present in both, is kept once); counters are summed."""
-    t0 = float(previous.time[-1])
-    later = continued.sel(time=continued.time > t0)
+    """The earlier run's outputs up to its resume point followed by the continued run's
+    (an output at the resume time, present in both, is kept once). Counters are summed:
+    the continued run's plus the earlier run's at its last checkpoint (older results
+    without checkpoint: at their end)."""
+    t0, _, _ = resume_state(previous)
+    earlier = previous.sel(time=previous.time <= t0 + _slack(t0))
+    later = continued.sel(time=continued.time > t0 + _slack(t0))
     joined = xr.concat(
-        [previous.drop_vars("final_state"), later.drop_vars("final_state")],
+        [
+            earlier.drop_vars(_STATE_VARS, errors="ignore"),
+            later.drop_vars(_STATE_VARS, errors="ignore"),
+        ],
         dim="time",
         data_vars="all",
         combine_attrs="override",
     )
-    joined["final_state"] = continued["final_state"]
+    for name in _STATE_VARS:
+        joined[name] = continued[name]
     joined.attrs = dict(continued.attrs)
-    for key, value in previous.attrs.items():
-        if key.startswith("stats_") and key != "stats_t_reached" and key in joined.attrs:
-            joined.attrs[key] = type(value)(joined.attrs[key] + value)
-    joined.attrs["resumed_at_s"] = float(previous.attrs["final_time_s"])
+    prefix = "checkpoint_stats_" if "checkpoint_state" in previous else "stats_"
+    for key in list(joined.attrs):
+        for kind in ("stats_", "checkpoint_stats_"):
+            if not key.startswith(kind) or key.endswith("t_reached"):
+                continue
+            base = previous.attrs.get(prefix + key[len(kind) :])
+            if base is not None:
+                joined.attrs[key] = type(base)(joined.attrs[key] + base)
+    joined.attrs["resumed_at_s"] = t0
     return joined
 
 
 def write(ds: xr.Dataset, path) -> None:
-    """Writes a result to netCDF (h5netcdf engine)."""
-    ds.to_netcdf(path, engine="h5netcdf")
+    """Writes a result to netCDF (h5netcdf engine) atomically: to a temporary file beside
+    ``path``, then renamed over it, so that ``path`` always holds a complete file (the
+    previous checkpoint's, if the process is killed while writing)."""
+    path = os.fspath(path)
+    tmp = f"{path}.tmp{os.getpid()}"
+    try:
+        ds.to_netcdf(tmp, engine="h5netcdf")
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)

@@ -1021,10 +1021,13 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
 mod simulation {
     use super::*;
     use pyo3::types::PyList;
-    use rollerdyn_core::bearing::run::{run, Progress, RunOptions, RunOutput};
+    use rollerdyn_core::bearing::model::Profile;
+    use rollerdyn_core::bearing::run::{
+        run, Progress, Record, RunCheckpoint, RunOptions, RunOutput,
+    };
     use rollerdyn_core::bearing::{BearingModel, BearingParams, Detector, History, SurfacePair};
     use rollerdyn_core::contact::border::BorderBands;
-    use rollerdyn_core::dynamics::integrate::Method;
+    use rollerdyn_core::dynamics::integrate::{Method, Start, Stats};
     use rollerdyn_core::geometry::end_flange::FlangeShape;
     use rollerdyn_core::tribology::squeeze::SqueezeFilm;
     use std::ops::ControlFlow;
@@ -1186,6 +1189,12 @@ mod simulation {
             dt_max: get(d, "dt_max")?,
             output_interval: get(d, "output_interval")?,
             method,
+            checkpoint_interval: match d.get_item("checkpoint_interval")? {
+                Some(v) if !v.is_none() => Some(v.extract().map_err(|_| {
+                    PyValueError::new_err(format!("checkpoint_interval = {v}: wrong type"))
+                })?),
+                _ => None,
+            },
         })
     }
 
@@ -1244,53 +1253,130 @@ mod simulation {
     }
 
     /// Runs the dynamic model. `progress(time, t_end, steps, rhs, jac, step)` is called at every
-    /// output time; returning True stops the run. Returns a dict of flat arrays (see
-    /// `rollerdyn.simulation`), the solver counters, the profile, the final state and the
-    /// error (None if the run completed).
+    /// output time; returning True stops the run. `checkpoint(dict)` is called at every
+    /// checkpoint with the results so far (the dict `simulate` returns, cut at the
+    /// checkpoint); returning True stops the run. `start = (t, y, h)` starts from a state,
+    /// `h` None for a fresh start, a checkpoint's step to continue from it bit for bit.
+    /// Returns a dict of flat arrays (see `rollerdyn.simulation`), the solver counters, the
+    /// profile, the final state, the last checkpoint (or the start) and the error (None if
+    /// the run completed).
     #[pyfunction]
-    #[pyo3(signature = (params, traction, options, progress=None, start=None))]
+    #[pyo3(signature = (params, traction, options, progress=None, start=None, checkpoint=None))]
     pub fn simulate<'py>(
         py: Python<'py>,
         params: &Bound<'py, PyDict>,
         traction: &PyEhlTraction,
         options: &Bound<'py, PyDict>,
         progress: Option<Bound<'py, PyAny>>,
-        start: Option<(f64, Vec<f64>)>,
+        start: Option<(f64, Vec<f64>, Option<f64>)>,
+        checkpoint: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let model = BearingModel::new(self::params(params, &traction.inner)?).map_err(core_err)?;
         let opts = self::options(options)?;
-        let mut callback_error: Option<PyErr> = None;
-        let output = run(&model, start, &opts, |p: &Progress| {
-            if let Err(e) = py.check_signals() {
-                callback_error = Some(e);
-                return ControlFlow::Break(());
+        let start = start.map(|(time, state, step)| Start { time, state, step });
+        let z = model.layout.rollers;
+        let callback_error = std::cell::RefCell::new(None::<PyErr>);
+        let stop = |r: PyResult<Bound<'py, PyAny>>| match r {
+            Ok(r) if r.is_truthy().unwrap_or(false) => ControlFlow::Break(()),
+            Ok(_) => ControlFlow::Continue(()),
+            Err(e) => {
+                *callback_error.borrow_mut() = Some(e);
+                ControlFlow::Break(())
             }
-            if let Some(cb) = &progress {
+        };
+        let output = run(
+            &model,
+            start,
+            &opts,
+            |p: &Progress| {
+                if let Err(e) = py.check_signals() {
+                    *callback_error.borrow_mut() = Some(e);
+                    return ControlFlow::Break(());
+                }
+                let Some(cb) = &progress else {
+                    return ControlFlow::Continue(());
+                };
                 let s = &p.stats;
-                match cb.call1((
+                stop(cb.call1((
                     p.time,
                     p.t_end,
                     s.steps,
                     s.rhs_evaluations,
                     s.jacobian_evaluations,
                     s.last_step,
-                )) {
-                    Ok(r) if r.is_truthy().unwrap_or(false) => return ControlFlow::Break(()),
-                    Ok(_) => {}
-                    Err(e) => {
-                        callback_error = Some(e);
-                        return ControlFlow::Break(());
-                    }
-                }
-            }
-            ControlFlow::Continue(())
-        })
+                )))
+            },
+            |c: &RunCheckpoint, records: &[Record]| {
+                let Some(cb) = &checkpoint else {
+                    return ControlFlow::Continue(());
+                };
+                let d = match partial_dict(py, c, records, z) {
+                    Ok(d) => d,
+                    Err(e) => return stop(Err(e)),
+                };
+                stop(cb.call1((d,)))
+            },
+        )
         .map_err(core_err)?;
-        let out = to_dict(py, &output, model.layout.rollers)?;
-        if let Some(e) = callback_error {
+        let out = to_dict(py, &output, z)?;
+        put_checkpoint(py, &out, &output.checkpoint)?;
+        if let Some(e) = callback_error.into_inner() {
             out.set_item("interruption", e.to_string())?;
         }
         Ok(out)
+    }
+
+    /// The results up to a checkpoint, as `simulate` returns them (not completed).
+    fn partial_dict<'py>(
+        py: Python<'py>,
+        c: &RunCheckpoint,
+        records: &[Record],
+        z: usize,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let k = &c.checkpoint;
+        let partial = RunOutput {
+            records: records[..c.records].to_vec(),
+            stats: k.stats,
+            profile: c.profile,
+            final_state: k.state.clone(),
+            final_time: k.time,
+            error: None,
+            interrupted: true,
+            checkpoint: c.clone(),
+        };
+        let d = to_dict(py, &partial, z)?;
+        put_checkpoint(py, &d, c)?;
+        Ok(d)
+    }
+
+    /// The checkpoint entries: time, state, step (NaN: a fresh start) and counters.
+    fn put_checkpoint(py: Python<'_>, d: &Bound<'_, PyDict>, c: &RunCheckpoint) -> PyResult<()> {
+        let k = &c.checkpoint;
+        d.set_item("checkpoint_time", k.time)?;
+        d.set_item("checkpoint_step", k.step)?;
+        d.set_item("checkpoint_state", PyList::new(py, &k.state)?)?;
+        d.set_item("checkpoint_stats", stats_dict(py, &k.stats, &c.profile)?)?;
+        Ok(())
+    }
+
+    fn stats_dict<'py>(py: Python<'py>, s: &Stats, p: &Profile) -> PyResult<Bound<'py, PyDict>> {
+        let stats = PyDict::new(py);
+        stats.set_item("steps", s.steps)?;
+        stats.set_item("rhs_evaluations", s.rhs_evaluations)?;
+        stats.set_item("jacobian_evaluations", s.jacobian_evaluations)?;
+        stats.set_item("rhs_seconds", s.rhs_seconds)?;
+        stats.set_item("jacobian_seconds", s.jacobian_seconds)?;
+        stats.set_item("total_seconds", s.total_seconds)?;
+        stats.set_item("t_reached", s.t_reached)?;
+        stats.set_item("error_test_failures", s.error_test_failures)?;
+        stats.set_item("newton_failures", s.newton_failures)?;
+        stats.set_item("newton_iterations", s.newton_iterations)?;
+        stats.set_item("detection_seconds", p.detection)?;
+        stats.set_item("line_contact_seconds", p.line_contacts)?;
+        stats.set_item("flange_force_seconds", p.flange_forces)?;
+        stats.set_item("detections", p.detections)?;
+        stats.set_item("gradient_fallbacks", p.gradient_fallbacks)?;
+        Ok(stats)
     }
 
     fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py, PyDict>> {
@@ -1384,24 +1470,7 @@ mod simulation {
                 .collect(),
         )?;
         d.set_item("rollers", z)?;
-        let s = &o.stats;
-        let stats = PyDict::new(py);
-        stats.set_item("steps", s.steps)?;
-        stats.set_item("rhs_evaluations", s.rhs_evaluations)?;
-        stats.set_item("jacobian_evaluations", s.jacobian_evaluations)?;
-        stats.set_item("rhs_seconds", s.rhs_seconds)?;
-        stats.set_item("jacobian_seconds", s.jacobian_seconds)?;
-        stats.set_item("total_seconds", s.total_seconds)?;
-        stats.set_item("t_reached", s.t_reached)?;
-        stats.set_item("error_test_failures", s.error_test_failures)?;
-        stats.set_item("newton_failures", s.newton_failures)?;
-        stats.set_item("newton_iterations", s.newton_iterations)?;
-        let p = &o.profile;
-        stats.set_item("detection_seconds", p.detection)?;
-        stats.set_item("line_contact_seconds", p.line_contacts)?;
-        stats.set_item("flange_force_seconds", p.flange_forces)?;
-        stats.set_item("detections", p.detections)?;
-        stats.set_item("gradient_fallbacks", p.gradient_fallbacks)?;
+        let stats = stats_dict(py, &o.stats, &o.profile)?;
         d.set_item("stats", stats)?;
         d.set_item("final_state", PyList::new(py, &o.final_state)?)?;
         d.set_item("final_time", o.final_time)?;

@@ -902,6 +902,11 @@ impl OdeSystem for BearingModel {
     fn jacobian(&self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
         self.structured_jacobian(t, y, jac);
     }
+
+    /// Clears the gradient detector's warm starts (checkpoints restart from here).
+    fn restart(&self) {
+        self.warm_starts.borrow_mut().fill([None; 6]);
+    }
 }
 
 impl BearingParams {

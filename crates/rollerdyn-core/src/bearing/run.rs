@@ -4,7 +4,7 @@
 
 use super::model::{BearingModel, Element, ElementResult, Profile, FLANGE_NAMES};
 use super::state::{azimuth, tilt_and_skew, Kinematics};
-use crate::dynamics::integrate::{integrate, Method, Options, Stats};
+use crate::dynamics::integrate::{integrate, Checkpoint, Event, Method, Options, Start, Stats};
 use crate::geometry::primitives::Vec3;
 use std::ops::ControlFlow;
 
@@ -27,6 +27,21 @@ pub struct RunOptions {
     pub output_interval: f64,
     /// Method.
     pub method: Method,
+    /// Checkpoint interval [s]: the solver restarts every this much simulated time from
+    /// t = 0, and a run resumed from a checkpoint equals the uninterrupted run bit for bit
+    /// (see [`integrate`]); `None`: no checkpoints.
+    pub checkpoint_interval: Option<f64>,
+}
+
+/// A checkpoint of a bearing run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunCheckpoint {
+    /// The integrator's checkpoint (time, state, next step, counters of this run).
+    pub checkpoint: Checkpoint,
+    /// The model's profile until the checkpoint.
+    pub profile: Profile,
+    /// Number of records up to and including the checkpoint time.
+    pub records: usize,
 }
 
 /// Outputs of one roller end / flange contact at one time.
@@ -120,6 +135,9 @@ pub struct RunOutput {
     pub error: Option<String>,
     /// True if the progress callback stopped the run.
     pub interrupted: bool,
+    /// The last checkpoint reached, or the start (step NaN if fresh, zero counters, the
+    /// profile of the consistent initial state's evaluation): where a resumed run begins.
+    pub checkpoint: RunCheckpoint,
 }
 
 /// What the progress callback sees.
@@ -133,24 +151,39 @@ pub struct Progress {
     pub stats: Stats,
 }
 
-/// Runs the model from `start` (or its consistent initial state) at `t0` to
-/// `options.t_end`. `progress` is called at every output time and may stop the run.
+/// Runs the model from `start` (or its consistent initial state at t = 0) to
+/// `options.t_end`. `progress` is called at every output time and `checkpoint` at every
+/// checkpoint (with the records so far); either may stop the run. A start with a step
+/// continues from a checkpoint: its output at the start time is not repeated.
 pub fn run(
     model: &BearingModel,
-    start: Option<(f64, Vec<f64>)>,
+    start: Option<Start>,
     options: &RunOptions,
     mut progress: impl FnMut(&Progress) -> ControlFlow<()>,
+    mut checkpoint: impl FnMut(&RunCheckpoint, &[Record]) -> ControlFlow<()>,
 ) -> crate::Result<RunOutput> {
-    let (t0, y0) = match start {
+    let start = match start {
         Some(s) => s,
-        None => (0.0, model.initial_state()?),
+        None => Start {
+            time: 0.0,
+            state: model.initial_state()?,
+            step: None,
+        },
     };
+    let (t0, y0) = (start.time, &start.state);
     let n = model.layout.len();
     if y0.len() != n || !y0.iter().all(|v| v.is_finite()) || !t0.is_finite() {
         return Err(crate::Error::invalid(
             "start state",
             format!("{} values at t = {t0}", y0.len()),
             format!("must be {n} finite values, the state of this model (same rollers and ring tilt mode)"),
+        ));
+    }
+    if let Some(h) = start.step.filter(|h| !(h.is_finite() && *h > 0.0)) {
+        return Err(crate::Error::invalid(
+            "start step",
+            format!("{h} s"),
+            "must be a positive step size (a checkpoint's)",
         ));
     }
     let settings = Options {
@@ -160,19 +193,44 @@ pub fn run(
         dt_initial: options.dt_max.min(1e-6),
         output_interval: options.output_interval,
         method: options.method,
+        origin: 0.0,
+        checkpoint_interval: options.checkpoint_interval,
     };
     let mut records = Vec::new();
     let mut last = (t0, y0.clone());
     let mut interrupted = false;
-    let outcome = integrate(model, &y0, t0, options.t_end, &settings, |t, y, stats| {
-        records.push(record(model, t, y));
-        last = (t, y.to_vec());
-        let p = Progress {
-            time: t,
-            t_end: options.t_end,
-            stats: *stats,
+    let mut reached = RunCheckpoint {
+        checkpoint: Checkpoint {
+            time: t0,
+            state: y0.clone(),
+            step: start.step.unwrap_or(f64::NAN),
+            stats: Stats::default(),
+        },
+        profile: model.profile(),
+        records: 0,
+    };
+    let outcome = integrate(model, &start, options.t_end, &settings, |event| {
+        let flow = match event {
+            Event::Output { time, state, stats } => {
+                records.push(record(model, time, state));
+                last = (time, state.to_vec());
+                progress(&Progress {
+                    time,
+                    t_end: options.t_end,
+                    stats: *stats,
+                })
+            }
+            Event::Checkpoint(c) => {
+                let r = RunCheckpoint {
+                    checkpoint: c.clone(),
+                    profile: model.profile(),
+                    records: records.len(),
+                };
+                let flow = checkpoint(&r, &records);
+                reached = r;
+                flow
+            }
         };
-        let flow = progress(&p);
         interrupted = flow.is_break();
         flow
     });
@@ -185,6 +243,7 @@ pub fn run(
             final_time: last.0,
             error: None,
             interrupted,
+            checkpoint: reached,
         },
         Err(failure) => RunOutput {
             error: Some(format!(
@@ -199,6 +258,7 @@ pub fn run(
             final_state: last.1,
             final_time: last.0,
             interrupted,
+            checkpoint: reached,
         },
     })
 }
