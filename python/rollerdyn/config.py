@@ -705,11 +705,11 @@ class BoundaryFrictionConfig(_Section):
 
 class SqueezeFilmConfig(_Section):
     """``[surfaces.squeeze_film]``: squeeze-film damping of the oil between roller ends and
-    flanges (not in the paper; docs/dynamics.md). The gap is floored by the flange's
-    composite roughness ``surfaces.flange.roughness``."""
+    flanges (not in the paper; docs/dynamics.md)."""
 
     enabled: bool = True
     half_width: Quantity("length", positive=True, le="10 mm") = "0.5 mm"
+    floor: Quantity("length", positive=True, le="100 um") = "1 um"
     cutoff: Quantity("length", positive=True, le="1 mm") = "20 um"
 
 

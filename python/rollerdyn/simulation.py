@@ -118,7 +118,7 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
         "border_band_flange": s.border_band_flange,
         "squeeze_film": bool(s.squeeze_film.enabled),
         "squeeze_film_half_width": s.squeeze_film.half_width,
-        "squeeze_film_floor": s.flange.roughness,
+        "squeeze_film_floor": s.squeeze_film.floor,
         "squeeze_film_cutoff": s.squeeze_film.cutoff,
         "friction": bool(s.friction),
         "gravity": op.gravity,

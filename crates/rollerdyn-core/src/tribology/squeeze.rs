@@ -21,8 +21,9 @@
 //!
 //! The film is taken as full (Sommerfeld): it resists separation as it resists approach,
 //! whereas a real film cavitates at about −1 bar. At the gap h = 0 the formula is singular;
-//! the gap is floored smoothly by the composite roughness σ, h = sqrt(gap² + σ²), below
-//! which the asperities and the EHL contact (Hertz with its contact damping) carry the load.
+//! the gap is floored smoothly, h = sqrt(gap² + h_f²), with h_f a few composite roughnesses
+//! σ (1 µm ≈ 4σ for B1): below it the surfaces are in mixed lubrication and the contact's
+//! own laws (Hertz with its contact damping, load sharing) carry the load.
 
 /// Squeeze-film settings of the roller end–flange contacts.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -31,7 +32,7 @@ pub struct SqueezeFilm {
     pub enabled: bool,
     /// Half-width w of the end-face/flange-face overlap that bounds the film [m].
     pub half_width: f64,
-    /// Gap floor: the composite roughness σ of the flange contact [m].
+    /// Gap floor h_f [m], a few composite roughnesses σ of the flange contact.
     pub floor: f64,
     /// Gap beyond which the film force is faded out (smoothly from half of it) [m]; the
     /// detection looks for gaps up to it.
