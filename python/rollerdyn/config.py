@@ -709,7 +709,7 @@ class SqueezeFilmConfig(_Section):
 
     enabled: bool = True
     half_width: Quantity("length", positive=True, le="10 mm") = "0.5 mm"
-    floor: Quantity("length", positive=True, le="100 um") = "1 um"
+    floor: Quantity("length", positive=True, le="100 um") = "0.24 um"
     cutoff: Quantity("length", positive=True, le="1 mm") = "20 um"
 
 

@@ -21,9 +21,9 @@
 //!
 //! The film is taken as full (Sommerfeld): it resists separation as it resists approach,
 //! whereas a real film cavitates at about −1 bar. At the gap h = 0 the formula is singular;
-//! the gap is floored smoothly, h = sqrt(gap² + h_f²), with h_f a few composite roughnesses
-//! σ (1 µm ≈ 4σ for B1): below it the surfaces are in mixed lubrication and the contact's
-//! own laws (Hertz with its contact damping, load sharing) carry the load.
+//! the gap is floored smoothly, h = sqrt(gap² + h_f²), with h_f of the order of the
+//! composite roughness σ (B1: h_f = σ = 0.24 µm): below it the asperities touch and the
+//! contact's own laws (Hertz with its contact damping, load sharing) carry the load.
 
 /// Squeeze-film settings of the roller end–flange contacts.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,7 +32,7 @@ pub struct SqueezeFilm {
     pub enabled: bool,
     /// Half-width w of the end-face/flange-face overlap that bounds the film [m].
     pub half_width: f64,
-    /// Gap floor h_f [m], a few composite roughnesses σ of the flange contact.
+    /// Gap floor h_f [m], of the order of the flange contact's composite roughness σ.
     pub floor: f64,
     /// Gap beyond which the film force is faded out (smoothly from half of it) [m]; the
     /// detection looks for gaps up to it.
