@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .simulation import FLANGES, PAIRINGS
+from .simulation import FLANGES, PAIRINGS, carried_axial_force
 
 
 def _label(ds: xr.Dataset, path: Path) -> str:
@@ -56,7 +56,12 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
     save(fig, "fig11_flange_friction")
 
     for name, var, ylabel, title in (
-        ("fig12_axial_force_over_azimuth", "axial", "axial force on roller [N]", "fig. 12"),
+        (
+            "fig12_axial_force_over_azimuth",
+            "axial",
+            "axial force carried by the roller [N]",
+            "fig. 12",
+        ),
         (
             "fig13_srr_inner_over_azimuth",
             "srr_inner",
@@ -75,7 +80,7 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
             d = _full_speed(ds)
             psi = np.degrees(d.azimuth.values.ravel())
             if var == "axial":
-                v = d.flange_axial_force.sum("flange").values.ravel()
+                v = carried_axial_force(d).values.ravel()
             else:
                 v = d[var].values.ravel()
             ax.plot(psi, v, ".", ms=2, label=_label(ds, p))

@@ -20,7 +20,7 @@ import numpy as np
 import typer
 import xarray as xr
 
-from .simulation import FLANGES, PAIRINGS
+from .simulation import FLANGES, PAIRINGS, carried_axial_force
 
 MAX_FRAMES = 200
 """Most frames of the roller-set animation; longer runs are subsampled evenly."""
@@ -211,8 +211,9 @@ def _azimuth_figures(labels, sets) -> list:
     for key, title, ylabel in (
         (
             "fig12",
-            "fig. 12: axial force on a roller over its azimuth (flange contacts, rollers pooled)",
-            "axial force on roller [N]",
+            "fig. 12: axial force carried by a roller over its azimuth (from the inner ring's"
+            " flanges, rollers pooled)",
+            "axial force carried by the roller [N]",
         ),
         (
             "fig13",
@@ -230,7 +231,7 @@ def _azimuth_figures(labels, sets) -> list:
             d = _full_speed(ds)
             psi = np.degrees(np.mod(d.azimuth.values.ravel(), 2 * np.pi))
             if key == "fig12":
-                v = d.flange_axial_force.sum("flange").values.ravel()
+                v = carried_axial_force(d).values.ravel()
             elif key == "fig13":
                 v = d.srr_inner.values.ravel()
             else:

@@ -37,6 +37,15 @@ FLANGES = ("inner-x", "inner+x", "outer-x", "outer+x")
 """The four roller end / flange contacts of a roller: ring and side of the flange."""
 
 
+def carried_axial_force(ds: xr.Dataset) -> xr.DataArray:
+    """Axial force each roller carries from the inner ring to the outer ring [N] (paper
+    fig. 12): the axial force of the inner ring's two flanges on it (the outer ring's
+    flanges take it back, so the sum over all four is the roller's small net force)."""
+    inner = [k for k, f in enumerate(FLANGES) if f.startswith("inner")]
+    carried = ds.flange_axial_force.isel(flange=inner).sum("flange")
+    return carried.assign_attrs(units="N", long_name="axial force carried by the roller")
+
+
 class SimulationError(RuntimeError):
     """A run that stopped early; :attr:`dataset` holds everything computed until then."""
 
