@@ -663,6 +663,27 @@ BAD = [
         "surfaces.flange.roughness",
         "must be > 0",
     ),
+    (
+        "negative squeeze-film half-width",
+        "surfaces.squeeze_film.half_width",
+        "-0.5 mm",
+        "surfaces.squeeze_film.half_width",
+        "must be > 0",
+    ),
+    (
+        "squeeze-film floor in seconds",
+        "surfaces.squeeze_film.floor",
+        "1 s",
+        "surfaces.squeeze_film.floor",
+        "length",
+    ),
+    (
+        "zero velocity tolerance time",
+        "solver.atol_time_scale",
+        "0 s",
+        "solver.atol_time_scale",
+        "must be > 0",
+    ),
 ]
 
 
