@@ -159,6 +159,96 @@ def test_sweep_on_two_workers_equals_the_runs_in_series(swept):
     pd.testing.assert_frame_equal(pd.read_parquet(out / "summary.parquet"), frame)
 
 
+def test_a_worker_killed_mid_run_loses_no_run(tmp_path):
+    """Issue 6, item 5: a worker process killed (SIGKILL) while it runs a sweep's task does
+    not lose the sweep: the run is done again elsewhere, the summary has every run once,
+    and the values and files equal the runs in series."""
+    import os
+    import signal
+    import threading
+    import time
+
+    from distributed import Client, LocalCluster
+
+    killed: list[tuple[str, list]] = []
+    stop = threading.Event()
+    with (
+        LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        ) as cluster,
+        Client(cluster) as client,
+    ):
+        pids = client.run(os.getpid)  # worker address -> process id, before any run
+
+        def kill_a_busy_worker() -> None:
+            # The scheduler knows which worker runs what; a worker busy in the Rust core
+            # may not answer, so its pid was asked for up front.
+            while not stop.is_set() and not killed:
+                busy = {w: keys for w, keys in client.processing().items() if keys}
+                if busy:
+                    worker = sorted(busy)[0]
+                    time.sleep(0.3)  # well into the run (parse, simulate, write)
+                    if client.processing().get(worker):
+                        os.kill(pids[worker], signal.SIGKILL)
+                        killed.append((worker, list(busy[worker])))
+                        return
+                time.sleep(0.01)
+
+        killer = threading.Thread(target=kill_a_busy_worker)
+        killer.start()
+        try:
+            frame = rollerdyn.sweep(
+                SHORT_DATA, {"operating.axial_load": AXIAL}, tmp_path, scheduler=client
+            )
+        finally:
+            stop.set()
+            killer.join()
+    assert killed, "no worker was killed while it ran a task"
+    assert list(frame["run"]) == [0, 1] and frame["run"].is_unique
+    assert list(frame["status"]) == ["completed", "completed"], list(frame["error"])
+    assert list(frame["file"]) == ["run_0000.nc", "run_0001.nc"]
+    assert sorted(f.name for f in tmp_path.iterdir()) == [
+        "run_0000.nc",
+        "run_0001.nc",
+        "summary.parquet",
+    ]
+    for i, axial in enumerate(AXIAL):
+        ref = serial(axial)
+        for column, value in summarize(ref).items():
+            assert frame[column][i] == value or (math.isnan(value) and math.isnan(frame[column][i]))
+        with xr.open_dataset(tmp_path / f"run_{i:04d}.nc", engine="h5netcdf") as opened:
+            got = opened.load()
+        for name in ("time", "frictional_torque", "position", "final_state"):
+            np.testing.assert_array_equal(got[name].values, ref[name].values, err_msg=name)
+    pd.testing.assert_frame_equal(pd.read_parquet(tmp_path / "summary.parquet"), frame)
+
+
+def test_a_run_writes_its_file_atomically(tmp_path, monkeypatch):
+    """run_one writes under a temporary name and renames: a write that dies half way leaves
+    no run file (and no temporary one); a second execution of the run replaces the first."""
+    import rollerdyn.simulation as simulation
+
+    written = serial("0 N").isel(time=slice(0, 3))
+    monkeypatch.setattr(simulation, "simulate", lambda cfg, **kw: written)
+    real_write = simulation.write
+
+    def dying_write(ds, path):
+        Path(path).write_bytes(b"half a file")
+        raise OSError("disk gone")
+
+    monkeypatch.setattr(simulation, "write", dying_write)
+    result = run_one(SHORT_DATA, False, str(tmp_path), "run_0003.nc")
+    assert result["status"] == "failed" and "disk gone" in result["error"]
+    assert result["file"] == "" and list(tmp_path.iterdir()) == []
+    monkeypatch.setattr(simulation, "write", real_write)
+    for _ in range(2):  # a retry after a lost worker runs it again: one complete file
+        result = run_one(SHORT_DATA, False, str(tmp_path), "run_0003.nc")
+        assert result["status"] == "completed" and result["file"] == "run_0003.nc"
+    assert [f.name for f in tmp_path.iterdir()] == ["run_0003.nc"]
+    with xr.open_dataset(tmp_path / "run_0003.nc", engine="h5netcdf") as opened:
+        np.testing.assert_array_equal(opened["time"].values, written["time"].values)
+
+
 def test_a_failed_run_keeps_its_partial_file_and_its_error(tmp_path, monkeypatch):
     partial = serial("0 N").isel(time=slice(0, 3))
 

@@ -8,13 +8,17 @@ h5netcdf, the same content as ``rollerdyn run`` writes) into the output director
 small dict of summary numbers travels back. The summary (one row per run, see
 :data:`SUMMARY_COLUMNS`) is returned as a :class:`pandas.DataFrame` and written to
 ``summary.parquet``. A run that fails still writes what it computed and is listed with its
-error; the sweep goes on. See ``docs/sweeps.md``.
+error; the sweep goes on. A worker that dies mid-run (killed, out of memory) loses nothing:
+Dask runs the task again on another worker (``retries``), and since a run writes its file
+under a temporary name and renames it into place, a retried or duplicated run leaves one
+complete file and one summary row. See ``docs/sweeps.md``.
 """
 
 from __future__ import annotations
 
 import itertools
 import math
+import os
 import time
 import tomllib
 from collections.abc import Callable, Mapping, Sequence
@@ -314,7 +318,12 @@ def run_one(
     detector: str | None = None,
 ) -> dict:
     """One sweep run, as executed in a Dask worker: parse, simulate, write
-    ``outdir/file``, return the summary numbers, status and error (never raises)."""
+    ``outdir/file``, return the summary numbers, status and error (never raises).
+
+    Idempotent: the file is written under a name of this process's own and renamed into
+    place (atomic on one file system), so a run killed while writing leaves no partial
+    ``outdir/file`` and a run executed twice (a retry after a lost worker) leaves one
+    complete file, the same either way."""
     from .simulation import SimulationError, simulate, write
 
     start = time.perf_counter()
@@ -327,7 +336,13 @@ def run_one(
         except SimulationError as err:
             ds, status, error = err.dataset, "failed", str(err)
         numbers = summarize(ds)
-        write(ds, Path(outdir) / file)
+        final = Path(outdir) / file
+        partial = final.with_name(f".{file}.{os.getpid()}.partial")
+        try:
+            write(ds, partial)
+            os.replace(partial, final)
+        finally:
+            partial.unlink(missing_ok=True)
         written = file
     except Exception as err:  # a run's failure must not stop the sweep
         status, error = "failed", f"{type(err).__name__}: {err}"
@@ -365,6 +380,7 @@ def sweep(
     t_end: float | None = None,
     detector: str | None = None,
     progress: Callable[[int, int, dict | None], Any] | None = None,
+    retries: int = 2,
 ):
     """Run the grid of ``parameters`` over ``config`` on Dask; return the summary.
 
@@ -378,8 +394,10 @@ def sweep(
     ``distributed.Client`` uses that cluster instead (its workers must see ``outdir``).
     ``t_end`` (s) and ``detector`` as in :func:`rollerdyn.simulate`. ``progress(done,
     total, row)`` is called once with ``row=None`` when the runs are submitted and then
-    after each run. Returns a :class:`pandas.DataFrame`, one row per run in run order
-    (columns: :data:`SUMMARY_COLUMNS` and, per path, the value as given and, for numeric
+    after each run. ``retries``: how many more times Dask runs a task whose attempt did not
+    return (its worker died mid-run, or the task raised); each grid point keeps one row,
+    from its attempt that returned. Returns a :class:`pandas.DataFrame`, one row per run in
+    run order (columns: :data:`SUMMARY_COLUMNS` and, per path, the value as given and, for numeric
     fields, its SI value in ``"<path> [<unit>]"``), also written to
     ``outdir/summary.parquet``.
     """
@@ -392,6 +410,8 @@ def sweep(
         raise SweepError(f"t_end = {t_end}: must be a positive time in seconds")
     if scheduler is None and workers < 1:
         raise SweepError(f"workers = {workers}: must be at least 1")
+    if retries < 0:
+        raise SweepError(f"retries = {retries}: must be 0 or more")
     points = build_grid(config, parameters)
     out = Path(outdir).resolve()
     out.mkdir(parents=True, exist_ok=True)
@@ -413,7 +433,15 @@ def sweep(
         futures, by_key = [], {}
         for p in points:
             fut = client.submit(
-                run_one, p.data, p.si_numbers, str(out), p.file, t_end, detector, pure=False
+                run_one,
+                p.data,
+                p.si_numbers,
+                str(out),
+                p.file,
+                t_end,
+                detector,
+                pure=False,
+                retries=retries,
             )
             futures.append(fut)
             by_key[fut.key] = p
@@ -424,7 +452,7 @@ def sweep(
             p = by_key[fut.key]
             try:
                 result = fut.result()
-            except Exception as err:  # a lost worker fails one run only
+            except Exception as err:  # workers lost more often than retried: this run only
                 result = {
                     "status": "failed",
                     "error": f"{type(err).__name__}: {err}",
@@ -440,6 +468,9 @@ def sweep(
             client.close()
         if cluster is not None:
             cluster.close()
+    for p in points:  # what attempts killed while writing left behind
+        for partial in out.glob(f".{p.file}.*.partial"):
+            partial.unlink(missing_ok=True)
     frame = pd.DataFrame([rows[p.run] for p in points])
     frame.to_parquet(out / SUMMARY_FILE, engine="pyarrow", index=False)
     return frame

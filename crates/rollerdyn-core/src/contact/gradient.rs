@@ -175,10 +175,30 @@ pub fn solve(
             break;
         }
     }
+    // A start that is not finite (the cold start's feet on a degenerate flange that
+    // reaches the ring axis, found by fuzzing): a defined, invalid answer at the roller's
+    // centre instead of NaN.
+    let x_defined = x.iter().all(|v| v.is_finite());
+    if !x_defined {
+        let c = roller.center();
+        x = Vec8::from_column_slice(&[c.x, c.y, c.z, c.x, c.y, c.z, 0.0, 0.0]);
+        converged = false;
+    }
     let p1 = Vec3::new(x[0], x[1], x[2]);
     let p2 = Vec3::new(x[3], x[4], x[5]);
     let (_, g2, _) = flange.evaluate(&p2);
-    let n = g2.normalize();
+    // On a torus' tube-centre circle (a tube radius at round-off level) the gradient
+    // vanishes and the normal is undefined: fall back to a defined direction and report
+    // the pairing invalid rather than NaN (found by fuzzing, docs/robustness.md).
+    let g2_defined = g2.norm() > 0.0 && g2.iter().all(|v| v.is_finite());
+    let n = if g2_defined {
+        g2.normalize()
+    } else {
+        (p1 - p2)
+            .try_normalize(0.0)
+            .filter(|d| d.iter().all(|v| v.is_finite()))
+            .unwrap_or_else(Vec3::x)
+    };
     let opposite_normals = x[6] > 0.0;
     let contact = Contact::from_parts(
         pairing,
@@ -188,7 +208,12 @@ pub fn solve(
         (p2 - p1).dot(&n),
         &roller.curvature(&p1, &(-n)),
         &flange.curvature(&p2, &n),
-        converged && opposite_normals && roller.on_patch(&p1, &(-n)) && flange.on_patch(&p2, &n),
+        x_defined
+            && g2_defined
+            && converged
+            && opposite_normals
+            && roller.on_patch(&p1, &(-n))
+            && flange.on_patch(&p2, &n),
     );
     GradientOutcome {
         contact,

@@ -454,7 +454,9 @@ fn flange_window(ring: &Ring, flange: &Flange, end: &RollerEnd) -> Option<(f64, 
     let bound = (end.torus.major_radius + end.torus.minor_radius).max((apex - centre).norm());
     let beta = ring.azimuth(&centre);
     let sine = (bound + PREDICTION) / rho_min;
-    (sine < 1.0).then(|| {
+    // A flange reaching the ring axis (rho_min <= 0: degenerate, found by fuzzing,
+    // docs/robustness.md) has no window: the whole ring.
+    (rho_min > 0.0 && sine < 1.0).then(|| {
         let half = sine.asin();
         (beta - half, beta + half)
     })

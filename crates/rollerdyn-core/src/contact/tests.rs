@@ -381,5 +381,160 @@ proptest! {
             }
             (a, b) => prop_assert!(false, "{:?} vs {:?}", a, b),
         }
+
+/// Found by fuzzing (docs/robustness.md, finding 2; the fuzzer's case, printed with
+/// ROLLERDYN_FUZZ_PRINT=1): an outer-ring flange whose face reaches the ring axis (raceway
+/// radius 1 µm, height 1 µm) is degenerate, but every detector must still give a defined
+/// answer. Koch's cold start took its feet on the axis and returned NaN points, and the
+/// mesh baseline's azimuth window was NaN.
+#[test]
+#[allow(clippy::approx_constant)] // the fuzzer's values, digit for digit
+fn flange_reaching_the_ring_axis_gives_defined_answers() {
+    use super::mesh::{MeshDetector, MeshResolution};
+    use crate::geometry::primitives::{ConePatch, SpherePatch, TorusPatch};
+    let ring_axis = Vec3::new(0.0, -1.0, -1.0).normalize();
+    let end = RollerEnd {
+        torus: TorusPatch {
+            origin: Vec3::new(
+                0.0013048710464938793,
+                -0.0006928932235997893,
+                0.00010710678392641493,
+            ),
+            axis: Vec3::x(),
+            major_radius: 9.990000059018475e-5,
+            minor_radius: 1.000001005907762e-7,
+            phi_mid: 0.0223626465845072,
+            phi_half: 0.0223626465845072,
+        },
+        sphere: SpherePatch {
+            center: Vec3::new(
+                0.001300400008065595,
+                -0.0006928932235997893,
+                0.00010710678392641493,
+            ),
+            radius: 0.00010010000161332131,
+            pole: Vec3::x(),
+            cap_angle: 1.5260710336258823,
+        },
+    };
+    let origin = Vec3::new(
+        0.0010000000069077552,
+        -0.0010000000069077552,
+        -0.0010000000049077552,
+    );
+    let flange = Flange {
+        cone: ConePatch {
+            origin,
+            axis: ring_axis,
+            s0: -0.0010000000069077552,
+            rho0: 1.0000000184206808e-6,
+            ds: -0.0,
+            drho: -1.0,
+            side: 1.0,
+            g_min: 5.00500008067107e-7,
+            g_max: 9.990000151029779e-7,
+        },
+        root: TorusPatch {
+            origin: Vec3::new(
+                0.0010000000069077552,
+                -0.00029253931388699905,
+                -0.00029253931188699905,
+            ),
+            axis: ring_axis,
+            major_radius: 4.995000103535739e-7,
+            minor_radius: 5.00500008067107e-7,
+            phi_mid: 0.7853981633974483,
+            phi_half: 0.7853981633974483,
+        },
+        rim: TorusPatch {
+            origin: Vec3::new(
+                0.0010000000069077552,
+                -0.0002928925137291882,
+                -0.0002928925117291882,
+            ),
+            axis: ring_axis,
+            major_radius: 1.0000033177029804e-9,
+            minor_radius: 1.000001015118112e-9,
+            phi_mid: 2.356194490192345,
+            phi_half: 0.7853981633974483,
+        },
+    };
+    for o in gradient::detect(&end, &flange, &[None; 6]) {
+        assert!(finite(&o.contact), "gradient {o:?}");
+        assert!(o.unknowns.iter().all(|v| v.is_finite()), "{o:?}");
+    }
+    for c in semi_analytical::detect(&end, &flange) {
+        assert!(finite(&c), "semi-analytical {c:?}");
+    }
+    let mesh = MeshDetector::new(
+        &end,
+        &flange,
+        MeshResolution {
+            around: 8,
+            along: 2,
+        },
+    );
+    let (a, b) = mesh.window();
+    assert!(a.is_finite() && b.is_finite(), "window {a} {b}");
+    for c in mesh.detect() {
+        assert!(!c.valid || finite(&c), "mesh {c:?}");
+    }
+}
+
+/// Found by fuzzing (docs/robustness.md, finding 1; the fuzzer's case): a flange root
+/// torus with a tube radius at round-off level (1e-15 m, 10 m from the origin), where
+/// Koch's method ends on the tube-centre circle; the flange gradient vanishes there and the
+/// normal was NaN. Now a defined, invalid answer.
+#[test]
+#[allow(clippy::approx_constant)] // the fuzzer's values, digit for digit
+fn round_off_tube_gives_a_defined_gradient_answer() {
+    use crate::geometry::primitives::{ConePatch, SpherePatch, TorusPatch};
+    let end = RollerEnd {
+        torus: TorusPatch {
+            origin: Vec3::new(-0.9799654188102438, 8.996000002, -2.004),
+            axis: Vec3::new(1.0, 0.0, 0.0),
+            major_radius: 0.000999999999,
+            minor_radius: 1.0000000000000002e-12,
+            phi_mid: 0.7848981633146145,
+            phi_half: 0.7848981633146145,
+        },
+        sphere: SpherePatch {
+            center: Vec3::new(-1.9799649188091197, 8.996000002, -2.004),
+            radius: 1.0,
+            pole: Vec3::new(1.0, 0.0, 0.0),
+            cap_angle: 0.0010000001656675916,
+        },
+    };
+    let flange = Flange {
+        cone: ConePatch {
+            origin: Vec3::new(-0.9764649188091198, -0.999999998, -1.0),
+            axis: Vec3::new(0.0, 0.0, 1.0),
+            s0: -1.0,
+            rho0: 10.0,
+            ds: 1.7453292519943295e-10,
+            drho: -1.0,
+            side: -1.0,
+            g_min: 1.0000000139900437e-15,
+            g_max: 1.0000000128155106e-6,
+        },
+        root: TorusPatch {
+            origin: Vec3::new(-0.9764649188091198, -0.999999998, -1.9999999999999991),
+            axis: Vec3::new(0.0, 0.0, 1.0),
+            major_radius: 9.999999999999998,
+            minor_radius: 1.0000000138155108e-15,
+            phi_mid: -0.7853981634847148,
+            phi_half: 0.7853981634847148,
+        },
+        rim: TorusPatch {
+            origin: Vec3::new(-0.9764649188091198, -0.999999998, -1.9999999999999987),
+            axis: Vec3::new(0.0, 0.0, 1.0),
+            major_radius: 9.999998999999987,
+            minor_radius: 1.0000000138155108e-15,
+            phi_mid: -2.356194490279611,
+            phi_half: 0.7853981633101816,
+        },
+    };
+    for o in gradient::detect(&end, &flange, &[None; 6]) {
+        assert!(finite(&o.contact), "gradient {o:?}");
     }
 }
