@@ -381,6 +381,8 @@ proptest! {
             }
             (a, b) => prop_assert!(false, "{:?} vs {:?}", a, b),
         }
+    }
+}
 
 /// Found by fuzzing (docs/robustness.md, finding 2; the fuzzer's case, printed with
 /// ROLLERDYN_FUZZ_PRINT=1): an outer-ring flange whose face reaches the ring axis (raceway
