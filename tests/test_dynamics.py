@@ -242,6 +242,17 @@ def test_overlapping_start_is_refused_with_the_rule_named():
     with pytest.raises(ValueError) as err:
         _core.initial_state(crowded, traction)
     assert "roller_count = 18" in str(err.value) and "overlap" in str(err.value)
+    # Flanges that overlap across the annulus (docs/robustness.md, finding 3): the bindings'
+    # parameters are checked in Rust too, not only by the Python configuration.
+    tall = dict(params, inner_flange_height=2.4e-3, outer_flange_height=2.4e-3)
+    with pytest.raises(ValueError) as err:
+        _core.initial_state(tall, traction)
+    assert "inner_flange.height + outer_flange.height" in str(err.value), str(err.value)
+    assert "annulus" in str(err.value)
+    taller = dict(params, inner_flange_height=4.6e-3)
+    with pytest.raises(ValueError) as err:
+        _core.initial_state(taller, traction)
+    assert "inner_flange.height = 0.0046" in str(err.value) and "diameter" in str(err.value)
 
 
 def test_a_failed_run_keeps_its_results_and_says_when_and_where():

@@ -275,7 +275,8 @@ impl BearingModel {
         let kin = self.kinematics(0.0, &y);
         for (e, element) in self.elements.iter().enumerate() {
             let r = self.evaluate(element, &kin, e);
-            if r.normal > 0.0 {
+            // NaN counts as overlap: a start whose forces are not defined is refused.
+            if r.normal > 0.0 || r.normal.is_nan() {
                 return Err(Error::invalid(
                     format!("{element:?}"),
                     format!("penetration {:.3e} m at the start", r.penetration),

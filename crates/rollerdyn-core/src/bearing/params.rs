@@ -233,6 +233,31 @@ impl BearingParams {
                 "rollers must fit between the raceways (no overlap at the start)",
             ));
         }
+        // The flanges stand on the raceways and face each other across the annulus: each
+        // must be lower than the roller, and together lower than the annulus (fuzzing found
+        // NaN rates for flanges that overlap, docs/robustness.md, finding 3).
+        for (name, flange) in [
+            ("inner_flange.height", &self.inner_flange),
+            ("outer_flange.height", &self.outer_flange),
+        ] {
+            let fits = flange.height < 2.0 * r;
+            if !fits {
+                return Err(Error::invalid(
+                    name,
+                    flange.height,
+                    format!("must be < the roller diameter {:.6e} m", 2.0 * r),
+                ));
+            }
+        }
+        let annulus = self.outer_raceway_radius - self.inner_raceway_radius;
+        let clear = self.inner_flange.height + self.outer_flange.height < annulus;
+        if !clear {
+            return Err(Error::invalid(
+                "inner_flange.height + outer_flange.height",
+                self.inner_flange.height + self.outer_flange.height,
+                format!("must be < the annulus between the raceways {annulus:.6e} m"),
+            ));
+        }
         let pitch = 0.5 * (self.inner_raceway_radius + self.outer_raceway_radius);
         let chord = 2.0 * pitch * (std::f64::consts::PI / self.roller_count as f64).sin();
         if chord <= 2.0 * r {
