@@ -722,7 +722,7 @@ class SurfacesConfig(_Section):
     boundary_friction: BoundaryFrictionConfig
     hysteresis_coefficient: Number(ge=0.0)
     damping_ratio: Number(ge=0.0, le=2.0) = 0.1
-    border_band_roller: Quantity("angle", ge=0.0, le="1 deg") = "5e-5 rad"
+    border_band_roller: Quantity("angle", ge=0.0, le="1 deg") = "1.5e-4 rad"
     border_band_flange: Quantity("length", ge=0.0, le="1 mm") = "50 um"
     squeeze_film: SqueezeFilmConfig = Field(default_factory=SqueezeFilmConfig)
     friction: bool = True

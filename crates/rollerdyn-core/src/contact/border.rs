@@ -41,10 +41,11 @@ pub struct BorderBands {
 }
 
 impl BorderBands {
-    /// rollerdyn's defaults: 5e-5 rad (25 nm of the 0.5 mm edge torus, 0.25 mm of the 5 m
-    /// end sphere) and 50 µm (a few semi-minor axes of a loaded contact).
+    /// rollerdyn's defaults: 1.5e-4 rad (75 nm of the 0.5 mm edge torus, 0.75 mm of the
+    /// 5 m end sphere, about the Hertz radius of the end face on the flange face at 10 N)
+    /// and 50 µm (a few semi-minor axes of a loaded contact).
     pub const DEFAULT: Self = Self {
-        roller_angle: 5e-5,
+        roller_angle: 1.5e-4,
         flange_length: 50e-6,
     };
 }
@@ -226,7 +227,7 @@ mod tests {
     }
 
     /// B1's usual flange contact (TO-CO, normal 0.11° from the roller axis, far outside the
-    /// 5e-5 rad band) keeps the paper's Hertz radii exactly.
+    /// band, which ends 5e-4 rad from the axis) keeps the paper's Hertz radii exactly.
     #[test]
     fn outside_the_bands_the_pairing_keeps_its_own_curvature() {
         for tilt in [-1e-3, 0.0, 1e-3] {
