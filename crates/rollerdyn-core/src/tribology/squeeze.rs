@@ -5,11 +5,12 @@
 //! out of the gap; the Reynolds equation for an isoviscous, rigid, fully flooded gap gives a
 //! force against the motion that grows as the gap closes. Two closed forms bound it:
 //!
-//! * a sphere of radius R at the minimum gap h from a plane (Reynolds 1886; Hamrock,
-//!   Schmid, Jacobson, *Fundamentals of Fluid Film Lubrication*, 2nd ed. 2004, ch. 10,
-//!   squeeze film between a sphere and a plane): F = 6π η R² ḣ / h, for h ≪ R;
-//! * two parallel discs of radius w at the gap h (same source, parallel circular plates):
-//!   F = (3π/2) η w⁴ ḣ / h³.
+//! * a sphere of radius R at the minimum gap h from a plane: F = 6π η R² ḣ / h, for h ≪ R;
+//! * two parallel discs of radius w at the gap h: F = (3π/2) η w⁴ ḣ / h³
+//!
+//! (both from the Reynolds equation, Reynolds 1886; see Hamrock, Schmid, Jacobson,
+//! *Fundamentals of Fluid Film Lubrication*, 2nd ed. 2004, the chapter on squeeze-film
+//! bearings).
 //!
 //! A roller end is a 5 m sphere (its end face) and an edge torus; the flange face is a
 //! bounded cone. Where the pressure of the sphere–plane solution would spread beyond the
@@ -77,7 +78,7 @@ impl SqueezeFilm {
 }
 
 /// c of F = c·ḣ for a sphere of radius R (here R² = R_x·R_y) at the gap h from a plane:
-/// c = 6π η R² / h (Reynolds; Hamrock et al. 2004, ch. 10).
+/// c = 6π η R² / h (Reynolds; Hamrock et al. 2004).
 #[inline]
 pub fn squeeze_coefficient(eta: f64, r_squared: f64, h: f64) -> f64 {
     6.0 * std::f64::consts::PI * eta * r_squared / h
