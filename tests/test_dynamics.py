@@ -543,21 +543,22 @@ def _toml_value(value) -> str:
     return repr(value)
 
 
+AXIALLY_LOADED_ROLLING = {
+    "operating.gravity": "0 m/s^2",
+    "operating.axial_load": "1000 N",
+    "operating.load_ramp.end": "0.01 s",
+    "operating.speed_ramp.start": "0.01 s",
+    "operating.speed_ramp.end": "0.02 s",
+    "operating.end_time": "0.025 s",
+    "solver.output_interval": "0.5 ms",
+}
+
+
 @cache
 def axially_loaded_rolling_run():
     """The rolling variant of test b with B1's 1000 N axial load, to 25 ms (5 ms at full
     speed)."""
-    cfg = variant(
-        **{
-            "operating.gravity": "0 m/s^2",
-            "operating.axial_load": "1000 N",
-            "operating.load_ramp.end": "0.01 s",
-            "operating.speed_ramp.start": "0.01 s",
-            "operating.speed_ramp.end": "0.02 s",
-            "operating.end_time": "0.025 s",
-            "solver.output_interval": "0.5 ms",
-        }
-    )
+    cfg = variant(**AXIALLY_LOADED_ROLLING)
     return cfg, simulate(cfg)
 
 
@@ -642,17 +643,9 @@ def test_settled_results_do_not_hinge_on_the_squeeze_film():
         scale = np.abs(a).max()
         assert np.abs(a - b).max() < 0.01 * scale, (name, np.abs(a - b).max(), scale)
     cfg, rolling = axially_loaded_rolling_run()
-    changes = {
-        "operating.gravity": "0 m/s^2",
-        "operating.axial_load": "1000 N",
-        "operating.load_ramp.end": "0.01 s",
-        "operating.speed_ramp.start": "0.01 s",
-        "operating.speed_ramp.end": "0.02 s",
-        "operating.end_time": "0.025 s",
-        "solver.output_interval": "0.5 ms",
-        "surfaces.squeeze_film.enabled": False,
-    }
-    rolling_off = simulate(variant(**changes))
+    rolling_off = simulate(
+        variant(**{**AXIALLY_LOADED_ROLLING, "surfaces.squeeze_film.enabled": False})
+    )
     late = slice(0.023, None)
     t_on = float(rolling.frictional_torque.sel(time=late).mean())
     t_off = float(rolling_off.frictional_torque.sel(time=late).mean())

@@ -343,6 +343,25 @@ proptest! {
     }
 }
 
+/// Both None, or the same pairing at the same penetration (the pruned composite against
+/// the deepest of all six pairings).
+fn same_contact(all: Option<Contact>, fast: Option<Contact>) -> Result<(), TestCaseError> {
+    match (all, fast) {
+        (None, None) => {}
+        (Some(a), Some(b)) => {
+            prop_assert!(
+                (a.penetration - b.penetration).abs() <= 1e-15,
+                "{:?} vs {:?}",
+                a,
+                b
+            );
+            prop_assert_eq!(a.pairing, b.pairing);
+        }
+        (a, b) => prop_assert!(false, "{:?} vs {:?}", a, b),
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 4000, .. ProptestConfig::default() })]
 
@@ -350,15 +369,7 @@ proptest! {
     #[test]
     fn pruned_composite_equals_the_deepest_overlap((end, flange) in b1_pose()) {
         let all = deepest(&semi_analytical::detect(&end, &flange)).filter(|c| c.penetration > 0.0);
-        let fast = pruning::composite(&end, &flange);
-        match (all, fast) {
-            (None, None) => {}
-            (Some(a), Some(b)) => {
-                prop_assert!((a.penetration - b.penetration).abs() <= 1e-15, "{:?} vs {:?}", a, b);
-                prop_assert_eq!(a.pairing, b.pairing);
-            }
-            (a, b) => prop_assert!(false, "{:?} vs {:?}", a, b),
-        }
+        same_contact(all, pruning::composite(&end, &flange))?;
     }
 }
 
@@ -372,15 +383,7 @@ proptest! {
     fn pruned_composite_within_a_reach_equals_the_deepest((end, flange) in b1_pose()) {
         let reach = 20e-6;
         let all = deepest(&semi_analytical::detect(&end, &flange)).filter(|c| c.penetration > -reach);
-        let fast = pruning::composite_within(&end, &flange, reach);
-        match (all, fast) {
-            (None, None) => {}
-            (Some(a), Some(b)) => {
-                prop_assert!((a.penetration - b.penetration).abs() <= 1e-15, "{:?} vs {:?}", a, b);
-                prop_assert_eq!(a.pairing, b.pairing);
-            }
-            (a, b) => prop_assert!(false, "{:?} vs {:?}", a, b),
-        }
+        same_contact(all, pruning::composite_within(&end, &flange, reach))?;
     }
 }
 
