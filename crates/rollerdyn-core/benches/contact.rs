@@ -64,11 +64,22 @@ fn detection(c: &mut Criterion) {
             })
         },
     );
+    // The flange's bounds are intrinsic, so the dynamic model computes them once per flange.
+    let bounds = pruning::FlangeBounds::new(&flange);
     c.bench_function("semi-analytical composite, pruned (overlap only)", |b| {
         b.iter(|| {
             k = (k + 1) % n;
-            pruning::composite(black_box(&ends[k]), &flange)
+            pruning::composite_within_bounds(black_box(&ends[k]), &flange, &bounds, 0.0)
         })
+    });
+    c.bench_function("semi-analytical composite, pruned, within 20 um", |b| {
+        b.iter(|| {
+            k = (k + 1) % n;
+            pruning::composite_within_bounds(black_box(&ends[k]), &flange, &bounds, 20e-6)
+        })
+    });
+    c.bench_function("flange bounds (once per flange)", |b| {
+        b.iter(|| pruning::FlangeBounds::new(black_box(&flange)))
     });
     let mut previous = [None; 6];
     c.bench_function("gradient composite (6 pairings), warm-started", |b| {

@@ -19,7 +19,8 @@ use super::params::{BearingParams, Detector};
 use super::state::{ring_kinematics, roller_kinematics, Kinematics, Layout, ROLLER_STATES};
 use crate::contact::gradient::{self, Unknowns};
 use crate::contact::mesh::{MeshDetector, MeshResolution};
-use crate::contact::{border, deepest, pruning, semi_analytical, Contact, Pairing};
+use crate::contact::pruning::{self, FlangeBounds};
+use crate::contact::{border, deepest, semi_analytical, Contact, Pairing};
 use crate::dynamics::integrate::OdeSystem;
 use crate::dynamics::rigid::{angle_rates, angular_acceleration, driven_transverse_acceleration};
 use crate::error::{Error, Result};
@@ -139,6 +140,8 @@ pub struct BearingModel {
     /// Elements of each roller, and of the inner ring.
     roller_elements: Vec<Vec<usize>>,
     ring_elements: Vec<usize>,
+    /// Pruning bounds of the four flanges (intrinsic, so computed once; [`FlangeBounds`]).
+    flange_bounds: [FlangeBounds; 4],
     warm_starts: RefCell<Vec<[Option<Unknowns>; 6]>>,
     profile: Cell<Profile>,
 }
@@ -216,6 +219,9 @@ impl BearingModel {
             }
         }
         let pitch_radius = 0.5 * (params.inner_raceway_radius + params.outer_raceway_radius);
+        let at_rest = Kinematics::fixed();
+        let flange_bounds =
+            std::array::from_fn(|k| FlangeBounds::new(&flange_of(&params, k, &at_rest)));
         Ok(Self {
             layout,
             roller_mass,
@@ -228,6 +234,7 @@ impl BearingModel {
             elements,
             roller_elements,
             ring_elements,
+            flange_bounds,
             warm_starts: RefCell::new(vec![[None; 6]; 4 * z]),
             profile: Cell::new(Profile::default()),
             params,
@@ -459,41 +466,19 @@ impl BearingModel {
 
     /// The flange k of a ring body at its current pose.
     fn flange(&self, k: usize, ring: &Kinematics) -> Flange {
-        let inner = k < 2;
-        let side = if k % 2 == 1 { 1.0 } else { -1.0 };
-        let (shape, play, radius) = if inner {
-            (
-                &self.params.inner_flange,
-                self.params.inner_axial_play,
-                self.params.inner_raceway_radius,
-            )
-        } else {
-            (
-                &self.params.outer_flange,
-                self.params.outer_axial_play,
-                self.params.outer_raceway_radius,
-            )
-        };
-        Flange::new(
-            shape,
-            &FlangePlacement {
-                origin: ring.center,
-                axis: ring.axis,
-                raceway_radius: radius,
-                rises: if inner { 1.0 } else { -1.0 },
-                face_position: side * (0.5 * self.params.roller.length + play),
-                facing: -side,
-            },
-        )
+        flange_of(&self.params, k, ring)
     }
 
     /// The composite contact of a roller end against a flange by the configured detector.
     fn detect(&self, end: &RollerEnd, flange: &Flange, index: usize) -> Option<Contact> {
         let start = Instant::now();
         let found = match self.params.detector {
-            Detector::SemiAnalytical if self.params.pruning => {
-                pruning::composite_within(end, flange, self.params.squeeze_film.reach())
-            }
+            Detector::SemiAnalytical if self.params.pruning => pruning::composite_within_bounds(
+                end,
+                flange,
+                &self.flange_bounds[index_to_flange(index)],
+                self.params.squeeze_film.reach(),
+            ),
             Detector::SemiAnalytical => semi_analytical::composite(end, flange),
             Detector::Gradient => {
                 let slot = index_to_slot(index);
@@ -880,12 +865,46 @@ impl BearingModel {
     }
 }
 
+/// The flange k (0, 1: inner ring at −x, +x; 2, 3: outer ring) of a ring body at its pose.
+fn flange_of(params: &BearingParams, k: usize, ring: &Kinematics) -> Flange {
+    let inner = k < 2;
+    let side = if k % 2 == 1 { 1.0 } else { -1.0 };
+    let (shape, play, radius) = if inner {
+        (
+            &params.inner_flange,
+            params.inner_axial_play,
+            params.inner_raceway_radius,
+        )
+    } else {
+        (
+            &params.outer_flange,
+            params.outer_axial_play,
+            params.outer_raceway_radius,
+        )
+    };
+    Flange::new(
+        shape,
+        &FlangePlacement {
+            origin: ring.center,
+            axis: ring.axis,
+            raceway_radius: radius,
+            rises: if inner { 1.0 } else { -1.0 },
+            face_position: side * (0.5 * params.roller.length + play),
+            facing: -side,
+        },
+    )
+}
+
+/// Flange (0…3) of an element index (elements are ordered Inner, Outer, Pair, End×4 per
+/// roller).
+fn index_to_flange(index: usize) -> usize {
+    index % 7 - 3
+}
+
 /// Warm-start slot of an element index (4 flange contacts per roller, after 3 line
 /// contacts: elements are ordered Inner, Outer, Pair, End×4 per roller).
 fn index_to_slot(index: usize) -> usize {
-    let roller = index / 7;
-    let k = index % 7 - 3;
-    4 * roller + k
+    4 * (index / 7) + index_to_flange(index)
 }
 
 impl OdeSystem for BearingModel {

@@ -16,13 +16,18 @@ pub(crate) fn b1_roller() -> RollerShape {
 
 /// One of B1's four flanges: inner or outer ring, at the +x or −x end.
 pub(crate) fn b1_flange(inner: bool, plus_end: bool) -> Flange {
+    b1_flange_at(inner, plus_end, Vec3::zeros(), Vec3::x())
+}
+
+/// [`b1_flange`] on a ring with the given origin and unit axis.
+fn b1_flange_at(inner: bool, plus_end: bool, origin: Vec3, axis: Vec3) -> Flange {
     let shape = FlangeShape::new(0.11f64.to_radians(), 1.1e-3, 0.2e-3, 0.3e-3).unwrap();
     let side = if plus_end { 1.0 } else { -1.0 };
     Flange::new(
         &shape,
         &FlangePlacement {
-            origin: Vec3::zeros(),
-            axis: Vec3::x(),
+            origin,
+            axis,
             raceway_radius: if inner { 10e-3 } else { 14.5e-3 },
             rises: if inner { 1.0 } else { -1.0 },
             face_position: side * (2.5e-3 + PLAY),
@@ -42,6 +47,12 @@ pub(crate) fn b1_end(
     tilt: f64,
     skew: f64,
 ) -> RollerEnd {
+    let (center, outward) = b1_end_frame(plus_end, psi, dx, dr, tilt, skew);
+    RollerEnd::new(&b1_roller(), center, outward)
+}
+
+/// The centre and outward axis of [`b1_end`]'s roller end.
+fn b1_end_frame(plus_end: bool, psi: f64, dx: f64, dr: f64, tilt: f64, skew: f64) -> (Vec3, Vec3) {
     let radial = Vec3::new(0.0, psi.cos(), psi.sin());
     let circumferential = Vec3::x().cross(&radial);
     let center = Vec3::x() * dx + radial * (PITCH_RADIUS + dr);
@@ -49,8 +60,7 @@ pub(crate) fn b1_end(
         + radial * tilt.sin()
         + circumferential * skew.sin())
     .normalize();
-    let outward = if plus_end { axis } else { -axis };
-    RollerEnd::new(&b1_roller(), center, outward)
+    (center, if plus_end { axis } else { -axis })
 }
 
 prop_compose! {
@@ -384,6 +394,42 @@ proptest! {
         let reach = 20e-6;
         let all = deepest(&semi_analytical::detect(&end, &flange)).filter(|c| c.penetration > -reach);
         same_contact(all, pruning::composite_within(&end, &flange, reach))?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 1000, .. ProptestConfig::default() })]
+
+    /// A flange's pruning bounds are intrinsic ([`pruning::FlangeBounds`]): after a rigid
+    /// motion of the ring with its roller (translation up to 1 mm, rotation up to 2° about
+    /// any axis) they are those at rest to round-off (1e-15 m, about 10 ulp of B1's
+    /// millimetre coordinates), and the composite with the bounds computed at rest, as the
+    /// dynamic model uses it, is the composite of the moved pose.
+    #[test]
+    fn flange_bounds_computed_at_rest_serve_every_pose(
+        (inner, plus_end) in (prop::bool::ANY, prop::bool::ANY),
+        (psi, dx, dr) in (-3.2..3.2f64, -60e-6..60e-6f64, -20e-6..20e-6f64),
+        (tilt, skew) in (-1.0..1.0f64, -1.0..1.0f64),
+        shift in prop::array::uniform3(-1e-3..1e-3f64),
+        turn in prop::array::uniform3(-2.0..2.0f64),
+    ) {
+        let rotation = nalgebra::Rotation3::from_scaled_axis(Vec3::from(turn) * 1f64.to_radians());
+        let shift = Vec3::from(shift);
+        let (center, outward) = b1_end_frame(plus_end, psi, dx, dr, tilt.to_radians(), skew.to_radians());
+        let end = RollerEnd::new(&b1_roller(), rotation * center + shift, rotation * outward);
+        let flange = b1_flange_at(inner, plus_end, shift, rotation * Vec3::x());
+        let rest = pruning::FlangeBounds::new(&b1_flange(inner, plus_end));
+        let moved = pruning::FlangeBounds::new(&flange);
+        for (a, b) in rest.figures.iter().chain([&rest.whole]).zip(moved.figures.iter().chain([&moved.whole])) {
+            for (x, y) in [a.s, a.rho].iter().zip([b.s, b.rho]) {
+                prop_assert!((x.0 - y.0).abs() < 1e-15 && (x.1 - y.1).abs() < 1e-15, "{a:?} vs {b:?}");
+            }
+        }
+        let reach = 20e-6;
+        same_contact(
+            pruning::composite_within(&end, &flange, reach),
+            pruning::composite_within_bounds(&end, &flange, &rest, reach),
+        )?;
     }
 }
 
