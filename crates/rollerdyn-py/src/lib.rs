@@ -893,6 +893,7 @@ fn contact_benchmark<'py>(
     d.set_item("composite_ns", r.composite_ns)?;
     d.set_item("pruned_composite_ns", r.pruned_composite_ns)?;
     d.set_item("gradient_ns", r.gradient_ns)?;
+    d.set_item("gradient_pruned_ns", r.gradient_pruned_ns)?;
     d.set_item("gradient_mean_iterations", r.gradient_mean_iterations)?;
     d.set_item("gradient_not_converged", r.gradient_not_converged)?;
     d.set_item("gradient_wrong_stationary", r.gradient_wrong_stationary)?;

@@ -257,15 +257,23 @@ pub fn detect(
     flange: &Flange,
     previous: &[Option<Unknowns>; 6],
 ) -> [GradientOutcome; 6] {
-    let roller_figures = [Figure::Torus(&end.torus), Figure::Sphere(&end.sphere)];
-    let flange_figures = [
+    std::array::from_fn(|k| detect_pairing(end, flange, k, previous[k]))
+}
+
+/// Pairing `k` ([`Pairing::ALL`] order) of a roller end against a flange, warm-started from
+/// `previous` (or cold-started where it is None): one entry of [`detect`].
+pub fn detect_pairing(
+    end: &RollerEnd,
+    flange: &Flange,
+    k: usize,
+    previous: Option<Unknowns>,
+) -> GradientOutcome {
+    let r = [Figure::Torus(&end.torus), Figure::Sphere(&end.sphere)][k / 3];
+    let f = [
         Figure::Cone(&flange.cone),
         Figure::Torus(&flange.root),
         Figure::Torus(&flange.rim),
-    ];
-    std::array::from_fn(|k| {
-        let (r, f) = (&roller_figures[k / 3], &flange_figures[k % 3]);
-        let start = previous[k].unwrap_or_else(|| cold_start(r, f));
-        solve(r, f, Pairing::ALL[k], start)
-    })
+    ][k % 3];
+    let start = previous.unwrap_or_else(|| cold_start(&r, &f));
+    solve(&r, &f, Pairing::ALL[k], start)
 }
