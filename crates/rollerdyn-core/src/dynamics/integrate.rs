@@ -10,7 +10,8 @@
 //! solver from (t, y, h) at fixed times, in every run; a run resumed from a checkpoint
 //! takes the same path from there and so equals the uninterrupted run bit for bit.
 
-use diffsol::{NalgebraLU, NalgebraMat, OdeBuilder, OdeSolverMethod, OdeSolverStopReason, Vector};
+use super::sparse_lu::SparseSkipLu;
+use diffsol::{NalgebraMat, OdeBuilder, OdeSolverMethod, OdeSolverStopReason, Vector};
 use nalgebra::DMatrix;
 use std::cell::RefCell;
 use std::ops::ControlFlow;
@@ -318,8 +319,8 @@ pub fn integrate<S: OdeSystem>(
         problem.ode_options.max_nonlinear_solver_failures = usize::MAX / 4;
         problem.ode_options.min_timestep = MIN_STEP;
         let solver = match options.method {
-            Method::TrBdf2 => problem.tr_bdf2::<NalgebraLU<f64>>().map(Solver::TrBdf2),
-            Method::Esdirk34 => problem.esdirk34::<NalgebraLU<f64>>().map(Solver::Esdirk34),
+            Method::TrBdf2 => problem.tr_bdf2::<SparseSkipLu>().map(Solver::TrBdf2),
+            Method::Esdirk34 => problem.esdirk34::<SparseSkipLu>().map(Solver::Esdirk34),
         };
         let mut solver = solver.map_err(|e| fail(t, e.to_string(), y.clone(), &counters))?;
         if let Some(h) = h {

@@ -2,6 +2,8 @@
 //!
 //! * [`rigid`]: kinematics and Euler's equations of axisymmetric rigid bodies.
 //! * [`integrate`]: the stiff adaptive integration driver (knows nothing of bearings).
+//! * [`sparse_lu`]: the Newton iterations' linear solver (LU on the non-zeros).
 
 pub mod integrate;
 pub mod rigid;
+pub mod sparse_lu;
