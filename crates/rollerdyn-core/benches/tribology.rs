@@ -3,6 +3,7 @@
 //! Hertz point contact (fit and exact). Run: `cargo bench -p rollerdyn-core`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use rollerdyn_core::tribology::film::{thermal_correction, FilmInputs};
 use rollerdyn_core::tribology::hertz::{EllipticalContact, EllipticalMethod};
 use rollerdyn_core::tribology::lubricant::{Carreau, Roelands};
 use rollerdyn_core::tribology::traction::{EhlTraction, LimitingShearStress, TableGrid};
@@ -58,6 +59,25 @@ fn traction(c: &mut Criterion) {
     }
 }
 
+/// The film formulas of one line slice (B1's inner race at full speed: R' = 1.9 mm,
+/// u₀ = 0.13 m/s, q = 100 kN/m) and the thermal correction.
+fn film(c: &mut Criterion) {
+    let inputs = FilmInputs {
+        e_prime: 2.3e11,
+        alpha_star: 1.4e-8,
+        eta0: 0.0165,
+    };
+    c.bench_function("film: Moes line", |b| {
+        b.iter(|| inputs.moes_line(black_box(1.9e-3), black_box(0.13), black_box(1e5)))
+    });
+    c.bench_function("film: ZEV line", |b| {
+        b.iter(|| inputs.zev_line(black_box(1.1e-3), black_box(0.13), black_box(1e5)))
+    });
+    c.bench_function("film: thermal correction", |b| {
+        b.iter(|| thermal_correction(-8e-4, 0.134, black_box(0.13), black_box(2e-3)))
+    });
+}
+
 fn hertz(c: &mut Criterion) {
     for (name, method) in [
         ("Brewe-Hamrock", EllipticalMethod::BreweHamrock),
@@ -76,6 +96,6 @@ fn hertz(c: &mut Criterion) {
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(30).measurement_time(std::time::Duration::from_secs(2));
-    targets = traction, hertz
+    targets = traction, film, hertz
 }
 criterion_main!(benches);
