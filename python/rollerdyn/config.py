@@ -876,7 +876,7 @@ class SolverConfig(_Section):
     atol_time_scale: Quantity("time", positive=True, le="1 s") = "1e-5 s"
     dt_max: Quantity("time", positive=True) = "1e-4 s"
     output_interval: Quantity("time", positive=True) = "1e-4 s"
-    checkpoint_interval: Quantity("time", positive=True) = "10 ms"
+    checkpoint_interval: Quantity("time", positive=True) = "50 ms"
     detector: Literal["semi-analytical", "gradient", "mesh"] = "semi-analytical"
     method: Literal["tr-bdf2", "esdirk34"] = "tr-bdf2"
     pruning: bool = True
