@@ -323,6 +323,13 @@ def test_type_factories() -> None:
 BAD = [
     # (id, path to change, new value, expected problem path, expected rule text)
     (
+        "misalignment beyond 1 deg",
+        "inner_ring.misalignment",
+        "2 deg",
+        "inner_ring.misalignment",
+        "<= 1 deg",
+    ),
+    (
         "zero radius",
         "geometry.roller.edge_radius",
         "0 mm",
@@ -932,3 +939,17 @@ def test_roller_mass_properties_real(b1: BearingConfig) -> None:
     assert cfg.roller_mass == pytest.approx(m, rel=0.01)
     assert cfg.roller_axial_inertia == pytest.approx(j_ax, rel=0.01)
     assert cfg.roller_transverse_inertia == pytest.approx(j_tr, rel=0.01)
+
+
+def test_misalignment_needs_the_tilt_locked(raw: dict) -> None:
+    """A prescribed misalignment and a free tilt contradict each other: refused, with the
+    field and the rule named; 0.05 deg with the tilt locked is accepted (in rad)."""
+    with pytest.raises(ConfigError) as info:
+        parse_config(
+            mutate(mutate(raw, "inner_ring.tilt", "free"), "inner_ring.misalignment", "0.05 deg")
+        )
+    assert 'inner_ring.misalignment: "0.05 deg" — a prescribed misalignment needs tilt' in str(
+        info.value
+    )
+    cfg = parse_config(mutate(raw, "inner_ring.misalignment", "0.05 deg"))
+    assert cfg.inner_ring.misalignment == pytest.approx(math.radians(0.05), rel=1e-12)

@@ -75,6 +75,13 @@ fn params(r: &mut Reader) -> Option<BearingParams> {
     )
     .ok()?;
     let inner_raceway_radius = r.log_range(1e-3, 0.5);
+    // A prescribed misalignment only with the tilt locked (else `check` refuses it).
+    let inner_ring_tilt_free = r.flag();
+    let inner_ring_misalignment = if inner_ring_tilt_free {
+        0.0
+    } else {
+        r.range(-0.02, 0.02)
+    };
     let outer_raceway_radius = inner_raceway_radius + 2.0 * radius * r.range(0.98, 1.05);
     let detector = match r.byte() % 3 {
         0 => Detector::SemiAnalytical,
@@ -103,7 +110,8 @@ fn params(r: &mut Reader) -> Option<BearingParams> {
         inner_ring_mass: r.log_range(1e-3, 100.0),
         inner_ring_axial_inertia: r.log_range(1e-9, 1.0),
         inner_ring_transverse_inertia: r.log_range(1e-9, 1.0),
-        inner_ring_tilt_free: r.flag(),
+        inner_ring_tilt_free,
+        inner_ring_misalignment,
         traction: EhlTraction::new(
             Roelands {
                 eta_p: 0.0631e-3,

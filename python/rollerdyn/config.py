@@ -435,6 +435,23 @@ class InnerRingConfig(_Section):
     axial_inertia: Quantity("moment of inertia", positive=True) | None = None
     transverse_inertia: Quantity("moment of inertia", positive=True) | None = None
     tilt: Literal["locked", "free"] = "locked"
+    # Prescribed tilt of a locked ring about z (perpendicular to the radial load along -y and
+    # the axial load along +x, as the paper's tilt, sect. 5.2); the ring's axis is
+    # (cos g, sin g, 0) for the whole run.
+    misalignment: Quantity("angle", ge="-1 deg", le="1 deg") = "0 deg"
+
+    @model_validator(mode="after")
+    def _check(self) -> InnerRingConfig:
+        if self.tilt == "free" and self.misalignment != 0.0:
+            cross = _Cross()
+            cross.add(
+                "misalignment",
+                f"{self.misalignment:.6g} rad",
+                'a prescribed misalignment needs tilt = "locked" '
+                "(the free ring finds its own tilt)",
+            )
+            cross.raise_if_any()
+        return self
 
 
 # --------------------------------------------------------------------------- lubricant

@@ -11,7 +11,11 @@ from .simulation import FLANGES, PAIRINGS, carried_axial_force
 
 
 def _label(ds: xr.Dataset, path: Path) -> str:
-    return f"{path.stem} (F_a = {float(ds.axial_load[-1]):.0f} N)"
+    label = f"{path.stem} (F_a = {float(ds.axial_load[-1]):.0f} N"
+    tilt = np.degrees(float(np.abs(ds.ring_tilt.isel(time=-1)).max()))
+    if tilt > 0:
+        label += f", IR tilt {tilt:.3g} deg"
+    return label + ")"
 
 
 def _full_speed(ds: xr.Dataset) -> xr.Dataset:

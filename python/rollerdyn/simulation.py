@@ -114,6 +114,7 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
         "inner_ring_axial_inertia": cfg.inner_ring_axial_inertia,
         "inner_ring_transverse_inertia": cfg.inner_ring_transverse_inertia,
         "inner_ring_tilt_free": cfg.inner_ring.tilt == "free",
+        "inner_ring_misalignment": cfg.inner_ring.misalignment,
         "eta0": model.eta0,
         "viscosity_slope": model.viscosity_slope,
         "alpha_star": model.alpha_star,

@@ -1136,6 +1136,7 @@ mod simulation {
             inner_ring_axial_inertia: get(d, "inner_ring_axial_inertia")?,
             inner_ring_transverse_inertia: get(d, "inner_ring_transverse_inertia")?,
             inner_ring_tilt_free: get(d, "inner_ring_tilt_free")?,
+            inner_ring_misalignment: get(d, "inner_ring_misalignment")?,
             traction: traction.clone(),
             eta0: get(d, "eta0")?,
             viscosity_slope: get(d, "viscosity_slope")?,

@@ -22,7 +22,9 @@ use crate::contact::mesh::{MeshDetector, MeshResolution};
 use crate::contact::pruning::{self, FlangeBounds};
 use crate::contact::{border, deepest, semi_analytical, Contact, Pairing};
 use crate::dynamics::integrate::OdeSystem;
-use crate::dynamics::rigid::{angle_rates, angular_acceleration, driven_transverse_acceleration};
+use crate::dynamics::rigid::{
+    angle_rates, angular_acceleration, axis_from_angles, driven_transverse_acceleration,
+};
 use crate::error::{Error, Result};
 use crate::geometry::end_flange::{Flange, FlangePlacement, RollerEnd};
 use crate::geometry::primitives::Vec3;
@@ -140,6 +142,9 @@ pub struct BearingModel {
     /// Elements of each roller, and of the inner ring.
     roller_elements: Vec<Vec<usize>>,
     ring_elements: Vec<usize>,
+    /// Axis of the inner ring when its tilt is locked: +x turned by the prescribed
+    /// misalignment about z.
+    locked_axis: Vec3,
     /// Pruning bounds of the four flanges (intrinsic, so computed once; [`FlangeBounds`]).
     flange_bounds: [FlangeBounds; 4],
     warm_starts: RefCell<Vec<[Option<Unknowns>; 6]>>,
@@ -235,6 +240,7 @@ impl BearingModel {
             roller_elements,
             ring_elements,
             flange_bounds,
+            locked_axis: axis_from_angles(0.0, params.inner_ring_misalignment),
             warm_starts: RefCell::new(vec![[None; 6]; 4 * z]),
             profile: Cell::new(Profile::default()),
             params,
@@ -329,7 +335,7 @@ impl BearingModel {
     /// Kinematics of all bodies: inner ring, then the rollers.
     pub fn kinematics(&self, t: f64, y: &[f64]) -> (Kinematics, Vec<Kinematics>) {
         let spin = self.params.inner_ring_speed.at(t).0;
-        let ring = ring_kinematics(&self.layout, y, spin);
+        let ring = ring_kinematics(&self.layout, y, spin, &self.locked_axis);
         let rollers = (0..self.layout.rollers)
             .map(|i| roller_kinematics(&self.layout, y, i))
             .collect();
@@ -801,8 +807,12 @@ impl BearingModel {
             let mut kin_p = kin.clone();
             let elements = match body {
                 None => {
-                    kin_p.0 =
-                        ring_kinematics(&self.layout, &yp, self.params.inner_ring_speed.at(t).0);
+                    kin_p.0 = ring_kinematics(
+                        &self.layout,
+                        &yp,
+                        self.params.inner_ring_speed.at(t).0,
+                        &self.locked_axis,
+                    );
                     &self.ring_elements
                 }
                 Some(i) => {

@@ -169,6 +169,10 @@ pub struct BearingParams {
     pub inner_ring_transverse_inertia: f64,
     /// Inner ring tilt free (else locked).
     pub inner_ring_tilt_free: bool,
+    /// Prescribed tilt (misalignment) of a locked inner ring about z, perpendicular to the
+    /// radial load (−y) and the axial load (+x) as the paper's tilt (sect. 5.2) [rad]: the
+    /// ring's axis is (cos γ, sin γ, 0) throughout the run. 0 unless the tilt is locked.
+    pub inner_ring_misalignment: f64,
     /// EHL traction (sect. 3.2.1).
     pub traction: EhlTraction,
     /// Ambient viscosity η₀ [Pa s].
@@ -218,6 +222,21 @@ pub struct BearingParams {
 impl BearingParams {
     /// Checks what the model relies on; the first violation is returned.
     pub fn check(&self) -> Result<()> {
+        let gamma = self.inner_ring_misalignment;
+        if !(gamma.is_finite() && gamma.abs() <= 1f64.to_radians()) {
+            return Err(Error::invalid(
+                "inner ring misalignment",
+                gamma,
+                "must be finite and within ±1° (±0.01745 rad)",
+            ));
+        }
+        if self.inner_ring_tilt_free && gamma != 0.0 {
+            return Err(Error::invalid(
+                "inner ring misalignment",
+                gamma,
+                "must be 0 with the tilt free (a prescribed tilt needs the tilt locked)",
+            ));
+        }
         if self.roller_count < 3 {
             return Err(Error::invalid("roller_count", self.roller_count, ">= 3"));
         }

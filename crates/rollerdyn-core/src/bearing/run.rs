@@ -273,7 +273,7 @@ pub fn record(model: &BearingModel, t: f64, y: &[f64]) -> Record {
     let ring_tilt = if layout.tilt_free {
         (y[6], y[7])
     } else {
-        (0.0, 0.0)
+        (0.0, model.params.inner_ring_misalignment)
     };
     let mut rollers = vec![RollerRecord::default(); layout.rollers];
     for (element, r) in model.elements().iter().zip(&results) {

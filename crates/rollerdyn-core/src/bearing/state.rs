@@ -111,9 +111,10 @@ pub fn roller_kinematics(layout: &Layout, y: &[f64], i: usize) -> Kinematics {
     }
 }
 
-/// Reads the inner ring from the state, with its prescribed spin Ω about its axis.
+/// Reads the inner ring from the state, with its prescribed spin Ω about its axis;
+/// `locked_axis` is the (unit) axis of a ring whose tilt is locked.
 #[inline]
-pub fn ring_kinematics(layout: &Layout, y: &[f64], spin: f64) -> Kinematics {
+pub fn ring_kinematics(layout: &Layout, y: &[f64], spin: f64, locked_axis: &Vec3) -> Kinematics {
     let center = Vec3::new(y[0], y[1], y[2]);
     let velocity = Vec3::new(y[3], y[4], y[5]);
     if layout.tilt_free {
@@ -129,9 +130,9 @@ pub fn ring_kinematics(layout: &Layout, y: &[f64], spin: f64) -> Kinematics {
     } else {
         Kinematics {
             center,
-            axis: Vec3::x(),
+            axis: *locked_axis,
             velocity,
-            omega: Vec3::new(spin, 0.0, 0.0),
+            omega: spin * locked_axis,
         }
     }
 }
