@@ -216,7 +216,8 @@ pub fn case(r: &mut Reader) -> Option<Case> {
 
 /// True if every number a contact reports is defined: points, normal and penetration
 /// finite; for a valid overlapping contact (the only kind that carries load) R_x, R_y
-/// positive (∞ allowed for a flat relative shape) and the major axis finite.
+/// finite and positive (`contact::relative_radius`; ∞ was allowed before finding 4) and
+/// the major axis finite.
 pub fn defined(c: &Contact) -> bool {
     let points =
         c.p1.iter()
@@ -230,8 +231,8 @@ pub fn defined(c: &Contact) -> bool {
     points
         && c.rx > 0.0
         && c.ry > 0.0
-        && !c.rx.is_nan()
-        && !c.ry.is_nan()
+        && c.rx.is_finite()
+        && c.ry.is_finite()
         && c.major_axis.iter().all(|x| x.is_finite())
 }
 

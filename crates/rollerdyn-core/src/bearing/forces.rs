@@ -300,7 +300,9 @@ pub fn end_flange(
     major_axis: &Vec3,
     frame: &Vec3,
 ) -> ContactForces {
-    if penetration <= 0.0 || !(radii.0 > 0.0 && radii.1 > 0.0) {
+    // Radii outside (0, ∞) never come from the detectors (contact::relative_radius); NaN
+    // (no curvature) carries no load.
+    if penetration <= 0.0 || !(radii.0 > 0.0 && radii.1 > 0.0 && radii.0.max(radii.1).is_finite()) {
         return ContactForces::default();
     }
     let hertz = EllipticalContact::new(
