@@ -352,13 +352,11 @@ pub fn end_flange(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::tribology::lubricant::{Carreau, Roelands};
-    use crate::tribology::traction::LimitingShearStress;
-
+impl Tribology {
     /// The fuzz target's tribology (B1's data, η₀ = 16.5 mPa s), friction on.
-    fn tribology() -> Tribology {
+    pub(crate) fn b1_for_tests() -> Tribology {
+        use crate::tribology::lubricant::{Carreau, Roelands};
+        use crate::tribology::traction::LimitingShearStress;
         let eta0 = 0.0165;
         Tribology {
             traction: EhlTraction::new(
@@ -390,6 +388,15 @@ mod tests {
             damping_ratio: 0.1,
             friction: true,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tribology() -> Tribology {
+        Tribology::b1_for_tests()
     }
 
     /// Finding 5 of docs/robustness.md: with friction on, an overlap of 17 mm on a

@@ -784,3 +784,67 @@ fn b1_contacts_keep_their_radii() {
         }
     }
 }
+
+/// docs/robustness.md, finding 6: the mesh baseline gives no curvature; the border
+/// blending with both bands 0 (sharp weights) evaluated the figures' curvatures at the
+/// mesh's points, and a non-positive relative curvature became R_y = ∞, which Hertz turned
+/// into a NaN force. Here a coarse (3 × 1) mesh of a 2 mm roller on a 10 mm inner ring
+/// (zero axial play, the consistent start) overlaps on the face: the blended radii are
+/// finite, and so is the force.
+#[test]
+fn blended_mesh_contact_has_finite_radii_with_sharp_bands() {
+    use super::border::{blend, BorderBands};
+    use super::mesh::{MeshDetector, MeshResolution};
+    use crate::bearing::forces::{end_flange, EllipseKind, Tribology};
+    use crate::bearing::state::Kinematics;
+    let rr = 2e-3;
+    let roller = RollerShape::new(rr, 2.0 * rr, 0.2 * rr, 100.0 * rr).unwrap();
+    let h = 0.5 * rr;
+    let shape = FlangeShape::new(0.001, h, 0.2 * h, 0.2 * h).unwrap();
+    let flange = Flange::new(
+        &shape,
+        &FlangePlacement {
+            origin: Vec3::zeros(),
+            axis: Vec3::x(),
+            raceway_radius: 0.01,
+            rises: 1.0,
+            face_position: rr,
+            facing: -1.0,
+        },
+    );
+    let end = RollerEnd::new(&roller, Vec3::new(0.0, 0.01 + rr, 0.0), Vec3::x());
+    let sharp = BorderBands {
+        roller_angle: 0.0,
+        flange_length: 0.0,
+    };
+    let mesh = MeshDetector::new(
+        &end,
+        &flange,
+        MeshResolution {
+            around: 3,
+            along: 1,
+        },
+    );
+    let c = deepest(&mesh.detect()).unwrap();
+    assert!(c.valid && c.penetration > 0.0 && c.rx.is_nan(), "{c:?}");
+    let b = blend(&c, &end, &flange, &sharp);
+    assert!(loadable(&b), "{b:?}");
+    let f = end_flange(
+        &Tribology::b1_for_tests(),
+        &EllipseKind {
+            e_prime: 2.3e11,
+            roughness: 0.24e-6,
+            sharing: crate::tribology::friction::LoadSharing { b: 1.9, c: 0.99 },
+            mass: 1e-3,
+        },
+        &Kinematics::fixed(),
+        &Kinematics::fixed(),
+        &b.normal,
+        &b.location(),
+        b.penetration,
+        (b.rx, b.ry),
+        &b.major_axis,
+        &Vec3::zeros(),
+    );
+    assert!(f.normal.is_finite() && f.normal > 0.0, "{f:?}");
+}
