@@ -2,6 +2,7 @@
 
 from pathlib import Path
 
+import pytest
 from typer.testing import CliRunner
 
 from rollerdyn.cli import app
@@ -80,3 +81,36 @@ def test_runtime_study_writes_table_csv_and_plot(tmp_path):
     assert (out / "fig14_runtime_over_dt_max.png").is_file()
     bad = RUNNER.invoke(app, ["bench", "mbs", "--sweep-dt-max", "1e-5,fast"])
     assert bad.exit_code == 2 and "comma-separated positive" in bad.output
+
+
+def test_run_checkpoint_interval_option(tmp_path):
+    """`run --checkpoint-interval SECONDS` overrides solver.checkpoint_interval (10 ms in
+    B1, so a 0.4 ms run would have no checkpoint); --resume keeps the earlier run's
+    interval unless told otherwise; a bad value is refused with the option and the rule
+    named, before any work."""
+    import xarray as xr
+
+    out = tmp_path / "cp.nc"
+    args = ["run", str(B1), "-o", str(out), "--t-end", "0.0004"]
+    result = RUNNER.invoke(app, [*args, "--checkpoint-interval", "1e-4"])
+    assert result.exit_code == 0, result.output
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        assert ds.attrs["checkpoint_interval_s"] == 1e-4
+        assert float(ds.checkpoint_time) == pytest.approx(4e-4, abs=1e-15)
+    resumed = tmp_path / "resumed.nc"
+    again = RUNNER.invoke(
+        app, ["run", str(B1), "-o", str(resumed), "--t-end", "0.0005", "--resume", str(out)]
+    )
+    assert again.exit_code == 0, again.output
+    with xr.open_dataset(resumed, engine="h5netcdf") as ds:
+        assert ds.attrs["checkpoint_interval_s"] == 1e-4
+        assert float(ds.checkpoint_time) == pytest.approx(5e-4, abs=1e-15)
+    for bad in ("0", "-1e-3", "nan", "inf"):
+        refused = RUNNER.invoke(app, [*args, "--checkpoint-interval", bad])
+        assert refused.exit_code == 2, (bad, refused.output)
+        assert "--checkpoint-interval" in refused.output and "positive" in refused.output
+        assert "Traceback" not in refused.output
+    not_a_number = RUNNER.invoke(app, [*args, "--checkpoint-interval", "often"])
+    assert not_a_number.exit_code == 2 and "Traceback" not in not_a_number.output
+    help_text = RUNNER.invoke(app, ["run", "--help"]).output
+    assert "--checkpoint-interval" in help_text and "seconds" in help_text

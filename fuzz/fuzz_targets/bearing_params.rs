@@ -17,6 +17,7 @@ use rollerdyn_core::geometry::roller::RollerShape;
 use rollerdyn_core::tribology::friction::{BoundaryFriction, LoadSharing};
 use rollerdyn_core::tribology::line_contact::LinePowerLaw;
 use rollerdyn_core::tribology::lubricant::{Carreau, Roelands};
+use rollerdyn_core::tribology::squeeze::SqueezeFilm;
 use rollerdyn_core::tribology::traction::{EhlTraction, LimitingShearStress};
 use rollerdyn_fuzz::Reader;
 
@@ -155,6 +156,13 @@ fn params(r: &mut Reader) -> Option<BearingParams> {
             roller_angle: r.range(0.0, 1e-3),
             flange_length: r.range(0.0, 1e-4),
         },
+        // The configuration's ranges (surfaces.squeeze_film).
+        squeeze_film: SqueezeFilm {
+            enabled: r.flag(),
+            half_width: r.log_range(1e-6, 10e-3),
+            floor: r.log_range(1e-9, 100e-6),
+            cutoff: r.log_range(1e-9, 1e-3),
+        },
     })
 }
 
@@ -190,10 +198,11 @@ fuzz_target!(|data: &[u8]| {
         dy.iter().all(|v| v.is_finite()),
         "rates at the start, t = {t}: {dy:?}\n{params:?}"
     );
-    // Push every state by up to its tolerance scale for 20 µm, times roller radius over
-    // pitch radius so that a ring tilt moves the flanges by micrometres too (unscaled,
+    // Push every state by up to its tolerance scale for 20 µm (velocities: 20 µm in 1 ms),
+    // times roller radius over pitch radius so that a ring tilt moves the flanges by micrometres too (unscaled,
     // a 0.5 m ring tilted 2° overlapped 20 mm: finding 5): contacts close and overlap.
-    let scale = model.absolute_tolerances(20e-6 * params.roller.radius / model.pitch_radius());
+    let scale =
+        model.absolute_tolerances(20e-6 * params.roller.radius / model.pitch_radius(), 1e-3);
     let y: Vec<f64> = y0
         .iter()
         .zip(&scale)

@@ -2,12 +2,16 @@
 //! a drawn resolution, on the cases of `contact_detection`. No panic; a found contact
 //! (valid) has finite points, normal and penetration; a pairing with nothing within the
 //! prediction distance is invalid with penetration −∞ (its documented answer). The mesh
-//! gives no curvature, so R_x, R_y are NaN by design and not checked.
+//! gives no curvature, so its R_x, R_y are NaN by design; the border blending, which the
+//! model applies to every detected contact, gives them the figures' curvature: the
+//! blended deepest contact (default bands, and both bands 0: finding 6) must be defined.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
+use rollerdyn_core::contact::border::{blend, BorderBands};
+use rollerdyn_core::contact::deepest;
 use rollerdyn_core::contact::mesh::{MeshDetector, MeshResolution};
-use rollerdyn_fuzz::{case, Reader};
+use rollerdyn_fuzz::{case, require_defined, Reader};
 
 fuzz_target!(|data: &[u8]| {
     let mut r = Reader::new(data);
@@ -27,7 +31,21 @@ fuzz_target!(|data: &[u8]| {
         start.is_finite() && end.is_finite(),
         "window {start} {end}\nfor {case:?}"
     );
-    for c in detector.detect() {
+    let found = detector.detect();
+    if let Some(best) = deepest(&found) {
+        let sharp = BorderBands {
+            roller_angle: 0.0,
+            flange_length: 0.0,
+        };
+        for b in [BorderBands::DEFAULT, sharp] {
+            require_defined(
+                "blended mesh",
+                &blend(&best, &case.end, &case.flange, &b),
+                &case,
+            );
+        }
+    }
+    for c in found {
         if c.valid {
             assert!(
                 c.p1.iter()

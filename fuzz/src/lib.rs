@@ -118,8 +118,8 @@ pub struct Case {
 /// The first byte picks the kind: even, B1 in a pose near one of its four flanges (azimuth
 /// anywhere, axial ±200 µm, radial ±100 µm, tilt and skew ±5°); odd, any shapes accepted by
 /// `RollerShape::new` and `FlangeShape::new` (roller radius 0.1–100 mm, other lengths
-/// 1e-3–1e2 times it or a part of it), any placement clear of the ring axis (ring axis in
-/// any direction, raceway radius 1e-2–1e3 sizes) and the roller anywhere within a few
+/// 1e-3–1e2 times it or a part of it), any placement up to the ring axis (ring axis in
+/// any direction, raceway radius 0–1e3 sizes) and the roller anywhere within a few
 /// roller sizes of the flange, its axis in any direction.
 pub fn case(r: &mut Reader) -> Option<Case> {
     if r.byte() & 1 == 0 {
@@ -177,12 +177,18 @@ pub fn case(r: &mut Reader) -> Option<Case> {
     let axis = r.direction();
     let origin =
         Vec3::new(r.range(-1.0, 1.0), r.range(-1.0, 1.0), r.range(-1.0, 1.0)) * 10.0 * size;
-    // Flanges clear of the ring axis: a raceway radius above 1 % of the size, and an outer
-    // ring's flange (falling towards the axis) lower than its raceway radius. Flanges that
-    // reach the axis are degenerate: the first runs found NaN there (findings 2 and 4).
+    // Flanges up to the ring axis (findings 2 and 4 were found there; the guard that kept
+    // them clear of it went with finding 4's fix): half the time a raceway radius of 1e-2 to
+    // 1e3 sizes, else 0 to 1e-2 sizes (exactly 0 often). An outer ring's flange falls
+    // towards the axis and may reach it (rim tube touching the axis) but not cross it: a
+    // negative major radius is no ring.
     let rises = if r.flag() { 1.0 } else { -1.0 };
-    let raceway_radius = size * r.log_range(1e-2, 1e3);
-    if rises < 0.0 && raceway_radius <= 1.01 * height {
+    let raceway_radius = if r.flag() {
+        size * r.log_range(1e-2, 1e3)
+    } else {
+        size * r.range(0.0, 1e-2)
+    };
+    if rises < 0.0 && raceway_radius < height {
         return None;
     }
     let face_position = r.range(-10.0, 10.0) * size;
@@ -216,7 +222,8 @@ pub fn case(r: &mut Reader) -> Option<Case> {
 
 /// True if every number a contact reports is defined: points, normal and penetration
 /// finite; for a valid overlapping contact (the only kind that carries load) R_x, R_y
-/// positive (∞ allowed for a flat relative shape) and the major axis finite.
+/// finite and positive (`contact::relative_radius`; ∞ was allowed before finding 4) and
+/// the major axis finite.
 pub fn defined(c: &Contact) -> bool {
     let points =
         c.p1.iter()
@@ -230,8 +237,8 @@ pub fn defined(c: &Contact) -> bool {
     points
         && c.rx > 0.0
         && c.ry > 0.0
-        && !c.rx.is_nan()
-        && !c.ry.is_nan()
+        && c.rx.is_finite()
+        && c.ry.is_finite()
         && c.major_axis.iter().all(|x| x.is_finite())
 }
 

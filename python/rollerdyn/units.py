@@ -40,6 +40,7 @@ from __future__ import annotations
 
 import math
 import re
+import tokenize
 from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation, localcontext
 from typing import Annotated, Any
@@ -250,7 +251,15 @@ def parse_quantity(value: Any, fam: str | Family, *, si_numbers: bool = False) -
             raise QuantityError(f"a number without a unit is ambiguous; {hint}")
         try:
             unit = ureg.parse_units(unit_text)
-        except (pint.errors.PintError, AttributeError, TypeError, ValueError, SyntaxError) as exc:
+        except (
+            pint.errors.PintError,
+            AttributeError,
+            TypeError,
+            ValueError,
+            SyntaxError,
+            # pint tokenizes the unit as Python: "5''' MPa" or "5] MPa" (config fuzzing)
+            tokenize.TokenError,
+        ) as exc:
             raise QuantityError(
                 f"unknown unit {unit_text!r} ({_pint_reason(exc)}); {hint}"
             ) from None

@@ -300,7 +300,9 @@ pub fn end_flange(
     major_axis: &Vec3,
     frame: &Vec3,
 ) -> ContactForces {
-    if penetration <= 0.0 || !(radii.0 > 0.0 && radii.1 > 0.0) {
+    // Radii outside (0, ∞) never come from the detectors (contact::relative_radius); NaN
+    // (no curvature) carries no load.
+    if penetration <= 0.0 || !(radii.0 > 0.0 && radii.1 > 0.0 && radii.0.max(radii.1).is_finite()) {
         return ContactForces::default();
     }
     let hertz = EllipticalContact::new(
@@ -350,8 +352,118 @@ pub fn end_flange(
 }
 
 #[cfg(test)]
+impl Tribology {
+    /// The fuzz target's tribology (B1's data, η₀ = 16.5 mPa s), friction on.
+    pub(crate) fn b1_for_tests() -> Tribology {
+        use crate::tribology::lubricant::{Carreau, Roelands};
+        use crate::tribology::traction::LimitingShearStress;
+        let eta0 = 0.0165;
+        Tribology {
+            traction: EhlTraction::new(
+                Roelands {
+                    eta_p: 0.0631e-3,
+                    p_p: -196e6,
+                    z: 0.62,
+                },
+                Carreau { tau0: 5e6, n: 0.5 },
+                LimitingShearStress {
+                    chi: 0.0,
+                    p_star: 1.0,
+                    tau_l0: 3e7,
+                    smoothing: 20e6,
+                },
+                eta0,
+                12,
+            ),
+            boundary: BoundaryFriction {
+                mu_b0: 0.1,
+                s0: 0.1,
+                smoothing_speed: 1e-3,
+            },
+            eta0,
+            alpha_star: 2e-8,
+            viscosity_slope: -1e-3 * eta0,
+            thermal_conductivity: 0.134,
+            hysteresis_coefficient: 0.01,
+            damping_ratio: 0.1,
+            friction: true,
+        }
+    }
+}
+
+#[cfg(test)]
 mod tests {
     use super::*;
+
+    fn tribology() -> Tribology {
+        Tribology::b1_for_tests()
+    }
+
+    /// Finding 5 of docs/robustness.md: with friction on, an overlap of 17 mm on a
+    /// contact of R_x = 0.1 mm (a 0.5 mm roller on a 0.5 m ring tilted 2°, as the fuzzer
+    /// found) gave a NaN tangential force (the film's Roelands viscosity overflowed at
+    /// p₀ ~ 1e12 Pa, and Carreau made ∞·0 = NaN of it). Every force stays finite for any
+    /// overlap, curvature and speed, and the friction force stays below μ_B·F_n + the
+    /// area times the limiting shear stress.
+    #[test]
+    fn end_flange_forces_stay_finite_at_huge_overlaps() {
+        let tri = tribology();
+        let kind = EllipseKind {
+            e_prime: 2.3e11,
+            roughness: 0.1e-6,
+            sharing: LoadSharing { b: 1.5, c: 1.2 },
+            mass: 1e-3,
+        };
+        let p = Vec3::new(0.0, 0.5, 0.0);
+        for spin in [0.0, 1.0, 300.0] {
+            let ring = Kinematics {
+                omega: Vec3::new(spin / 3.0, 0.0, 0.0),
+                ..Kinematics::fixed()
+            };
+            let roller = Kinematics {
+                center: p,
+                axis: Vec3::x(),
+                velocity: Vec3::new(0.0, 0.0, spin / 30.0),
+                omega: Vec3::new(-spin, 0.0, 0.0),
+            };
+            for penetration in [1e-9, 1e-6, 1e-3, 17e-3, 20e-3, 0.1, 1.0] {
+                for (rx, ry) in [(1e-4, 1e-2), (0.5e-3, 5.0), (2e-4, 1e3), (1e-3, 1e-3)] {
+                    let f = end_flange(
+                        &tri,
+                        &kind,
+                        &ring,
+                        &roller,
+                        &Vec3::x(),
+                        &p,
+                        penetration,
+                        (rx, ry),
+                        &Vec3::y(),
+                        &Vec3::zeros(),
+                    );
+                    let finite = f.normal.is_finite()
+                        && f.tangential.iter().all(|x| x.is_finite())
+                        && f.film.is_finite();
+                    assert!(
+                        finite,
+                        "δ = {penetration}, R = ({rx}, {ry}), spin {spin}: {f:?}"
+                    );
+                    let hertz = EllipticalContact::new(
+                        rx,
+                        ry,
+                        kind.e_prime,
+                        EllipticalMethod::BreweHamrock,
+                    )
+                    .at_force(f.normal);
+                    let bound = tri.boundary.mu_b0 * f.normal
+                        + std::f64::consts::PI * hertz.semi_major * hertz.semi_minor * 3e7;
+                    assert!(
+                        f.tangential.norm() <= bound * (1.0 + 1e-9),
+                        "{f:?} > {bound}"
+                    );
+                }
+            }
+        }
+    }
 
     #[test]
     fn damped_force_is_elastic_at_rest_and_never_negative() {

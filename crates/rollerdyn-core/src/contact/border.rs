@@ -25,7 +25,7 @@
 //! `surfaces.border_band_flange`). Outside the bands the pairing's own curvature is used
 //! unchanged (B1's usual TO-CO contact, 0.11° from the roller axis, is far outside).
 
-use super::{Contact, Pairing};
+use super::{relative_radius, Contact, Pairing};
 use crate::geometry::end_flange::{Flange, RollerEnd};
 use crate::geometry::primitives::{meridian, relative_curvature_of, Curvature, Vec3};
 
@@ -107,7 +107,14 @@ pub fn flange_weights(flange: &Flange, contact: &Contact, band: f64) -> [f64; 3]
 
 /// The contact with its relative radii R_x, R_y and major axis recomputed from the blended
 /// curvatures of both bodies (module doc). Contacts that carry no load, and contacts
-/// outside every band, are returned unchanged.
+/// outside every band, are returned unchanged, except contacts without curvature (the
+/// mesh baseline's, R_x = R_y = NaN): those get the curvatures of the figures at their
+/// points, weighted alike (outside the bands: their own pairing's), so that the mesh
+/// detector's overlaps carry a Hertz force in the model too.
+///
+/// The radii follow the contract of [`super::relative_radius`]: finite and positive
+/// (docs/robustness.md, findings 4 and 6: a non-positive blended curvature was R = ∞,
+/// and Hertz made a NaN force of it).
 pub fn blend(contact: &Contact, end: &RollerEnd, flange: &Flange, bands: &BorderBands) -> Contact {
     if !(contact.valid && contact.penetration > 0.0) {
         return *contact;
@@ -116,7 +123,8 @@ pub fn blend(contact: &Contact, end: &RollerEnd, flange: &Flange, bands: &Border
     let roller_w = [w_torus, 1.0 - w_torus];
     let flange_w = flange_weights(flange, contact, bands.flange_length);
     let (roller_own, flange_own) = contact.pairing.figures();
-    if roller_w[roller_own] >= 1.0 && flange_w[flange_own] >= 1.0 {
+    let has_curvature = !(contact.rx.is_nan() || contact.ry.is_nan());
+    if has_curvature && roller_w[roller_own] >= 1.0 && flange_w[flange_own] >= 1.0 {
         return *contact;
     }
     let n = contact.normal;
@@ -135,10 +143,9 @@ pub fn blend(contact: &Contact, end: &RollerEnd, flange: &Flange, bands: &Border
         .map(|(w, k)| (*w, k))
         .collect();
     let (kx, ky, major) = relative_curvature_of(&n, &weighted);
-    let radius = |k: f64| if k > 0.0 { 1.0 / k } else { f64::INFINITY };
     Contact {
-        rx: radius(kx),
-        ry: radius(ky),
+        rx: relative_radius(kx),
+        ry: relative_radius(ky),
         major_axis: major,
         ..*contact
     }

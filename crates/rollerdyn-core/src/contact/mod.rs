@@ -94,9 +94,11 @@ pub struct Contact {
     pub penetration: f64,
     /// Unit contact normal, from the flange towards the roller.
     pub normal: Vec3,
-    /// Smaller relative principal radius R_x [m] (∞ for a flat relative shape). Like
-    /// `ry` and `major_axis`, computed only for valid overlapping contacts (the only ones
-    /// that carry load); NaN otherwise.
+    /// Smaller relative principal radius R_x [m]. Like `ry` and `major_axis`, computed
+    /// only for valid overlapping contacts (the only ones that carry load); NaN otherwise
+    /// (and for the mesh baseline, which has no curvature). For a valid overlapping
+    /// contact of the analytical detectors it is finite and within
+    /// [[`RADIUS_MIN`], [`RADIUS_MAX`]] ([`relative_radius`]).
     pub rx: f64,
     /// Larger relative principal radius R_y [m].
     pub ry: f64,
@@ -150,18 +152,12 @@ impl Contact {
         curvatures: impl FnOnce() -> (Curvature, Curvature),
         valid: bool,
     ) -> Self {
-        let (kx, ky, major_axis) = if valid && penetration > 0.0 {
+        let (rx, ry, major_axis) = if valid && penetration > 0.0 {
             let (roller, flange) = curvatures();
-            relative_curvature(&normal, &roller, &flange)
+            let (kx, ky, major) = relative_curvature(&normal, &roller, &flange);
+            (relative_radius(kx), relative_radius(ky), major)
         } else {
             (f64::NAN, f64::NAN, Vec3::repeat(f64::NAN))
-        };
-        let radius = |k: f64| {
-            if k > 0.0 || k.is_nan() {
-                1.0 / k
-            } else {
-                f64::INFINITY
-            }
         };
         Self {
             pairing,
@@ -169,13 +165,46 @@ impl Contact {
             p2,
             penetration,
             normal,
-            rx: radius(kx),
-            ry: radius(ky),
+            rx,
+            ry,
             major_axis,
             valid,
             multiple: false,
         }
     }
+}
+
+/// Smallest relative principal radius a loaded contact reports [m]: 1 nm, below the
+/// roughness of any bearing surface.
+pub const RADIUS_MIN: f64 = 1e-9;
+
+/// Largest relative principal radius a loaded contact reports [m]: 1000 km, flatter than
+/// the form tolerance of any bearing surface.
+pub const RADIUS_MAX: f64 = 1e6;
+
+/// The relative principal radius 1/k of a relative principal curvature k, clamped to
+/// [[`RADIUS_MIN`], [`RADIUS_MAX`]]: the contract of every valid overlapping contact
+/// (the only kind that carries load) is finite R_x, R_y > 0, as Hertz (paper eqs. 5–8)
+/// needs them (R = ∞ or 0 made the force NaN: docs/robustness.md, findings 4 and 6).
+///
+/// Why a clamp (and not an invalid contact): the relative curvature leaves (0, ∞) only
+/// where the local quadratic shape behind Hertz no longer describes the bodies — a
+/// non-positive k where the surfaces conform or form a saddle (an end sphere in an outer
+/// ring's concave bore, points deep inside the other body), an infinite k where a figure's
+/// curvature is singular (a parallel circle shrinking to a point on a ring or roller axis)
+/// or its square overflows. Such contacts are still overlaps that must push the bodies
+/// apart; the clamp keeps a repelling force that is finite and continuous in the pose
+/// (an invalid contact would drop it to zero with a jump, letting a roller end pass
+/// through a flange). The bounds are far outside any real contact (B1's radii lie
+/// between 0.2 mm and about 15 m), so those are unchanged bit for bit. An undefined
+/// curvature (NaN) stays NaN: it carries no load ([`crate::bearing::forces::end_flange`]
+/// checks R > 0).
+#[inline]
+pub fn relative_radius(k: f64) -> f64 {
+    if k.is_nan() {
+        return f64::NAN;
+    }
+    1.0 / k.clamp(1.0 / RADIUS_MAX, 1.0 / RADIUS_MIN)
 }
 
 /// The composite result of one roller end against one flange: the valid pairing with

@@ -589,3 +589,308 @@ fn round_off_tube_gives_a_defined_gradient_answer() {
         assert!(finite(&o.contact), "gradient {o:?}");
     }
 }
+
+/// Valid and overlapping ⇒ R_x, R_y finite and positive (the contract of
+/// [`super::relative_radius`]); major axis finite.
+fn loadable(c: &Contact) -> bool {
+    !(c.valid && c.penetration > 0.0)
+        || (c.rx > 0.0
+            && c.ry > 0.0
+            && c.rx.is_finite()
+            && c.ry.is_finite()
+            && c.major_axis.iter().all(|x| x.is_finite()))
+}
+
+/// Every analytical answer for one case: the six pairings, the composites (pruning on and
+/// off), the blending with three bands, Koch's method cold and warm.
+fn all_loadable(end: &RollerEnd, flange: &Flange) {
+    use super::border::{blend, BorderBands};
+    let all = semi_analytical::detect(end, flange);
+    let bands = [
+        BorderBands::DEFAULT,
+        BorderBands {
+            roller_angle: 0.0,
+            flange_length: 0.0,
+        },
+        BorderBands {
+            roller_angle: 0.5,
+            flange_length: 1e-3,
+        },
+    ];
+    for c in all.iter().chain(&semi_analytical::composite(end, flange)) {
+        assert!(loadable(c), "semi-analytical {c:?}");
+        for b in &bands {
+            let blended = blend(c, end, flange, b);
+            assert!(loadable(&blended), "blended {blended:?}");
+        }
+    }
+    for c in pruning::detect(end, flange).0.iter().flatten() {
+        assert!(loadable(c), "pruned {c:?}");
+    }
+    if let Some(c) = pruning::composite(end, flange) {
+        assert!(loadable(&c), "pruned composite {c:?}");
+    }
+    let cold = gradient::detect(end, flange, &[None; 6]);
+    let warm = gradient::detect(
+        end,
+        flange,
+        &std::array::from_fn(|k| Some(cold[k].unknowns)),
+    );
+    for o in cold.iter().chain(&warm) {
+        assert!(loadable(&o.contact), "gradient {o:?}");
+    }
+}
+
+/// docs/robustness.md, finding 4 (the fuzzer's case, digit for digit): a 0.1 mm roller
+/// whose end sphere (10 mm) is centred on the ring axis of a flange 1 µm from the axis,
+/// overlapping its root torus by 0.69 mm. The sphere centre's meridian plane was round-off
+/// noise (e_ρ almost along the axis), the tube centre and P₂ landed on the axis, the
+/// flange's circumferential curvature became 1/1e-300, and the pairing reported a valid
+/// contact with R_x = 0, R_y = ∞. Now the meridian is perpendicular to the axis
+/// (R_x, R_y those of the tube there) and every loaded contact has finite positive radii.
+#[test]
+#[allow(clippy::approx_constant, clippy::excessive_precision)] // the fuzzer's values
+fn sphere_centred_on_the_ring_axis_gives_finite_radii() {
+    use crate::geometry::primitives::{ConePatch, SpherePatch, TorusPatch};
+    let end = RollerEnd {
+        torus: TorusPatch {
+            origin: Vec3::new(
+                -0.0008225927107697775,
+                0.001177407301045733,
+                -0.0008225927107697775,
+            ),
+            axis: Vec3::new(
+                -0.5773502691896257,
+                -0.5773502691896257,
+                -0.5773502691896257,
+            ),
+            major_radius: 9.990000069008475e-5,
+            minor_radius: 1.0000000069077553e-7,
+            phi_mid: 0.7804055261599608,
+            phi_half: 0.7804055261599608,
+        },
+        sphere: SpherePatch {
+            center: Vec3::new(
+                0.004953450351829883,
+                0.006953450363645393,
+                0.004953450351829883,
+            ),
+            radius: 0.010004998819736693,
+            pole: Vec3::new(
+                -0.5773502691896257,
+                -0.5773502691896257,
+                -0.5773502691896257,
+            ),
+            cap_angle: 0.009985274474974881,
+        },
+    };
+    let flange = Flange {
+        cone: ConePatch {
+            origin: Vec3::new(
+                -0.0010000000049077552,
+                0.0010000000069077552,
+                -0.0010000000049077552,
+            ),
+            axis: Vec3::new(
+                -0.5773502691896257,
+                -0.5773502691896257,
+                -0.5773502691896257,
+            ),
+            s0: -0.0010000000049077552,
+            rho0: 1.0000000069077552e-6,
+            ds: 0.0,
+            drho: 1.0,
+            side: 1.0,
+            g_min: 2.3516271788885523e-7,
+            g_max: 9.990000059018474e-7,
+        },
+        root: TorusPatch {
+            origin: Vec3::new(
+                -0.0004227855041431121,
+                0.0015772145076723984,
+                -0.0004227855041431121,
+            ),
+            axis: Vec3::new(
+                -0.5773502691896257,
+                -0.5773502691896257,
+                -0.5773502691896257,
+            ),
+            major_radius: 1.2351627247966105e-6,
+            minor_radius: 2.3516271788885523e-7,
+            phi_mid: -2.356194490192345,
+            phi_half: 0.7853981633974483,
+        },
+        rim: TorusPatch {
+            origin: Vec3::new(
+                -0.00042265031023548563,
+                0.0015773497015800248,
+                -0.00042265031023548563,
+            ),
+            axis: Vec3::new(
+                -0.5773502691896257,
+                -0.5773502691896257,
+                -0.5773502691896257,
+            ),
+            major_radius: 1.999000012809603e-6,
+            minor_radius: 1.0000010059077622e-9,
+            phi_mid: -0.7853981633974483,
+            phi_half: 0.7853981633974483,
+        },
+    };
+    let c = semi_analytical::sphere_torus(&end.sphere, &flange.root, Pairing::SphereRoot);
+    assert!(c.valid && c.penetration > 6.9e-4, "{c:?}");
+    // The sphere (1/R_s = 100/m) against the tube (r = 0.235 µm): R_x = R_y = r/(1 + r/R_s)
+    // to within the tube's circumferential curvature there.
+    assert!(
+        (c.rx / flange.root.minor_radius - 1.0).abs() < 1e-3,
+        "{c:?}"
+    );
+    assert!(c.ry.is_finite() && c.ry > 0.0, "{c:?}");
+    all_loadable(&end, &flange);
+}
+
+/// docs/robustness.md, finding 4: the fuzzer's case for Koch's method, a 0.1 m roller
+/// 2.7 m deep in a flange of a 4 m ring; its cold start converged to P₂ on the ring axis
+/// (a curvature singularity), reporting R_x = 0, R_y = ∞. The radii are now clamped to
+/// [`super::RADIUS_MIN`], [`super::RADIUS_MAX`].
+#[test]
+#[allow(clippy::approx_constant, clippy::excessive_precision)] // the fuzzer's values
+fn deep_overlap_on_a_curvature_singularity_gives_clamped_radii() {
+    use crate::geometry::primitives::{ConePatch, SpherePatch, TorusPatch};
+    let end = RollerEnd {
+        torus: TorusPatch {
+            origin: Vec3::new(-0.06364398837349093, -0.06364398837349093, 0.0),
+            axis: Vec3::new(0.7071067811865476, 0.7071067811865476, 0.0),
+            major_radius: 0.09989999990010001,
+            minor_radius: 0.00010000009989999999,
+            phi_mid: 0.0223626465845072,
+            phi_half: 0.0223626465845072,
+        },
+        sphere: SpherePatch {
+            center: Vec3::new(-0.06680548994323757, -0.06680548994323757, 0.0),
+            radius: 0.100100000921855,
+            pole: Vec3::new(0.7071067811865476, 0.7071067811865476, 0.0),
+            cap_angle: 1.5260710336258823,
+        },
+    };
+    let flange = Flange {
+        cone: ConePatch {
+            origin: Vec3::new(0.0, 0.0, 0.0),
+            axis: Vec3::new(0.7071067811865475, 0.7071067811865475, 0.0),
+            s0: 0.0,
+            rho0: 4.053595830480355,
+            ds: 0.04994277999410682,
+            drho: 0.9987520807119554,
+            side: 1.0,
+            g_min: 0.01051267375977994,
+            g_max: 8.384147788624706,
+        },
+        root: TorusPatch {
+            origin: Vec3::new(0.007433582903942274, 0.007433582903942274, 0.0),
+            axis: Vec3::new(0.7071067811865475, 0.7071067811865475, 0.0),
+            major_radius: 4.0635959514312185,
+            minor_radius: 0.010000120950862793,
+            phi_mid: -2.3312127075810403,
+            phi_half: 0.8103799460087533,
+        },
+        rim: TorusPatch {
+            origin: Vec3::new(1.5050052393964148, 1.5050052393964148, 0.0),
+            axis: Vec3::new(0.7071067811865475, 0.7071067811865475, 0.0),
+            major_radius: 12.341788460494318,
+            minor_radius: 1.7118073699860386,
+            phi_mid: -0.7604163807861435,
+            phi_half: 0.7604163807861435,
+        },
+    };
+    all_loadable(&end, &flange);
+}
+
+/// The clamp leaves every loaded B1 contact as it was: its radii lie far inside
+/// [RADIUS_MIN, RADIUS_MAX] (B1's flange contacts: tenths of a millimetre to metres).
+#[test]
+fn b1_contacts_keep_their_radii() {
+    for inner in [true, false] {
+        for plus in [true, false] {
+            let flange = b1_flange(inner, plus);
+            for tilt in [-3e-3, -1.5e-3, 0.0, 1.5e-3, 3e-3] {
+                for push in [10e-6, 35e-6, 60e-6] {
+                    let end = b1_end(plus, 0.3, if plus { push } else { -push }, 0.0, tilt, 0.0);
+                    for c in semi_analytical::detect(&end, &flange) {
+                        if c.valid && c.penetration > 0.0 {
+                            for r in [c.rx, c.ry] {
+                                assert!(
+                                    r > 1e3 * super::RADIUS_MIN && r < 1e-3 * super::RADIUS_MAX,
+                                    "{c:?}"
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// docs/robustness.md, finding 6: the mesh baseline gives no curvature; the border
+/// blending with both bands 0 (sharp weights) evaluated the figures' curvatures at the
+/// mesh's points, and a non-positive relative curvature became R_y = ∞, which Hertz turned
+/// into a NaN force. Here a coarse (3 × 1) mesh of a 2 mm roller on a 10 mm inner ring
+/// (zero axial play, the consistent start) overlaps on the face: the blended radii are
+/// finite, and so is the force.
+#[test]
+fn blended_mesh_contact_has_finite_radii_with_sharp_bands() {
+    use super::border::{blend, BorderBands};
+    use super::mesh::{MeshDetector, MeshResolution};
+    use crate::bearing::forces::{end_flange, EllipseKind, Tribology};
+    use crate::bearing::state::Kinematics;
+    let rr = 2e-3;
+    let roller = RollerShape::new(rr, 2.0 * rr, 0.2 * rr, 100.0 * rr).unwrap();
+    let h = 0.5 * rr;
+    let shape = FlangeShape::new(0.001, h, 0.2 * h, 0.2 * h).unwrap();
+    let flange = Flange::new(
+        &shape,
+        &FlangePlacement {
+            origin: Vec3::zeros(),
+            axis: Vec3::x(),
+            raceway_radius: 0.01,
+            rises: 1.0,
+            face_position: rr,
+            facing: -1.0,
+        },
+    );
+    let end = RollerEnd::new(&roller, Vec3::new(0.0, 0.01 + rr, 0.0), Vec3::x());
+    let sharp = BorderBands {
+        roller_angle: 0.0,
+        flange_length: 0.0,
+    };
+    let mesh = MeshDetector::new(
+        &end,
+        &flange,
+        MeshResolution {
+            around: 3,
+            along: 1,
+        },
+    );
+    let c = deepest(&mesh.detect()).unwrap();
+    assert!(c.valid && c.penetration > 0.0 && c.rx.is_nan(), "{c:?}");
+    let b = blend(&c, &end, &flange, &sharp);
+    assert!(loadable(&b), "{b:?}");
+    let f = end_flange(
+        &Tribology::b1_for_tests(),
+        &EllipseKind {
+            e_prime: 2.3e11,
+            roughness: 0.24e-6,
+            sharing: crate::tribology::friction::LoadSharing { b: 1.9, c: 0.99 },
+            mass: 1e-3,
+        },
+        &Kinematics::fixed(),
+        &Kinematics::fixed(),
+        &b.normal,
+        &b.location(),
+        b.penetration,
+        (b.rx, b.ry),
+        &b.major_axis,
+        &Vec3::zeros(),
+    );
+    assert!(f.normal.is_finite() && f.normal > 0.0, "{f:?}");
+}

@@ -432,6 +432,7 @@ use on;
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::cell::Cell;
 
     /// A stiff linear oscillator with a fast decaying mode: y1' = y2, y2' = −ω²y1 − 2ζω y2,
     /// plus y3' = −λ (y3 − cos t) with λ = 1e7 (a mode far faster than any step).
@@ -651,6 +652,71 @@ mod tests {
                 // comparison above is able to fail.
                 assert_ne!(rest, whole[head..]);
             }
+        }
+    }
+
+    /// y' = −λ(y − cos t) − sin t from y(0) = 1 (solution cos t), whose right-hand side
+    /// is NaN wherever |y − cos t| exceeds `band`: Newton's iterates (from the step's
+    /// predictor) land there while the solution never does, as a bearing's iterate may
+    /// try an overlap that gives NaN forces.
+    struct NanAway {
+        band: f64,
+        nans: Cell<usize>,
+    }
+    impl OdeSystem for NanAway {
+        fn len(&self) -> usize {
+            1
+        }
+        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+            dy[0] = if (y[0] - t.cos()).abs() > self.band {
+                self.nans.set(self.nans.get() + 1);
+                f64::NAN
+            } else {
+                -1e3 * (y[0] - t.cos()) - t.sin()
+            };
+        }
+        fn jacobian(&self, _t: f64, _y: &[f64], jac: &mut DMatrix<f64>) {
+            jac[(0, 0)] = -1e3;
+        }
+    }
+
+    /// A non-finite right-hand side at a Newton iterate makes the solver reject the step
+    /// and retry smaller (diffsol counts a Newton failure), never a NaN output or a
+    /// crash; the run ends on the solution.
+    #[test]
+    fn a_nan_right_hand_side_in_newton_is_a_rejected_step() {
+        for method in [Method::TrBdf2, Method::Esdirk34] {
+            let system = NanAway {
+                band: 1e-7,
+                nans: Cell::new(0),
+            };
+            let mut opts = options(method, None);
+            opts.dt_max = 0.05;
+            let mut out = Vec::new();
+            let stats = integrate(&system, &fresh_1d(), 2.0, &opts, |event| {
+                if let Event::Output { time, state, .. } = event {
+                    out.push((time, state[0]));
+                }
+                ControlFlow::Continue(())
+            })
+            .unwrap_or_else(|f| panic!("{method:?}: {f:?}"));
+            assert!(
+                system.nans.get() > 0,
+                "{method:?}: no iterate reached the NaN"
+            );
+            assert!(stats.newton_failures > 0, "{method:?}: {stats:?}");
+            assert_eq!(out.len(), 21);
+            for (t, y) in &out {
+                assert!((y - t.cos()).abs() < 1e-7, "{method:?} t = {t}: {y}");
+            }
+        }
+    }
+
+    fn fresh_1d() -> Start {
+        Start {
+            time: 0.0,
+            state: vec![1.0],
+            step: None,
         }
     }
 

@@ -20,16 +20,29 @@ pub const PATCH_TOLERANCE: f64 = 1e-9;
 
 /// Meridian coordinates (s, ρ) of p about the axis (o, a), and the unit radial direction
 /// e_ρ of p's meridian half-plane (any perpendicular of a if p is on the axis).
+///
+/// Within round-off of the axis (ρ ≤ 1e-8·|s|) the radial part d − a·s is mostly
+/// cancellation noise, whose direction need not be perpendicular to a (a roller end's
+/// sphere centre on the ring axis gave an e_ρ almost along a, a tube centre on the axis
+/// and an infinite curvature: docs/robustness.md, finding 4); there it is projected on
+/// the plane normal to a once more (any perpendicular if nothing is left). Elsewhere the
+/// result is unchanged bit for bit.
 #[inline]
 pub fn meridian(p: &Vec3, origin: &Vec3, axis: &Vec3) -> (f64, f64, Vec3) {
     let d = p - origin;
     let s = axis.dot(&d);
     let radial = d - axis * s;
     let rho = radial.norm();
-    let e_rho = if rho > 1e-300 {
+    let e_rho = if rho > 1e-8 * s.abs() && rho > 1e-300 {
         radial / rho
     } else {
-        any_perpendicular(axis)
+        let again = radial - axis * axis.dot(&radial);
+        let norm = again.norm();
+        if norm > 1e-8 * rho && norm > 1e-300 {
+            again / norm
+        } else {
+            any_perpendicular(axis)
+        }
     };
     (s, rho, e_rho)
 }

@@ -10,12 +10,16 @@
 
 /// Smooth minimum of two non-negative magnitudes: x·y / (x⁸ + y⁸)^(1/8).
 /// Equals min(x, y) to within 8.3 % at x = y and to within 0.05 % once the larger is
-/// twice the smaller; 0 if either is 0.
+/// twice the smaller; 0 if either is 0; the other argument if one is +∞ (the limit;
+/// the formula itself would give ∞/∞ = NaN).
 #[inline]
 pub fn smooth_min(x: f64, y: f64) -> f64 {
     let m = x.max(y);
     if m <= 0.0 {
         return 0.0;
+    }
+    if m == f64::INFINITY {
+        return x.min(y);
     }
     x * y / (m * eighth_norm(x / m, y / m))
 }
@@ -50,6 +54,18 @@ pub fn smooth_saturation(x: f64) -> f64 {
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    /// An infinite argument gives the other one (the limit), not ∞/∞ = NaN
+    /// (docs/robustness.md, finding 5).
+    #[test]
+    fn smooth_min_of_infinity_is_the_other_argument() {
+        assert_eq!(smooth_min(f64::INFINITY, 3.0), 3.0);
+        assert_eq!(smooth_min(2.0, f64::INFINITY), 2.0);
+        assert_eq!(smooth_min(f64::INFINITY, f64::INFINITY), f64::INFINITY);
+        assert_eq!(smooth_min(f64::INFINITY, 0.0), 0.0);
+        // The limit is approached continuously.
+        assert!((smooth_min(1e300, 3.0) - 3.0).abs() < 1e-12);
+    }
 
     proptest! {
         #[test]

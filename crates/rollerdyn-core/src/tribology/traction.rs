@@ -39,11 +39,17 @@ pub struct LimitingShearStress {
 }
 
 impl LimitingShearStress {
-    /// τ_L at pressure p.
+    /// τ_L at pressure p. Where (p* − p)² overflows (|p| above about 1e154 Pa) the
+    /// hyperbola is its asymptote: the plateau above p*, the floor below.
     #[inline]
     pub fn at(&self, pressure: f64) -> f64 {
         let x = self.p_star - pressure;
-        let ramp = 0.5 * (x + (x * x + self.smoothing * self.smoothing).sqrt());
+        let root = (x * x + self.smoothing * self.smoothing).sqrt();
+        let ramp = if root < f64::INFINITY {
+            0.5 * (x + root)
+        } else {
+            x.max(0.0)
+        };
         (self.tau_l0 - self.chi * ramp).max(0.0)
     }
 
@@ -276,11 +282,27 @@ impl EhlTraction {
     /// Film shear stress at pressure p and shear rate γ̇: Carreau (eq. 21) bounded by
     /// the limiting shear stress (eq. 50) through a smooth minimum
     /// ([`smooth_min`]); odd in γ̇.
+    ///
+    /// Finite for every finite pressure and shear rate. Past about 0.5 TPa (B1's oil) the
+    /// Roelands viscosity overflows to ∞, which only overlaps far beyond any real contact
+    /// reach (a Newton iterate of the integrator may try one; docs/robustness.md, finding
+    /// 5). There the Carreau stress is taken in its power-law form τ₀·x^n, x = ηγ̇/τ₀
+    /// (the limit of eq. 21 for x → ∞, also used once x² overflows, where
+    /// ln(1 + x²) would lose x), which is ∞ for an infinite viscosity instead of
+    /// ∞·0 = NaN; the smooth minimum then gives the limiting shear stress, its limit.
+    /// A zero shear rate gives zero stress.
     #[inline]
     pub fn shear_stress(&self, pressure: f64, shear_rate: f64) -> f64 {
+        if shear_rate == 0.0 {
+            return 0.0f64.copysign(shear_rate);
+        }
         let newtonian = self.viscosity(pressure) * shear_rate.abs();
         let x = newtonian / self.carreau.tau0;
-        let carreau = newtonian * (self.carreau_exponent * (x * x).ln_1p()).exp();
+        let carreau = if x * x < f64::INFINITY {
+            newtonian * (self.carreau_exponent * (x * x).ln_1p()).exp()
+        } else {
+            self.carreau.tau0 * x.powf(self.carreau.n)
+        };
         smooth_min(carreau, self.lss.at(pressure)).copysign(shear_rate)
     }
 
@@ -399,6 +421,52 @@ mod tests {
             * integrate_converged(0.0, 1.0, 1e-12, |r| {
                 r * t.shear_stress(p0 * (1.0 - r * r).max(0.0).sqrt(), rate)
             })
+    }
+
+    /// Beyond about 0.5 TPa the Roelands viscosity overflows to ∞ (overlaps of
+    /// centimetres, which an integrator's Newton iterate may try); the stress must stay
+    /// finite there, tend to the limiting shear stress, and be 0 at zero shear rate
+    /// (docs/robustness.md, finding 5: ∞·0 = NaN before).
+    #[test]
+    fn shear_stress_stays_finite_where_the_viscosity_overflows() {
+        let t = b1_traction(12);
+        let huge = 1e13;
+        assert_eq!(t.viscosity(huge), f64::INFINITY);
+        for rate in [-1e13, -1.0, -1e-12, 1e-300, 1e-12, 1.0, 1e13] {
+            let tau = t.shear_stress(huge, rate);
+            assert!(tau.is_finite(), "τ({huge}, {rate}) = {tau}");
+            assert_eq!(tau, t.lss.at(huge).copysign(rate));
+        }
+        assert_eq!(t.shear_stress(huge, 0.0), 0.0);
+        // Continuous into the overflow: just below it, the stress is already the limit.
+        let below = t.shear_stress(4e11, 1.0);
+        assert!((below / t.lss.at(4e11) - 1.0).abs() < 1e-12, "{below}");
+        // x² overflowing at a finite viscosity: the power law, not ln(1 + ∞) = 0 stress.
+        let n = Carreau { tau0: 5e6, n: 0.5 };
+        let lss_free = EhlTraction::new(
+            Roelands::default(),
+            n,
+            LimitingShearStress {
+                chi: 0.0,
+                p_star: 0.0,
+                tau_l0: 1e200,
+                smoothing: 1.0,
+            },
+            0.0165,
+            12,
+        );
+        let rate = 1e160 / 0.0165 * 5e6;
+        let tau = lss_free.shear_stress(0.0, rate);
+        let expected = 5e6 * (1e160f64).sqrt();
+        assert!((tau / expected - 1.0).abs() < 1e-9, "{tau} vs {expected}");
+        for p0 in [1e12, 1e13, 1e15, 1e300] {
+            for rate in [1e-8, 1.0, 1e13] {
+                let f = t.ellipse_force(p0, 1e-3, 1e-4, rate * 1e-7, 1e-7);
+                assert!(f.is_finite() && f > 0.0, "{p0} {rate}: {f}");
+                let f = t.line_force(p0, 1e-4, 1e-3, rate * 1e-7, 1e-7);
+                assert!(f.is_finite() && f > 0.0, "{p0} {rate}: {f}");
+            }
+        }
     }
 
     #[test]
