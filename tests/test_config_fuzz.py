@@ -20,6 +20,8 @@ import copy
 import json
 import math
 import os
+import subprocess
+import sys
 import tomllib
 from pathlib import Path
 from typing import Any
@@ -114,6 +116,11 @@ UNITS = [
     "kg*m^2",
     "m**2",
     "1/0",
+    "A/0",
+    "m**-0",
+    "m**9**9**9",
+    "m^(1/2)",
+    "m^^2",
 ]
 
 SPECIAL = [
@@ -424,10 +431,38 @@ def test_corrupted_b1_bytes_load_or_give_a_clean_error(tmp_path_factory, raw: by
         [("replace", ("lubricant", "carreau", "tau0"), "5''' MPa")],
         [("replace", ("lubricant", "carreau", "tau0"), "5] MPa")],
         [("replace", ("geometry", "roller", "length"), '5 mm"""')],
+        # pint evaluates numbers in a unit: ZeroDivisionError (found by the long mode, as
+        # shrunk: a NaN name beside it), KeyError after a zero exponent.
+        [
+            ("replace", ("name",), math.nan),
+            ("replace", ("geometry", "inner_raceway_diameter"), "NAN0/0"),
+        ],
+        [("replace", ("geometry", "inner_raceway_diameter"), "20 A/0")],
+        [("replace", ("geometry", "inner_raceway_diameter"), "20 mm**-0")],
     ],
 )
 def test_fuzz_findings(tmp_path: Path, mutations) -> None:
-    """Inputs the fuzzer found (kept as regressions)."""
+    """Inputs the fuzzer found (kept as regressions): each gives a ConfigError naming the
+    field."""
     path = tmp_path / "finding.toml"
     path.write_text(dump_toml(mutated(mutations)), encoding="utf-8")
     assert check_load(path) is None
+
+
+def test_a_tower_of_powers_in_a_unit_is_refused_quickly(tmp_path: Path) -> None:
+    """pint evaluates a unit with Python integers, so "mm**9**9**9" never returned (found
+    beside the fuzzer's ZeroDivisionError). Run in a subprocess: the power holds the GIL,
+    so only a process can be timed out."""
+    for unit in ("mm**9**9**9", "mm^99999999"):
+        data = mutated([("replace", ("geometry", "inner_raceway_diameter"), f"20 {unit}")])
+        path = tmp_path / "tower.toml"
+        path.write_text(dump_toml(data), encoding="utf-8")
+        code = (
+            "import sys; from rollerdyn.config import ConfigError, load_config\n"
+            "try:\n    load_config(sys.argv[1])\nexcept ConfigError as e:\n    print(e)"
+        )
+        done = subprocess.run(
+            [sys.executable, "-c", code, str(path)], capture_output=True, text=True, timeout=60
+        )
+        assert done.returncode == 0, done.stderr
+        assert "geometry.inner_raceway_diameter" in done.stdout and "exponent" in done.stdout

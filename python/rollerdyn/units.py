@@ -40,7 +40,6 @@ from __future__ import annotations
 
 import math
 import re
-import tokenize
 from dataclasses import dataclass
 from decimal import Decimal, InvalidOperation, localcontext
 from typing import Annotated, Any
@@ -142,6 +141,28 @@ _DIMS = {name: ureg.get_dimensionality(f.dims) for name, f in {**FAMILIES, **_KN
 _OFFSET_UNITS = frozenset(
     name for name, d in ureg._units.items() if not d.converter.is_multiplicative
 )
+
+_EXPONENT_RE = re.compile(r"(\*\*|\^)\s*(?P<exp>[+-]?\d{1,3}(?:\.\d{1,3})?)(?P<after>\s*\S?)")
+_POWER_RE = re.compile(r"\*\*|\^")
+
+
+def _plain_exponents(unit_text: str) -> bool:
+    """True if every power in ``unit_text`` is raised to a plain number of at most three
+    digits that is not itself raised to a power. pint evaluates the unit as an arithmetic
+    expression with Python integers, so "m**9**9**9" would take forever (found by
+    fuzzing the configuration loader)."""
+    powers = [m.start() for m in _POWER_RE.finditer(unit_text)]
+    for start in powers:
+        m = _EXPONENT_RE.match(unit_text, start)
+        if m is None:
+            return False
+        after = m.group("after").strip()
+        if after and (
+            after in "^.0123456789" or unit_text[m.end("exp") :].lstrip().startswith("**")
+        ):
+            return False
+    return True
+
 
 _NUMBER_RE = re.compile(
     r"""^\s*(?P<num>[+-]?(?:(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?|nan|inf(?:inity)?))
@@ -249,17 +270,18 @@ def parse_quantity(value: Any, fam: str | Family, *, si_numbers: bool = False) -
         text, unit_text = m.group("num"), m.group("unit").strip().replace("·", "*")
         if not unit_text:
             raise QuantityError(f"a number without a unit is ambiguous; {hint}")
+        if not _plain_exponents(unit_text):
+            raise QuantityError(
+                f"unit {unit_text!r}: an exponent must be a plain number (at most three "
+                f"digits, not itself raised to a power); {hint}"
+            )
         try:
             unit = ureg.parse_units(unit_text)
-        except (
-            pint.errors.PintError,
-            AttributeError,
-            TypeError,
-            ValueError,
-            SyntaxError,
-            # pint tokenizes the unit as Python: "5''' MPa" or "5] MPa" (config fuzzing)
-            tokenize.TokenError,
-        ) as exc:
+        # pint evaluates the unit as an arithmetic expression of Python tokens and fails in
+        # many ways besides its own errors (found by fuzzing the configuration loader:
+        # tokenize.TokenError for "5''' MPa", ZeroDivisionError for "A/0", KeyError for
+        # "m**-0"); any failure to parse is an unknown unit.
+        except Exception as exc:
             raise QuantityError(
                 f"unknown unit {unit_text!r} ({_pint_reason(exc)}); {hint}"
             ) from None
