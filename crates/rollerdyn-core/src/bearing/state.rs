@@ -170,6 +170,33 @@ mod tests {
         assert!(tilt.abs() < 1e-12 && (skew - 0.02f64.atan()).abs() < 1e-9);
     }
 
+    /// A locked ring with a prescribed misalignment γ moves as the free ring at the tilt
+    /// angles (0, γ) with no transverse rotation: the same axis, turned by γ about z, and
+    /// the spin about that axis.
+    #[test]
+    fn misaligned_locked_ring_is_the_free_ring_held_at_its_tilt() {
+        let gamma = 0.05f64.to_radians();
+        let spin = 52.36;
+        let locked = Layout {
+            rollers: 3,
+            tilt_free: false,
+        };
+        let free = Layout {
+            rollers: 3,
+            tilt_free: true,
+        };
+        let y_locked = [1e-6, -2e-6, 3e-6, 0.1, 0.2, 0.3];
+        let mut y_free = [0.0; 11];
+        y_free[..6].copy_from_slice(&y_locked);
+        y_free[7] = gamma;
+        let a = ring_kinematics(&locked, &y_locked, spin, &axis_from_angles(0.0, gamma));
+        let b = ring_kinematics(&free, &y_free, spin, &Vec3::x());
+        assert!((a.axis - Vec3::new(gamma.cos(), gamma.sin(), 0.0)).norm() < 1e-15);
+        assert!((a.axis - b.axis).norm() < 1e-15);
+        assert!((a.omega - b.omega).norm() < 1e-12 * spin);
+        assert_eq!((a.center, a.velocity), (b.center, b.velocity));
+    }
+
     #[test]
     fn layout_maps_states_to_bodies() {
         for tilt_free in [false, true] {
