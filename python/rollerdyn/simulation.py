@@ -259,6 +259,10 @@ def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
         "rtol": config.solver.rtol,
         "atol_m": config.solver.atol,
         "dt_max_s": config.solver.dt_max,
+        "max_step_growth": config.solver.max_step_growth,
+        "pi_proportional": config.solver.pi_proportional,
+        "pi_integral": config.solver.pi_integral,
+        "jacobian_after_newton_failure": int(config.solver.jacobian_after_newton_failure),
         "output_interval_s": config.solver.output_interval,
         "checkpoint_interval_s": config.solver.checkpoint_interval,
         "final_time_s": float(raw["final_time"]),
@@ -330,6 +334,10 @@ def simulate(
         "dt_max": s.dt_max,
         "output_interval": min(s.output_interval, end),
         "method": s.method,
+        "max_step_growth": s.max_step_growth,
+        "pi_proportional": s.pi_proportional,
+        "pi_integral": s.pi_integral,
+        "jacobian_after_newton_failure": s.jacobian_after_newton_failure,
         "checkpoint_interval": s.checkpoint_interval,
     }
 

@@ -4,7 +4,9 @@
 
 use super::model::{BearingModel, Element, ElementResult, Profile, FLANGE_NAMES};
 use super::state::{azimuth, tilt_and_skew, Kinematics};
-use crate::dynamics::integrate::{integrate, Checkpoint, Event, Method, Options, Start, Stats};
+use crate::dynamics::integrate::{
+    integrate, Checkpoint, Event, Method, Options, Start, Stats, StepControl,
+};
 use crate::geometry::primitives::Vec3;
 use std::ops::ControlFlow;
 
@@ -31,6 +33,8 @@ pub struct RunOptions {
     /// t = 0, and a run resumed from a checkpoint equals the uninterrupted run bit for bit
     /// (see [`integrate`]); `None`: no checkpoints.
     pub checkpoint_interval: Option<f64>,
+    /// Step-size control and Jacobian renewal of the solver.
+    pub step_control: StepControl,
 }
 
 /// A checkpoint of a bearing run.
@@ -195,6 +199,7 @@ pub fn run(
         method: options.method,
         origin: 0.0,
         checkpoint_interval: options.checkpoint_interval,
+        step_control: options.step_control,
     };
     let mut records = Vec::new();
     let mut last = (t0, y0.clone());

@@ -48,6 +48,53 @@ pub enum Method {
     Esdirk34,
 }
 
+/// How the step size follows the error estimate, and when the Newton iteration's Jacobian
+/// is renewed (diffsol's solver options; see docs/dynamics.md, "Step-size control").
+///
+/// The step-size factor is that of a PI controller (Gustafsson 1991, as diffsol implements
+/// it): h_new = h · 0.9·s · err_n^−(k_I+k_P)/(q+1) · err_(n−1)^(k_P/(q+1)), with q the order
+/// of the error estimate and s ≤ 1 a safety factor that falls with the Newton iterations
+/// the step took; a proposed growth below 2 is not taken (the Newton matrix is kept), and
+/// no step grows by more than `max_growth`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepControl {
+    /// Largest factor by which a step may exceed the one before (diffsol's default: 2).
+    pub max_growth: f64,
+    /// Proportional gain k_P of the PI controller (0: the plain, "dead-beat" controller,
+    /// diffsol's default).
+    pub pi_proportional: f64,
+    /// Integral gain k_I of the PI controller (diffsol's default: 0.5).
+    pub pi_integral: f64,
+    /// After a first Newton failure at an unchanged step size, evaluate the Jacobian anew
+    /// before the retry (diffsol's default). `false`: retry with the Newton matrix as it is
+    /// and cut the step if that fails too, keeping Jacobians for when the step changed.
+    pub jacobian_after_newton_failure: bool,
+}
+
+impl StepControl {
+    /// diffsol's own settings.
+    pub const DIFFSOL: StepControl = StepControl {
+        max_growth: 2.0,
+        pi_proportional: 0.0,
+        pi_integral: 0.5,
+        jacobian_after_newton_failure: true,
+    };
+}
+
+impl Default for StepControl {
+    /// rollerdyn's settings, chosen by measurement on the whole B1 run (docs/dynamics.md,
+    /// "Step-size control"): 77 s against 152 s with [`StepControl::DIFFSOL`], the Newton
+    /// failures 17 827 against 41 513, the Jacobians 8 524 against 24 092.
+    fn default() -> Self {
+        StepControl {
+            max_growth: 1.3,
+            pi_proportional: 0.4,
+            pi_integral: 0.3,
+            jacobian_after_newton_failure: false,
+        }
+    }
+}
+
 /// Settings of a run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options {
@@ -68,6 +115,8 @@ pub struct Options {
     /// Checkpoint interval Δt_c [s]: the solver restarts at origin + j·Δt_c (see
     /// [`integrate`]); `None`: one segment, no checkpoints.
     pub checkpoint_interval: Option<f64>,
+    /// Step-size control and Jacobian renewal.
+    pub step_control: StepControl,
 }
 
 /// What the solver did.
@@ -318,6 +367,7 @@ pub fn integrate<S: OdeSystem>(
         // Jacobian update or a smaller step. The run fails when the step size collapses.
         problem.ode_options.max_nonlinear_solver_failures = usize::MAX / 4;
         problem.ode_options.min_timestep = MIN_STEP;
+        apply_step_control(&mut problem.ode_options, &options.step_control);
         let solver = match options.method {
             Method::TrBdf2 => problem.tr_bdf2::<SparseSkipLu>().map(Solver::TrBdf2),
             Method::Esdirk34 => problem.esdirk34::<SparseSkipLu>().map(Solver::Esdirk34),
@@ -412,6 +462,18 @@ pub fn integrate<S: OdeSystem>(
     }
 }
 
+/// Sets diffsol's step-size and Jacobian options from `control`.
+fn apply_step_control(o: &mut diffsol::OdeSolverOptions<f64>, control: &StepControl) {
+    o.max_timestep_growth = Some(control.max_growth);
+    o.pi_control_proportional = control.pi_proportional;
+    o.pi_control_integral = control.pi_integral;
+    if !control.jacobian_after_newton_failure {
+        // diffsol renews the Jacobian after a first failure when the step size is within
+        // this relative threshold of the one the Jacobian was taken at: never.
+        o.threshold_to_update_rhs_jacobian = 0.0;
+    }
+}
+
 /// The two SDIRK solvers behind one face.
 enum Solver<A, B> {
     TrBdf2(A),
@@ -475,6 +537,7 @@ mod tests {
             method,
             origin: 0.0,
             checkpoint_interval,
+            step_control: StepControl::default(),
         }
     }
 
@@ -710,6 +773,96 @@ mod tests {
                 assert!((y - t.cos()).abs() < 1e-7, "{method:?} t = {t}: {y}");
             }
         }
+    }
+
+    /// The step sizes of a run of `Stiff` to 0.05 s from a first step of 1e-6 s, read from
+    /// outputs every 1e-6 s (no step is shorter, so every step shows).
+    fn step_sizes(control: StepControl) -> Vec<f64> {
+        let mut opts = options(Method::TrBdf2, None);
+        opts.output_interval = 1e-6;
+        opts.step_control = control;
+        let mut steps: Vec<f64> = Vec::new();
+        integrate(&Stiff, &fresh(), 0.05, &opts, |event| {
+            if let Event::Output { stats, .. } = event {
+                if stats.last_step > 0.0 && steps.last() != Some(&stats.last_step) {
+                    steps.push(stats.last_step);
+                }
+            }
+            ControlFlow::Continue(())
+        })
+        .unwrap();
+        steps
+    }
+
+    /// `StepControl::max_growth` caps the growth from one step to the next (diffsol's own
+    /// cap is 2, which the same run reaches: the check can fail).
+    #[test]
+    fn no_step_grows_by_more_than_the_maximum_growth() {
+        let largest = |h: &[f64]| h.windows(2).map(|w| w[1] / w[0]).fold(0.0, f64::max);
+        let capped = step_sizes(StepControl::default());
+        let growth = StepControl::default().max_growth;
+        assert!(capped.len() > 5, "{capped:?}");
+        assert!(largest(&capped) <= growth * (1.0 + 1e-12), "{capped:?}");
+        assert!(
+            largest(&capped) > 0.99 * growth,
+            "never grew as far: {capped:?}"
+        );
+        let free = step_sizes(StepControl::DIFFSOL);
+        assert!(largest(&free) > 1.9, "{free:?}");
+    }
+
+    /// y' = −λ(t)·(y − cos t) − sin t with λ = 1e4 for t < 1 and 1e6 after (solution
+    /// cos t from y(0) = 1): a stiffness that jumps, so that the Jacobian taken before the
+    /// jump makes Newton fail after it.
+    struct Jump;
+    impl Jump {
+        fn lambda(t: f64) -> f64 {
+            if t < 1.0 {
+                1e4
+            } else {
+                1e6
+            }
+        }
+    }
+    impl OdeSystem for Jump {
+        fn len(&self) -> usize {
+            1
+        }
+        fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+            dy[0] = -Self::lambda(t) * (y[0] - t.cos()) - t.sin();
+        }
+        fn jacobian(&self, t: f64, _y: &[f64], jac: &mut DMatrix<f64>) {
+            jac[(0, 0)] = -Self::lambda(t);
+        }
+    }
+
+    /// Both Jacobian policies after a Newton failure end on the solution, and the setting
+    /// reaches the solver (the runs differ). That keeping the Jacobian saves Jacobians is
+    /// measured on B1 (docs/dynamics.md: 8 524 against 9 955 in the whole run).
+    #[test]
+    fn keeping_the_jacobian_after_a_newton_failure_saves_jacobians() {
+        let run = |renew: bool| {
+            let mut opts = options(Method::TrBdf2, None);
+            opts.step_control.jacobian_after_newton_failure = renew;
+            let start = Start {
+                time: 0.0,
+                state: vec![1.0],
+                step: None,
+            };
+            let mut last = f64::NAN;
+            let stats = integrate(&Jump, &start, 2.0, &opts, |event| {
+                if let Event::Output { state, .. } = event {
+                    last = state[0];
+                }
+                ControlFlow::Continue(())
+            })
+            .unwrap();
+            assert!((last - 2.0f64.cos()).abs() < 1e-7, "renew {renew}: {last}");
+            stats
+        };
+        let (kept, renewed) = (run(false), run(true));
+        assert!(kept.newton_failures > 0 && renewed.newton_failures > 0);
+        assert_ne!(counts(&kept), counts(&renewed));
     }
 
     fn fresh_1d() -> Start {
