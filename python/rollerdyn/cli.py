@@ -457,8 +457,8 @@ def run(
             help="Checkpoint interval in seconds of simulated time (not wall-clock time): "
             "the result file is rewritten and the solver restarted every SECONDS; at most "
             "this much simulated time is lost after kill -9. A positive number of seconds. "
-            "Overrides solver.checkpoint_interval of the configuration (default 50 ms = "
-            "0.05). With --resume the default is the earlier run's interval, which a "
+            "Overrides solver.checkpoint_interval of the configuration (default 100 ms = "
+            "0.1). With --resume the default is the earlier run's interval, which a "
             "bit-for-bit continuation needs (another interval changes the result within "
             "the tolerances).",
             metavar="SECONDS",
@@ -474,7 +474,7 @@ def run(
     or is interrupted (Ctrl-C), everything computed until then is written and the command
     exits with status 1 (130 after Ctrl-C, 143 after SIGTERM). The result file is also
     written at every checkpoint (every --checkpoint-interval seconds of simulated time,
-    by default solver.checkpoint_interval, 50 ms; atomically), so after kill -9 or a
+    by default solver.checkpoint_interval, 100 ms; atomically), so after kill -9 or a
     crash it holds the run up to the last checkpoint, and --resume finishes the run.
     """
     from rich.progress import (

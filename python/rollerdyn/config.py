@@ -893,12 +893,11 @@ class SolverConfig(_Section):
     atol_time_scale: Quantity("time", positive=True, le="1 s") = "1e-5 s"
     dt_max: Quantity("time", positive=True) = "1e-4 s"
     output_interval: Quantity("time", positive=True) = "1e-4 s"
-    checkpoint_interval: Quantity("time", positive=True) = "50 ms"
+    checkpoint_interval: Quantity("time", positive=True) = "100 ms"
     detector: Literal["semi-analytical", "gradient", "mesh"] = "semi-analytical"
     method: Literal["tr-bdf2", "esdirk34"] = "tr-bdf2"
     max_step_growth: Number(gt=1.0, le=10.0) = 1.3
-    pi_proportional: Number(ge=0.0, le=1.0) = 0.4
-    pi_integral: Number(gt=0.0, le=1.0) = 0.3
+    step_gain: Number(gt=0.0, le=1.0) = 0.3
     jacobian_after_newton_failure: bool = False
     pruning: bool = True
     mesh_around: Integer(ge=8, le=1024) = 64

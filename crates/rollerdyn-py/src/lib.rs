@@ -988,7 +988,6 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulation::initial_state, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::model_rhs, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::model_energy, m)?)?;
-    m.add_function(wrap_pyfunction!(simulation::model_timing, m)?)?;
     m.add_function(wrap_pyfunction!(roller_mass_properties, m)?)?;
     m.add_function(wrap_pyfunction!(contact_benchmark, m)?)?;
     m.add_function(wrap_pyfunction!(circle_circle_distance, m)?)?;
@@ -1194,8 +1193,7 @@ mod simulation {
             method,
             step_control: StepControl {
                 max_growth: get(d, "max_step_growth")?,
-                pi_proportional: get(d, "pi_proportional")?,
-                pi_integral: get(d, "pi_integral")?,
+                gain: get(d, "step_gain")?,
                 jacobian_after_newton_failure: get(d, "jacobian_after_newton_failure")?,
             },
             checkpoint_interval: match d.get_item("checkpoint_interval")? {
@@ -1239,48 +1237,6 @@ mod simulation {
         let mut jac = nalgebra::DMatrix::zeros(n, n);
         model.jacobian(t, &y, &mut jac);
         Ok((dy, jac.transpose().as_slice().to_vec()))
-    }
-
-    /// Wall time of one right-hand side and one Jacobian of the model at (t, y) [s], each
-    /// the mean over `repetitions` evaluations after one untimed evaluation (`rollerdyn
-    /// bench model`). The GIL is released while timing.
-    #[pyfunction]
-    pub fn model_timing(
-        py: Python<'_>,
-        params: &Bound<'_, PyDict>,
-        traction: &PyEhlTraction,
-        t: f64,
-        y: Vec<f64>,
-        repetitions: usize,
-    ) -> PyResult<(f64, f64)> {
-        use rollerdyn_core::dynamics::integrate::OdeSystem;
-        let params = self::params(params, &traction.inner)?;
-        let repetitions = repetitions.max(1);
-        let timed = py.detach(move || {
-            let model = BearingModel::new(params)?;
-            let n = model.len();
-            if y.len() != n {
-                return Ok(Err(format!("y has {} states: the model has {n}", y.len())));
-            }
-            let mut dy = vec![0.0; n];
-            let mut jac = nalgebra::DMatrix::zeros(n, n);
-            model.rhs(t, &y, &mut dy);
-            model.jacobian(t, &y, &mut jac);
-            let start = std::time::Instant::now();
-            for _ in 0..repetitions {
-                model.rhs(t, &y, &mut dy);
-            }
-            let rhs = start.elapsed().as_secs_f64() / repetitions as f64;
-            let start = std::time::Instant::now();
-            for _ in 0..repetitions {
-                model.jacobian(t, &y, &mut jac);
-            }
-            Ok(Ok((
-                rhs,
-                start.elapsed().as_secs_f64() / repetitions as f64,
-            )))
-        });
-        timed.map_err(core_err)?.map_err(PyValueError::new_err)
     }
 
     /// Total mechanical energy of the model at (t, y) [J] (for conservation checks).
