@@ -10,7 +10,8 @@
 //! The Jacobian is built by finite differences per body: perturbing one state of
 //! roller i re-evaluates only roller i's eight contacts, and changes only the rows of
 //! roller i, its two neighbours and the inner ring (issue 4: "a roller couples only to
-//! its neighbours and the rings").
+//! its neighbours and the rings"). A velocity moves no contact, so its columns reuse the
+//! slice geometry and the detected flange contacts of the unperturbed state.
 
 use super::forces::{
     end_flange, line_slice, penetration_rate, ContactForces, EllipseKind, LineKind, Tribology,
@@ -131,9 +132,10 @@ enum Geometry {
     End(Option<Contact>),
 }
 
-/// One in how many contact evaluations the [`Profile`] times (a power of 2): a clock read costs about
-/// 25 ns, and timing every one of B1's 187 sections per right-hand side cost 5 % of it.
-/// Over the millions of sections of a run the sample's error is far below a percent.
+/// One in how many contact evaluations the [`Profile`] times (a power of 2): a clock read
+/// costs about 25 ns, and timing every one of B1's 187 sections per right-hand side cost
+/// 5 % of it. Over the millions of sections of a run the sample's error is far below a
+/// percent.
 const PROFILE_EVERY: u32 = 8;
 
 /// Whether the n-th section is timed: the top bits of n's Fibonacci hash are zero.
@@ -174,7 +176,7 @@ pub struct BearingModel {
     flange_bounds: [FlangeBounds; 4],
     warm_starts: RefCell<Vec<[Option<Unknowns>; 6]>>,
     profile: Cell<Profile>,
-    /// Timed sections entered so far (every [`PROFILE_EVERY`]th is timed).
+    /// Sections entered so far (one in [`PROFILE_EVERY`] is timed, see [`sampled`]).
     sections: Cell<u32>,
 }
 
