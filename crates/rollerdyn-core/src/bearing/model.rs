@@ -86,6 +86,28 @@ pub enum Element {
     End(usize, usize),
 }
 
+impl Element {
+    /// The line-contact kind (0 inner race, 1 outer race, 2 roller–roller; the index of
+    /// `BearingModel::kinds`), None for a roller end–flange contact.
+    fn line_kind(&self) -> Option<usize> {
+        match self {
+            Element::Inner(_) => Some(0),
+            Element::Outer(_) => Some(1),
+            Element::Pair(_) => Some(2),
+            Element::End(..) => None,
+        }
+    }
+}
+
+/// The side of flange k along the ring axis: −1 for the −x flanges (k = 0, 2), +1 else.
+fn flange_side(k: usize) -> f64 {
+    if k % 2 == 1 {
+        1.0
+    } else {
+        -1.0
+    }
+}
+
 /// Names of the four roller end / flange contacts of a roller.
 pub const FLANGE_NAMES: [&str; 4] = ["inner-x", "inner+x", "outer-x", "outer+x"];
 
@@ -393,6 +415,26 @@ impl BearingModel {
         }
     }
 
+    /// The bodies A and B of `element` at `kin` (`fixed`: the outer ring).
+    fn bodies<'a>(
+        &self,
+        element: &Element,
+        kin: &'a (Kinematics, Vec<Kinematics>),
+        fixed: &'a Kinematics,
+    ) -> (&'a Kinematics, &'a Kinematics) {
+        let [a, b] = Self::bodies_of(element, self.layout.rollers);
+        (self.body(a, kin, fixed), self.body(b, kin, fixed))
+    }
+
+    /// The end of `roller` that faces flange k.
+    fn roller_end(&self, k: usize, roller: &Kinematics) -> RollerEnd {
+        RollerEnd::new(
+            &self.params.roller,
+            roller.center,
+            flange_side(k) * roller.axis,
+        )
+    }
+
     /// Evaluates one contact.
     pub fn evaluate(
         &self,
@@ -401,13 +443,11 @@ impl BearingModel {
         index: usize,
     ) -> ElementResult {
         let fixed = Kinematics::fixed();
-        let [ba, bb] = Self::bodies_of(element, self.layout.rollers);
-        let (a, b) = (self.body(ba, kin, &fixed), self.body(bb, kin, &fixed));
-        match *element {
-            Element::Inner(_) => self.line_element(0, a, b),
-            Element::Outer(_) => self.line_element(1, a, b),
-            Element::Pair(_) => self.line_element(2, a, b),
-            Element::End(_, k) => self.flange_element(k, a, b, index),
+        let (a, b) = self.bodies(element, kin, &fixed);
+        match (*element, element.line_kind()) {
+            (_, Some(kind)) => self.line_element(kind, a, b),
+            (Element::End(_, k), None) => self.flange_element(k, a, b, index),
+            _ => unreachable!("an element is a line contact or a roller end"),
         }
     }
 
@@ -420,17 +460,13 @@ impl BearingModel {
         index: usize,
     ) -> Geometry {
         let fixed = Kinematics::fixed();
-        let [ba, bb] = Self::bodies_of(element, self.layout.rollers);
-        let (a, b) = (self.body(ba, kin, &fixed), self.body(bb, kin, &fixed));
-        let kind = match *element {
-            Element::Inner(_) => 0,
-            Element::Outer(_) => 1,
-            Element::Pair(_) => 2,
-            Element::End(_, k) => {
-                let side = if k % 2 == 1 { 1.0 } else { -1.0 };
-                let end = RollerEnd::new(&self.params.roller, b.center, side * b.axis);
-                return Geometry::End(self.end_contact(&end, &self.flange(k, a), index));
-            }
+        let (a, b) = self.bodies(element, kin, &fixed);
+        let Some(kind) = element.line_kind() else {
+            let Element::End(_, k) = *element else {
+                unreachable!("an element is a line contact or a roller end")
+            };
+            let end = self.roller_end(k, b);
+            return Geometry::End(self.end_contact(&end, &self.flange(k, a), index));
         };
         let start = self.stopwatch();
         let slices = (0..self.slices.len())
@@ -448,13 +484,10 @@ impl BearingModel {
         geometry: &Geometry,
     ) -> ElementResult {
         let fixed = Kinematics::fixed();
-        let [ba, bb] = Self::bodies_of(element, self.layout.rollers);
-        let (a, b) = (self.body(ba, kin, &fixed), self.body(bb, kin, &fixed));
-        match (element, geometry) {
-            (Element::Inner(_), Geometry::Slices(g)) => self.line_element_at(0, a, b, g),
-            (Element::Outer(_), Geometry::Slices(g)) => self.line_element_at(1, a, b, g),
-            (Element::Pair(_), Geometry::Slices(g)) => self.line_element_at(2, a, b, g),
-            (Element::End(..), Geometry::End(c)) => self.flange_element_at(a, b, c.as_ref()),
+        let (a, b) = self.bodies(element, kin, &fixed);
+        match (element.line_kind(), geometry) {
+            (Some(kind), Geometry::Slices(g)) => self.line_forces(kind, a, b, g.iter().copied()),
+            (None, Geometry::End(c)) => self.flange_element_at(a, b, c.as_ref()),
             _ => unreachable!("geometry of another kind of element"),
         }
     }
@@ -499,27 +532,19 @@ impl BearingModel {
     }
 
     fn line_element(&self, kind: usize, a: &Kinematics, b: &Kinematics) -> ElementResult {
-        let start = self.stopwatch();
-        let mut out = ElementResult {
-            penetration: f64::NEG_INFINITY,
-            ..Default::default()
-        };
-        for j in 0..self.slices.len() {
-            let (n, p, delta) = self.slice_geometry(kind, a, b, j);
-            self.slice_into(&mut out, kind, a, b, &n, &p, delta);
-        }
-        self.spend(|pr| pr.line_contacts += elapsed(start));
-        out
+        let slices = (0..self.slices.len()).map(|j| self.slice_geometry(kind, a, b, j));
+        self.line_forces(kind, a, b, slices)
     }
 
-    /// [`Self::line_element`] with the slice geometry given (`slices`, from the same
-    /// positions): for Jacobian columns of velocities, which leave it unchanged.
-    fn line_element_at(
+    /// The forces of a line contact of `kind` from its slices' geometry (normal, location,
+    /// penetration): computed along the way by [`Self::line_element`], or given (from the
+    /// same positions) for Jacobian columns of velocities, which leave it unchanged.
+    fn line_forces(
         &self,
         kind: usize,
         a: &Kinematics,
         b: &Kinematics,
-        slices: &[(Vec3, Vec3, f64)],
+        slices: impl Iterator<Item = (Vec3, Vec3, f64)>,
     ) -> ElementResult {
         let start = self.stopwatch();
         let mut out = ElementResult {
@@ -527,7 +552,7 @@ impl BearingModel {
             ..Default::default()
         };
         for (n, p, delta) in slices {
-            self.slice_into(&mut out, kind, a, b, n, p, *delta);
+            self.slice_into(&mut out, kind, a, b, &n, &p, delta);
         }
         self.spend(|pr| pr.line_contacts += elapsed(start));
         out
@@ -697,10 +722,8 @@ impl BearingModel {
         roller: &Kinematics,
         index: usize,
     ) -> ElementResult {
-        let side = if k % 2 == 1 { 1.0 } else { -1.0 };
-        let end = RollerEnd::new(&self.params.roller, roller.center, side * roller.axis);
-        let flange = self.flange(k, ring);
-        let contact = self.end_contact(&end, &flange, index);
+        let end = self.roller_end(k, roller);
+        let contact = self.end_contact(&end, &self.flange(k, ring), index);
         self.flange_element_at(ring, roller, contact.as_ref())
     }
 
@@ -765,42 +788,28 @@ impl BearingModel {
     /// Elastic energy stored in all contacts [J]: ∫F dδ of eq. 11 per slice,
     /// (l/k₁)·δ^(1/k₂+1)/(1/k₂+1), and 2/5·F·δ for a Hertz contact (F ∝ δ^1.5).
     pub fn contact_energy(&self, kin: &(Kinematics, Vec<Kinematics>)) -> f64 {
-        let fixed = Kinematics::fixed();
         let mut energy = 0.0;
         for (index, element) in self.elements.iter().enumerate() {
-            let [ba, bb] = Self::bodies_of(element, self.layout.rollers);
-            let (a, b) = (self.body(ba, kin, &fixed), self.body(bb, kin, &fixed));
-            match *element {
-                Element::End(_, k) => {
-                    let side = if k % 2 == 1 { 1.0 } else { -1.0 };
-                    let end = RollerEnd::new(&self.params.roller, b.center, side * b.axis);
-                    if let Some(c) = self.end_contact(&end, &self.flange(k, a), index) {
-                        if c.penetration > 0.0 {
-                            let hertz = crate::tribology::hertz::EllipticalContact::new(
-                                c.rx,
-                                c.ry,
-                                self.ellipse.e_prime,
-                                crate::tribology::hertz::EllipticalMethod::BreweHamrock,
-                            );
-                            energy += 0.4 * hertz.force(c.penetration) * c.penetration;
-                        }
-                    }
+            match (self.geometry(element, kin, index), element.line_kind()) {
+                (Geometry::End(Some(c)), _) if c.penetration > 0.0 => {
+                    let hertz = crate::tribology::hertz::EllipticalContact::new(
+                        c.rx,
+                        c.ry,
+                        self.ellipse.e_prime,
+                        crate::tribology::hertz::EllipticalMethod::BreweHamrock,
+                    );
+                    energy += 0.4 * hertz.force(c.penetration) * c.penetration;
                 }
-                _ => {
-                    let kind = match element {
-                        Element::Inner(_) => 0,
-                        Element::Outer(_) => 1,
-                        _ => 2,
-                    };
+                (Geometry::Slices(slices), Some(kind)) => {
                     let law = &self.kinds[kind].law;
                     let e = 1.0 / law.k2 + 1.0;
-                    for j in 0..self.slices.len() {
-                        let delta = self.slice_geometry(kind, a, b, j).2;
+                    for (_, _, delta) in slices {
                         if delta > 0.0 {
                             energy += self.slice_length / law.k1 * delta.powf(e) / e;
                         }
                     }
                 }
+                _ => {}
             }
         }
         energy
@@ -1032,7 +1041,7 @@ impl BearingModel {
 /// The flange k (0, 1: inner ring at −x, +x; 2, 3: outer ring) of a ring body at its pose.
 fn flange_of(params: &BearingParams, k: usize, ring: &Kinematics) -> Flange {
     let inner = k < 2;
-    let side = if k % 2 == 1 { 1.0 } else { -1.0 };
+    let side = flange_side(k);
     let (shape, play, radius) = if inner {
         (
             &params.inner_flange,
