@@ -987,6 +987,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(simulation::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::initial_state, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::model_rhs, m)?)?;
+    m.add_function(wrap_pyfunction!(simulation::model_timing, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::model_energy, m)?)?;
     m.add_function(wrap_pyfunction!(roller_mass_properties, m)?)?;
     m.add_function(wrap_pyfunction!(contact_benchmark, m)?)?;
@@ -1237,6 +1238,74 @@ mod simulation {
         let mut jac = nalgebra::DMatrix::zeros(n, n);
         model.jacobian(t, &y, &mut jac);
         Ok((dy, jac.transpose().as_slice().to_vec()))
+    }
+
+    /// Times the model at (t, y) on this thread: `rhs_repetitions` right-hand sides, then
+    /// `jacobian_repetitions` Jacobians (`rollerdyn bench model`). Returns the mean wall
+    /// time of each [s] and the profile of the right-hand sides (detection, line
+    /// contacts, flange forces [s per right-hand side]; sampled as in a run).
+    #[pyfunction]
+    pub fn model_timing<'py>(
+        py: Python<'py>,
+        params: &Bound<'py, PyDict>,
+        traction: &PyEhlTraction,
+        t: f64,
+        y: Vec<f64>,
+        rhs_repetitions: usize,
+        jacobian_repetitions: usize,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        use rollerdyn_core::dynamics::integrate::OdeSystem;
+        use std::time::Instant;
+        let model = BearingModel::new(self::params(params, &traction.inner)?).map_err(core_err)?;
+        let n = model.len();
+        if y.len() != n {
+            return Err(PyValueError::new_err(format!(
+                "y has {} states: the model has {n}",
+                y.len()
+            )));
+        }
+        let (rhs_n, jac_n) = (rhs_repetitions.max(1), jacobian_repetitions);
+        let mut dy = vec![0.0; n];
+        let mut jac = nalgebra::DMatrix::zeros(n, n);
+        let (rhs, jacobian, profile) = {
+            model.rhs(t, &y, &mut dy); // warm-up (and the gradient detector's warm starts)
+            let before = model.profile();
+            let start = Instant::now();
+            for _ in 0..rhs_n {
+                model.rhs(t, std::hint::black_box(&y), &mut dy);
+            }
+            let rhs = start.elapsed().as_secs_f64() / rhs_n as f64;
+            let after = model.profile();
+            let start = Instant::now();
+            for _ in 0..jac_n {
+                model.jacobian(t, std::hint::black_box(&y), &mut jac);
+            }
+            let jacobian = start.elapsed().as_secs_f64() / jac_n.max(1) as f64;
+            (rhs, jacobian, (before, after))
+        };
+        let (before, after) = profile;
+        let per = |a: f64, b: f64| (a - b) / rhs_n as f64;
+        let d = PyDict::new(py);
+        d.set_item("states", n)?;
+        d.set_item("rhs_seconds", rhs)?;
+        d.set_item(
+            "jacobian_seconds",
+            if jac_n > 0 { jacobian } else { f64::NAN },
+        )?;
+        d.set_item("detection_seconds", per(after.detection, before.detection))?;
+        d.set_item(
+            "line_contact_seconds",
+            per(after.line_contacts, before.line_contacts),
+        )?;
+        d.set_item(
+            "flange_force_seconds",
+            per(after.flange_forces, before.flange_forces),
+        )?;
+        d.set_item(
+            "detections",
+            (after.detections - before.detections) as f64 / rhs_n as f64,
+        )?;
+        Ok(d)
     }
 
     /// Total mechanical energy of the model at (t, y) [J] (for conservation checks).

@@ -11,7 +11,7 @@
 use super::state::Kinematics;
 use crate::geometry::primitives::Vec3;
 use crate::numerics::smooth::smooth_max;
-use crate::tribology::film::{thermal_correction, FilmInputs};
+use crate::tribology::film::{FilmInputs, ThermalCorrection};
 use crate::tribology::friction::{BoundaryFriction, LoadSharing};
 use crate::tribology::hertz::{
     line_half_width, line_max_pressure, EllipticalContact, EllipticalMethod,
@@ -43,10 +43,8 @@ pub struct Tribology {
     pub eta0: f64,
     /// α* [1/Pa].
     pub alpha_star: f64,
-    /// dη₀/dT [Pa s/K].
-    pub viscosity_slope: f64,
-    /// λ_F [W/(m K)].
-    pub thermal_conductivity: f64,
+    /// The thermal correction of the lubricant (from dη₀/dT and λ_F).
+    pub thermal: ThermalCorrection,
     /// α_v of eq. 55.
     pub hysteresis_coefficient: f64,
     /// Damping ratio ζ.
@@ -82,7 +80,7 @@ impl Tribology {
     /// Thermal correction φ_th (eqs. 47, 48).
     #[inline]
     fn thermal(&self, u0: f64, sliding: f64) -> f64 {
-        thermal_correction(self.viscosity_slope, self.thermal_conductivity, u0, sliding)
+        self.thermal.factor(u0, sliding)
     }
 
     fn film(&self, e_prime: f64) -> FilmInputs {
@@ -249,8 +247,8 @@ pub fn line_slice(
             .traction
             .line_force(p0, half_width, length, rate, h + FILM_FLOOR);
     let boundary = tri.boundary.force(f_n, slip_norm, u0);
-    let lambda = h / kind.roughness;
-    let f_t = kind.sharing.mix(lambda, boundary, fluid);
+    let share = kind.sharing.boundary_share(h / kind.roughness);
+    let f_t = LoadSharing::mix_by_share(share, boundary, fluid);
     let mut out = ContactForces {
         normal: f_n,
         tangential: -(f_t / slip_norm) * slip,
@@ -263,7 +261,7 @@ pub fn line_slice(
         let v_s = tri.boundary.smoothing_speed;
         for (body, u, moment) in [(a, ua_r, &mut out.moment_a), (b, ub_r, &mut out.moment_b)] {
             let arm = (location - body.center).norm();
-            let size = kind.sharing.mix(lambda, m_b, f_r * arm);
+            let size = LoadSharing::mix_by_share(share, m_b, f_r * arm);
             *moment = -(size * (u / v_s).tanh()) * rolling_axis(body, location, rolling);
         }
     }
@@ -382,8 +380,7 @@ impl Tribology {
             },
             eta0,
             alpha_star: 2e-8,
-            viscosity_slope: -1e-3 * eta0,
-            thermal_conductivity: 0.134,
+            thermal: ThermalCorrection::new(-1e-3 * eta0, 0.134),
             hysteresis_coefficient: 0.01,
             damping_ratio: 0.1,
             friction: true,

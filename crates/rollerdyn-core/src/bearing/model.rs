@@ -30,6 +30,7 @@ use crate::error::{Error, Result};
 use crate::geometry::end_flange::{Flange, FlangePlacement, RollerEnd};
 use crate::geometry::primitives::Vec3;
 use crate::geometry::roller::MassProperties;
+use crate::tribology::film::ThermalCorrection;
 use nalgebra::DMatrix;
 use std::cell::{Cell, RefCell};
 use std::time::Instant;
@@ -251,8 +252,7 @@ impl BearingModel {
             boundary: params.boundary,
             eta0: params.eta0,
             alpha_star: params.alpha_star,
-            viscosity_slope: params.viscosity_slope,
-            thermal_conductivity: params.thermal_conductivity,
+            thermal: ThermalCorrection::new(params.viscosity_slope, params.thermal_conductivity),
             hysteresis_coefficient: params.hysteresis_coefficient,
             damping_ratio: params.damping_ratio,
             friction: params.friction,

@@ -136,12 +136,37 @@ pub fn thermal_correction(
     u0: f64,
     sliding_speed: f64,
 ) -> f64 {
-    let k = (-viscosity_slope / thermal_conductivity).max(0.0);
-    // Powers from logarithms (ln 0 = −∞ gives the limit 0; the exponents are positive).
-    let (ln_k, ln_u0, ln_s) = (k.ln(), u0.abs().ln(), sliding_speed.abs().ln());
-    let term = (0.71 * ln_k + 1.42 * ln_u0).exp()
-        + 5.65 * (0.71 * ln_k + 0.46 * ln_u0 + 0.96 * ln_s).exp();
-    1.0 / (1.0 + 0.133 * term)
+    ThermalCorrection::new(viscosity_slope, thermal_conductivity).factor(u0, sliding_speed)
+}
+
+/// [`thermal_correction`] for one lubricant: the constant part 0.71·ln k is taken once,
+/// so that a contact pays two logarithms and two exponentials (the same operations in
+/// the same order: the same numbers to the last bit).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ThermalCorrection {
+    /// 0.71·ln k, k = −∂η/∂T/λ_F (−∞ for k = 0: no correction).
+    scaled_ln_k: f64,
+}
+
+impl ThermalCorrection {
+    /// The correction of a lubricant with viscosity slope ∂η/∂T [Pa s/K] and thermal
+    /// conductivity λ_F [W/(m K)].
+    pub fn new(viscosity_slope: f64, thermal_conductivity: f64) -> Self {
+        let k = (-viscosity_slope / thermal_conductivity).max(0.0);
+        Self {
+            scaled_ln_k: 0.71 * k.ln(),
+        }
+    }
+
+    /// φ_th at entrainment speed u₀ and sliding speed u_rel [m/s].
+    #[inline]
+    pub fn factor(&self, u0: f64, sliding_speed: f64) -> f64 {
+        // Powers from logarithms (ln 0 = −∞ gives the limit 0; the exponents are positive).
+        let (ln_u0, ln_s) = (u0.abs().ln(), sliding_speed.abs().ln());
+        let term = (self.scaled_ln_k + 1.42 * ln_u0).exp()
+            + 5.65 * (self.scaled_ln_k + 0.46 * ln_u0 + 0.96 * ln_s).exp();
+        1.0 / (1.0 + 0.133 * term)
+    }
 }
 
 /// (a₁^p + a₂^p)^q from ln a₁, ln a₂, by logarithms and exponentials only.

@@ -60,8 +60,14 @@ impl LoadSharing {
     /// rolling-resistance moments, paper sect. 3.3).
     #[inline]
     pub fn mix(&self, film_ratio: f64, boundary: f64, fluid: f64) -> f64 {
-        let phi = self.boundary_share(film_ratio);
-        phi * boundary + (1.0 - phi) * fluid
+        Self::mix_by_share(self.boundary_share(film_ratio), boundary, fluid)
+    }
+
+    /// Eq. 54 for a known share φ (one φ serves a slice's traction and both of its
+    /// rolling-resistance moments).
+    #[inline]
+    pub fn mix_by_share(share: f64, boundary: f64, fluid: f64) -> f64 {
+        share * boundary + (1.0 - share) * fluid
     }
 }
 
