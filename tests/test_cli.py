@@ -59,6 +59,19 @@ def test_bench_contact_compares_the_methods():
         assert row in result.output
 
 
+def test_bench_model_times_rhs_and_jacobian(tmp_path):
+    """bench model: one right-hand side and one Jacobian at a state (here the initial
+    one), with the right-hand side's split; a file that is no result is refused cleanly."""
+    result = RUNNER.invoke(app, ["bench", "model"])
+    assert result.exit_code == 0, result.output
+    for row in ("right-hand side", "line contacts", "Jacobian", "193 states"):
+        assert row in result.output
+    junk = tmp_path / "junk.nc"
+    junk.write_text("not netCDF")
+    bad = RUNNER.invoke(app, ["bench", "model", "--state", str(junk)])
+    assert bad.exit_code == 2 and "--state" in bad.output and "Traceback" not in bad.output
+
+
 def test_bench_refuses_unknown_target():
     result = RUNNER.invoke(app, ["bench", "everything"])
     assert result.exit_code == 2

@@ -131,9 +131,10 @@ def bench(
         str,
         typer.Argument(
             help="What to time: 'traction' (EHL traction integral), 'contact' (roller "
-            "end/flange detection: semi-analytical, pruned, gradient), 'mbs' (whole runs "
-            "with the semi-analytical and the gradient detector) or 'all' (traction and "
-            "contact)."
+            "end/flange detection: semi-analytical, pruned, gradient), 'model' (one "
+            "right-hand side and one Jacobian of the bearing model at a state), 'mbs' "
+            "(whole runs with the semi-analytical and the gradient detector) or 'all' "
+            "(traction and contact)."
         ),
     ] = "all",
     repetitions: Annotated[
@@ -163,6 +164,15 @@ def bench(
         Path,
         typer.Option("--output", "-o", help="mbs --sweep-dt-max: directory for table and plot."),
     ] = Path("runtime-study"),
+    state: Annotated[
+        Path | None,
+        typer.Option(
+            "--state",
+            help="model: a result file (netCDF from `rollerdyn run`) of the same "
+            "configuration whose final state is timed (default: the consistent initial "
+            "state, where nothing is loaded yet).",
+        ),
+    ] = None,
     config: ConfigOption = None,
 ) -> None:
     """Time the hot paths on one core and print tables (times in ns per evaluation).
@@ -177,12 +187,17 @@ def bench(
     Jacobian evaluations, and where the time goes: detection, line contacts and flange
     forces (summed over every contact evaluation, in right-hand sides and Jacobians alike),
     the time inside Jacobians, and the rest (linear algebra and the solver's own work).
+    model: the mean time of one right-hand side (2 000 of them) and one Jacobian (200) at
+    the final state of --state, in µs, and the right-hand side's split into detection,
+    line contacts and flange forces.
     """
     from .model import Model
     from .validation import default_config_path
 
-    if target not in ("traction", "contact", "mbs", "all"):
-        console.print(f"[red]target = {target!r}: must be traction, contact, mbs or all[/red]")
+    if target not in ("traction", "contact", "model", "mbs", "all"):
+        console.print(
+            f"[red]target = {target!r}: must be traction, contact, model, mbs or all[/red]"
+        )
         raise typer.Exit(2)
     cfg = _load(config if config is not None else default_config_path())
     if target in ("traction", "all"):
@@ -198,6 +213,8 @@ def bench(
         console.print(table)
     if target in ("contact", "all"):
         _bench_contact(cfg, steps)
+    if target == "model":
+        _bench_model(cfg, state)
     if target == "mbs" and sweep_dt_max is not None:
         try:
             values = [float(v) for v in sweep_dt_max.split(",") if v.strip()]
@@ -212,6 +229,49 @@ def bench(
         _runtime_study(cfg, t_end, sorted(values), output)
     elif target == "mbs":
         _bench_mbs(cfg, t_end)
+
+
+def _bench_model(cfg, state: Path | None) -> None:
+    """One right-hand side and one Jacobian of the model, timed at a state."""
+    import numpy as np
+
+    from . import _core
+    from .model import Model
+    from .simulation import model_parameters
+
+    params = model_parameters(cfg, cfg.solver.detector)
+    traction = Model(cfg).traction
+    if state is None:
+        t, y, where = 0.0, _core.initial_state(params, traction), "the initial state"
+    else:
+        import xarray as xr
+
+        try:
+            with xr.open_dataset(state, engine="h5netcdf") as ds:
+                y = np.asarray(ds["final_state"].values, dtype=float).tolist()
+                t = float(ds.attrs["final_time_s"])
+        except (OSError, KeyError, ValueError) as err:
+            console.print(f"[red]--state = {state}: not a rollerdyn result file ({err})[/red]")
+            raise typer.Exit(2) from err
+        where = f"the final state of {state} (t = {t:.6g} s)"
+    try:
+        r = _core.model_timing(params, traction, t, y, 2000, 200)
+    except ValueError as err:
+        console.print(f"[red]--state = {state}: {err}[/red]")
+        raise typer.Exit(2) from err
+    table = Table(title=f"{cfg.name}: the model at {where}, one core")
+    for col in ("", "time [µs]"):
+        table.add_column(col)
+    table.add_row("right-hand side", f"{r['rhs_seconds'] * 1e6:.1f}")
+    table.add_row("  roller end/flange detection", f"{r['detection_seconds'] * 1e6:.1f}")
+    table.add_row("  line contacts (slices)", f"{r['line_contact_seconds'] * 1e6:.1f}")
+    table.add_row("  roller end/flange forces", f"{r['flange_force_seconds'] * 1e6:.1f}")
+    table.add_row("Jacobian", f"{r['jacobian_seconds'] * 1e6:.1f}")
+    console.print(table)
+    console.print(
+        f"{r['states']} states; a Jacobian costs {r['jacobian_seconds'] / r['rhs_seconds']:.1f} "
+        f"right-hand sides; {r['detections']:.0f} detections per right-hand side"
+    )
 
 
 def _mbs_runs(cfg, t_end: float | None, label: str = "") -> list:
