@@ -1447,6 +1447,7 @@ mod simulation {
         stats.set_item("error_test_failures", s.error_test_failures)?;
         stats.set_item("newton_failures", s.newton_failures)?;
         stats.set_item("newton_iterations", s.newton_iterations)?;
+        stats.set_item("linear_solver_setups", s.linear_solver_setups)?;
         stats.set_item("detection_seconds", p.detection)?;
         stats.set_item("line_contact_seconds", p.line_contacts)?;
         stats.set_item("flange_force_seconds", p.flange_forces)?;

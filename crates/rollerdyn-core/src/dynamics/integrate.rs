@@ -141,6 +141,9 @@ pub struct Stats {
     pub newton_failures: usize,
     /// Newton iterations over all stages and steps.
     pub newton_iterations: usize,
+    /// Newton matrices I − hγJ assembled and factorised (diffsol's linear solver setups:
+    /// after a new Jacobian, a change of step size beyond diffsol's threshold, or a failure).
+    pub linear_solver_setups: usize,
 }
 
 /// Why an integration stopped early.
@@ -401,6 +404,8 @@ pub fn integrate<S: OdeSystem>(
                     before.newton_failures + solver_stats.number_of_nonlinear_solver_fails;
                 stats.newton_iterations =
                     before.newton_iterations + solver_stats.number_of_nonlinear_solver_iterations;
+                stats.linear_solver_setups =
+                    before.linear_solver_setups + solver_stats.number_of_linear_solver_setups;
             }
             t = on!(&solver, s => s.state().t);
             let step = on!(&solver, s => s.state().h);
