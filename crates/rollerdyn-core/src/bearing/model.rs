@@ -149,8 +149,9 @@ pub struct Profile {
 
 /// What of a contact element depends on positions only.
 enum Geometry {
-    /// Per slice of a line contact: (normal A→B, location P_m, penetration δ).
-    Slices(Vec<(Vec3, Vec3, f64)>),
+    /// Per slice of a line contact: (normal A→B, location P_m, penetration δ); none if the
+    /// bodies are apart by [`BearingModel::penetration_bound`], which is then kept.
+    Slices(Vec<(Vec3, Vec3, f64)>, Option<f64>),
     /// The detected roller end–flange contact (None: no valid pairing).
     End(Option<Contact>),
 }
@@ -186,6 +187,8 @@ pub struct BearingModel {
     ellipse: EllipseKind,
     /// Slice centres along the roller axis and their radii (crowning) [m].
     slices: Vec<(f64, f64)>,
+    /// The largest |s| of a slice centre and the largest slice radius [m].
+    slice_reach: (f64, f64),
     slice_length: f64,
     pitch_radius: f64,
     elements: Vec<Element>,
@@ -219,7 +222,7 @@ impl BearingModel {
         let r = params.roller.radius;
         let straight = params.roller.straight_length();
         let slice_length = straight / params.slices as f64;
-        let slices = (0..params.slices)
+        let slices: Vec<(f64, f64)> = (0..params.slices)
             .map(|j| {
                 let s = -0.5 * straight + (j as f64 + 0.5) * slice_length;
                 (s, r - params.crown_drop(s, straight))
@@ -284,6 +287,9 @@ impl BearingModel {
             tribology,
             kinds,
             ellipse,
+            slice_reach: slices.iter().fold((0.0, 0.0), |(s, r), &(sj, rj)| {
+                (f64::max(s, f64::abs(sj)), f64::max(r, rj))
+            }),
             slices,
             slice_length,
             pitch_radius,
@@ -469,11 +475,17 @@ impl BearingModel {
             return Geometry::End(self.end_contact(&end, &self.flange(k, a), index));
         };
         let start = self.stopwatch();
-        let slices = (0..self.slices.len())
-            .map(|j| self.slice_geometry(kind, a, b, j))
-            .collect();
+        let bound = self.penetration_bound(kind, a, b);
+        let geometry = if bound < 0.0 {
+            Geometry::Slices(Vec::new(), Some(bound))
+        } else {
+            let slices = (0..self.slices.len())
+                .map(|j| self.slice_geometry(kind, a, b, j))
+                .collect();
+            Geometry::Slices(slices, None)
+        };
         self.spend(|pr| pr.line_contacts += elapsed(start));
-        Geometry::Slices(slices)
+        geometry
     }
 
     /// [`Self::evaluate`] with the element's `geometry` taken at the same positions.
@@ -486,7 +498,10 @@ impl BearingModel {
         let fixed = Kinematics::fixed();
         let (a, b) = self.bodies(element, kin, &fixed);
         match (element.line_kind(), geometry) {
-            (Some(kind), Geometry::Slices(g)) => self.line_forces(kind, a, b, g.iter().copied()),
+            (Some(kind), Geometry::Slices(g, apart)) => match apart {
+                Some(bound) => Self::apart(*bound),
+                None => self.line_forces(kind, a, b, g.iter().copied()),
+            },
             (None, Geometry::End(c)) => self.flange_element_at(a, b, c.as_ref()),
             _ => unreachable!("geometry of another kind of element"),
         }
@@ -532,8 +547,47 @@ impl BearingModel {
     }
 
     fn line_element(&self, kind: usize, a: &Kinematics, b: &Kinematics) -> ElementResult {
+        let bound = self.penetration_bound(kind, a, b);
+        if bound < 0.0 {
+            return Self::apart(bound);
+        }
         let slices = (0..self.slices.len()).map(|j| self.slice_geometry(kind, a, b, j));
         self.line_forces(kind, a, b, slices)
+    }
+
+    /// The result of a line contact whose bodies are apart: no force, and for the
+    /// penetration the (negative) `bound`, not the largest slice penetration.
+    fn apart(bound: f64) -> ElementResult {
+        ElementResult {
+            penetration: bound,
+            ..Default::default()
+        }
+    }
+
+    /// An upper bound of the penetration of every slice of a line contact of `kind` (eqs. 2,
+    /// 3 without their slices): the distance of slice s is |P + s·Q|, P the part of the
+    /// centres' offset across the reference axis and Q that of the roller axis (of the
+    /// axes' difference for two rollers), whose least and greatest values over the slice
+    /// centres |s| ≤ s_max are those of a point's distance to a segment; the slice radius
+    /// is at most the largest one. Negative: no slice touches, and the slices need not be
+    /// computed (on B1 many roller–roller pairs and the inner race outside the load zone).
+    fn penetration_bound(&self, kind: usize, a: &Kinematics, b: &Kinematics) -> f64 {
+        let (s_max, r_max) = self.slice_reach;
+        let across = |v: Vec3, axis: &Vec3| v - v.dot(axis) * axis;
+        let (axis, sway) = match kind {
+            0 | 1 => (a.axis, b.axis),
+            _ => ((a.axis + b.axis).normalize(), b.axis - a.axis),
+        };
+        let (least, greatest) = distance_range(
+            &across(b.center - a.center, &axis),
+            &across(sway, &axis),
+            s_max,
+        );
+        match kind {
+            0 => r_max + self.params.inner_raceway_radius - least,
+            1 => greatest + r_max - self.params.outer_raceway_radius,
+            _ => 2.0 * r_max - least,
+        }
     }
 
     /// The forces of a line contact of `kind` from its slices' geometry (normal, location,
@@ -800,7 +854,7 @@ impl BearingModel {
                     );
                     energy += 0.4 * hertz.force(c.penetration) * c.penetration;
                 }
-                (Geometry::Slices(slices), Some(kind)) => {
+                (Geometry::Slices(slices, _), Some(kind)) => {
                     let law = &self.kinds[kind].law;
                     let e = 1.0 / law.k2 + 1.0;
                     for (_, _, delta) in slices {
@@ -1038,6 +1092,21 @@ impl BearingModel {
     }
 }
 
+/// The least and the greatest of |p + s·q| over |s| ≤ s_max: the distance of the origin
+/// to the segment p ± s_max·q (its nearest point, or an end), and that of its farther end
+/// (|p + s·q| is convex in s).
+fn distance_range(p: &Vec3, q: &Vec3, s_max: f64) -> (f64, f64) {
+    let qq = q.norm_squared();
+    let nearest = if qq > 0.0 {
+        (-p.dot(q) / qq).clamp(-s_max, s_max)
+    } else {
+        0.0
+    };
+    let least = (p + nearest * q).norm();
+    let greatest = (p - s_max * q).norm().max((p + s_max * q).norm());
+    (least, greatest)
+}
+
 /// The flange k (0, 1: inner ring at −x, +x; 2, 3: outer ring) of a ring body at its pose.
 fn flange_of(params: &BearingParams, k: usize, ring: &Kinematics) -> Flange {
     let inner = k < 2;
@@ -1121,6 +1190,29 @@ impl BearingParams {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The range of a slice distance |p + s·q| over the slice centres against a brute
+        /// force over 2 001 values of s: it contains every sampled value, and its ends are
+        /// met to the sampling's resolution (s_max/1000 times |q|, plus round-off).
+        #[test]
+        fn distance_range_bounds_every_slice(
+            p in prop::array::uniform3(-5e-3..5e-3f64),
+            q in prop::array::uniform3(-1e-2..1e-2f64),
+            s_max in 1e-4..3e-3f64,
+        ) {
+            let (p, q) = (Vec3::from(p), Vec3::from(q));
+            let (least, greatest) = distance_range(&p, &q, s_max);
+            let samples: Vec<f64> = (0..=2000)
+                .map(|i| (p + (s_max * (i as f64 / 1000.0 - 1.0)) * q).norm())
+                .collect();
+            let (lo, hi) = samples.iter().fold((f64::INFINITY, 0.0f64), |(l, h), &d| (l.min(d), h.max(d)));
+            let tol = 1e-15 + s_max / 1000.0 * q.norm();
+            prop_assert!(least <= lo + 1e-15 && least >= lo - tol, "{least} vs {lo}");
+            prop_assert!(greatest >= hi - 1e-15 && greatest <= hi + 1e-15, "{greatest} vs {hi}");
+        }
+    }
 
     /// The profile's sample takes one section in PROFILE_EVERY, and does so within every
     /// residue class of the periods a fixed contact order could have (B1 enters 100 to 200
