@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 import os
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -344,11 +345,15 @@ def simulate(
             return False
         return bool(progress(Progress(t, t_end_, steps, rhs, jac, step)))
 
+    saving = {"seconds": 0.0}
+
     def at_checkpoint(raw_partial: dict) -> bool:
+        started = time.perf_counter()
         ds = to_dataset(raw_partial, config, det)
         if resume is not None:
             ds = _join(resume, ds)
         checkpoint(ds)
+        saving["seconds"] += time.perf_counter() - started
         return False
 
     raw = _core.simulate(
@@ -359,6 +364,7 @@ def simulate(
         start,
         None if checkpoint is None else at_checkpoint,
     )
+    raw["stats"]["checkpoint_seconds"] = saving["seconds"]
     ds = to_dataset(raw, config, det)
     if resume is not None:
         ds = _join(resume, ds)

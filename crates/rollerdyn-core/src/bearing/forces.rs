@@ -324,12 +324,13 @@ pub fn end_flange(
     let slip_norm = (slip.norm_squared() + SLIP_FLOOR * SLIP_FLOOR).sqrt();
     let entrainment = 0.5 * (ua + ub);
     let u0 = tri.regularised(entrainment.norm());
-    // ξ from the major axis; only cos²ξ = (u₀·m)²/u₀² enters eq. 45, smooth in u₀.
+    // ξ from the major axis; only cos²ξ = (u₀·m)²/u₀² enters eq. 45, smooth in u₀ (u₀ is
+    // regularised, so never below |u₀·m|).
     let along = entrainment.dot(major_axis);
-    let xi = (u0 * u0 - along * along).max(0.0).sqrt().atan2(along.abs());
+    let cos2_xi = (along * along / (u0 * u0)).min(1.0);
     let film = tri.film(kind.e_prime);
     let phi_th = tri.thermal(u0, slip_norm);
-    let h = film.chittenden(hertz.rx, hertz.ry, xi, u0, f_n) * phi_th;
+    let h = film.chittenden_at(hertz.rx, hertz.ry, cos2_xi, u0, f_n) * phi_th;
     let (rate, scale) = tri.creep(slip_norm);
     let fluid = scale
         * tri.traction.ellipse_force(
