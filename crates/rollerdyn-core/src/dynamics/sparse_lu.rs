@@ -88,9 +88,10 @@ impl Factors {
     }
 }
 
-/// The last full elimination, kept to be replayed: the next matrix (on B1 most often the
-/// same Jacobian with a new step size) has the same non-zeros, and its pivots are checked
-/// to be the same, so the search for the structure and the fill-in is not repeated.
+/// The last full elimination, kept to be replayed on the next matrix if that has the same
+/// non-zeros (on B1 most often: the same Jacobian with a new step size) and the same
+/// pivot rows pass [`REPLAY_PIVOT_THRESHOLD`]: the search for the pivots, the structure and
+/// the fill-in is not repeated.
 #[derive(Debug, Default)]
 struct Schedule {
     /// The non-zeros of the matrix it was made for (column bit sets); empty: none yet.
@@ -118,7 +119,7 @@ enum Replay {
     Done,
     /// The matrix has other non-zeros: untouched.
     OtherPattern,
-    /// A pivot differed (or was zero) part-way: the matrix is overwritten.
+    /// A pivot fell below the threshold (or was zero) part-way: the matrix is overwritten.
     OtherPivot,
 }
 
@@ -473,8 +474,9 @@ fn update(a: &mut [f64], n: usize, c: usize, p: usize, rows: &[usize], columns: 
     }
 }
 
-/// Replays `schedule` on `a`, checking each pivot by the rule of [`pivot_row`]; false
-/// (with `a` overwritten part-way) at the first pivot that differs or is zero.
+/// Replays `schedule` on `a`, each recorded pivot checked to be non-zero and within
+/// [`REPLAY_PIVOT_THRESHOLD`] of the largest candidate of its column; false (with `a`
+/// overwritten part-way) at the first that is not.
 fn replay_elimination(a: &mut [f64], n: usize, sc: &Schedule) -> bool {
     for (k, &c) in sc.order.iter().enumerate() {
         let rows = &sc.candidates[sc.candidate_start[k]..sc.candidate_start[k + 1]];
