@@ -123,7 +123,8 @@ pub struct ElementResult {
     pub normal: f64,
     /// Sum of the tangential forces on B [N].
     pub tangential: Vec3,
-    /// Largest penetration [m] (−∞ if no pairing was valid).
+    /// Largest penetration [m] (−∞ if no pairing was valid; for a line contact whose bodies
+    /// are apart, an upper bound of it, below 0: see `penetration_bound`).
     pub penetration: f64,
     /// Roller end / flange: the active pairing (index in [`Pairing::ALL`]), if any overlaps.
     pub pairing: Option<usize>,
