@@ -98,6 +98,7 @@ fn slice(c: &mut Criterion) {
         eta0: 0.0165,
         alpha_star: 1.4e-8,
         thermal: ThermalCorrection::new(-8e-4, 0.134),
+        moes: Default::default(),
         hysteresis_coefficient: 0.007,
         damping_ratio: 0.1,
         friction: true,

@@ -11,7 +11,7 @@
 use super::state::Kinematics;
 use crate::geometry::primitives::Vec3;
 use crate::numerics::smooth::smooth_max;
-use crate::tribology::film::{FilmInputs, ThermalCorrection};
+use crate::tribology::film::{FilmInputs, MoesTable, ThermalCorrection};
 use crate::tribology::friction::{BoundaryFriction, LoadSharing};
 use crate::tribology::hertz::{
     line_half_width, line_max_pressure, EllipticalContact, EllipticalMethod,
@@ -45,6 +45,8 @@ pub struct Tribology {
     pub alpha_star: f64,
     /// The thermal correction of the lubricant (from dη₀/dT and λ_F).
     pub thermal: ThermalCorrection,
+    /// Moes' line-contact film, tabulated (shared by clones).
+    pub moes: std::sync::Arc<MoesTable>,
     /// α_v of eq. 55.
     pub hysteresis_coefficient: f64,
     /// Damping ratio ζ.
@@ -183,8 +185,9 @@ fn rolling_axis(body: &Kinematics, p: &Vec3, rolling: &Vec3) -> Vec3 {
 }
 
 /// One slice of a line contact (paper sect. 3.1.3, 3.2, 3.3): normal force by eq. 11 with
-/// damping, film by Moes (eqs. 33–38; for counter-rotating surfaces the greater of Moes
-/// and ZEV, eqs. 39–44) with the thermal correction (eq. 47), EHL traction (sect. 3.2.1),
+/// damping, film by Moes (eqs. 33–38, from the table [`MoesTable`]; for counter-rotating
+/// surfaces the greater of Moes and ZEV, eqs. 39–44) with the thermal correction (eq. 47),
+/// EHL traction (sect. 3.2.1),
 /// boundary friction (eqs. 51, 52), mixed by eqs. 53, 54, and for race contacts rolling
 /// resistance (eqs. 55–57) as pure moments on both bodies against their rolling.
 ///
@@ -228,14 +231,12 @@ pub fn line_slice(
     let u0 = tri.regularised(0.5 * (ua_r + ub_r));
     let q = f_n / length;
     let film = tri.film(kind.e_prime);
+    let moes = film.moes_line_tabulated(&tri.moes, kind.r_eff, u0, q);
     let isothermal = if kind.counter_rotating {
         let zev = 0.5 * (tri.regularised(ua_r) + tri.regularised(ub_r));
-        smooth_max(
-            film.moes_line(kind.r_eff, u0, q),
-            film.zev_line(kind.r_eff, zev, q),
-        )
+        smooth_max(moes, film.zev_line(kind.r_eff, zev, q))
     } else {
-        film.moes_line(kind.r_eff, u0, q)
+        moes
     };
     let phi_th = tri.thermal(u0, slip_norm);
     let h = isothermal * phi_th;
@@ -382,6 +383,7 @@ impl Tribology {
             eta0,
             alpha_star: 2e-8,
             thermal: ThermalCorrection::new(-1e-3 * eta0, 0.134),
+            moes: Default::default(),
             hysteresis_coefficient: 0.01,
             damping_ratio: 0.1,
             friction: true,

@@ -257,6 +257,7 @@ impl BearingModel {
             eta0: params.eta0,
             alpha_star: params.alpha_star,
             thermal: ThermalCorrection::new(params.viscosity_slope, params.thermal_conductivity),
+            moes: Default::default(),
             hysteresis_coefficient: params.hysteresis_coefficient,
             damping_ratio: params.damping_ratio,
             friction: params.friction,

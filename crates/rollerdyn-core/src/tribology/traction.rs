@@ -19,6 +19,7 @@
 //! [`EhlTraction::ellipse_force_tensor`], kept as a cross-check.
 
 use super::lubricant::{Carreau, Roelands};
+use crate::numerics::interpolation::bicubic;
 use crate::numerics::{quadrature::GaussLegendre, smooth::smooth_min};
 use std::f64::consts::{FRAC_PI_2, PI};
 
@@ -139,18 +140,6 @@ enum Kernel {
     Ellipse,
 }
 
-/// Cubic Lagrange weights on the nodes −1, 0, 1, 2 at t.
-#[inline]
-fn lagrange_weights(t: f64) -> [f64; 4] {
-    let (tm1, tp1, tm2) = (t - 1.0, t + 1.0, t - 2.0);
-    [
-        -t * tm1 * tm2 / 6.0,
-        tp1 * tm1 * tm2 / 2.0,
-        -tp1 * t * tm2 / 2.0,
-        tp1 * t * tm1 / 6.0,
-    ]
-}
-
 impl KernelTable {
     /// Interpolated kernel at (p₀, |γ̇|), or None outside the table.
     #[inline]
@@ -162,17 +151,7 @@ impl KernelTable {
         if !inside {
             return None;
         }
-        let i = (x as usize).clamp(1, self.n_p - 3);
-        let j = (y as usize).clamp(1, self.n_y - 3);
-        let wx = lagrange_weights(x - i as f64);
-        let wy = lagrange_weights(y - j as f64);
-        let mut sum = 0.0;
-        for (a, wa) in wx.iter().enumerate() {
-            let start = (i - 1 + a) * self.n_y + j - 1;
-            let r = &values[start..start + 4];
-            sum += wa * (wy[0] * r[0] + wy[1] * r[1] + wy[2] * r[2] + wy[3] * r[3]);
-        }
-        Some(sum)
+        Some(bicubic(values, self.n_p, self.n_y, x, y))
     }
 }
 
