@@ -75,6 +75,12 @@ fn film(c: &mut Criterion) {
     c.bench_function("film: Moes line", |b| {
         b.iter(|| inputs.moes_line(black_box(1.9e-3), black_box(0.13), black_box(1e5)))
     });
+    let table = rollerdyn_core::tribology::film::MoesTable::default();
+    c.bench_function("film: Moes line, tabulated", |b| {
+        b.iter(|| {
+            inputs.moes_line_tabulated(&table, black_box(1.9e-3), black_box(0.13), black_box(1e5))
+        })
+    });
     c.bench_function("film: ZEV line", |b| {
         b.iter(|| inputs.zev_line(black_box(1.1e-3), black_box(0.13), black_box(1e5)))
     });
