@@ -217,8 +217,9 @@ impl SparseSkipLu {
         (self.replays, self.full)
     }
 
-    /// Factorises `a` (n × n, column-major) by replaying the last full elimination if
-    /// `a` has its non-zeros and its pivots; see [`Replay`] for what is left in `a`.
+    /// Factorises `a` (n × n, column-major) by replaying the last full elimination if `a`
+    /// has its non-zeros and its pivot rows pass the threshold; see [`Replay`] for what is
+    /// left in `a`.
     fn replay(&mut self, a: &mut [f64], n: usize) -> Replay {
         assert_eq!(a.len(), n * n, "the matrix must be n × n");
         find_pattern(a, n, &mut self.work.pattern);
