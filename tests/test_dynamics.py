@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import copy
 import math
+import time
 import tomllib
 from functools import cache
 from pathlib import Path
@@ -435,6 +436,27 @@ def test_a_run_resumed_from_a_checkpoint_equals_the_uninterrupted_run_bit_for_bi
     other = simulate(variant(**{**RESUMED, "solver.checkpoint_interval": "1.5 ms"}), resume=base)
     assert not np.array_equal(other.position.values, whole.position.values)
     np.testing.assert_allclose(other.ring_position, whole.ring_position, rtol=0, atol=1e-9)
+
+
+def test_time_spent_saving_checkpoints_is_reported():
+    """`stats_checkpoint_seconds` is the time the checkpoint callback took (here it sleeps
+    50 ms at every checkpoint); 0 without a callback. The checkpoints before the end are
+    part of the integration's wall time (`stats_total_seconds`, taken before the last one)."""
+    cfg = variant(
+        **{
+            **RESUMED,
+            "operating.end_time": "0.0008 s",
+            "solver.output_interval": "0.2 ms",
+            "solver.checkpoint_interval": "0.4 ms",
+        }
+    )
+    assert simulate(cfg).attrs["stats_checkpoint_seconds"] == 0.0
+    saves: list = []
+    ds = simulate(cfg, checkpoint=lambda d: saves.append(time.sleep(0.05)))
+    spent = ds.attrs["stats_checkpoint_seconds"]
+    assert len(saves) >= 1
+    assert 0.05 * len(saves) <= spent < 0.05 * len(saves) + 0.5
+    assert ds.attrs["stats_total_seconds"] >= 0.05 * (len(saves) - 1)
 
 
 def test_gradient_detector_runs_resume_bit_for_bit():
