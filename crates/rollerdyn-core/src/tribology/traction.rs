@@ -199,16 +199,32 @@ impl EhlTraction {
         let root_step = grid.pressure_max.sqrt() / (n_p - 1) as f64;
         let (y0, y1) = (grid.rate_min.ln(), grid.rate_max.ln());
         let n_y = ((y1 - y0) / grid.log_rate_step).ceil() as usize + 1;
-        let mut line = Vec::with_capacity(n_p * n_y);
-        let mut ellipse = Vec::with_capacity(n_p * n_y);
-        for i in 0..n_p {
-            let p0 = (i as f64 * root_step).powi(2);
-            for j in 0..n_y {
-                let rate = (y0 + j as f64 * grid.log_rate_step).exp();
-                line.push(fine.kernel_direct(&fine.line_rule, p0, rate));
-                ellipse.push(fine.kernel_direct(&fine.ellipse_rule, p0, rate));
+        let (mut line, mut ellipse) = (vec![0.0; n_p * n_y], vec![0.0; n_p * n_y]);
+        // The rows (pressures) are independent: shared out among the machine's cores, which
+        // takes B1's table (2 × 160 000 quadratures, 1.5 s on one core) out of the way of
+        // a run's start. The numbers do not depend on the sharing.
+        let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+        let rows_per_core = n_p.div_ceil(cores.clamp(1, n_p));
+        std::thread::scope(|scope| {
+            let chunks = line.chunks_mut(rows_per_core * n_y);
+            for (c, (lines, ellipses)) in chunks
+                .zip(ellipse.chunks_mut(rows_per_core * n_y))
+                .enumerate()
+            {
+                let fine = &fine;
+                scope.spawn(move || {
+                    let rows = lines.chunks_mut(n_y).zip(ellipses.chunks_mut(n_y));
+                    for (r, (line_row, ellipse_row)) in rows.enumerate() {
+                        let p0 = ((c * rows_per_core + r) as f64 * root_step).powi(2);
+                        for j in 0..n_y {
+                            let rate = (y0 + j as f64 * grid.log_rate_step).exp();
+                            line_row[j] = fine.kernel_direct(&fine.line_rule, p0, rate);
+                            ellipse_row[j] = fine.kernel_direct(&fine.ellipse_rule, p0, rate);
+                        }
+                    }
+                });
             }
-        }
+        });
         self.table = Some(std::sync::Arc::new(KernelTable {
             root_pressure_step: root_step,
             n_p,
@@ -374,6 +390,37 @@ mod tests {
             0.0165,
             nodes,
         )
+    }
+
+    /// The table, built on all cores, holds at every node exactly the direct rule's
+    /// kernels (as built row by row on one): a grid of 37 pressures, which do not share
+    /// out evenly.
+    #[test]
+    fn table_nodes_are_the_direct_rule_whatever_the_sharing() {
+        let grid = TableGrid {
+            pressure_max: 3e9,
+            pressure_points: 37,
+            rate_min: 1e-2,
+            rate_max: 1e9,
+            log_rate_step: 0.5,
+            nodes: 24,
+        };
+        let t = b1_traction(12).tabulated(grid);
+        let table = t.table.as_ref().unwrap();
+        let fine = b1_traction(grid.nodes);
+        let root_step = grid.pressure_max.sqrt() / 36.0;
+        for i in 0..table.n_p {
+            let p0 = (i as f64 * root_step).powi(2);
+            for j in 0..table.n_y {
+                let rate = (grid.rate_min.ln() + j as f64 * grid.log_rate_step).exp();
+                let k = i * table.n_y + j;
+                assert_eq!(table.line[k], fine.kernel_direct(&fine.line_rule, p0, rate));
+                assert_eq!(
+                    table.ellipse[k],
+                    fine.kernel_direct(&fine.ellipse_rule, p0, rate)
+                );
+            }
+        }
     }
 
     fn tabulated_b1() -> &'static EhlTraction {
