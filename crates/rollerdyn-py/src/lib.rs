@@ -1216,6 +1216,24 @@ mod simulation {
         model.initial_state().map_err(core_err)
     }
 
+    /// The model of `params`, checked to have as many states as `y`.
+    fn model_for(
+        params: &Bound<'_, PyDict>,
+        traction: &PyEhlTraction,
+        y: &[f64],
+    ) -> PyResult<BearingModel> {
+        use rollerdyn_core::dynamics::integrate::OdeSystem;
+        let model = BearingModel::new(self::params(params, &traction.inner)?).map_err(core_err)?;
+        if y.len() != model.len() {
+            return Err(PyValueError::new_err(format!(
+                "y has {} states: the model has {}",
+                y.len(),
+                model.len()
+            )));
+        }
+        Ok(model)
+    }
+
     /// f(t, y) and the structured Jacobian of the model at (t, y) (for tests).
     #[pyfunction]
     pub fn model_rhs(
@@ -1225,14 +1243,8 @@ mod simulation {
         y: Vec<f64>,
     ) -> PyResult<(Vec<f64>, Vec<f64>)> {
         use rollerdyn_core::dynamics::integrate::OdeSystem;
-        let model = BearingModel::new(self::params(params, &traction.inner)?).map_err(core_err)?;
+        let model = model_for(params, traction, &y)?;
         let n = model.len();
-        if y.len() != n {
-            return Err(PyValueError::new_err(format!(
-                "y has {} states: the model has {n}",
-                y.len()
-            )));
-        }
         let mut dy = vec![0.0; n];
         model.rhs(t, &y, &mut dy);
         let mut jac = nalgebra::DMatrix::zeros(n, n);
@@ -1256,34 +1268,24 @@ mod simulation {
     ) -> PyResult<Bound<'py, PyDict>> {
         use rollerdyn_core::dynamics::integrate::OdeSystem;
         use std::time::Instant;
-        let model = BearingModel::new(self::params(params, &traction.inner)?).map_err(core_err)?;
+        let model = model_for(params, traction, &y)?;
         let n = model.len();
-        if y.len() != n {
-            return Err(PyValueError::new_err(format!(
-                "y has {} states: the model has {n}",
-                y.len()
-            )));
-        }
         let (rhs_n, jac_n) = (rhs_repetitions.max(1), jacobian_repetitions);
         let mut dy = vec![0.0; n];
         let mut jac = nalgebra::DMatrix::zeros(n, n);
-        let (rhs, jacobian, profile) = {
-            model.rhs(t, &y, &mut dy); // warm-up (and the gradient detector's warm starts)
-            let before = model.profile();
-            let start = Instant::now();
-            for _ in 0..rhs_n {
-                model.rhs(t, std::hint::black_box(&y), &mut dy);
-            }
-            let rhs = start.elapsed().as_secs_f64() / rhs_n as f64;
-            let after = model.profile();
-            let start = Instant::now();
-            for _ in 0..jac_n {
-                model.jacobian(t, std::hint::black_box(&y), &mut jac);
-            }
-            let jacobian = start.elapsed().as_secs_f64() / jac_n.max(1) as f64;
-            (rhs, jacobian, (before, after))
-        };
-        let (before, after) = profile;
+        model.rhs(t, &y, &mut dy); // warm-up (and the gradient detector's warm starts)
+        let before = model.profile();
+        let start = Instant::now();
+        for _ in 0..rhs_n {
+            model.rhs(t, std::hint::black_box(&y), &mut dy);
+        }
+        let rhs = start.elapsed().as_secs_f64() / rhs_n as f64;
+        let after = model.profile();
+        let start = Instant::now();
+        for _ in 0..jac_n {
+            model.jacobian(t, std::hint::black_box(&y), &mut jac);
+        }
+        let jacobian = start.elapsed().as_secs_f64() / jac_n.max(1) as f64;
         let per = |a: f64, b: f64| (a - b) / rhs_n as f64;
         let d = PyDict::new(py);
         d.set_item("states", n)?;
@@ -1316,16 +1318,7 @@ mod simulation {
         t: f64,
         y: Vec<f64>,
     ) -> PyResult<f64> {
-        use rollerdyn_core::dynamics::integrate::OdeSystem;
-        let model = BearingModel::new(self::params(params, &traction.inner)?).map_err(core_err)?;
-        if y.len() != model.len() {
-            return Err(PyValueError::new_err(format!(
-                "y has {} states: the model has {}",
-                y.len(),
-                model.len()
-            )));
-        }
-        Ok(model.energy(t, &y))
+        Ok(model_for(params, traction, &y)?.energy(t, &y))
     }
 
     /// Runs the dynamic model. `progress(time, t_end, steps, rhs, jac, step)` is called at every

@@ -150,9 +150,11 @@ pub struct Profile {
 
 /// What of a contact element depends on positions only.
 enum Geometry {
-    /// Per slice of a line contact: (normal A→B, location P_m, penetration δ); none if the
-    /// bodies are apart by [`BearingModel::penetration_bound`], which is then kept.
-    Slices(Vec<(Vec3, Vec3, f64)>, Option<f64>),
+    /// Per slice of a line contact: (normal A→B, location P_m, penetration δ).
+    Slices(Vec<(Vec3, Vec3, f64)>),
+    /// A line contact whose bodies are apart: the (negative) bound of its penetration,
+    /// [`BearingModel::penetration_bound`]; no slice computed.
+    Apart(f64),
     /// The detected roller end–flange contact (None: no valid pairing).
     End(Option<Contact>),
 }
@@ -479,12 +481,12 @@ impl BearingModel {
         let start = self.stopwatch();
         let bound = self.penetration_bound(kind, a, b);
         let geometry = if bound < 0.0 {
-            Geometry::Slices(Vec::new(), Some(bound))
+            Geometry::Apart(bound)
         } else {
             let slices = (0..self.slices.len())
                 .map(|j| self.slice_geometry(kind, a, b, j))
                 .collect();
-            Geometry::Slices(slices, None)
+            Geometry::Slices(slices)
         };
         self.spend(|pr| pr.line_contacts += elapsed(start));
         geometry
@@ -500,10 +502,8 @@ impl BearingModel {
         let fixed = Kinematics::fixed();
         let (a, b) = self.bodies(element, kin, &fixed);
         match (element.line_kind(), geometry) {
-            (Some(kind), Geometry::Slices(g, apart)) => match apart {
-                Some(bound) => Self::apart(*bound),
-                None => self.line_forces(kind, a, b, g.iter().copied()),
-            },
+            (Some(kind), Geometry::Slices(g)) => self.line_forces(kind, a, b, g.iter().copied()),
+            (Some(_), Geometry::Apart(bound)) => Self::apart(*bound),
             (None, Geometry::End(c)) => self.flange_element_at(a, b, c.as_ref()),
             _ => unreachable!("geometry of another kind of element"),
         }
@@ -856,7 +856,7 @@ impl BearingModel {
                     );
                     energy += 0.4 * hertz.force(c.penetration) * c.penetration;
                 }
-                (Geometry::Slices(slices, _), Some(kind)) => {
+                (Geometry::Slices(slices), Some(kind)) => {
                     let law = &self.kinds[kind].law;
                     let e = 1.0 / law.k2 + 1.0;
                     for (_, _, delta) in slices {

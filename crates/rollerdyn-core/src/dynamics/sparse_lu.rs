@@ -664,6 +664,23 @@ mod tests {
         }
     }
 
+    /// The factors as a dense packed matrix (L's multipliers below the diagonal, U on and
+    /// above), with the pivot rows.
+    fn packed(lu: &SparseSkipLu) -> (Vec<usize>, DMatrix<f64>) {
+        let f = &lu.factors;
+        let mut m = DMatrix::zeros(f.n, f.n);
+        for j in 0..f.n {
+            m[(j, j)] = f.diagonal[j];
+            for e in f.l_start[j]..f.l_start[j + 1] {
+                m[(f.l_rows[e], j)] = f.l_values[e];
+            }
+            for e in f.u_start[j]..f.u_start[j + 1] {
+                m[(f.u_rows[e], j)] = f.u_values[e];
+            }
+        }
+        (f.pivot_rows.clone(), m)
+    }
+
     /// Textbook dense Gaussian elimination with partial pivoting (GVL algorithm 3.4.1)
     /// of Q A Qᵀ for the order `order`, interchanging rows, every entry updated at every
     /// step. Returns the pivot rows (rows of A, step by step) and the packed factors (L's
@@ -717,41 +734,14 @@ mod tests {
             // Twice: the second factorisation reuses the first one's storage.
             lu.factorise(bearing_like(seed ^ 1, blocks, size, global, shift).as_slice(), n);
             lu.factorise(a.as_slice(), n);
-            let f = &lu.factors;
-            prop_assume!(f.regular);
-            let (rows, m) = dense_elimination(&a, &f.order);
-            prop_assert_eq!(&f.pivot_rows, &rows);
-            let mut packed = DMatrix::zeros(n, n);
-            for j in 0..n {
-                packed[(j, j)] = f.diagonal[j];
-                for e in f.l_start[j]..f.l_start[j + 1] {
-                    packed[(f.l_rows[e], j)] = f.l_values[e];
-                }
-                for e in f.u_start[j]..f.u_start[j + 1] {
-                    packed[(f.u_rows[e], j)] = f.u_values[e];
-                }
-            }
-            for (x, y) in packed.iter().zip(m.iter()) {
+            prop_assume!(lu.factors.regular);
+            let (rows, m) = dense_elimination(&a, &lu.factors.order);
+            let (pivot_rows, factors) = packed(&lu);
+            prop_assert_eq!(&pivot_rows, &rows);
+            for (x, y) in factors.iter().zip(m.iter()) {
                 prop_assert!(x.to_bits() == y.to_bits() || (*x == 0.0 && *y == 0.0), "{x} vs {y}");
             }
         }
-    }
-
-    /// The factors as a dense packed matrix (L's multipliers below the diagonal, U on and
-    /// above), with the pivot rows.
-    fn packed(lu: &SparseSkipLu) -> (Vec<usize>, DMatrix<f64>) {
-        let f = &lu.factors;
-        let mut m = DMatrix::zeros(f.n, f.n);
-        for j in 0..f.n {
-            m[(j, j)] = f.diagonal[j];
-            for e in f.l_start[j]..f.l_start[j + 1] {
-                m[(f.l_rows[e], j)] = f.l_values[e];
-            }
-            for e in f.u_start[j]..f.u_start[j + 1] {
-                m[(f.u_rows[e], j)] = f.u_values[e];
-            }
-        }
-        (f.pivot_rows.clone(), m)
     }
 
     proptest! {
