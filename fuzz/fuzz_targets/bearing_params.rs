@@ -144,7 +144,22 @@ fn params(r: &mut Reader) -> Option<BearingParams> {
         hysteresis_coefficient: 0.01,
         damping_ratio: r.range(0.0, 2.0),
         friction: r.flag(),
-        gravity: r.range(0.0, 100.0),
+        gravity: rollerdyn_core::geometry::primitives::Vec3::new(
+            r.range(-100.0, 100.0),
+            r.range(-100.0, 100.0),
+            r.range(-100.0, 100.0),
+        ),
+        race_film: rollerdyn_core::tribology::hydrodynamic::RigidFilm {
+            enabled: r.flag(),
+            cutoff: r.log_range(1e-9, 1e-3),
+        },
+        mixture: rollerdyn_core::tribology::drag::Mixture::new(
+            r.range(0.0, 1.0),
+            860.0,
+            0.0165,
+            1.2,
+            1.8e-5,
+        ),
         radial_load: history(r, 1e4),
         axial_load: history(r, 1e3),
         inner_ring_speed: history(r, 1e3),

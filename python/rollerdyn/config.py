@@ -46,6 +46,8 @@ from .units import (
     NumberSpec,
     Quantity,
     QuantitySpec,
+    Vector,
+    VectorSpec,
     format_si,
 )
 
@@ -730,6 +732,15 @@ class SqueezeFilmConfig(_Section):
     cutoff: Quantity("length", positive=True, le="1 mm") = "20 um"
 
 
+class RaceFilmConfig(_Section):
+    """``[surfaces.race_film]``: the rigid-isoviscous oil film in the roller-race and
+    roller-roller gaps (Martin's load, squeeze, Couette shear; not in the paper;
+    docs/dynamics.md). Its gap floor is each contact's composite roughness."""
+
+    enabled: bool = True
+    cutoff: Quantity("length", positive=True, le="1 mm") = "100 um"
+
+
 class SurfacesConfig(_Section):
     """``[surfaces]``."""
 
@@ -742,6 +753,7 @@ class SurfacesConfig(_Section):
     border_band_roller: Quantity("angle", ge=0.0, le="1 deg") = "1.5e-4 rad"
     border_band_flange: Quantity("length", ge=0.0, le="1 mm") = "50 um"
     squeeze_film: SqueezeFilmConfig = Field(default_factory=SqueezeFilmConfig)
+    race_film: RaceFilmConfig = Field(default_factory=RaceFilmConfig)
     friction: bool = True
 
     @property
@@ -751,6 +763,15 @@ class SurfacesConfig(_Section):
 
 
 # --------------------------------------------------------------------------- operating
+
+
+class CavityConfig(_Section):
+    """``[cavity]``: the oil-air mixture in the bearing's cavity, whose drag acts on the
+    rollers (Harris & Kotzalas; not in the paper; docs/dynamics.md). Air at 80 degC."""
+
+    oil_fraction: Number(ge=0.0, le=1.0) = 0.03
+    air_density: Quantity("density", ge=0.0, le="100 kg/m^3") = "1.0 kg/m^3"
+    air_viscosity: Quantity("dynamic viscosity", positive=True, le="1 Pa*s") = "2.1e-5 Pa*s"
 
 
 class RampConfig(_Section):
@@ -794,7 +815,9 @@ class OperatingConfig(_Section):
     load_ramp: RampConfig | None = None
     speed_ramp: RampConfig | None = None
     end_time: Quantity("time", positive=True, example="1.3 s") | None = None
-    gravity: Quantity("acceleration", ge=0.0, example="9.81 m/s^2") = "0 m/s^2"
+    gravity: Vector("acceleration", example='"9.81 m/s^2" or ["0 m/s^2", "-9.81 m/s^2", "0 m/s^2"]') = (
+        "9.81 m/s^2"
+    )
 
     @model_validator(mode="after")
     def _check(self) -> OperatingConfig:
@@ -921,6 +944,7 @@ class BearingConfig(_Section):
     lubricant: LubricantConfig
     surfaces: SurfacesConfig
     operating: OperatingConfig
+    cavity: CavityConfig = Field(default_factory=CavityConfig)
     solver: SolverConfig = Field(default_factory=SolverConfig)
 
     @model_validator(mode="after")
@@ -1208,6 +1232,9 @@ def _expectation(info: FieldInfo | None) -> str:
     if info is None:
         return ""
     ann = info.annotation
+    for meta in _metadata(info):
+        if isinstance(meta, VectorSpec):
+            return f"{meta.describe()}, e.g. {meta.example}"
     if get_origin(ann) is tuple:
         return "an array of [time, value] rows"
     table = any(issubclass(m, TimeTable) for m in _annotation_models(ann))

@@ -56,6 +56,8 @@ __all__ = [
     "Q_",
     "Quantity",
     "QuantityError",
+    "Vector",
+    "VectorSpec",
     "QuantitySpec",
     "NumberSpec",
     "IntegerSpec",
@@ -453,6 +455,50 @@ def Quantity(  # noqa: N802 - a type factory, used like a type
         return si
 
     return Annotated[float, BeforeValidator(validate), spec]
+
+
+@dataclass(frozen=True)
+class VectorSpec:
+    """Metadata of a :func:`Vector` field (for docs and error messages)."""
+
+    family: Family
+    example: str
+
+    def describe(self) -> str:
+        return (
+            f"{self.family.name}: one quantity (along -y) or a list of three (x, y, z), "
+            f"finite, magnitude <= {self.bound:g} {self.family.si_unit}"
+        )
+
+    bound: float = 1e4
+
+
+def Vector(fam: str, *, example: str, bound: float = 1e4) -> Any:  # noqa: N802
+    """A pydantic field type: a vector of quantities of family ``fam`` in SI, as a tuple
+    (x, y, z). A single quantity is its magnitude along -y (down, with the radial load);
+    a list gives the three components. Its magnitude must not exceed ``bound`` (SI)."""
+    f = family(fam)
+    spec = VectorSpec(f, example, bound)
+
+    def validate(value: Any, info: ValidationInfo) -> tuple[float, float, float]:
+        try:
+            if isinstance(value, list | tuple):
+                if len(value) != 3:
+                    raise QuantityError(
+                        f"a vector needs three components (x, y, z), got {len(value)}"
+                    )
+                parts = [parse_quantity(v, f, si_numbers=_si_numbers(info)) for v in value]
+            else:
+                parts = [0.0, -parse_quantity(value, f, si_numbers=_si_numbers(info)), 0.0]
+            if not all(math.isfinite(v) for v in parts):
+                raise QuantityError("every component must be finite")
+            if math.hypot(*parts) > bound:
+                raise QuantityError(f"magnitude must be <= {bound:g} {f.si_unit}")
+        except QuantityError as exc:
+            raise _custom(exc) from None
+        return (parts[0], parts[1], parts[2])
+
+    return Annotated[tuple[float, float, float], BeforeValidator(validate), spec]
 
 
 def Number(  # noqa: N802

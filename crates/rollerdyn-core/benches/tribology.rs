@@ -108,6 +108,7 @@ fn slice(c: &mut Criterion) {
         hysteresis_coefficient: 0.007,
         damping_ratio: 0.1,
         friction: true,
+        film: rollerdyn_core::tribology::hydrodynamic::RigidFilm::OFF,
     };
     let kind = LineKind {
         law: LinePowerLaw {

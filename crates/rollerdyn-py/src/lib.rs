@@ -1031,6 +1031,9 @@ mod simulation {
     use rollerdyn_core::contact::border::BorderBands;
     use rollerdyn_core::dynamics::integrate::{Method, Start, Stats, StepControl};
     use rollerdyn_core::geometry::end_flange::FlangeShape;
+    use rollerdyn_core::geometry::primitives::Vec3;
+    use rollerdyn_core::tribology::drag::Mixture;
+    use rollerdyn_core::tribology::hydrodynamic::RigidFilm;
     use rollerdyn_core::tribology::squeeze::SqueezeFilm;
     use std::ops::ControlFlow;
 
@@ -1154,7 +1157,21 @@ mod simulation {
             hysteresis_coefficient: get(d, "hysteresis_coefficient")?,
             damping_ratio: get(d, "damping_ratio")?,
             friction: get(d, "friction")?,
-            gravity: get(d, "gravity")?,
+            gravity: {
+                let g: [f64; 3] = get(d, "gravity")?;
+                Vec3::new(g[0], g[1], g[2])
+            },
+            race_film: RigidFilm {
+                enabled: get(d, "race_film")?,
+                cutoff: get(d, "race_film_cutoff")?,
+            },
+            mixture: Mixture::new(
+                get(d, "oil_fraction")?,
+                get(d, "oil_density")?,
+                get(d, "eta0")?,
+                get(d, "air_density")?,
+                get(d, "air_viscosity")?,
+            ),
             radial_load: history(d, "radial_load")?,
             axial_load: history(d, "axial_load")?,
             inner_ring_speed: history(d, "inner_ring_speed")?,

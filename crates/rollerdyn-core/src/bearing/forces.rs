@@ -16,6 +16,7 @@ use crate::tribology::friction::{BoundaryFriction, LoadSharing};
 use crate::tribology::hertz::{
     line_half_width, line_max_pressure, EllipticalContact, EllipticalMethod,
 };
+use crate::tribology::hydrodynamic::{film_line, RigidFilm};
 use crate::tribology::line_contact::LinePowerLaw;
 use crate::tribology::rolling_resistance::{ehl_rolling_force, hysteresis_moment};
 use crate::tribology::traction::EhlTraction;
@@ -53,6 +54,8 @@ pub struct Tribology {
     pub damping_ratio: f64,
     /// Tangential forces and rolling resistance on (false: frictionless, for checks).
     pub friction: bool,
+    /// The film of the line contacts across a gap ([`film_slice`]).
+    pub film: RigidFilm,
 }
 
 impl Tribology {
@@ -131,6 +134,16 @@ pub struct ContactForces {
 }
 
 impl ContactForces {
+    /// Adds another contribution of the same contact (forces and moments; the film
+    /// thickness stays this one's).
+    #[inline]
+    pub fn add(&mut self, other: &ContactForces) {
+        self.normal += other.normal;
+        self.tangential += other.tangential;
+        self.moment_a += other.moment_a;
+        self.moment_b += other.moment_b;
+    }
+
     /// Total force on B.
     #[inline]
     pub fn force_on_b(&self, normal: &Vec3) -> Vec3 {
@@ -269,6 +282,52 @@ pub fn line_slice(
     out
 }
 
+/// The oil film of one slice of a line contact across a gap or within the first σ of
+/// penetration ([`crate::tribology::hydrodynamic`]; not in the paper): Martin's load with
+/// the squeeze term, bounded below by zero (cavitation), along the normal; Couette shear
+/// against the sliding; and the film's rolling force on both bodies as a pure moment
+/// against their rolling, in the form of the EHL rolling resistance of [`line_slice`].
+/// The mean surface speed is regularised as the EHL film's ([`Tribology::regularised`]).
+/// Zero where the film does not act ([`RigidFilm::gap_and_weight`]).
+#[allow(clippy::too_many_arguments)]
+pub fn film_slice(
+    tri: &Tribology,
+    kind: &LineKind,
+    a: &Kinematics,
+    b: &Kinematics,
+    normal: &Vec3,
+    location: &Vec3,
+    penetration: f64,
+    length: f64,
+    rolling: &Vec3,
+    frame: &Vec3,
+) -> ContactForces {
+    let Some((gap, weight)) = tri.film.gap_and_weight(penetration, kind.roughness) else {
+        return ContactForces::default();
+    };
+    let (ua, ub, rate) = tangential_speeds(a, b, location, normal, frame);
+    let (ua_r, ub_r) = (ua.dot(rolling), ub.dot(rolling));
+    let u_m = tri.regularised(0.5 * (ua_r + ub_r));
+    let film = film_line(tri.eta0, kind.r_eff, gap, u_m, rate);
+    let scale = weight * length;
+    let mut out = ContactForces {
+        normal: scale * film.load,
+        film: gap,
+        ..Default::default()
+    };
+    if !tri.friction {
+        return out;
+    }
+    out.tangential = -(scale * film.shear) * (ub - ua);
+    let v_s = tri.boundary.smoothing_speed;
+    for (body, u, moment) in [(a, ua_r, &mut out.moment_a), (b, ub_r, &mut out.moment_b)] {
+        let arm = (location - body.center).norm();
+        let size = scale * film.rolling * arm;
+        *moment = -(size * (u / v_s).tanh()) * rolling_axis(body, location, rolling);
+    }
+    out
+}
+
 /// The data of the roller end–flange contacts.
 #[derive(Debug, Clone, Copy)]
 pub struct EllipseKind {
@@ -387,6 +446,10 @@ impl Tribology {
             hysteresis_coefficient: 0.01,
             damping_ratio: 0.1,
             friction: true,
+            film: RigidFilm {
+                enabled: true,
+                cutoff: 100e-6,
+            },
         }
     }
 }

@@ -14,7 +14,8 @@
 //! slice geometry and the detected flange contacts of the unperturbed state.
 
 use super::forces::{
-    end_flange, line_slice, penetration_rate, ContactForces, EllipseKind, LineKind, Tribology,
+    end_flange, film_slice, line_slice, penetration_rate, ContactForces, EllipseKind, LineKind,
+    Tribology,
 };
 use super::params::{BearingParams, Detector};
 use super::state::{ring_kinematics, roller_kinematics, Kinematics, Layout, ROLLER_STATES};
@@ -30,6 +31,7 @@ use crate::error::{Error, Result};
 use crate::geometry::end_flange::{Flange, FlangePlacement, RollerEnd};
 use crate::geometry::primitives::Vec3;
 use crate::geometry::roller::MassProperties;
+use crate::tribology::drag::roller_drag;
 use crate::tribology::film::ThermalCorrection;
 use nalgebra::DMatrix;
 use std::cell::{Cell, RefCell};
@@ -263,6 +265,7 @@ impl BearingModel {
             hysteresis_coefficient: params.hysteresis_coefficient,
             damping_ratio: params.damping_ratio,
             friction: params.friction,
+            film: params.race_film,
         };
         let z = params.roller_count;
         let mut elements = Vec::with_capacity(7 * z);
@@ -350,8 +353,9 @@ impl BearingModel {
         let kin = self.kinematics(0.0, &y);
         for (e, element) in self.elements.iter().enumerate() {
             let r = self.evaluate(element, &kin, e);
-            // NaN counts as overlap: a start whose forces are not defined is refused.
-            if r.normal > 0.0 || r.normal.is_nan() {
+            // NaN counts as overlap: a start whose forces are not defined is refused. (The
+            // oil films act across gaps, so a force alone is no overlap.)
+            if r.penetration > 0.0 || r.penetration.is_nan() || r.normal.is_nan() {
                 return Err(Error::invalid(
                     format!("{element:?}"),
                     format!("penetration {:.3e} m at the start", r.penetration),
@@ -480,7 +484,7 @@ impl BearingModel {
         };
         let start = self.stopwatch();
         let bound = self.penetration_bound(kind, a, b);
-        let geometry = if bound < 0.0 {
+        let geometry = if bound <= self.apart_below() {
             Geometry::Apart(bound)
         } else {
             let slices = (0..self.slices.len())
@@ -550,11 +554,23 @@ impl BearingModel {
 
     fn line_element(&self, kind: usize, a: &Kinematics, b: &Kinematics) -> ElementResult {
         let bound = self.penetration_bound(kind, a, b);
-        if bound < 0.0 {
+        if bound <= self.apart_below() {
             return Self::apart(bound);
         }
         let slices = (0..self.slices.len()).map(|j| self.slice_geometry(kind, a, b, j));
         self.line_forces(kind, a, b, slices)
+    }
+
+    /// The penetration at and below which a line contact's slices carry nothing: the
+    /// (negative) reach of the film across gaps, or 0 without the film (strictly below 0
+    /// then, as a slice at δ = 0 carries nothing either).
+    fn apart_below(&self) -> f64 {
+        let reach = self.tribology.film.reach();
+        if reach > 0.0 {
+            -reach
+        } else {
+            -f64::MIN_POSITIVE
+        }
     }
 
     /// The result of a line contact whose bodies are apart: no force, and for the
@@ -628,7 +644,7 @@ impl BearingModel {
         delta: f64,
     ) {
         out.penetration = out.penetration.max(delta);
-        if delta <= 0.0 {
+        if delta <= self.apart_below() {
             return;
         }
         let rolling = n.cross(&b.axis).normalize();
@@ -637,9 +653,26 @@ impl BearingModel {
         } else {
             b.frame_velocity(p)
         };
-        let f = line_slice(
-            &self.tribology,
-            &self.kinds[kind],
+        let (tri, line) = (&self.tribology, &self.kinds[kind]);
+        let mut f = if delta > 0.0 {
+            line_slice(
+                tri,
+                line,
+                a,
+                b,
+                n,
+                p,
+                delta,
+                self.slice_length,
+                &rolling,
+                &frame,
+            )
+        } else {
+            ContactForces::default()
+        };
+        let film = film_slice(
+            tri,
+            line,
             a,
             b,
             n,
@@ -649,6 +682,10 @@ impl BearingModel {
             &rolling,
             &frame,
         );
+        f.add(&film);
+        if f.normal == 0.0 && f.tangential == Vec3::zeros() {
+            return;
+        }
         self.accumulate(out, &f, n, p, a, b);
     }
 
@@ -886,13 +923,12 @@ impl BearingModel {
                 m.axial_inertia,
                 m.transverse_inertia,
             );
-            energy += 0.5 * m.mass * k.velocity.norm_squared()
-                + 0.5 * k.omega.dot(&h)
-                + m.mass * g * k.center.y;
+            energy += 0.5 * m.mass * k.velocity.norm_squared() + 0.5 * k.omega.dot(&h)
+                - m.mass * g.dot(&k.center);
         }
         let ring = &kin.0;
         let mr = self.params.inner_ring_mass;
-        energy += 0.5 * mr * ring.velocity.norm_squared() + mr * g * ring.center.y;
+        energy += 0.5 * mr * ring.velocity.norm_squared() - mr * g.dot(&ring.center);
         if self.layout.tilt_free {
             let transverse = ring.omega - ring.omega.dot(&ring.axis) * ring.axis;
             energy += 0.5 * self.params.inner_ring_transverse_inertia * transverse.norm_squared();
@@ -930,12 +966,19 @@ impl BearingModel {
     /// Rates of roller i's states.
     fn roller_rates(&self, kin: &Kinematics, y: &[f64], w: &Wrench, dy: &mut [f64]) {
         let m = &self.roller_mass;
-        let gravity = Vec3::new(0.0, -self.params.gravity, 0.0);
-        let acc = w.force / m.mass + gravity;
+        let (drag, drag_moment) = roller_drag(
+            &self.params.mixture,
+            self.params.roller.radius,
+            self.params.roller.length,
+            &kin.axis,
+            &kin.velocity,
+            &kin.omega,
+        );
+        let acc = (w.force + drag) / m.mass + self.params.gravity;
         let alpha = angular_acceleration(
             &kin.axis,
             &kin.omega,
-            &w.moment,
+            &(w.moment + drag_moment),
             m.axial_inertia,
             m.transverse_inertia,
         );
@@ -959,8 +1002,7 @@ impl BearingModel {
     /// Rates of the inner ring's states.
     fn ring_rates(&self, t: f64, kin: &Kinematics, y: &[f64], w: &Wrench, dy: &mut [f64]) {
         let p = &self.params;
-        let gravity = Vec3::new(0.0, -p.gravity, 0.0);
-        let acc = (w.force + self.external_load(t)) / p.inner_ring_mass + gravity;
+        let acc = (w.force + self.external_load(t)) / p.inner_ring_mass + p.gravity;
         dy[..3].copy_from_slice(kin.velocity.as_slice());
         dy[3..6].copy_from_slice(acc.as_slice());
         if self.layout.tilt_free {

@@ -4,8 +4,11 @@
 use crate::contact::border::BorderBands;
 use crate::error::{Error, Result};
 use crate::geometry::end_flange::FlangeShape;
+use crate::geometry::primitives::Vec3;
 use crate::geometry::roller::RollerShape;
+use crate::tribology::drag::Mixture;
 use crate::tribology::friction::{BoundaryFriction, LoadSharing};
+use crate::tribology::hydrodynamic::RigidFilm;
 use crate::tribology::line_contact::LinePowerLaw;
 use crate::tribology::squeeze::SqueezeFilm;
 use crate::tribology::traction::EhlTraction;
@@ -197,8 +200,14 @@ pub struct BearingParams {
     pub damping_ratio: f64,
     /// Friction (tangential forces, rolling resistance) on; off only for checks.
     pub friction: bool,
-    /// Gravity [m/s²], along −y.
-    pub gravity: f64,
+    /// Gravity [m/s²] (B1: 9.81 m/s² along −y, a horizontal shaft).
+    pub gravity: Vec3,
+    /// The oil film in the roller–race and roller–roller gaps (not in the paper;
+    /// [`crate::tribology::hydrodynamic`]).
+    pub race_film: RigidFilm,
+    /// The oil–air mixture whose drag acts on the rollers (not in the paper;
+    /// [`crate::tribology::drag`]).
+    pub mixture: Mixture,
     /// Radial load on the inner ring [N], along −y.
     pub radial_load: History,
     /// Axial load on the inner ring [N], along +x.
@@ -322,6 +331,37 @@ impl BearingParams {
                     return Err(Error::invalid(name, v, "positive and finite"));
                 }
             }
+        }
+        if !(self.gravity.iter().all(|g| g.is_finite()) && self.gravity.norm() <= 1e4) {
+            return Err(Error::invalid(
+                "gravity",
+                format!("{:?}", self.gravity.as_slice()),
+                "three finite accelerations, |g| <= 1e4 m/s^2",
+            ));
+        }
+        if self.race_film.enabled
+            && !(self.race_film.cutoff > 0.0 && self.race_film.cutoff.is_finite())
+        {
+            return Err(Error::invalid(
+                "race_film.cutoff",
+                self.race_film.cutoff,
+                "positive and finite",
+            ));
+        }
+        for (name, v) in [
+            ("mixture.density", self.mixture.density),
+            ("mixture.viscosity", self.mixture.viscosity),
+        ] {
+            if !(v >= 0.0 && v.is_finite()) {
+                return Err(Error::invalid(name, v, "non-negative and finite"));
+            }
+        }
+        if self.mixture.density > 0.0 && self.mixture.viscosity <= 0.0 {
+            return Err(Error::invalid(
+                "mixture.viscosity",
+                self.mixture.viscosity,
+                "positive when the mixture has a density",
+            ));
         }
         self.radial_load.check("radial_load")?;
         self.axial_load.check("axial_load")?;

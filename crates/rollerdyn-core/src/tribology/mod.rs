@@ -12,10 +12,16 @@
 //!   sharing (53, 54).
 //! * [`rolling_resistance`]: hysteresis (55) and EHL (56, 57) rolling resistance.
 //! * [`squeeze`]: squeeze-film damping at the flanges (not in the paper; Reynolds).
+//! * [`hydrodynamic`]: the rigid-isoviscous film of line contacts across a gap (not in
+//!   the paper; Martin, Reynolds).
+//! * [`drag`]: drag of the oil–air mixture on a roller (not in the paper; Harris &
+//!   Kotzalas).
 
+pub mod drag;
 pub mod film;
 pub mod friction;
 pub mod hertz;
+pub mod hydrodynamic;
 pub mod line_contact;
 pub mod lubricant;
 pub mod rolling_resistance;

@@ -1,0 +1,312 @@
+//! The oil film of a line contact whose surfaces do not touch (not in the paper): a roller
+//! lifted off a race, or two neighbouring rollers apart, still carry each other through the
+//! oil in the gap. Rigid, isoviscous, fully flooded, per unit length of a slice, for the
+//! parabolic gap h(x) = h₀ + x²/(2R) of two cylinders (R the equivalent radius R'):
+//!
+//! * **Entrainment (Martin 1916).** The Reynolds equation with the Reynolds (Swift–Stieber)
+//!   cavitation condition p = dp/dx = 0 at the outlet gives the load
+//!   w = 4.895·η·u_m·R/h₀, u_m = (u₁ + u₂)/2 the mean surface speed (Dowson & Higginson,
+//!   *Elasto-hydrodynamic Lubrication*, 1977, ch. 4; Hamrock, Schmid & Jacobson,
+//!   *Fundamentals of Fluid Film Lubrication*, 2004: H_min = 4.9·U/W). The film cavitates
+//!   at X_c = x_c/sqrt(2Rh₀) = 0.4751 downstream of the narrowest gap.
+//! * **Squeeze.** Surfaces approaching at ḣ = −dh₀/dt with the film full on both sides:
+//!   w = 3√2·π·η·R^{3/2}·ḣ/h₀^{3/2} (the Reynolds equation with ∂h/∂t, same references).
+//! * **Cavitation of the sum.** A film cannot pull the surfaces together (it cavitates at
+//!   ambient pressure): the sum of both loads is bounded below by zero, smoothly, in the
+//!   form of the contact damping's bound ([`crate::bearing::forces::damped_normal_force`]),
+//!   F = ½(F_d + sqrt(F_d² + (ε·w_M)²)), F_d = w_M + w_S, ε = 0.02.
+//! * **Couette shear.** τ = η·Δu/h over the full film, ∫dx/h = π·sqrt(2R/h₀): the force
+//!   η·Δu·π·sqrt(2R/h₀) against the sliding of each surface (the cavitated outlet taken as
+//!   full: with rolling, at most 1.56 times the extent up to X_c).
+//! * **Rolling force.** The pressure-gradient (Poiseuille) shear, ∫(h/2)dp/dx dx, acts on
+//!   both surfaces against the entrainment: F_R = 4.601·η·u_m·sqrt(R/h₀) (from Martin's
+//!   pressure: 12√2·|∫P X dX|, ∫P X dX = −0.2711). The rigid-isoviscous limit of
+//!   Biboulet & Houpert's law (paper eq. 56, ψ → 1) with Martin's load gives 4.443: the
+//!   two agree within 4 % (tested), so the film's rolling force joins the EHL one at contact.
+//!
+//! **Joining the EHL laws.** At zero penetration the paper's laws give no force (eq. 11,
+//! its traction and rolling resistance all vanish with the load) and Martin's load is
+//! infinite. The film's gap is therefore floored at the composite roughness σ,
+//! h₀ = sqrt(gap² + σ²) for a gap and σ in contact (C¹ at zero gap), and the film's
+//! forces fade out over the first σ of penetration with a C¹ smoothstep (1 at δ = 0 with
+//! zero slope, 0 from δ = σ on), where the asperities and the EHL film carry the load.
+//! The sum of film and EHL forces is therefore continuous with a continuous slope at
+//! contact, and a loaded contact (δ ≫ σ, micrometres for B1) has the paper's forces only.
+//! Far away the film fades out between half the cutoff and the cutoff (the parabolic gap
+//! needs h₀ ≪ R).
+
+use std::f64::consts::{PI, SQRT_2};
+
+/// Martin's load coefficient with the Reynolds cavitation condition: w = C·η·u_m·R/h₀.
+pub const MARTIN_LOAD: f64 = 4.894_97;
+/// Squeeze-film load coefficient of a long cylinder at a plane: w = C·η·R^{3/2}·ḣ/h₀^{3/2},
+/// C = 3√2·π.
+pub const SQUEEZE_LOAD: f64 = 3.0 * SQRT_2 * PI;
+/// Rolling (Poiseuille) force coefficient on each surface: F_R = C·η·u_m·sqrt(R/h₀).
+pub const ROLLING_FORCE: f64 = 4.601_34;
+/// Relative width ε of the smooth lower bound (cavitation) of the film's load.
+const CAVITATION_CLIP: f64 = 0.02;
+
+/// The settings of the film in the roller–race and roller–roller gaps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RigidFilm {
+    /// Off: the paper's model (no force across a gap).
+    pub enabled: bool,
+    /// Gap beyond which the film force is faded out (smoothly from half of it) [m].
+    pub cutoff: f64,
+}
+
+impl RigidFilm {
+    /// No film (the paper's model).
+    pub const OFF: RigidFilm = RigidFilm {
+        enabled: false,
+        cutoff: 0.0,
+    };
+
+    /// Widest gap at which the film acts [m] (0 when disabled).
+    pub fn reach(&self) -> f64 {
+        if self.enabled {
+            self.cutoff
+        } else {
+            0.0
+        }
+    }
+
+    /// The film's gap h₀ and weight at the signed penetration δ (negative: gap −δ) for the
+    /// roughness σ: h₀ = sqrt(gap² + σ²) (σ in contact), and the weight 1 in a gap up to half
+    /// the cutoff, falling to 0 at the cutoff and over δ = 0 … σ (C¹ smoothsteps). None
+    /// where the film does not act.
+    pub fn gap_and_weight(&self, penetration: f64, roughness: f64) -> Option<(f64, f64)> {
+        if !self.enabled || penetration >= roughness || penetration <= -self.cutoff {
+            return None;
+        }
+        if penetration > 0.0 {
+            return Some((roughness, 1.0 - smoothstep(penetration / roughness)));
+        }
+        let gap = -penetration;
+        let far = smoothstep((2.0 * gap - self.cutoff) / self.cutoff);
+        Some(((gap * gap + roughness * roughness).sqrt(), 1.0 - far))
+    }
+}
+
+/// What the film does to a unit length of a line contact.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct FilmLine {
+    /// Load per unit length pushing the surfaces apart, ≥ 0 [N/m].
+    pub load: f64,
+    /// Couette force per unit length against the sliding of B on A, per unit sliding speed
+    /// [N s/m²] (the force on B is −this·u_rel).
+    pub shear: f64,
+    /// Rolling force per unit length on each surface against its rolling [N/m].
+    pub rolling: f64,
+}
+
+/// The film of a line contact at the gap `h` [m] (floored, see [`RigidFilm`]) between
+/// surfaces of equivalent radius `r` [m], viscosity `eta` [Pa s], mean surface speed
+/// `u_m` ≥ 0 [m/s] (regularised by the caller) and approach rate `approach` = −dh/dt [m/s].
+#[inline]
+pub fn film_line(eta: f64, r: f64, h: f64, u_m: f64, approach: f64) -> FilmLine {
+    let root = (r / h).sqrt();
+    let martin = MARTIN_LOAD * eta * u_m * r / h;
+    let squeeze = SQUEEZE_LOAD * eta * r * root * approach / h;
+    let sum = martin + squeeze;
+    let load = 0.5 * (sum + (sum * sum + (CAVITATION_CLIP * martin).powi(2)).sqrt());
+    FilmLine {
+        load,
+        shear: eta * PI * SQRT_2 * root,
+        rolling: ROLLING_FORCE * eta * u_m * root,
+    }
+}
+
+/// 0 for x ≤ 0, 1 for x ≥ 1, 3x² − 2x³ between (C¹).
+#[inline]
+fn smoothstep(x: f64) -> f64 {
+    let t = x.clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tribology::rolling_resistance::ehl_rolling_force;
+    use proptest::prelude::*;
+
+    /// Brute force: the dimensionless Reynolds equation of pure entrainment, H³P' = H − H*
+    /// (H = 1 + X²), integrated by the midpoint rule from X = −L with its tail, the outlet
+    /// X_c found by bisection where P' = 0 makes P(X_c) = 0 (Reynolds condition).
+    /// Returns (∫P dX, ∫P·X dX, X_c).
+    fn reynolds_rolling() -> (f64, f64, f64) {
+        let (lo, n) = (-400.0, 400_000);
+        let run = |xc: f64| -> (f64, f64, f64) {
+            let hs = 1.0 + xc * xc;
+            let dx = (xc - lo) / n as f64;
+            // P(−L) ≈ 1/(3L³), the inlet tail (H³P' ≈ X² far upstream).
+            let (mut p, mut w, mut m) = (1.0 / (3.0 * lo.abs().powi(3)), 0.0, 0.0);
+            for k in 0..n {
+                let x = lo + (k as f64 + 0.5) * dx;
+                let h = 1.0 + x * x;
+                let dp = (h - hs) / (h * h * h) * dx;
+                // P at the midpoint, then the rest of the interval.
+                let pm = p + 0.5 * dp;
+                w += pm * dx;
+                m += pm * x * dx;
+                p += dp;
+            }
+            (p, w, m)
+        };
+        let (mut a, mut b) = (0.1, 2.0);
+        for _ in 0..60 {
+            let mid = 0.5 * (a + b);
+            // P(X_c) falls as X_c grows (H* grows): positive means X_c lies further out.
+            if run(mid).0 > 0.0 {
+                a = mid;
+            } else {
+                b = mid;
+            }
+        }
+        let xc = 0.5 * (a + b);
+        let (_, w, m) = run(xc);
+        // The inlet tail beyond −L: P ≈ 1/(3|X|³), so ∫P·X dX adds −1/(3L) (∫P dX 1/(6L²)).
+        (w + 1.0 / (6.0 * lo * lo), m + 1.0 / (3.0 * lo), xc)
+    }
+
+    #[test]
+    fn entrainment_load_and_rolling_force_match_a_brute_force_reynolds_solution() {
+        // Martin (1916) with the Reynolds condition: w = 4.9 η u R / h (Hamrock et al.
+        // 2004). The brute-force solution is independent of the coefficients in the code.
+        let (w, m, xc) = reynolds_rolling();
+        assert!(
+            (24.0 * w - MARTIN_LOAD).abs() < 2e-3,
+            "24 ∫P = {}",
+            24.0 * w
+        );
+        assert!((24.0 * w - 4.9).abs() < 0.01);
+        assert!(
+            (12.0 * SQRT_2 * m.abs() - ROLLING_FORCE).abs() < 2e-3,
+            "{}",
+            12.0 * SQRT_2 * m.abs()
+        );
+        assert!((xc - 0.4751).abs() < 1e-3, "X_c = {xc}");
+        // Dimensional: B1's inner race, η = 16.5 mPa s, u = 0.3 m/s, R = 1.75 mm, h = 1 µm.
+        let (eta, u, r, h) = (0.0165, 0.3, 1.75e-3, 1e-6);
+        let f = film_line(eta, r, h, u, 0.0);
+        let martin = 4.894_97 * eta * u * r / h;
+        assert!(
+            (f.load / martin - 1.0).abs() < 1e-3,
+            "{} vs {martin}",
+            f.load
+        );
+    }
+
+    #[test]
+    fn squeeze_load_is_the_long_cylinder_closed_form() {
+        // Pure squeeze of a full film, w = 3√2π η R^1.5 ḣ/h^1.5 (Hamrock et al. 2004),
+        // checked against the midpoint rule on the dimensionless H³P' = −X.
+        let (lo, n) = (-2000.0, 2_000_000);
+        let dx = -2.0 * lo / n as f64;
+        let mut p: f64 = 0.0;
+        let mut w = 0.0;
+        // P(−∞) = 0 and the film full on both sides (P(+∞) = 0 by symmetry).
+        for k in 0..n {
+            let x = lo + (k as f64 + 0.5) * dx;
+            let h = 1.0 + x * x;
+            let dp = -x / (h * h * h) * dx;
+            w += (p + 0.5 * dp) * dx;
+            p += dp;
+        }
+        assert!(p.abs() < 1e-9);
+        // p = 12 η ḣ (2R h)/h³ P → w = 12 η ḣ (2Rh)^{3/2}/h³ ∫P = 12·2^{3/2} ∫P · η ḣ R^{3/2}/h^{3/2}.
+        let coefficient = 12.0 * 2f64.powf(1.5) * w;
+        assert!(
+            (coefficient / SQUEEZE_LOAD - 1.0).abs() < 1e-4,
+            "{coefficient}"
+        );
+        let (eta, r, h, rate) = (0.0165, 1.75e-3, 2e-6, 1e-3);
+        let f = film_line(eta, r, h, 0.0, rate);
+        let closed = SQUEEZE_LOAD * eta * r.powf(1.5) * rate / h.powf(1.5);
+        assert!((f.load / closed - 1.0).abs() < 1e-3);
+    }
+
+    #[test]
+    fn a_separating_film_cavitates_instead_of_pulling() {
+        // Surfaces moving apart fast, no entrainment: a full film would pull them
+        // together with the squeeze load; a cavitating one carries (almost) nothing.
+        let (eta, r, h) = (0.0165, 1.75e-3, 2e-6);
+        let f = film_line(eta, r, h, 1e-3, -1e-2);
+        let pull = SQUEEZE_LOAD * eta * r.powf(1.5) * 1e-2 / h.powf(1.5);
+        assert!(
+            f.load >= 0.0 && f.load < 1e-6 * pull,
+            "{} vs {pull}",
+            f.load
+        );
+    }
+
+    #[test]
+    fn rolling_force_agrees_with_biboulet_houpert_in_the_rigid_limit() {
+        // Biboulet & Houpert (2010), paper eq. 56 with ψ → 1 (light loads), at the load
+        // that Martin's film carries at the gap h: independent source, within 4 %.
+        let (eta, r, u, h, l) = (0.0165, 1.75e-3, 0.3, 5e-6, 1e-3);
+        let f = film_line(eta, r, h, u, 0.0);
+        let e_prime = 2.3e11;
+        let bh = ehl_rolling_force(e_prime, r, l, eta, u, f.load * l);
+        let ours = f.rolling * l;
+        assert!((ours / bh - 1.0).abs() < 0.04, "{ours} vs {bh}");
+    }
+
+    #[test]
+    fn couette_shear_is_viscosity_times_sliding_over_the_gap_integrated() {
+        // ∫ η Δu / h dx over the parabolic gap, by the midpoint rule.
+        let (eta, r, h0) = (0.0165, 1.75e-3, 3e-6);
+        let (lo, n) = (-0.2, 2_000_000);
+        let dx = -2.0 * lo / n as f64;
+        let integral: f64 = (0..n)
+            .map(|k| {
+                let x = lo + (k as f64 + 0.5) * dx;
+                eta / (h0 + x * x / (2.0 * r)) * dx
+            })
+            .sum();
+        let f = film_line(eta, r, h0, 0.1, 0.0);
+        // The tails beyond |x| = 0.2 m hold η·4R/0.2, 3e-4 of the whole.
+        assert!(
+            (f.shear / integral - 1.0).abs() < 2e-3,
+            "{} vs {integral}",
+            f.shear
+        );
+    }
+
+    #[test]
+    fn joins_the_contact_with_zero_slope_and_fades_far_away() {
+        let film = RigidFilm {
+            enabled: true,
+            cutoff: 100e-6,
+        };
+        let sigma = 0.16e-6;
+        let (h0, w0) = film.gap_and_weight(0.0, sigma).unwrap();
+        assert_eq!((h0, w0), (sigma, 1.0));
+        // Slopes of h and w at δ = 0 from both sides vanish (C¹ join).
+        let e = 1e-12;
+        let (hp, wp) = film.gap_and_weight(e, sigma).unwrap();
+        let (hm, wm) = film.gap_and_weight(-e, sigma).unwrap();
+        assert!(((hp - hm) / (2.0 * e)).abs() < 1e-4);
+        assert!(((wp - wm) / (2.0 * e)).abs() < 1e-2 / sigma * 1e-3);
+        assert!(film.gap_and_weight(sigma, sigma).is_none());
+        assert!(film.gap_and_weight(-100e-6, sigma).is_none());
+        assert_eq!(film.gap_and_weight(-49e-6, sigma).unwrap().1, 1.0);
+        assert!(RigidFilm::OFF.gap_and_weight(-1e-6, sigma).is_none());
+    }
+
+    proptest! {
+        #[test]
+        fn load_is_non_negative_and_falls_as_the_gap_opens(
+            log_h in -7.0..-4.5f64, u in 0.0..5.0f64, rate in 0.0..0.1f64,
+        ) {
+            let (eta, r) = (0.0165, 1.75e-3);
+            let h = 10f64.powf(log_h);
+            let near = film_line(eta, r, h, u + 1e-3, rate);
+            let far = film_line(eta, r, 1.1 * h, u + 1e-3, rate);
+            prop_assert!(near.load >= 0.0 && near.load.is_finite());
+            prop_assert!(far.load <= near.load * (1.0 + 1e-12));
+            prop_assert!(far.shear < near.shear && far.rolling < near.rolling);
+        }
+    }
+}
