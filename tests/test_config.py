@@ -130,12 +130,16 @@ def test_b1_roelands_z_fit(b1: BearingConfig) -> None:
     assert 0.4 < z_ls < 0.9
 
 
-def test_b1_inner_ring_inertia_default(b1: BearingConfig) -> None:
-    m, r = 0.1, 0.01
+def test_b1_inner_ring_inertia_default(b1: BearingConfig, raw: dict) -> None:
+    # B1's ring with its shaft section: 1 kg, transverse inertia given (B1.md); the axial
+    # inertia and, without the given value, the transverse one of the solid cylinder.
+    m, r = 1.0, 0.01
     w = m / (7850 * math.pi * r * r)
     assert b1.inner_ring_equivalent_length == pytest.approx(w)
     assert b1.inner_ring_axial_inertia == pytest.approx(m * r * r / 2)
-    assert b1.inner_ring_transverse_inertia == pytest.approx(m * (3 * r * r + w * w) / 12)
+    assert b1.inner_ring_transverse_inertia == pytest.approx(5e-4)
+    derived = parse_config(mutate(raw, "inner_ring.transverse_inertia", DEL))
+    assert derived.inner_ring_transverse_inertia == pytest.approx(m * (3 * r * r + w * w) / 12)
 
 
 def test_inner_ring_inertia_given(raw: dict) -> None:
@@ -837,7 +841,8 @@ def test_b1_has_no_derived_values(raw: dict) -> None:
         "fill_ratio",
         "end_time",
         "axial_inertia",
-        "transverse_inertia",
+        # (inner_ring.transverse_inertia is data: B1.md gives it for the ring with its
+        # shaft section, which no solid cylinder of the ring's mass reproduces)
         "roller_mass",
         "vogel_k",
         "roller_set_speed",

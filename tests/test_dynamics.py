@@ -174,6 +174,10 @@ def test_c_energy_is_conserved_without_friction_and_damping():
             "surfaces.damping_ratio": 0.0,
             "surfaces.friction": False,
             "surfaces.squeeze_film.enabled": False,  # the squeeze film dissipates too
+            "surfaces.race_film.enabled": False,  # so do the race films' squeeze and shear
+            "cavity.oil_fraction": 0.0,  # and the drag of the oil-air mixture
+            "cavity.air_density": "0 kg/m^3",
+            "cavity.air_viscosity": "0 Pa*s",
             "solver.rtol": 1e-8,
             "solver.atol": 1e-12,
             "solver.atol_time_scale": "1 ms",  # velocities to 1e-9 m/s

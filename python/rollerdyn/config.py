@@ -771,7 +771,7 @@ class CavityConfig(_Section):
 
     oil_fraction: Number(ge=0.0, le=1.0) = 0.03
     air_density: Quantity("density", ge=0.0, le="100 kg/m^3") = "1.0 kg/m^3"
-    air_viscosity: Quantity("dynamic viscosity", positive=True, le="1 Pa*s") = "2.1e-5 Pa*s"
+    air_viscosity: Quantity("dynamic viscosity", ge=0.0, le="1 Pa*s") = "2.1e-5 Pa*s"
 
 
 class RampConfig(_Section):

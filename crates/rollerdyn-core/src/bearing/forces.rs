@@ -542,4 +542,140 @@ mod tests {
         let f = damped_normal_force(100.0, 1e8, 1e-3, 0.1, 0.1);
         assert!((f - (100.0 + 6.3246)).abs() < 0.02);
     }
+
+    /// B1's inner race slice: ring A turning at 52 rad/s about x, roller B (R = 2.25 mm) on
+    /// top of it at the gap −δ, at rest, the normal +y.
+    fn inner_slice(penetration: f64, roller_spin: f64) -> (LineKind, Kinematics, Kinematics, Vec3) {
+        let (r_race, r) = (10e-3, 2.2475e-3);
+        let kind = LineKind {
+            law: LinePowerLaw {
+                k1: 1.3e-11,
+                k2: 0.9,
+            },
+            e_prime: 2.3e11,
+            r_eff: 1.0 / (1.0 / r + 1.0 / r_race),
+            roughness: 0.16e-6,
+            sharing: LoadSharing { b: 2.32, c: 0.97 },
+            counter_rotating: false,
+            rolling_resistance: true,
+            mass_per_length: 0.62e-3 / 4.4e-3,
+        };
+        let ring = Kinematics {
+            omega: Vec3::new(52.0, 0.0, 0.0),
+            ..Kinematics::fixed()
+        };
+        let roller = Kinematics {
+            center: Vec3::new(0.0, r_race + r - penetration, 0.0),
+            omega: Vec3::new(roller_spin, 0.0, 0.0),
+            ..Kinematics::fixed()
+        };
+        let location = Vec3::new(0.0, r_race - 0.5 * penetration, 0.0);
+        (kind, ring, roller, location)
+    }
+
+    /// Film and EHL forces of one slice, as the model sums them.
+    fn slice_total(penetration: f64, roller_spin: f64) -> ContactForces {
+        let tri = tribology();
+        let (kind, ring, roller, p) = inner_slice(penetration, roller_spin);
+        let n = Vec3::y();
+        let rolling = n.cross(&roller.axis).normalize();
+        let frame = roller.frame_velocity(&p);
+        let args = (
+            &tri,
+            &kind,
+            &ring,
+            &roller,
+            &n,
+            &p,
+            penetration,
+            0.22e-3,
+            &rolling,
+            &frame,
+        );
+        let mut f = line_slice(
+            args.0, args.1, args.2, args.3, args.4, args.5, args.6, args.7, args.8, args.9,
+        );
+        f.add(&film_slice(
+            args.0, args.1, args.2, args.3, args.4, args.5, args.6, args.7, args.8, args.9,
+        ));
+        f
+    }
+
+    #[test]
+    fn a_roller_lifted_one_micrometre_off_the_race_still_rolls_on_oil() {
+        // Roller at rest 1 µm above the turning race: the film carries Martin's load for the
+        // mean speed, and its shear drives the roller towards rolling (the force on the
+        // roller points along the race surface's motion, +z at the top of a ring turning
+        // about +x).
+        let f = slice_total(-1e-6, 0.0);
+        let (kind, ..) = inner_slice(-1e-6, 0.0);
+        let u_m = 0.5 * 52.0 * 10e-3;
+        let h = (1e-12f64 + 0.16e-6f64.powi(2)).sqrt();
+        let martin = 4.894_97 * 0.0165 * u_m * kind.r_eff / h * 0.22e-3;
+        assert!(
+            (f.normal / martin - 1.0).abs() < 1e-3,
+            "{} vs {martin}",
+            f.normal
+        );
+        assert!(f.tangential.z > 1e-4, "{:?}", f.tangential);
+        // It spins the roller about −x, as rolling on the race needs: (p − c) = −r·y, and
+        // (−r y) × (+z) = −r x.
+        let moment = (Vec3::new(0.0, -2.2475e-3, 0.0)).cross(&f.tangential);
+        assert!(moment.x < 0.0);
+    }
+
+    #[test]
+    fn film_and_contact_join_with_continuous_force_and_slope() {
+        // The sum of the film and the EHL slice is continuous at δ = 0, and the film's own
+        // slope vanishes there from both sides (its gap is floored and its fade starts flat),
+        // so the slope of the sum is that of eq. 11, which falls to 0 as δ^0.11 at δ = 0.
+        let spin = -52.0 * 10e-3 / 2.2475e-3;
+        let e = 1e-13;
+        let total = |delta: f64| slice_total(delta, spin).normal;
+        let (below, above) = (total(-e), total(e));
+        assert!((above - below).abs() < 1e-6 * below, "{below} {above}");
+        let tri = tribology();
+        let film = |delta: f64| {
+            let (kind, ring, roller, p) = inner_slice(delta, spin);
+            let frame = roller.frame_velocity(&p);
+            let n = Vec3::y();
+            let rolling = n.cross(&roller.axis);
+            film_slice(
+                &tri, &kind, &ring, &roller, &n, &p, delta, 0.22e-3, &rolling, &frame,
+            )
+            .normal
+        };
+        // Slope scale: Martin's load over σ (the film's own length scale).
+        let scale = film(0.0) / 0.16e-6;
+        let d = 1e-10;
+        for slope in [(film(0.0) - film(-d)) / d, (film(d) - film(0.0)) / d] {
+            assert!(slope.abs() < 2e-3 * scale, "{slope} vs {scale}");
+        }
+        // Over the whole fade the film's slope stays within its scale (no step).
+        let steps: Vec<f64> = (0..=16)
+            .map(|k| film(-0.16e-6 + k as f64 * 0.02e-6))
+            .collect();
+        let largest = steps
+            .windows(2)
+            .map(|w| (w[1] - w[0]).abs())
+            .fold(0.0, f64::max);
+        assert!(largest < 0.5 * film(0.0), "{steps:?}");
+        // Deep in contact (δ ≥ σ) only the paper's laws act.
+        let (kind, ring, roller, p) = inner_slice(0.5e-6, spin);
+        let tri = tribology();
+        let n = Vec3::y();
+        let film = film_slice(
+            &tri,
+            &kind,
+            &ring,
+            &roller,
+            &n,
+            &p,
+            0.5e-6,
+            0.22e-3,
+            &Vec3::z(),
+            &Vec3::zeros(),
+        );
+        assert_eq!(film, ContactForces::default());
+    }
 }
