@@ -164,6 +164,27 @@ def bench(
         Path,
         typer.Option("--output", "-o", help="mbs --sweep-dt-max: directory for table and plot."),
     ] = Path("runtime-study"),
+    cases: Annotated[
+        str | None,
+        typer.Option(
+            "--cases",
+            help="mbs: comma-separated operating points to run with the semi-analytical "
+            "detector instead of the detector comparison: whole, full-speed-500rpm, "
+            "full-speed-3000rpm, free-tilt, axial-0N, axial-500N, axial-2000N, axial-3000N; "
+            "'default' (the first five) or 'all'. Prints steps, Newton failures, right-hand "
+            "sides, wall time [s] and simulated seconds per wall second, and writes "
+            "bench_cases.csv to --output.",
+        ),
+    ] = None,
+    max_wall: Annotated[
+        float,
+        typer.Option(
+            "--max-wall",
+            min=1.0,
+            help="mbs --cases: wall time [s] after which a case is stopped and reported "
+            "as far as it got.",
+        ),
+    ] = 300.0,
     state: Annotated[
         Path | None,
         typer.Option(
@@ -215,7 +236,9 @@ def bench(
         _bench_contact(cfg, steps)
     if target == "model":
         _bench_model(cfg, state)
-    if target == "mbs" and sweep_dt_max is not None:
+    if target == "mbs" and cases is not None:
+        _bench_cases(cfg, cases, max_wall, output)
+    elif target == "mbs" and sweep_dt_max is not None:
         try:
             values = [float(v) for v in sweep_dt_max.split(",") if v.strip()]
         except ValueError:
@@ -342,6 +365,77 @@ def _runtime_study(cfg, t_end: float | None, dt_max_values: list, out: Path) -> 
         saving = 100 * (1 - row["wall_s"]["semi-analytical"] / row["wall_s"]["gradient"])
         console.print(f"Δt_max = {dt_max:g} s: semi-analytical {saving:.0f} % below gradient")
     console.print(f"wrote {out / 'runtime_study.csv'} and " + ", ".join(str(p) for p in paths))
+
+
+def _bench_cases(cfg, cases: str, max_wall: float, out: Path) -> None:
+    """Whole runs of the operating points of :mod:`rollerdyn.bench_cases`, one core."""
+    import pandas as pd
+
+    from .bench_cases import CASES, DEFAULT_CASES, run_case
+
+    if cases.strip() == "default":
+        names = list(DEFAULT_CASES)
+    elif cases.strip() == "all":
+        names = list(CASES)
+    else:
+        names = [c.strip() for c in cases.split(",") if c.strip()]
+    unknown = [n for n in names if n not in CASES]
+    if not names or unknown:
+        from rich.markup import escape
+
+        what = escape(", ".join(unknown) or "empty")
+        console.print(
+            f"[red]--cases = {escape(repr(cases))}: {what} not a case; choose from "
+            f"{', '.join(CASES)}, default or all[/red]"
+        )
+        raise typer.Exit(2)
+    results = []
+    for name in names:
+        with console.status(f"{cfg.name}: case {name} ({CASES[name][0]})...") as status:
+
+            def show(p, status=status, name=name) -> None:
+                status.update(
+                    f"{cfg.name}: case {name}, t = {p.time:.4f} / {p.t_end:.4f} s, {p.steps} steps"
+                )
+
+            results.append(run_case(cfg, name, max_wall, show))
+    table = Table(title=f"{cfg.name}: operating points, semi-analytical detector, one thread")
+    cols = (
+        "case",
+        "simulated [s]",
+        "wall [s]",
+        "sim s / wall s",
+        "steps",
+        "rejected",
+        "Newton failures",
+        "rhs",
+        "Jacobians",
+        "torque [N m]",
+        "note",
+    )
+    for col in cols:
+        table.add_column(col)
+    for r in results:
+        table.add_row(
+            r.name,
+            f"{r.reached:.4g} of {r.target:.4g}",
+            f"{r.wall:.1f}",
+            f"{r.sim_per_wall:.3g}",
+            str(r.steps),
+            str(r.rejected),
+            str(r.newton_failures),
+            str(r.rhs),
+            str(r.jacobians),
+            f"{r.torque:.4g}",
+            r.message,
+        )
+    console.print(table)
+    out.mkdir(parents=True, exist_ok=True)
+    frame = pd.DataFrame.from_records(
+        [{**r.__dict__, "sim_per_wall": r.sim_per_wall} for r in results]
+    )
+    frame.to_csv(out / "bench_cases.csv", index=False)
+    console.print(f"wrote {out / 'bench_cases.csv'}")
 
 
 def _bench_mbs(cfg, t_end: float | None) -> None:
@@ -526,6 +620,16 @@ def run(
             metavar="SECONDS",
         ),
     ] = None,
+    threads: Annotated[
+        int | None,
+        typer.Option(
+            "--threads",
+            min=1,
+            help="Threads that evaluate the contacts and the Jacobian's columns (default: all "
+            "cores; the gradient detector always uses one). The result does not depend on "
+            "it, bit for bit.",
+        ),
+    ] = None,
 ) -> None:
     """Run the dynamic simulation and write its results to a netCDF file.
 
@@ -628,6 +732,7 @@ def run(
                 progress=progress,
                 resume=previous,
                 checkpoint=lambda partial: write(partial, output),
+                threads=threads,
             )
         except ValueError as err:
             console.print(f"[red]{err}[/red]")
@@ -647,7 +752,8 @@ def run(
         f"wrote {output}: {ds.sizes['time']} outputs to t = {st['final_time_s']:.6g} s; "
         f"{st['stats_steps']} steps ({st.get('stats_error_test_failures', 0)} rejected), "
         f"{st['stats_rhs_evaluations']} right-hand sides, "
-        f"{st['stats_jacobian_evaluations']} Jacobians, {st['stats_total_seconds']:.1f} s wall"
+        f"{st['stats_jacobian_evaluations']} Jacobians, {st['stats_total_seconds']:.1f} s wall "
+        f"on {st.get('threads', 1)} thread(s)"
     )
     if status:
         raise typer.Exit(status)

@@ -815,9 +815,9 @@ class OperatingConfig(_Section):
     load_ramp: RampConfig | None = None
     speed_ramp: RampConfig | None = None
     end_time: Quantity("time", positive=True, example="1.3 s") | None = None
-    gravity: Vector("acceleration", example='"9.81 m/s^2" or ["0 m/s^2", "-9.81 m/s^2", "0 m/s^2"]') = (
-        "9.81 m/s^2"
-    )
+    gravity: Vector(
+        "acceleration", example='"9.81 m/s^2" or ["0 m/s^2", "-9.81 m/s^2", "0 m/s^2"]'
+    ) = "9.81 m/s^2"
 
     @model_validator(mode="after")
     def _check(self) -> OperatingConfig:

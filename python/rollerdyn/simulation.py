@@ -306,9 +306,14 @@ def simulate(
     progress: Callable[[Progress], bool | None] | None = None,
     resume: xr.Dataset | None = None,
     checkpoint: Callable[[xr.Dataset], None] | None = None,
+    threads: int | None = None,
 ) -> xr.Dataset:
     """Runs ``config`` from its consistent start to ``t_end`` (default: the configuration's
-    end time) and returns the Dataset. ``progress(Progress)`` is called at every output
+    end time) and returns the Dataset.
+
+    ``threads``: how many threads evaluate the contacts and the Jacobian's columns (default:
+    all cores; the gradient detector always uses one). The result does not depend on it,
+    bit for bit. ``progress(Progress)`` is called at every output
     time; returning True stops the run (the Dataset then ends there). Raises
     :class:`SimulationError` (with the partial Dataset) if the integration fails.
 
@@ -328,6 +333,9 @@ def simulate(
     end = config.end_time if t_end is None else float(t_end)
     if not (end > 0.0 and math.isfinite(end)):
         raise ValueError(f"t_end = {end}: must be a positive number of seconds")
+    threads = default_threads() if threads is None else threads
+    if isinstance(threads, bool) or not isinstance(threads, int) or threads < 1:
+        raise ValueError(f"threads = {threads!r}: must be a whole number >= 1")
     start = None
     if resume is not None:
         start = _resume_point(resume, config, det, end)
@@ -344,6 +352,7 @@ def simulate(
         "step_gain": s.step_gain,
         "jacobian_after_newton_failure": s.jacobian_after_newton_failure,
         "checkpoint_interval": s.checkpoint_interval,
+        "threads": threads,
     }
 
     def callback(t, t_end_, steps, rhs, jac, step):
@@ -372,6 +381,7 @@ def simulate(
     )
     raw["stats"]["checkpoint_seconds"] = saving["seconds"]
     ds = to_dataset(raw, config, det)
+    ds.attrs["threads"] = threads if det != "gradient" else 1
     if resume is not None:
         ds = _join(resume, ds)
     if "interruption" in raw:
@@ -380,6 +390,16 @@ def simulate(
     if raw["error"] is not None:
         raise SimulationError(raw["error"], ds)
     return ds
+
+
+def default_threads() -> int:
+    """All the cores this process may use."""
+    import os
+
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # not on Linux
+        return max(1, os.cpu_count() or 1)
 
 
 def _slack(t: float) -> float:

@@ -1357,7 +1357,13 @@ mod simulation {
         start: Option<(f64, Vec<f64>, Option<f64>)>,
         checkpoint: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let model = BearingModel::new(self::params(params, &traction.inner)?).map_err(core_err)?;
+        let threads: usize = match options.get_item("threads")? {
+            Some(v) if !v.is_none() => v.extract()?,
+            _ => 1,
+        };
+        let model = BearingModel::new(self::params(params, &traction.inner)?)
+            .and_then(|m| m.with_threads(threads))
+            .map_err(core_err)?;
         let opts = self::options(options)?;
         let start = start.map(|(time, state, step)| Start { time, state, step });
         let z = model.layout.rollers;

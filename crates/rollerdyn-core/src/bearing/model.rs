@@ -34,7 +34,9 @@ use crate::geometry::roller::MassProperties;
 use crate::tribology::drag::roller_drag;
 use crate::tribology::film::ThermalCorrection;
 use nalgebra::DMatrix;
-use std::cell::{Cell, RefCell};
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::{Arc, Mutex, PoisonError};
 use std::time::Instant;
 
 /// A force and a moment about the body's centre.
@@ -205,10 +207,14 @@ pub struct BearingModel {
     locked_axis: Vec3,
     /// Pruning bounds of the four flanges (intrinsic, so computed once; [`FlangeBounds`]).
     flange_bounds: [FlangeBounds; 4],
-    warm_starts: RefCell<Vec<[Option<Unknowns>; 6]>>,
-    profile: Cell<Profile>,
+    /// The gradient detector's warm starts, one slot per roller end and flange.
+    warm_starts: Vec<Mutex<[Option<Unknowns>; 6]>>,
+    profile: Mutex<Profile>,
     /// Sections entered so far (one in [`PROFILE_EVERY`] is timed, see [`sampled`]).
-    sections: Cell<u32>,
+    sections: AtomicU32,
+    /// The threads that evaluate contacts and Jacobian columns (None: this thread only);
+    /// see [`Self::with_threads`].
+    pool: Option<Arc<rayon::ThreadPool>>,
 }
 
 /// Per-state scale for the Jacobian's difference steps: lengths are measured in metres,
@@ -305,11 +311,38 @@ impl BearingModel {
             ring_elements,
             flange_bounds,
             locked_axis: axis_from_angles(0.0, params.inner_ring_misalignment),
-            warm_starts: RefCell::new(vec![[None; 6]; 4 * z]),
-            profile: Cell::new(Profile::default()),
-            sections: Cell::new(0),
+            warm_starts: (0..4 * z).map(|_| Mutex::new([None; 6])).collect(),
+            profile: Mutex::new(Profile::default()),
+            sections: AtomicU32::new(0),
+            pool: None,
             params,
         })
+    }
+
+    /// The model evaluating its contacts and Jacobian columns on `threads` threads (a
+    /// numerical setting: the results do not depend on it, bit for bit, since every
+    /// contact and column is computed alone and summed in a fixed order). The gradient
+    /// detector keeps one thread: its warm starts carry over from one evaluation to the
+    /// next, in an order that threads would change (the race hazard of paper sect. 5.4).
+    pub fn with_threads(mut self, threads: usize) -> Result<Self> {
+        if threads == 0 {
+            return Err(Error::invalid("threads", threads, ">= 1"));
+        }
+        self.pool = if threads > 1 && self.params.detector != Detector::Gradient {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .map_err(|e| Error::invalid("threads", threads, e.to_string()))?;
+            Some(Arc::new(pool))
+        } else {
+            None
+        };
+        Ok(self)
+    }
+
+    /// Threads that evaluate the model (1: this thread only).
+    pub fn threads(&self) -> usize {
+        self.pool.as_ref().map_or(1, |p| p.current_num_threads())
     }
 
     /// Bodies (A, B) of an element.
@@ -330,7 +363,7 @@ impl BearingModel {
 
     /// Time spent so far, by kind of work.
     pub fn profile(&self) -> Profile {
-        self.profile.get()
+        *self.profile.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
     /// Pitch radius [m].
@@ -709,15 +742,15 @@ impl BearingModel {
     /// section count's Fibonacci hash (Knuth, TAOCP vol. 3, 6.4): spread evenly but not
     /// periodically, so that a fixed order of contacts cannot time the same ones always.
     fn stopwatch(&self) -> Option<Instant> {
-        let n = self.sections.get().wrapping_add(1);
-        self.sections.set(n);
+        let n = self
+            .sections
+            .fetch_add(1, Ordering::Relaxed)
+            .wrapping_add(1);
         sampled(n).then(Instant::now)
     }
 
     fn spend(&self, f: impl FnOnce(&mut Profile)) {
-        let mut p = self.profile.get();
-        f(&mut p);
-        self.profile.set(p);
+        f(&mut self.profile.lock().unwrap_or_else(PoisonError::into_inner));
     }
 
     /// The flange k of a ring body at its current pose.
@@ -737,25 +770,26 @@ impl BearingModel {
             ),
             Detector::SemiAnalytical => semi_analytical::composite(end, flange),
             Detector::Gradient => {
-                let slot = index_to_slot(index);
-                let mut memory = self.warm_starts.borrow_mut();
-                let mut outcomes = gradient::detect(end, flange, &memory[slot]);
+                let mut memory = self.warm_starts[index_to_slot(index)]
+                    .lock()
+                    .unwrap_or_else(PoisonError::into_inner);
+                let mut outcomes = gradient::detect(end, flange, &memory);
                 // A pairing whose warm start failed is tried once more from the cold start.
                 let failed: [Option<Unknowns>; 6] = std::array::from_fn(|k| {
                     let o = &outcomes[k];
-                    (memory[slot][k].is_some() && !(o.converged && o.opposite_normals))
+                    (memory[k].is_some() && !(o.converged && o.opposite_normals))
                         .then_some(None)
                         .flatten()
                 });
                 if outcomes
                     .iter()
-                    .zip(&memory[slot])
+                    .zip(memory.iter())
                     .any(|(o, m)| m.is_some() && !(o.converged && o.opposite_normals))
                 {
                     let cold = gradient::detect(end, flange, &failed);
                     for k in 0..6 {
                         let o = &outcomes[k];
-                        if memory[slot][k].is_some() && !(o.converged && o.opposite_normals) {
+                        if memory[k].is_some() && !(o.converged && o.opposite_normals) {
                             outcomes[k] = cold[k];
                         }
                     }
@@ -774,7 +808,7 @@ impl BearingModel {
                 for (k, o) in outcomes.iter().enumerate() {
                     let converged = o.converged && o.opposite_normals;
                     if converged {
-                        memory[slot][k] = Some(o.unknowns);
+                        memory[k] = Some(o.unknowns);
                         if o.contact.valid {
                             contacts.push(o.contact);
                             continue;
@@ -938,11 +972,9 @@ impl BearingModel {
 
     /// Evaluates every contact.
     pub fn evaluate_all(&self, kin: &(Kinematics, Vec<Kinematics>)) -> Vec<ElementResult> {
-        self.elements
-            .iter()
-            .enumerate()
-            .map(|(e, element)| self.evaluate(element, kin, e))
-            .collect()
+        self.map(self.elements.len(), |e| {
+            self.evaluate(&self.elements[e], kin, e)
+        })
     }
 
     /// Sums contact wrenches per body: (inner ring, outer ring, rollers).
@@ -1038,102 +1070,134 @@ impl BearingModel {
         }
     }
 
-    /// The Jacobian by per-body finite differences (see the module doc).
-    fn structured_jacobian(&self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
-        let kin = self.kinematics(t, y);
-        let geometries: Vec<Geometry> = (self.elements.iter().enumerate())
-            .map(|(e, element)| self.geometry(element, &kin, e))
-            .collect();
-        let results: Vec<ElementResult> = (self.elements.iter().zip(&geometries))
-            .map(|(element, g)| self.evaluate_at(element, &kin, g))
-            .collect();
-        let loads = self.loads(&results);
-        let n = self.layout.len();
-        let mut f0 = vec![0.0; n];
-        self.rates(t, y, &kin, &loads, &mut f0);
-        jac.fill(0.0);
-        let mut yp = y.to_vec();
-        let mut fp = vec![0.0; n];
-        let z = self.layout.rollers;
-        for k in 0..n {
-            let h = 1.5e-8 * y[k].abs().max(self.scale(k));
-            yp[k] = y[k] + h;
-            let h = yp[k] - y[k];
-            let body = self.layout.body_of(k);
-            let mut kin_p = kin.clone();
-            let elements = match body {
-                None => {
-                    kin_p.0 = ring_kinematics(
-                        &self.layout,
-                        &yp,
-                        self.params.inner_ring_speed.at(t).0,
-                        &self.locked_axis,
-                    );
-                    &self.ring_elements
-                }
-                Some(i) => {
-                    kin_p.1[i] = roller_kinematics(&self.layout, &yp, i);
-                    &self.roller_elements[i]
-                }
-            };
-            let mut loads_p = loads.clone();
-            let mut touched_ring = body.is_none();
-            let mut touched = vec![false; z];
-            if let Some(i) = body {
-                touched[i] = true;
-            }
-            let moves = !self.is_velocity(k);
-            for &e in elements {
-                let element = &self.elements[e];
-                let new = if moves {
-                    self.evaluate(element, &kin_p, e)
-                } else {
-                    self.evaluate_at(element, &kin_p, &geometries[e])
-                };
-                let old = &results[e];
-                let [body_a, body_b] = Self::bodies_of(element, z);
-                for (bd, wn, wo) in [
-                    (body_a, &new.on_a, &old.on_a),
-                    (body_b, &new.on_b, &old.on_b),
-                ] {
-                    match bd {
-                        Body::InnerRing => {
-                            loads_p.0.sub(wo);
-                            loads_p.0.add(wn);
-                            touched_ring = true;
-                        }
-                        Body::Roller(r) => {
-                            loads_p.2[r].sub(wo);
-                            loads_p.2[r].add(wn);
-                            touched[r] = true;
-                        }
-                        Body::OuterRing => {}
-                    }
-                }
-            }
-            if touched_ring {
-                let m = self.layout.ring_states();
-                self.ring_rates(t, &kin_p.0, &yp[..m], &loads_p.0, &mut fp[..m]);
-                for row in 0..m {
-                    jac[(row, k)] = (fp[row] - f0[row]) / h;
-                }
-            }
-            for (r, _) in touched.iter().enumerate().filter(|(_, t)| **t) {
-                let s = self.layout.roller(r);
-                let range = s..s + ROLLER_STATES;
-                self.roller_rates(
-                    &kin_p.1[r],
-                    &yp[range.clone()],
-                    &loads_p.2[r],
-                    &mut fp[range.clone()],
-                );
-                for row in range {
-                    jac[(row, k)] = (fp[row] - f0[row]) / h;
-                }
-            }
-            yp[k] = y[k];
+    /// `f(0..n)` in order, on the model's threads if it has any.
+    fn map<T: Send>(&self, n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
+        match &self.pool {
+            Some(pool) => pool.install(|| (0..n).into_par_iter().map(&f).collect()),
+            None => (0..n).map(f).collect(),
         }
     }
+
+    /// The Jacobian by per-body finite differences (see the module doc), its columns
+    /// computed apart (on the model's threads) and written in order.
+    fn structured_jacobian(&self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
+        let kin = self.kinematics(t, y);
+        let elements = &self.elements;
+        let geometries = self.map(elements.len(), |e| self.geometry(&elements[e], &kin, e));
+        let results = self.map(elements.len(), |e| {
+            self.evaluate_at(&elements[e], &kin, &geometries[e])
+        });
+        let base = Linearisation {
+            t,
+            y,
+            kin: &kin,
+            geometries: &geometries,
+            loads: self.loads(&results),
+            results: &results,
+        };
+        let mut f0 = vec![0.0; self.layout.len()];
+        self.rates(t, y, &kin, &base.loads, &mut f0);
+        let columns = self.map(y.len(), |k| self.jacobian_column(&base, &f0, k));
+        jac.fill(0.0);
+        for (k, column) in columns.iter().enumerate() {
+            for &(row, value) in column {
+                jac[(row, k)] = value;
+            }
+        }
+    }
+
+    /// Column k of the Jacobian as (row, value) pairs: state k perturbed, only its body's
+    /// contacts evaluated again, only the rows of the bodies they touch.
+    fn jacobian_column(&self, base: &Linearisation, f0: &[f64], k: usize) -> Vec<(usize, f64)> {
+        let (t, y, kin) = (base.t, base.y, base.kin);
+        let mut yp = y.to_vec();
+        let h = 1.5e-8 * y[k].abs().max(self.scale(k));
+        yp[k] = y[k] + h;
+        let h = yp[k] - y[k];
+        let body = self.layout.body_of(k);
+        let mut kin_p = kin.clone();
+        let elements = match body {
+            None => {
+                kin_p.0 = ring_kinematics(
+                    &self.layout,
+                    &yp,
+                    self.params.inner_ring_speed.at(t).0,
+                    &self.locked_axis,
+                );
+                &self.ring_elements
+            }
+            Some(i) => {
+                kin_p.1[i] = roller_kinematics(&self.layout, &yp, i);
+                &self.roller_elements[i]
+            }
+        };
+        let z = self.layout.rollers;
+        let mut loads_p = base.loads.clone();
+        let mut touched_ring = body.is_none();
+        let mut touched = vec![false; z];
+        if let Some(i) = body {
+            touched[i] = true;
+        }
+        let moves = !self.is_velocity(k);
+        for &e in elements {
+            let element = &self.elements[e];
+            let new = if moves {
+                self.evaluate(element, &kin_p, e)
+            } else {
+                self.evaluate_at(element, &kin_p, &base.geometries[e])
+            };
+            let old = &base.results[e];
+            let [body_a, body_b] = Self::bodies_of(element, z);
+            for (bd, wn, wo) in [
+                (body_a, &new.on_a, &old.on_a),
+                (body_b, &new.on_b, &old.on_b),
+            ] {
+                match bd {
+                    Body::InnerRing => {
+                        loads_p.0.sub(wo);
+                        loads_p.0.add(wn);
+                        touched_ring = true;
+                    }
+                    Body::Roller(r) => {
+                        loads_p.2[r].sub(wo);
+                        loads_p.2[r].add(wn);
+                        touched[r] = true;
+                    }
+                    Body::OuterRing => {}
+                }
+            }
+        }
+        let mut column = Vec::new();
+        let mut fp = vec![0.0; f0.len()];
+        if touched_ring {
+            let m = self.layout.ring_states();
+            self.ring_rates(t, &kin_p.0, &yp[..m], &loads_p.0, &mut fp[..m]);
+            column.extend((0..m).map(|row| (row, (fp[row] - f0[row]) / h)));
+        }
+        for (r, _) in touched.iter().enumerate().filter(|(_, t)| **t) {
+            let s = self.layout.roller(r);
+            let range = s..s + ROLLER_STATES;
+            self.roller_rates(
+                &kin_p.1[r],
+                &yp[range.clone()],
+                &loads_p.2[r],
+                &mut fp[range.clone()],
+            );
+            column.extend(range.map(|row| (row, (fp[row] - f0[row]) / h)));
+        }
+        column
+    }
+}
+
+/// What every column of a Jacobian shares: the state, its kinematics, the contacts'
+/// geometry and results, and the summed loads.
+struct Linearisation<'a> {
+    t: f64,
+    y: &'a [f64],
+    kin: &'a (Kinematics, Vec<Kinematics>),
+    geometries: &'a [Geometry],
+    results: &'a [ElementResult],
+    loads: (Wrench, Wrench, Vec<Wrench>),
 }
 
 /// The least and the greatest of |p + s·q| over |s| ≤ s_max: the distance of the origin
@@ -1211,7 +1275,9 @@ impl OdeSystem for BearingModel {
 
     /// Clears the gradient detector's warm starts (checkpoints restart from here).
     fn restart(&self) {
-        self.warm_starts.borrow_mut().fill([None; 6]);
+        for slot in &self.warm_starts {
+            *slot.lock().unwrap_or_else(PoisonError::into_inner) = [None; 6];
+        }
     }
 }
 

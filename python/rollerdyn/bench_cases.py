@@ -1,0 +1,112 @@
+"""Whole runs of the operating points that decide how fast the dynamic model is
+(``rollerdyn bench mbs --cases``): the B1 run as the paper defines it, B1 brought to full
+speed quickly at 500 and 3000 rpm, with the inner ring free to tilt, and at other axial
+loads. Each is timed on one core with a wall-time cap; the table gives steps, Newton
+failures, right-hand sides and the simulated seconds per wall second."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from .config import BearingConfig, parse_config
+from .simulation import Progress, SimulationError, simulate
+from .sweep import _changed
+
+#: Loads over 0 ... 20 ms, speed over 20 ... 40 ms, end at 0.1 s: full speed fast.
+_SHORT_RAMPS = {
+    "operating.load_ramp": {"start": "0 s", "end": "20 ms", "shape": "cosine"},
+    "operating.speed_ramp": {"start": "20 ms", "end": "40 ms", "shape": "cosine"},
+    "operating.end_time": "0.1 s",
+}
+
+#: Name -> (what it is, dotted changes to the configuration).
+CASES: dict[str, tuple[str, dict[str, Any]]] = {
+    "whole": ("the configuration as it is (B1: the paper's run)", {}),
+    "full-speed-500rpm": ("loads over 20 ms, 500 rpm over 20-40 ms, to 0.1 s", _SHORT_RAMPS),
+    "full-speed-3000rpm": (
+        "the same at 3000 rpm",
+        {**_SHORT_RAMPS, "operating.inner_ring_speed": "3000 rpm"},
+    ),
+    "free-tilt": ("the whole run with inner_ring.tilt = free", {"inner_ring.tilt": "free"}),
+    "axial-0N": ("the whole run with no axial load", {"operating.axial_load": "0 N"}),
+    "axial-500N": ("the whole run with 500 N axial load", {"operating.axial_load": "500 N"}),
+    "axial-2000N": ("the whole run with 2000 N axial load", {"operating.axial_load": "2000 N"}),
+    "axial-3000N": ("the whole run with 3000 N axial load", {"operating.axial_load": "3000 N"}),
+}
+
+#: The cases run when none are named.
+DEFAULT_CASES = ("whole", "full-speed-500rpm", "full-speed-3000rpm", "free-tilt", "axial-0N")
+
+
+@dataclass(frozen=True)
+class CaseResult:
+    """What one case's run did."""
+
+    name: str
+    target: float
+    reached: float
+    completed: bool
+    wall: float
+    steps: int
+    rejected: int
+    newton_failures: int
+    rhs: int
+    jacobians: int
+    torque: float
+    message: str = ""
+
+    @property
+    def sim_per_wall(self) -> float:
+        """Simulated seconds per wall second."""
+        return self.reached / self.wall if self.wall > 0 else float("nan")
+
+
+def case_config(cfg: BearingConfig, name: str) -> BearingConfig:
+    """``cfg`` changed as case ``name`` says (validated again)."""
+    if name not in CASES:
+        raise ValueError(f"case {name!r}: must be one of {', '.join(CASES)}")
+    changes = CASES[name][1]
+    if not changes:
+        return cfg
+    return parse_config(_changed(cfg.model_dump(), changes), si_numbers=True)
+
+
+def run_case(
+    cfg: BearingConfig,
+    name: str,
+    max_wall: float,
+    progress: Callable[[Progress], None] | None = None,
+) -> CaseResult:
+    """Runs case ``name`` of ``cfg`` on this thread, stopped after ``max_wall`` seconds."""
+    variant = case_config(cfg, name)
+    start = time.monotonic()
+
+    def callback(p: Progress) -> bool:
+        if progress is not None:
+            progress(p)
+        return time.monotonic() - start > max_wall
+
+    message = ""
+    try:
+        ds = simulate(variant, progress=callback)
+    except SimulationError as err:
+        ds, message = err.dataset, str(err).splitlines()[0]
+    a = ds.attrs
+    late = ds.frictional_torque.sel(time=slice(0.9 * float(ds.time[-1]), None))
+    return CaseResult(
+        name=name,
+        target=float(variant.end_time),
+        reached=float(a["final_time_s"]),
+        completed=bool(a["completed"]) and not message,
+        wall=float(a["stats_total_seconds"]),
+        steps=int(a["stats_steps"]),
+        rejected=int(a.get("stats_error_test_failures", 0)),
+        newton_failures=int(a.get("stats_newton_failures", 0)),
+        rhs=int(a["stats_rhs_evaluations"]),
+        jacobians=int(a["stats_jacobian_evaluations"]),
+        torque=float(late.mean()) if late.size else float("nan"),
+        message=message or ("" if a["completed"] else f"stopped after {max_wall:g} s of wall time"),
+    )

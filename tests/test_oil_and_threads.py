@@ -1,0 +1,114 @@
+"""The physics that holds unloaded rollers (oil film in the line-contact gaps, drag of the
+oil-air mixture, gravity), its configuration, the threads of a run and the operating-point
+benchmark (docs/dynamics.md, "What holds an unloaded roller")."""
+
+from __future__ import annotations
+
+import copy
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from rollerdyn import _core
+from rollerdyn.bench_cases import CASES, case_config, run_case
+from rollerdyn.config import ConfigError, parse_config
+from rollerdyn.model import Model
+from rollerdyn.simulation import model_parameters, simulate
+
+ROOT = Path(__file__).resolve().parents[1]
+RAW = tomllib.loads((ROOT / "examples" / "b1.toml").read_text())
+
+
+def changed(**changes) -> dict:
+    data = copy.deepcopy(RAW)
+    for path, value in changes.items():
+        section = data
+        *parents, key = path.split(".")
+        for p in parents:
+            section = section.setdefault(p, {})
+        section[key] = value
+    return data
+
+
+def test_gravity_is_on_by_default_and_takes_a_vector() -> None:
+    data = changed()
+    del data["operating"]["gravity"]
+    assert parse_config(data).operating.gravity == (0.0, -9.81, 0.0)
+    cfg = parse_config(changed(**{"operating.gravity": ["1 m/s^2", "0 m/s^2", "-2 m/s^2"]}))
+    assert cfg.operating.gravity == (1.0, 0.0, -2.0)
+    assert model_parameters(cfg)["gravity"] == [1.0, 0.0, -2.0]
+
+
+@pytest.mark.parametrize(
+    ("path", "value", "words"),
+    [
+        ("operating.gravity", ["9.81 m/s^2", "0 m/s^2"], "three components"),
+        ("operating.gravity", "9.81 N", "acceleration"),
+        ("operating.gravity", ["0 m/s^2", "1e9 m/s^2", "0 m/s^2"], "magnitude"),
+        ("cavity.oil_fraction", -0.1, ">= 0"),
+        ("cavity.oil_fraction", 1.5, "<= 1"),
+        ("surfaces.race_film.cutoff", "0 um", "> 0"),
+    ],
+)
+def test_bad_oil_and_gravity_input_names_the_field_and_the_rule(path, value, words) -> None:
+    with pytest.raises(ConfigError) as err:
+        parse_config(changed(**{path: value}))
+    text = str(err.value)
+    assert path.split(".")[-1] in text and words in text, text
+
+
+def test_an_unloaded_roller_is_held_by_the_film_and_gravity_pulls_it_down() -> None:
+    """At the start (rollers on the pitch circle, nothing loaded, at rest) the only forces
+    are the oil films across the race gaps and gravity. At rest the films carry only the
+    load of the regularised entrainment speed v_s = 1 mm/s (docs/dynamics.md): Martin's
+    load 4.895*eta*v_s*R'/h over the 4 mm straight length, 5 um gaps; the outer race's R'
+    (2.7 mm) above the inner's (1.8 mm), so the film pushes each roller inwards by under
+    0.2 m/s^2 against a roller's 9.81 (measured: up to 0.14). A roller
+    moving towards the outer race is pushed back by the film's squeeze (the paper's model:
+    no force at all across a gap)."""
+    cfg = parse_config(changed())
+    params = model_parameters(cfg)
+    traction = Model(cfg).traction
+    y = list(_core.initial_state(params, traction))
+    dy, _ = _core.model_rhs(params, traction, 0.0, y)
+    ring = 6
+    accel_y = [dy[ring + 11 * i + 6] for i in range(cfg.geometry.roller_count)]
+    assert all(abs(a + 9.81) < 0.2 for a in accel_y), accel_y
+    # Roller 0 (at the bottom, psi = pi, centre at -y) moving down at 1 mm/s towards the
+    # outer race: the squeeze film of the outer race pushes it back up.
+    moving = list(y)
+    moving[ring + 6] = -1e-3
+    dy_moving, _ = _core.model_rhs(params, traction, 0.0, moving)
+    assert dy_moving[ring + 6] > 0.0, dy_moving[ring + 6]
+    off = {**params, "race_film": False}
+    dy_off, _ = _core.model_rhs(off, traction, 0.0, moving)
+    assert dy_off[ring + 6] == pytest.approx(-9.81, rel=1e-3)
+
+
+def test_results_do_not_depend_on_the_thread_count() -> None:
+    cfg = parse_config(changed(**{"operating.load_ramp.end": "5 ms"}))
+    one = simulate(cfg, t_end=0.006, threads=1)
+    two = simulate(cfg, t_end=0.006, threads=2)
+    assert one.attrs["threads"] == 1 and two.attrs["threads"] == 2
+    for name in one.data_vars:
+        assert np.array_equal(one[name].values, two[name].values, equal_nan=True), name
+    with pytest.raises(ValueError, match="threads"):
+        simulate(cfg, t_end=0.001, threads=0)
+
+
+def test_operating_point_cases_change_the_configuration_and_stop_at_the_wall_cap() -> None:
+    cfg = parse_config(changed())
+    fast = case_config(cfg, "full-speed-3000rpm")
+    assert fast.end_time == pytest.approx(0.1)
+    assert fast.operating.final_inner_ring_speed == pytest.approx(3000 * 2 * np.pi / 60)
+    assert case_config(cfg, "free-tilt").inner_ring.tilt == "free"
+    assert case_config(cfg, "axial-0N").operating.axial_load == 0.0
+    assert set(CASES) >= {"whole", "full-speed-500rpm", "free-tilt", "axial-0N"}
+    with pytest.raises(ValueError, match="case"):
+        case_config(cfg, "nope")
+    result = run_case(cfg, "full-speed-500rpm", max_wall=1.0)
+    assert not result.completed and 0.0 < result.reached < 0.1
+    assert "stopped after 1 s" in result.message
+    assert result.steps > 0 and result.sim_per_wall > 0.0
