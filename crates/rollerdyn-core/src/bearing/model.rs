@@ -154,14 +154,32 @@ pub struct Profile {
 
 /// What of a contact element depends on positions only.
 enum Geometry {
-    /// Per slice of a line contact: (normal A→B, location P_m, penetration δ).
-    Slices(Vec<(Vec3, Vec3, f64)>),
+    /// A line contact: per slice (normal A→B, location P_m, penetration δ), none when no
+    /// slice can touch; and the same at the film's quadrature points
+    /// ([`BearingModel::film_points`]), none without the film.
+    Line {
+        slices: Vec<(Vec3, Vec3, f64)>,
+        film: Vec<(Vec3, Vec3, f64)>,
+    },
     /// A line contact whose bodies are apart: the (negative) bound of its penetration,
     /// [`BearingModel::penetration_bound`]; no slice computed.
     Apart(f64),
     /// The detected roller end–flange contact (None: no valid pairing).
     End(Option<Contact>),
 }
+
+/// Gauss–Legendre nodes and weights on [−1, 1], 6 points (Abramowitz & Stegun, table
+/// 25.4): where the oil film of a line contact is evaluated. The film is smooth along the
+/// roller (its gap varies linearly with tilt and skew): 6 points integrate it as closely as
+/// B1's 20 slices would, at a third of the cost (test `six_gauss_points_integrate_the_film`).
+const GAUSS6: [(f64, f64); 6] = [
+    (-0.932_469_514_203_152, 0.171_324_492_379_170),
+    (-0.661_209_386_466_265, 0.360_761_573_048_139),
+    (-0.238_619_186_083_197, 0.467_913_934_572_691),
+    (0.238_619_186_083_197, 0.467_913_934_572_691),
+    (0.661_209_386_466_265, 0.360_761_573_048_139),
+    (0.932_469_514_203_152, 0.171_324_492_379_170),
+];
 
 /// One in how many contact evaluations the [`Profile`] times (a power of 2): a clock read
 /// costs about 25 ns, and timing every one of B1's 187 sections per right-hand side cost
@@ -196,6 +214,9 @@ pub struct BearingModel {
     slices: Vec<(f64, f64)>,
     /// The largest |s| of a slice centre and the largest slice radius [m].
     slice_reach: (f64, f64),
+    /// Where the oil film of a line contact is evaluated: 6-point Gauss–Legendre along the
+    /// straight length, (s, radius, weight as a length) [m].
+    film_points: Vec<(f64, f64, f64)>,
     slice_length: f64,
     pitch_radius: f64,
     elements: Vec<Element>,
@@ -237,6 +258,13 @@ impl BearingModel {
             .map(|j| {
                 let s = -0.5 * straight + (j as f64 + 0.5) * slice_length;
                 (s, r - params.crown_drop(s, straight))
+            })
+            .collect();
+        let film_points = GAUSS6
+            .iter()
+            .map(|&(x, w)| {
+                let s = 0.5 * straight * x;
+                (s, r - params.crown_drop(s, straight), 0.5 * straight * w)
             })
             .collect();
         let per_length = roller_mass.mass / straight;
@@ -304,6 +332,7 @@ impl BearingModel {
                 (f64::max(s, f64::abs(sj)), f64::max(r, rj))
             }),
             slices,
+            film_points,
             slice_length,
             pitch_radius,
             elements,
@@ -520,10 +549,8 @@ impl BearingModel {
         let geometry = if bound <= self.apart_below() {
             Geometry::Apart(bound)
         } else {
-            let slices = (0..self.slices.len())
-                .map(|j| self.slice_geometry(kind, a, b, j))
-                .collect();
-            Geometry::Slices(slices)
+            let (slices, film) = self.line_geometry(kind, a, b, bound);
+            Geometry::Line { slices, film }
         };
         self.spend(|pr| pr.line_contacts += elapsed(start));
         geometry
@@ -539,23 +566,50 @@ impl BearingModel {
         let fixed = Kinematics::fixed();
         let (a, b) = self.bodies(element, kin, &fixed);
         match (element.line_kind(), geometry) {
-            (Some(kind), Geometry::Slices(g)) => self.line_forces(kind, a, b, g.iter().copied()),
+            (Some(kind), Geometry::Line { slices, film }) => {
+                self.line_forces(kind, a, b, slices, film)
+            }
             (Some(_), Geometry::Apart(bound)) => Self::apart(*bound),
             (None, Geometry::End(c)) => self.flange_element_at(a, b, c.as_ref()),
             _ => unreachable!("geometry of another kind of element"),
         }
     }
 
-    /// Slice geometry (eqs. 2, 3) of slice j of roller `b` against body `a`:
-    /// (normal A→B, location P_m, penetration δ).
+    /// The slices' and the film points' geometry of a line contact whose penetration is at
+    /// most `bound` (no slice computed where it is negative: none touches).
+    #[allow(clippy::type_complexity)]
+    fn line_geometry(
+        &self,
+        kind: usize,
+        a: &Kinematics,
+        b: &Kinematics,
+        bound: f64,
+    ) -> (Vec<(Vec3, Vec3, f64)>, Vec<(Vec3, Vec3, f64)>) {
+        let slices = if bound > 0.0 {
+            let at = |&(s, radius): &(f64, f64)| self.slice_geometry(kind, a, b, s, radius);
+            self.slices.iter().map(at).collect()
+        } else {
+            Vec::new()
+        };
+        let film = if self.tribology.film.enabled {
+            let at = |&(s, radius, _): &(f64, f64, f64)| self.slice_geometry(kind, a, b, s, radius);
+            self.film_points.iter().map(at).collect()
+        } else {
+            Vec::new()
+        };
+        (slices, film)
+    }
+
+    /// Geometry (eqs. 2, 3) of the section at `s` along roller `b` (radius `radius`, for
+    /// two rollers both) against body `a`: (normal A→B, location P_m, penetration δ).
     fn slice_geometry(
         &self,
         kind: usize,
         a: &Kinematics,
         b: &Kinematics,
-        j: usize,
+        s: f64,
+        radius: f64,
     ) -> (Vec3, Vec3, f64) {
-        let (s, radius) = self.slices[j];
         let cb = b.center + s * b.axis;
         match kind {
             0 | 1 => {
@@ -578,9 +632,8 @@ impl BearingModel {
                 let perp = d - d.dot(&mean) * mean;
                 let dist = perp.norm();
                 let n = perp / dist;
-                let radius_a = self.slices[j].1;
-                let delta = radius + radius_a - dist;
-                (n, ca + n * (radius_a - 0.5 * delta), delta)
+                let delta = 2.0 * radius - dist;
+                (n, ca + n * (radius - 0.5 * delta), delta)
             }
         }
     }
@@ -590,8 +643,8 @@ impl BearingModel {
         if bound <= self.apart_below() {
             return Self::apart(bound);
         }
-        let slices = (0..self.slices.len()).map(|j| self.slice_geometry(kind, a, b, j));
-        self.line_forces(kind, a, b, slices)
+        let (slices, film) = self.line_geometry(kind, a, b, bound);
+        self.line_forces(kind, a, b, &slices, &film)
     }
 
     /// The penetration at and below which a line contact's slices carry nothing: the
@@ -641,15 +694,19 @@ impl BearingModel {
         }
     }
 
-    /// The forces of a line contact of `kind` from its slices' geometry (normal, location,
-    /// penetration): computed along the way by [`Self::line_element`], or given (from the
-    /// same positions) for Jacobian columns of velocities, which leave it unchanged.
+    /// The forces of a line contact of `kind` from its slices' and film points' geometry
+    /// (normal, location, penetration; [`Self::line_geometry`]): the paper's laws per
+    /// slice in contact, the oil film at its quadrature points. Computed along the way by
+    /// [`Self::line_element`], or given (from the same positions) for Jacobian columns of
+    /// velocities, which leave it unchanged. The penetration is the slices' largest, or
+    /// the film points' where no slice was computed.
     fn line_forces(
         &self,
         kind: usize,
         a: &Kinematics,
         b: &Kinematics,
-        slices: impl Iterator<Item = (Vec3, Vec3, f64)>,
+        slices: &[(Vec3, Vec3, f64)],
+        film: &[(Vec3, Vec3, f64)],
     ) -> ElementResult {
         let start = self.stopwatch();
         let mut out = ElementResult {
@@ -657,29 +714,33 @@ impl BearingModel {
             ..Default::default()
         };
         for (n, p, delta) in slices {
-            self.slice_into(&mut out, kind, a, b, &n, &p, delta);
+            out.penetration = out.penetration.max(*delta);
+            if *delta > 0.0 {
+                self.section_into(&mut out, kind, a, b, (n, p, *delta), None);
+            }
+        }
+        for ((n, p, delta), &(_, _, weight)) in film.iter().zip(&self.film_points) {
+            if slices.is_empty() {
+                out.penetration = out.penetration.max(*delta);
+            }
+            self.section_into(&mut out, kind, a, b, (n, p, *delta), Some(weight));
         }
         self.spend(|pr| pr.line_contacts += elapsed(start));
         out
     }
 
-    /// Adds the forces of one slice (normal `n`, location `p`, penetration `delta`) of a
-    /// line contact of `kind` to `out`.
-    #[allow(clippy::too_many_arguments)]
-    fn slice_into(
+    /// Adds the forces of one section (normal `n`, location `p`, penetration `delta`) of a
+    /// line contact of `kind` to `out`: the paper's slice laws ([`line_slice`]) for a slice,
+    /// or the oil film ([`film_slice`]) over the length `film` of a film point.
+    fn section_into(
         &self,
         out: &mut ElementResult,
         kind: usize,
         a: &Kinematics,
         b: &Kinematics,
-        n: &Vec3,
-        p: &Vec3,
-        delta: f64,
+        (n, p, delta): (&Vec3, &Vec3, f64),
+        film: Option<f64>,
     ) {
-        out.penetration = out.penetration.max(delta);
-        if delta <= self.apart_below() {
-            return;
-        }
         let rolling = n.cross(&b.axis).normalize();
         let frame = if kind == 2 {
             0.5 * (a.frame_velocity(p) + b.frame_velocity(p))
@@ -687,8 +748,8 @@ impl BearingModel {
             b.frame_velocity(p)
         };
         let (tri, line) = (&self.tribology, &self.kinds[kind]);
-        let mut f = if delta > 0.0 {
-            line_slice(
+        let f = match film {
+            None => line_slice(
                 tri,
                 line,
                 a,
@@ -699,23 +760,9 @@ impl BearingModel {
                 self.slice_length,
                 &rolling,
                 &frame,
-            )
-        } else {
-            ContactForces::default()
+            ),
+            Some(length) => film_slice(tri, line, a, b, n, p, delta, length, &rolling, &frame),
         };
-        let film = film_slice(
-            tri,
-            line,
-            a,
-            b,
-            n,
-            p,
-            delta,
-            self.slice_length,
-            &rolling,
-            &frame,
-        );
-        f.add(&film);
         if f.normal == 0.0 && f.tangential == Vec3::zeros() {
             return;
         }
@@ -927,7 +974,7 @@ impl BearingModel {
                     );
                     energy += 0.4 * hertz.force(c.penetration) * c.penetration;
                 }
-                (Geometry::Slices(slices), Some(kind)) => {
+                (Geometry::Line { slices, .. }, Some(kind)) => {
                     let law = &self.kinds[kind].law;
                     let e = 1.0 / law.k2 + 1.0;
                     for (_, _, delta) in slices {
@@ -1347,6 +1394,52 @@ mod tests {
                     (0.5..1.5).contains(&class_share),
                     "period {period}, residue {residue}: {class_share}"
                 );
+            }
+        }
+    }
+
+    /// The film's load (Martin and squeeze) over a 4 mm roller whose gap falls linearly
+    /// from 5 µm at its centre to `end` at one end (a tilted roller nearing the race), by
+    /// the 6 Gauss points against a fine midpoint rule (20 000 sections) and against 20
+    /// slices: the Gauss points are within 1.5 % for end gaps ≥ 0.5 µm and at least as
+    /// close as the slices.
+    #[test]
+    fn six_gauss_points_integrate_the_film() {
+        use crate::tribology::hydrodynamic::{film_line, RigidFilm};
+        let film = RigidFilm {
+            enabled: true,
+            cutoff: 100e-6,
+        };
+        let (length, sigma, eta, r) = (4e-3, 0.16e-6, 0.0165, 1.8e-3);
+        for end in [0.5e-6, 1e-6, 2e-6, 0.2e-6] {
+            for (u, rate) in [(0.3, 0.0), (1e-3, 1e-3)] {
+                let load = |s: f64| {
+                    let penetration = -(5e-6 - (5e-6 - end) * s / (0.5 * length));
+                    let (h, weight) = film.gap_and_weight(penetration, sigma).unwrap();
+                    weight * film_line(eta, r, h, u, rate).load
+                };
+                let midpoint = |n: usize| -> f64 {
+                    let dl = length / n as f64;
+                    (0..n)
+                        .map(|k| load(-0.5 * length + (k as f64 + 0.5) * dl) * dl)
+                        .sum()
+                };
+                let exact = midpoint(20_000);
+                let gauss: f64 = GAUSS6
+                    .iter()
+                    .map(|&(x, w)| load(0.5 * length * x) * 0.5 * length * w)
+                    .sum();
+                let (e_gauss, e_slices) = (
+                    (gauss / exact - 1.0).abs(),
+                    (midpoint(20) / exact - 1.0).abs(),
+                );
+                assert!(
+                    e_gauss <= e_slices + 1e-3,
+                    "{end} {u}: {e_gauss} vs {e_slices}"
+                );
+                if end >= 0.5e-6 {
+                    assert!(e_gauss < 0.015, "{end} {u}: {e_gauss}");
+                }
             }
         }
     }
