@@ -1,8 +1,8 @@
 """Whole runs of the operating points that decide how fast the dynamic model is
 (``rollerdyn bench mbs --cases``): the B1 run as the paper defines it, B1 brought to full
 speed quickly at 500 and 3000 rpm, with the inner ring free to tilt, and at other axial
-loads. Each is timed on one core with a wall-time cap; the table gives steps, Newton
-failures, right-hand sides and the simulated seconds per wall second."""
+loads. Each is timed on the given threads with a wall-time cap; the table gives steps,
+Newton failures, right-hand sides and the simulated seconds per wall second."""
 
 from __future__ import annotations
 
@@ -46,6 +46,7 @@ class CaseResult:
     """What one case's run did."""
 
     name: str
+    threads: int
     target: float
     reached: float
     completed: bool
@@ -79,8 +80,10 @@ def run_case(
     name: str,
     max_wall: float,
     progress: Callable[[Progress], None] | None = None,
+    threads: int = 1,
 ) -> CaseResult:
-    """Runs case ``name`` of ``cfg`` on this thread, stopped after ``max_wall`` seconds."""
+    """Runs case ``name`` of ``cfg`` on ``threads`` threads, stopped after ``max_wall``
+    seconds of wall time."""
     variant = case_config(cfg, name)
     start = time.monotonic()
 
@@ -91,13 +94,14 @@ def run_case(
 
     message = ""
     try:
-        ds = simulate(variant, progress=callback)
+        ds = simulate(variant, progress=callback, threads=threads)
     except SimulationError as err:
         ds, message = err.dataset, str(err).splitlines()[0]
     a = ds.attrs
     late = ds.frictional_torque.sel(time=slice(0.9 * float(ds.time[-1]), None))
     return CaseResult(
         name=name,
+        threads=int(a.get("threads", threads)),
         target=float(variant.end_time),
         reached=float(a["final_time_s"]),
         completed=bool(a["completed"]) and not message,

@@ -176,6 +176,14 @@ def bench(
             "bench_cases.csv to --output.",
         ),
     ] = None,
+    threads: Annotated[
+        str,
+        typer.Option(
+            "--threads",
+            help="mbs --cases: thread counts to run each case on, comma-separated (e.g. 1,2); "
+            "'all' for all cores. Default 1.",
+        ),
+    ] = "1",
     max_wall: Annotated[
         float,
         typer.Option(
@@ -237,7 +245,7 @@ def bench(
     if target == "model":
         _bench_model(cfg, state)
     if target == "mbs" and cases is not None:
-        _bench_cases(cfg, cases, max_wall, output)
+        _bench_cases(cfg, cases, _thread_counts(threads), max_wall, output)
     elif target == "mbs" and sweep_dt_max is not None:
         try:
             values = [float(v) for v in sweep_dt_max.split(",") if v.strip()]
@@ -367,7 +375,29 @@ def _runtime_study(cfg, t_end: float | None, dt_max_values: list, out: Path) -> 
     console.print(f"wrote {out / 'runtime_study.csv'} and " + ", ".join(str(p) for p in paths))
 
 
-def _bench_cases(cfg, cases: str, max_wall: float, out: Path) -> None:
+def _thread_counts(text: str) -> list[int]:
+    """``--threads`` of ``bench``: comma-separated counts or 'all'."""
+    from rich.markup import escape
+
+    from .simulation import default_threads
+
+    counts = []
+    for part in text.split(","):
+        part = part.strip()
+        if part == "all":
+            counts.append(default_threads())
+        elif part.isdigit() and int(part) >= 1:
+            counts.append(int(part))
+        else:
+            console.print(
+                f"[red]--threads = {escape(repr(text))}: must be comma-separated whole "
+                "numbers >= 1 or 'all'[/red]"
+            )
+            raise typer.Exit(2)
+    return counts
+
+
+def _bench_cases(cfg, cases: str, thread_counts: list, max_wall: float, out: Path) -> None:
     """Whole runs of the operating points of :mod:`rollerdyn.bench_cases`, one core."""
     import pandas as pd
 
@@ -391,17 +421,20 @@ def _bench_cases(cfg, cases: str, max_wall: float, out: Path) -> None:
         raise typer.Exit(2)
     results = []
     for name in names:
-        with console.status(f"{cfg.name}: case {name} ({CASES[name][0]})...") as status:
+        for n in thread_counts:
+            with console.status(f"{cfg.name}: case {name} ({CASES[name][0]})...") as status:
 
-            def show(p, status=status, name=name) -> None:
-                status.update(
-                    f"{cfg.name}: case {name}, t = {p.time:.4f} / {p.t_end:.4f} s, {p.steps} steps"
-                )
+                def show(p, status=status, name=name, n=n) -> None:
+                    status.update(
+                        f"{cfg.name}: case {name} on {n} thread(s), t = {p.time:.4f} / "
+                        f"{p.t_end:.4f} s, {p.steps} steps"
+                    )
 
-            results.append(run_case(cfg, name, max_wall, show))
-    table = Table(title=f"{cfg.name}: operating points, semi-analytical detector, one thread")
+                results.append(run_case(cfg, name, max_wall, show, threads=n))
+    table = Table(title=f"{cfg.name}: operating points, semi-analytical detector")
     cols = (
         "case",
+        "threads",
         "simulated [s]",
         "wall [s]",
         "sim s / wall s",
@@ -418,6 +451,7 @@ def _bench_cases(cfg, cases: str, max_wall: float, out: Path) -> None:
     for r in results:
         table.add_row(
             r.name,
+            str(r.threads),
             f"{r.reached:.4g} of {r.target:.4g}",
             f"{r.wall:.1f}",
             f"{r.sim_per_wall:.3g}",

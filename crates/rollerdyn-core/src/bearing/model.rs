@@ -152,6 +152,28 @@ pub struct Profile {
     pub gradient_fallbacks: usize,
 }
 
+/// One thread's share of the [`Profile`], on a cache line of its own.
+#[derive(Debug, Default)]
+#[repr(align(128))]
+struct ProfileSlot {
+    profile: Mutex<Profile>,
+    /// Sections entered so far (one in [`PROFILE_EVERY`] is timed, see [`sampled`]).
+    sections: AtomicU32,
+}
+
+impl Profile {
+    /// The sum of two profiles.
+    fn plus(&self, other: &Profile) -> Profile {
+        Profile {
+            detection: self.detection + other.detection,
+            line_contacts: self.line_contacts + other.line_contacts,
+            flange_forces: self.flange_forces + other.flange_forces,
+            detections: self.detections + other.detections,
+            gradient_fallbacks: self.gradient_fallbacks + other.gradient_fallbacks,
+        }
+    }
+}
+
 /// What of a contact element depends on positions only.
 enum Geometry {
     /// A line contact: per slice (normal A→B, location P_m, penetration δ), none when no
@@ -230,9 +252,8 @@ pub struct BearingModel {
     flange_bounds: [FlangeBounds; 4],
     /// The gradient detector's warm starts, one slot per roller end and flange.
     warm_starts: Vec<Mutex<[Option<Unknowns>; 6]>>,
-    profile: Mutex<Profile>,
-    /// Sections entered so far (one in [`PROFILE_EVERY`] is timed, see [`sampled`]).
-    sections: AtomicU32,
+    /// The profile, one slot per thread that evaluates the model ([`ProfileSlot`]).
+    profiles: Vec<ProfileSlot>,
     /// The threads that evaluate contacts and Jacobian columns (None: this thread only);
     /// see [`Self::with_threads`].
     pool: Option<Arc<rayon::ThreadPool>>,
@@ -341,8 +362,7 @@ impl BearingModel {
             flange_bounds,
             locked_axis: axis_from_angles(0.0, params.inner_ring_misalignment),
             warm_starts: (0..4 * z).map(|_| Mutex::new([None; 6])).collect(),
-            profile: Mutex::new(Profile::default()),
-            sections: AtomicU32::new(0),
+            profiles: vec![ProfileSlot::default()],
             pool: None,
             params,
         })
@@ -357,6 +377,7 @@ impl BearingModel {
         if threads == 0 {
             return Err(Error::invalid("threads", threads, ">= 1"));
         }
+        self.profiles = (0..=threads).map(|_| ProfileSlot::default()).collect();
         self.pool = if threads > 1 && self.params.detector != Detector::Gradient {
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
@@ -392,7 +413,9 @@ impl BearingModel {
 
     /// Time spent so far, by kind of work.
     pub fn profile(&self) -> Profile {
-        *self.profile.lock().unwrap_or_else(PoisonError::into_inner)
+        self.profiles.iter().fold(Profile::default(), |sum, slot| {
+            sum.plus(&slot.profile.lock().unwrap_or_else(PoisonError::into_inner))
+        })
     }
 
     /// Pitch radius [m].
@@ -552,7 +575,7 @@ impl BearingModel {
             let (slices, film) = self.line_geometry(kind, a, b, bound);
             Geometry::Line { slices, film }
         };
-        self.spend(|pr| pr.line_contacts += elapsed(start));
+        self.spend_time(start, |pr, t| pr.line_contacts += t);
         geometry
     }
 
@@ -725,7 +748,7 @@ impl BearingModel {
             }
             self.section_into(&mut out, kind, a, b, (n, p, *delta), Some(weight));
         }
-        self.spend(|pr| pr.line_contacts += elapsed(start));
+        self.spend_time(start, |pr, t| pr.line_contacts += t);
         out
     }
 
@@ -790,14 +813,30 @@ impl BearingModel {
     /// periodically, so that a fixed order of contacts cannot time the same ones always.
     fn stopwatch(&self) -> Option<Instant> {
         let n = self
+            .slot()
             .sections
             .fetch_add(1, Ordering::Relaxed)
             .wrapping_add(1);
         sampled(n).then(Instant::now)
     }
 
+    /// Adds the time of a section begun by [`Self::stopwatch`] (nothing to do when it was
+    /// not timed).
+    fn spend_time(&self, start: Option<Instant>, f: impl FnOnce(&mut Profile, f64)) {
+        if start.is_some() {
+            self.spend(|p| f(p, elapsed(start)));
+        }
+    }
+
     fn spend(&self, f: impl FnOnce(&mut Profile)) {
-        f(&mut self.profile.lock().unwrap_or_else(PoisonError::into_inner));
+        f(&mut self.slot().profile.lock().unwrap_or_else(PoisonError::into_inner));
+    }
+
+    /// This thread's profile slot: the pool's threads have one each, other threads share
+    /// the first (so that the threads never contend for one lock or cache line).
+    fn slot(&self) -> &ProfileSlot {
+        let index = rayon::current_thread_index().map_or(0, |i| i + 1);
+        &self.profiles[index % self.profiles.len()]
     }
 
     /// The flange k of a ring body at its current pose.
@@ -936,7 +975,7 @@ impl BearingModel {
                 ..Default::default()
             };
             self.accumulate(&mut out, &film, &c.normal, &p, ring, roller);
-            self.spend(|pr| pr.flange_forces += elapsed(start));
+            self.spend_time(start, |pr, t| pr.flange_forces += t);
             return out;
         }
         out.location = p;
@@ -955,7 +994,7 @@ impl BearingModel {
         );
         f.normal += squeeze_force;
         self.accumulate(&mut out, &f, &c.normal, &p, ring, roller);
-        self.spend(|pr| pr.flange_forces += elapsed(start));
+        self.spend_time(start, |pr, t| pr.flange_forces += t);
         out
     }
 
