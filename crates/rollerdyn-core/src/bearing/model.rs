@@ -5,7 +5,14 @@
 //! contacts by slices, eqs. 2, 3, 11), the neighbour i+1 (slices, eq. 11), and its two
 //! ends against the two inner-ring and the two outer-ring flanges (the detector of the
 //! configuration, Hertz eqs. 5–8). Every force acts at its own contact location; the
-//! moment on each body is (P_m − c) × F (model-notes, "Forces and moments").
+//! moment on each body is (P_m − c) × F (model-notes, "Forces and moments"). Beyond the
+//! paper: the oil film of the line contacts across their gaps (at 6 Gauss points along the
+//! roller, [`crate::tribology::hydrodynamic`]), the squeeze film at the flanges, the drag of
+//! the oil–air mixture on every roller ([`crate::tribology::drag`]) and gravity.
+//!
+//! The contacts of a right-hand side and the columns of a Jacobian are computed apart, on
+//! the model's threads if it has any ([`BearingModel::with_threads`]), and summed in a fixed
+//! order: the numbers do not depend on the thread count.
 //!
 //! The Jacobian is built by finite differences per body: perturbing one state of
 //! roller i re-evaluates only roller i's eight contacts, and changes only the rows of
@@ -234,7 +241,7 @@ pub struct BearingModel {
     ellipse: EllipseKind,
     /// Slice centres along the roller axis and their radii (crowning) [m].
     slices: Vec<(f64, f64)>,
-    /// The largest |s| of a slice centre and the largest slice radius [m].
+    /// The largest |s| of a slice centre or film point and the largest radius there [m].
     slice_reach: (f64, f64),
     /// Where the oil film of a line contact is evaluated: 6-point Gauss–Legendre along the
     /// straight length, (s, radius, weight as a length) [m].
@@ -281,7 +288,7 @@ impl BearingModel {
                 (s, r - params.crown_drop(s, straight))
             })
             .collect();
-        let film_points = GAUSS6
+        let film_points: Vec<(f64, f64, f64)> = GAUSS6
             .iter()
             .map(|&(x, w)| {
                 let s = 0.5 * straight * x;
@@ -349,9 +356,12 @@ impl BearingModel {
             tribology,
             kinds,
             ellipse,
-            slice_reach: slices.iter().fold((0.0, 0.0), |(s, r), &(sj, rj)| {
-                (f64::max(s, f64::abs(sj)), f64::max(r, rj))
-            }),
+            // Over the slices and the film points, so that the bound holds for both.
+            slice_reach: (slices.iter().copied())
+                .chain(film_points.iter().map(|&(s, r, _)| (s, r)))
+                .fold((0.0, 0.0), |(s, r), (sj, rj)| {
+                    (f64::max(s, f64::abs(sj)), f64::max(r, rj))
+                }),
             slices,
             film_points,
             slice_length,
@@ -829,7 +839,11 @@ impl BearingModel {
     }
 
     fn spend(&self, f: impl FnOnce(&mut Profile)) {
-        f(&mut self.slot().profile.lock().unwrap_or_else(PoisonError::into_inner));
+        f(&mut self
+            .slot()
+            .profile
+            .lock()
+            .unwrap_or_else(PoisonError::into_inner));
     }
 
     /// This thread's profile slot: the pool's threads have one each, other threads share
