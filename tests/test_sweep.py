@@ -252,7 +252,7 @@ def test_a_run_writes_its_file_atomically(tmp_path, monkeypatch):
 def test_a_failed_run_keeps_its_partial_file_and_its_error(tmp_path, monkeypatch):
     partial = serial("0 N").isel(time=slice(0, 3))
 
-    def failing(cfg, t_end=None, detector=None, progress=None, resume=None):
+    def failing(cfg, t_end=None, detector=None, progress=None, resume=None, threads=None):
         raise SimulationError("step size too small at t = 0.5 ms", partial)
 
     monkeypatch.setattr("rollerdyn.simulation.simulate", failing)

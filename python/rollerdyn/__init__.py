@@ -13,11 +13,13 @@ from .report import report  # the function; its module: from rollerdyn.report im
 from .sweep import sweep  # the function; its module: from rollerdyn.sweep import ...
 
 
-def simulate(config, t_end=None, detector=None, progress=None, resume=None):
+def simulate(config, t_end=None, detector=None, progress=None, resume=None, threads=None):
     """Run the dynamic model; see :func:`rollerdyn.simulation.simulate`."""
     from .simulation import simulate as _simulate
 
-    return _simulate(config, t_end=t_end, detector=detector, progress=progress, resume=resume)
+    return _simulate(
+        config, t_end=t_end, detector=detector, progress=progress, resume=resume, threads=threads
+    )
 
 
 __all__ = [

@@ -332,7 +332,8 @@ def run_one(
     try:
         cfg = parse_config(data, si_numbers=si_numbers)
         try:
-            ds = simulate(cfg, t_end=t_end, detector=detector)
+            # One thread per run: the sweep runs its points in parallel already.
+            ds = simulate(cfg, t_end=t_end, detector=detector, threads=1)
         except SimulationError as err:
             ds, status, error = err.dataset, "failed", str(err)
         numbers = summarize(ds)
