@@ -3,7 +3,7 @@
 //! Hertz point contact (fit and exact). Run: `cargo bench -p rollerdyn-core`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use rollerdyn_core::bearing::forces::{line_slice, LineKind, Tribology};
+use rollerdyn_core::bearing::forces::{line_slice, LineKind, Section, Tribology};
 use rollerdyn_core::bearing::state::Kinematics;
 use rollerdyn_core::geometry::primitives::Vec3;
 use rollerdyn_core::tribology::film::{thermal_correction, FilmInputs, ThermalCorrection};
@@ -146,14 +146,16 @@ fn slice(c: &mut Criterion) {
             line_slice(
                 &tribology,
                 &kind,
-                &ring,
-                black_box(&roller),
-                &normal,
-                &location,
-                black_box(5e-6),
-                5e-4,
-                &rolling,
-                &frame,
+                &Section {
+                    a: &ring,
+                    b: black_box(&roller),
+                    normal,
+                    location,
+                    penetration: black_box(5e-6),
+                    length: 5e-4,
+                    rolling,
+                    frame,
+                },
             )
         })
     });

@@ -197,6 +197,59 @@ fn rolling_axis(body: &Kinematics, p: &Vec3, rolling: &Vec3) -> Vec3 {
     (p - body.center).cross(rolling).normalize()
 }
 
+/// One section of a line contact as its force laws see it: a slice ([`line_slice`]) or a
+/// point of the oil film ([`film_slice`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Section<'a> {
+    /// Body A (a ring, or roller i of a pair).
+    pub a: &'a Kinematics,
+    /// Body B (roller i, or roller i+1 of a pair).
+    pub b: &'a Kinematics,
+    /// Unit normal from A to B.
+    pub normal: Vec3,
+    /// Contact location P_m [m].
+    pub location: Vec3,
+    /// Penetration δ (negative: a gap) [m].
+    pub penetration: f64,
+    /// Length of the contact the section stands for [m].
+    pub length: f64,
+    /// Unit rolling direction (n × roller axis).
+    pub rolling: Vec3,
+    /// Velocity of the contact location [m/s].
+    pub frame: Vec3,
+}
+
+impl Section<'_> {
+    /// Surface speeds of A and B relative to the contact frame in the tangent plane, and
+    /// the rate of penetration.
+    #[inline]
+    fn speeds(&self) -> (Vec3, Vec3, f64) {
+        tangential_speeds(self.a, self.b, &self.location, &self.normal, &self.frame)
+    }
+
+    /// Pure moments against the rolling of both bodies (surface speeds `u` along the
+    /// rolling direction), of the size `size(arm)` for a body whose centre is `arm` from
+    /// the contact, switched smoothly with the direction of rolling (tanh(u/v_s)).
+    #[inline]
+    fn rolling_moments(
+        &self,
+        out: &mut ContactForces,
+        tri: &Tribology,
+        (ua, ub): (f64, f64),
+        size: impl Fn(f64) -> f64,
+    ) {
+        let v_s = tri.boundary.smoothing_speed;
+        for (body, u, moment) in [
+            (self.a, ua, &mut out.moment_a),
+            (self.b, ub, &mut out.moment_b),
+        ] {
+            let arm = (self.location - body.center).norm();
+            let axis = rolling_axis(body, &self.location, &self.rolling);
+            *moment = -(size(arm) * (u / v_s).tanh()) * axis;
+        }
+    }
+}
+
 /// One slice of a line contact (paper sect. 3.1.3, 3.2, 3.3): normal force by eq. 11 with
 /// damping, film by Moes (eqs. 33–38, from the table [`MoesTable`]; for counter-rotating
 /// surfaces the greater of Moes and ZEV, eqs. 39–44) with the thermal correction (eq. 47),
@@ -204,27 +257,19 @@ fn rolling_axis(body: &Kinematics, p: &Vec3, rolling: &Vec3) -> Vec3 {
 /// boundary friction (eqs. 51, 52), mixed by eqs. 53, 54, and for race contacts rolling
 /// resistance (eqs. 55–57) as pure moments on both bodies against their rolling.
 ///
-/// `rolling` is the unit rolling direction (n × roller axis), `frame` the velocity of the
-/// contact location, `length` the slice length.
-#[allow(clippy::too_many_arguments)]
-pub fn line_slice(
-    tri: &Tribology,
-    kind: &LineKind,
-    a: &Kinematics,
-    b: &Kinematics,
-    normal: &Vec3,
-    location: &Vec3,
-    penetration: f64,
-    length: f64,
-    rolling: &Vec3,
-    frame: &Vec3,
-) -> ContactForces {
+pub fn line_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> ContactForces {
+    let Section {
+        penetration,
+        length,
+        rolling,
+        ..
+    } = *section;
     if penetration <= 0.0 {
         return ContactForces::default();
     }
     let elastic = kind.law.force(penetration, length);
     let stiffness = elastic / (kind.law.k2 * penetration);
-    let (ua, ub, rate) = tangential_speeds(a, b, location, normal, frame);
+    let (ua, ub, rate) = section.speeds();
     let f_n = damped_normal_force(
         elastic,
         stiffness,
@@ -238,7 +283,7 @@ pub fn line_slice(
             ..Default::default()
         };
     }
-    let (ua_r, ub_r) = (ua.dot(rolling), ub.dot(rolling));
+    let (ua_r, ub_r) = (ua.dot(&rolling), ub.dot(&rolling));
     let slip = ub - ua;
     let slip_norm = (slip.norm_squared() + SLIP_FLOOR * SLIP_FLOOR).sqrt();
     let u0 = tri.regularised(0.5 * (ua_r + ub_r));
@@ -272,12 +317,9 @@ pub fn line_slice(
     if kind.rolling_resistance {
         let m_b = hysteresis_moment(tri.hysteresis_coefficient, f_n, half_width);
         let f_r = ehl_rolling_force(kind.e_prime, kind.r_eff, length, tri.eta0, u0, f_n) * phi_th;
-        let v_s = tri.boundary.smoothing_speed;
-        for (body, u, moment) in [(a, ua_r, &mut out.moment_a), (b, ub_r, &mut out.moment_b)] {
-            let arm = (location - body.center).norm();
-            let size = LoadSharing::mix_by_share(share, m_b, f_r * arm);
-            *moment = -(size * (u / v_s).tanh()) * rolling_axis(body, location, rolling);
-        }
+        section.rolling_moments(&mut out, tri, (ua_r, ub_r), |arm| {
+            LoadSharing::mix_by_share(share, m_b, f_r * arm)
+        });
     }
     out
 }
@@ -289,24 +331,18 @@ pub fn line_slice(
 /// against their rolling, in the form of the EHL rolling resistance of [`line_slice`].
 /// The mean surface speed is regularised as the EHL film's ([`Tribology::regularised`]).
 /// Zero where the film does not act ([`RigidFilm::gap_and_weight`]).
-#[allow(clippy::too_many_arguments)]
-pub fn film_slice(
-    tri: &Tribology,
-    kind: &LineKind,
-    a: &Kinematics,
-    b: &Kinematics,
-    normal: &Vec3,
-    location: &Vec3,
-    penetration: f64,
-    length: f64,
-    rolling: &Vec3,
-    frame: &Vec3,
-) -> ContactForces {
+pub fn film_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> ContactForces {
+    let Section {
+        penetration,
+        length,
+        rolling,
+        ..
+    } = *section;
     let Some((gap, weight)) = tri.film.gap_and_weight(penetration, kind.roughness) else {
         return ContactForces::default();
     };
-    let (ua, ub, rate) = tangential_speeds(a, b, location, normal, frame);
-    let (ua_r, ub_r) = (ua.dot(rolling), ub.dot(rolling));
+    let (ua, ub, rate) = section.speeds();
+    let (ua_r, ub_r) = (ua.dot(&rolling), ub.dot(&rolling));
     let u_m = tri.regularised(0.5 * (ua_r + ub_r));
     let film = film_line(tri.eta0, kind.r_eff, gap, u_m, rate);
     let scale = weight * length;
@@ -319,12 +355,9 @@ pub fn film_slice(
         return out;
     }
     out.tangential = -(scale * film.shear) * (ub - ua);
-    let v_s = tri.boundary.smoothing_speed;
-    for (body, u, moment) in [(a, ua_r, &mut out.moment_a), (b, ub_r, &mut out.moment_b)] {
-        let arm = (location - body.center).norm();
-        let size = scale * film.rolling * arm;
-        *moment = -(size * (u / v_s).tanh()) * rolling_axis(body, location, rolling);
-    }
+    section.rolling_moments(&mut out, tri, (ua_r, ub_r), |arm| {
+        scale * film.rolling * arm
+    });
     out
 }
 
@@ -573,31 +606,32 @@ mod tests {
         (kind, ring, roller, location)
     }
 
-    /// Film and EHL forces of one slice, as the model sums them.
-    fn slice_total(penetration: f64, roller_spin: f64) -> ContactForces {
+    /// The forces of `law` (the slice's or the film's) on B1's inner race section.
+    fn forces_at(
+        penetration: f64,
+        roller_spin: f64,
+        law: fn(&Tribology, &LineKind, &Section) -> ContactForces,
+    ) -> ContactForces {
         let tri = tribology();
         let (kind, ring, roller, p) = inner_slice(penetration, roller_spin);
         let n = Vec3::y();
-        let rolling = n.cross(&roller.axis).normalize();
-        let frame = roller.frame_velocity(&p);
-        let args = (
-            &tri,
-            &kind,
-            &ring,
-            &roller,
-            &n,
-            &p,
+        let section = Section {
+            a: &ring,
+            b: &roller,
+            normal: n,
+            location: p,
             penetration,
-            0.22e-3,
-            &rolling,
-            &frame,
-        );
-        let mut f = line_slice(
-            args.0, args.1, args.2, args.3, args.4, args.5, args.6, args.7, args.8, args.9,
-        );
-        f.add(&film_slice(
-            args.0, args.1, args.2, args.3, args.4, args.5, args.6, args.7, args.8, args.9,
-        ));
+            length: 0.22e-3,
+            rolling: n.cross(&roller.axis).normalize(),
+            frame: roller.frame_velocity(&p),
+        };
+        law(&tri, &kind, &section)
+    }
+
+    /// Film and EHL forces of one slice, as the model sums them.
+    fn slice_total(penetration: f64, roller_spin: f64) -> ContactForces {
+        let mut f = forces_at(penetration, roller_spin, line_slice);
+        f.add(&forces_at(penetration, roller_spin, film_slice));
         f
     }
 
@@ -634,17 +668,7 @@ mod tests {
         let total = |delta: f64| slice_total(delta, spin).normal;
         let (below, above) = (total(-e), total(e));
         assert!((above - below).abs() < 1e-6 * below, "{below} {above}");
-        let tri = tribology();
-        let film = |delta: f64| {
-            let (kind, ring, roller, p) = inner_slice(delta, spin);
-            let frame = roller.frame_velocity(&p);
-            let n = Vec3::y();
-            let rolling = n.cross(&roller.axis);
-            film_slice(
-                &tri, &kind, &ring, &roller, &n, &p, delta, 0.22e-3, &rolling, &frame,
-            )
-            .normal
-        };
+        let film = |delta: f64| forces_at(delta, spin, film_slice).normal;
         // Slope scale: Martin's load over σ (the film's own length scale).
         let scale = film(0.0) / 0.16e-6;
         let d = 1e-10;
@@ -661,21 +685,7 @@ mod tests {
             .fold(0.0, f64::max);
         assert!(largest < 0.5 * film(0.0), "{steps:?}");
         // Deep in contact (δ ≥ σ) only the paper's laws act.
-        let (kind, ring, roller, p) = inner_slice(0.5e-6, spin);
-        let tri = tribology();
-        let n = Vec3::y();
-        let film = film_slice(
-            &tri,
-            &kind,
-            &ring,
-            &roller,
-            &n,
-            &p,
-            0.5e-6,
-            0.22e-3,
-            &Vec3::z(),
-            &Vec3::zeros(),
-        );
+        let film = forces_at(0.5e-6, spin, film_slice);
         assert_eq!(film, ContactForces::default());
     }
 }

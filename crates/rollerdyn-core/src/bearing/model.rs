@@ -22,7 +22,7 @@
 
 use super::forces::{
     end_flange, film_slice, line_slice, penetration_rate, ContactForces, EllipseKind, LineKind,
-    Tribology,
+    Section, Tribology,
 };
 use super::params::{BearingParams, Detector};
 use super::state::{ring_kinematics, roller_kinematics, Kinematics, Layout, ROLLER_STATES};
@@ -781,20 +781,19 @@ impl BearingModel {
             b.frame_velocity(p)
         };
         let (tri, line) = (&self.tribology, &self.kinds[kind]);
+        let section = Section {
+            a,
+            b,
+            normal: *n,
+            location: *p,
+            penetration: delta,
+            length: film.unwrap_or(self.slice_length),
+            rolling,
+            frame,
+        };
         let f = match film {
-            None => line_slice(
-                tri,
-                line,
-                a,
-                b,
-                n,
-                p,
-                delta,
-                self.slice_length,
-                &rolling,
-                &frame,
-            ),
-            Some(length) => film_slice(tri, line, a, b, n, p, delta, length, &rolling, &frame),
+            None => line_slice(tri, line, &section),
+            Some(_) => film_slice(tri, line, &section),
         };
         if f.normal == 0.0 && f.tangential == Vec3::zeros() {
             return;
