@@ -112,3 +112,58 @@ def test_operating_point_cases_change_the_configuration_and_stop_at_the_wall_cap
     assert not result.completed and 0.0 < result.reached < 0.1
     assert "stopped after 1 s" in result.message
     assert result.steps > 0 and result.sim_per_wall > 0.0
+
+
+# --------------------------------------------------------------------------- equilibrium start
+
+
+def _no_ramps(**changes) -> dict:
+    data = changed(**{"solver.start": "equilibrium", **changes})
+    data["operating"].pop("load_ramp")
+    data["operating"].pop("speed_ramp")
+    return data
+
+
+def test_equilibrium_start_gives_the_quasi_static_load_distribution() -> None:
+    """Without gravity and axial load, at 500 rpm, the equilibrium's race loads are those of
+    the quasi-static solution with the same stiffness model (Harris & Kotzalas 2007, sect.
+    7.2, per roller; tests/test_dynamics.py), within 2 % of the heaviest as for the settled
+    dynamic run (test a); the centrifugal force of a roller, 3.5 mN, is far below that."""
+    from test_dynamics import quasi_static_loads
+
+    cfg = parse_config(
+        _no_ramps(
+            **{
+                "operating.gravity": "0 m/s^2",
+                "operating.axial_load": "0 N",
+                "operating.end_time": "0.2 ms",
+                "solver.output_interval": "0.1 ms",
+            }
+        )
+    )
+    ds = simulate(cfg, threads=1)
+    computed = ds.inner_normal_force.isel(time=0).values
+    expected, _ = quasi_static_loads(cfg)
+    assert np.abs(computed - expected).max() < 0.02 * expected.max(), (computed, expected)
+
+
+def test_a_run_from_equilibrium_at_full_load_and_speed_starts_settled() -> None:
+    """B1 at 5000 N, 1000 N and 500 rpm from t = 0, no ramps: the equilibrium puts the ring
+    where the dynamic run settles (the whole B1 run's steady state: 48.5 um axially,
+    -20.8 um radially, docs/dynamics.md) and the ring moves by less than 0.5 um over the
+    first 5 ms (at rest on the pitch circle it would fall through its 5 um of clearance and
+    travel 48 um axially)."""
+    cfg = parse_config(
+        _no_ramps(**{"operating.end_time": "5 ms", "solver.output_interval": "0.5 ms"})
+    )
+    ds = simulate(cfg, threads=1)
+    ring = ds.ring_position.values
+    assert abs(ring[0, 0] - 48.5e-6) < 0.5e-6 and abs(ring[0, 1] + 20.8e-6) < 0.5e-6, ring[0]
+    assert np.abs(ring - ring[0]).max() < 0.5e-6, np.abs(ring - ring[0]).max()
+    assert ds.inner_normal_force.isel(time=0).max() > 1000.0
+
+
+def test_no_equilibrium_is_a_clear_error_naming_the_residual_and_the_body() -> None:
+    cfg = parse_config(_no_ramps(**{"operating.radial_load": "1e7 N"}))
+    with pytest.raises(ValueError, match=r"no equilibrium found .* residual force .* inner ring"):
+        simulate(cfg, t_end=0.001, threads=1)

@@ -22,13 +22,29 @@ _SHORT_RAMPS = {
     "operating.end_time": "0.1 s",
 }
 
-#: Name -> (what it is, dotted changes to the configuration).
+#: Full load and speed from t = 0, started from the quasi-static equilibrium, to 0.1 s.
+_FROM_EQUILIBRIUM = {
+    "operating.load_ramp": None,
+    "operating.speed_ramp": None,
+    "operating.end_time": "0.1 s",
+    "solver.start": "equilibrium",
+}
+
+#: Name -> (what it is, dotted changes to the configuration; None removes a key).
 CASES: dict[str, tuple[str, dict[str, Any]]] = {
     "whole": ("the configuration as it is (B1: the paper's run)", {}),
     "full-speed-500rpm": ("loads over 20 ms, 500 rpm over 20-40 ms, to 0.1 s", _SHORT_RAMPS),
     "full-speed-3000rpm": (
         "the same at 3000 rpm",
         {**_SHORT_RAMPS, "operating.inner_ring_speed": "3000 rpm"},
+    ),
+    "equilibrium-500rpm": (
+        "full load and 500 rpm from an equilibrium start, to 0.1 s",
+        _FROM_EQUILIBRIUM,
+    ),
+    "equilibrium-3000rpm": (
+        "the same at 3000 rpm",
+        {**_FROM_EQUILIBRIUM, "operating.inner_ring_speed": "3000 rpm"},
     ),
     "free-tilt": ("the whole run with inner_ring.tilt = free", {"inner_ring.tilt": "free"}),
     "axial-0N": ("the whole run with no axial load", {"operating.axial_load": "0 N"}),
@@ -72,7 +88,15 @@ def case_config(cfg: BearingConfig, name: str) -> BearingConfig:
     changes = CASES[name][1]
     if not changes:
         return cfg
-    return parse_config(_changed(cfg.model_dump(), changes), si_numbers=True)
+    data = cfg.model_dump()
+    for path in [p for p, v in changes.items() if v is None]:
+        *parents, key = path.split(".")
+        section = data
+        for part in parents:
+            section = section[part]
+        section.pop(key, None)
+    kept = {p: v for p, v in changes.items() if v is not None}
+    return parse_config(_changed(data, kept), si_numbers=True)
 
 
 def run_case(

@@ -170,7 +170,8 @@ def bench(
             "--cases",
             help="mbs: comma-separated operating points to run with the semi-analytical "
             "detector instead of the detector comparison: whole, full-speed-500rpm, "
-            "full-speed-3000rpm, free-tilt, axial-0N, axial-500N, axial-2000N, axial-3000N; "
+            "full-speed-3000rpm, equilibrium-500rpm, equilibrium-3000rpm, free-tilt, axial-0N, "
+            "axial-500N, axial-2000N, axial-3000N; "
             "'default' (the first five) or 'all'. Prints steps, Newton failures, right-hand "
             "sides, wall time [s] and simulated seconds per wall second, and writes "
             "bench_cases.csv to --output.",

@@ -918,6 +918,7 @@ class SolverConfig(_Section):
     output_interval: Quantity("time", positive=True) = "1e-4 s"
     checkpoint_interval: Quantity("time", positive=True) = "100 ms"
     detector: Literal["semi-analytical", "gradient", "mesh"] = "semi-analytical"
+    start: Literal["rest", "equilibrium"] = "rest"
     method: Literal["tr-bdf2", "esdirk34"] = "tr-bdf2"
     max_step_growth: Number(gt=1.0, le=10.0) = 1.3
     step_gain: Number(gt=0.0, le=1.0) = 0.3

@@ -353,6 +353,7 @@ def simulate(
         "jacobian_after_newton_failure": s.jacobian_after_newton_failure,
         "checkpoint_interval": s.checkpoint_interval,
         "threads": threads,
+        "start": s.start,
     }
 
     def callback(t, t_end_, steps, rhs, jac, step):

@@ -986,6 +986,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyEhlTraction>()?;
     m.add_function(wrap_pyfunction!(simulation::simulate, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::initial_state, m)?)?;
+    m.add_function(wrap_pyfunction!(simulation::equilibrium_state, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::model_rhs, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::model_timing, m)?)?;
     m.add_function(wrap_pyfunction!(simulation::model_energy, m)?)?;
@@ -1220,7 +1221,31 @@ mod simulation {
                 })?),
                 _ => None,
             },
+            start_from_equilibrium: match d.get_item("start")? {
+                Some(v) if !v.is_none() => match v.extract::<String>()?.as_str() {
+                    "rest" => false,
+                    "equilibrium" => true,
+                    other => {
+                        return Err(PyValueError::new_err(format!(
+                            "start = {other}: must be rest or equilibrium"
+                        )))
+                    }
+                },
+                _ => false,
+            },
         })
+    }
+
+    /// The quasi-static equilibrium state at time t (`solver.start = "equilibrium"`), or
+    /// ValueError with the residual and the body where there is none.
+    #[pyfunction]
+    pub fn equilibrium_state(
+        params: &Bound<'_, PyDict>,
+        traction: &PyEhlTraction,
+        t: f64,
+    ) -> PyResult<Vec<f64>> {
+        let model = BearingModel::new(self::params(params, &traction.inner)?).map_err(core_err)?;
+        model.equilibrium_state(t).map_err(core_err)
     }
 
     /// Checks a parameter set and returns the initial state (or raises ValueError).

@@ -6,6 +6,7 @@ pub mod model;
 pub mod params;
 pub mod run;
 pub mod state;
+pub mod statics;
 
 pub use model::BearingModel;
 pub use params::{BearingParams, Detector, History, SurfacePair};

@@ -35,6 +35,9 @@ pub struct RunOptions {
     pub checkpoint_interval: Option<f64>,
     /// Step-size control and Jacobian renewal of the solver.
     pub step_control: StepControl,
+    /// Start (without a checkpoint) from the quasi-static equilibrium of the loads and speed
+    /// at t = 0 ([`BearingModel::equilibrium_state`]) instead of at rest on the pitch circle.
+    pub start_from_equilibrium: bool,
 }
 
 /// A checkpoint of a bearing run.
@@ -170,7 +173,11 @@ pub fn run(
         Some(s) => s,
         None => Start {
             time: 0.0,
-            state: model.initial_state()?,
+            state: if options.start_from_equilibrium {
+                model.equilibrium_state(0.0)?
+            } else {
+                model.initial_state()?
+            },
             step: None,
         },
     };

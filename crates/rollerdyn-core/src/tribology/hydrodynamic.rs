@@ -65,11 +65,7 @@ impl RigidFilm {
 
     /// Widest gap at which the film acts [m] (0 when disabled).
     pub fn reach(&self) -> f64 {
-        if self.enabled {
-            self.cutoff
-        } else {
-            0.0
-        }
+        f64::from(u8::from(self.enabled)) * self.cutoff
     }
 
     /// The film's gap h₀ and weight at the signed penetration δ (negative: gap −δ) for the
