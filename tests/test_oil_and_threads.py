@@ -167,3 +167,10 @@ def test_no_equilibrium_is_a_clear_error_naming_the_residual_and_the_body() -> N
     cfg = parse_config(_no_ramps(**{"operating.radial_load": "1e7 N"}))
     with pytest.raises(ValueError, match=r"no equilibrium found .* residual force .* inner ring"):
         simulate(cfg, t_end=0.001, threads=1)
+
+
+def test_a_case_that_cannot_start_is_reported_not_raised() -> None:
+    cfg = parse_config(changed(**{"operating.radial_load": "1e7 N"}))
+    result = run_case(cfg, "equilibrium-500rpm", max_wall=10.0)
+    assert not result.completed and result.steps == 0
+    assert "no equilibrium found" in result.message

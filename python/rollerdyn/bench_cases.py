@@ -99,6 +99,25 @@ def case_config(cfg: BearingConfig, name: str) -> BearingConfig:
     return parse_config(_changed(data, kept), si_numbers=True)
 
 
+def _refused(name: str, threads: int, target: float, start: float, err: Exception) -> CaseResult:
+    """The result of a case that could not run, with the reason."""
+    return CaseResult(
+        name=name,
+        threads=threads,
+        target=target,
+        reached=0.0,
+        completed=False,
+        wall=time.monotonic() - start,
+        steps=0,
+        rejected=0,
+        newton_failures=0,
+        rhs=0,
+        jacobians=0,
+        torque=float("nan"),
+        message=" ".join(str(err).split()),
+    )
+
+
 def run_case(
     cfg: BearingConfig,
     name: str,
@@ -108,8 +127,11 @@ def run_case(
 ) -> CaseResult:
     """Runs case ``name`` of ``cfg`` on ``threads`` threads, stopped after ``max_wall``
     seconds of wall time."""
-    variant = case_config(cfg, name)
     start = time.monotonic()
+    try:
+        variant = case_config(cfg, name)
+    except ValueError as err:  # the case does not apply to this configuration
+        return _refused(name, threads, float(cfg.end_time), start, err)
 
     def callback(p: Progress) -> bool:
         if progress is not None:
@@ -121,6 +143,8 @@ def run_case(
         ds = simulate(variant, progress=callback, threads=threads)
     except SimulationError as err:
         ds, message = err.dataset, str(err).splitlines()[0]
+    except ValueError as err:  # refused before the first step (e.g. no equilibrium)
+        return _refused(name, threads, float(variant.end_time), start, err)
     a = ds.attrs
     late = ds.frictional_torque.sel(time=slice(0.9 * float(ds.time[-1]), None))
     return CaseResult(

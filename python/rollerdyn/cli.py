@@ -162,7 +162,12 @@ def bench(
     ] = None,
     output: Annotated[
         Path,
-        typer.Option("--output", "-o", help="mbs --sweep-dt-max: directory for table and plot."),
+        typer.Option(
+            "--output",
+            "-o",
+            help="mbs --sweep-dt-max: directory for table and plot; mbs --cases: directory "
+            "for bench_cases.csv.",
+        ),
     ] = Path("runtime-study"),
     cases: Annotated[
         str | None,
@@ -399,7 +404,8 @@ def _thread_counts(text: str) -> list[int]:
 
 
 def _bench_cases(cfg, cases: str, thread_counts: list, max_wall: float, out: Path) -> None:
-    """Whole runs of the operating points of :mod:`rollerdyn.bench_cases`, one core."""
+    """Whole runs of the operating points of :mod:`rollerdyn.bench_cases` on the given
+    thread counts."""
     import pandas as pd
 
     from .bench_cases import CASES, DEFAULT_CASES, run_case
