@@ -126,17 +126,22 @@ def run_case(
     threads: int = 1,
 ) -> CaseResult:
     """Runs case ``name`` of ``cfg`` on ``threads`` threads, stopped after ``max_wall``
-    seconds of wall time."""
+    seconds of wall time from its first output (building the model comes before)."""
     start = time.monotonic()
     try:
         variant = case_config(cfg, name)
     except ValueError as err:  # the case does not apply to this configuration
         return _refused(name, threads, float(cfg.end_time), start, err)
 
+    begun: list[float] = []  # the wall time of the first output: the cap counts from it
+
     def callback(p: Progress) -> bool:
         if progress is not None:
             progress(p)
-        return time.monotonic() - start > max_wall
+        now = time.monotonic()
+        if not begun:
+            begun.append(now)
+        return now - begun[0] > max_wall
 
     message = ""
     try:
