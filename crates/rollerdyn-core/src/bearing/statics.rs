@@ -16,9 +16,9 @@
 //! (Moré 1978) with a Jacobian by forward differences of the model's right-hand side, the
 //! load applied in ten steps (continuation), each step limited to 4 µm and 2e-4 rad;
 //! directions the contacts leave free (an unloaded roller's axial position and skew) keep
-//! their start values under a floor of the damping. The search starts with the rollers
-//! pressed against the flanges that carry an axial load (they float axially otherwise, and
-//! a centred start gives no gradient to follow).
+//! their start values under a floor of the damping. The search starts with the bodies in
+//! the contacts the loads close, radially and axially (a roller floats in its clearance
+//! until it touches, and a centred start gives no gradient to follow).
 //!
 //! The equilibrium is that of the normal forces, without friction, as in the classical
 //! quasi-static analysis (Harris & Kotzalas; ISO/TS 16281): with the speeds prescribed,
