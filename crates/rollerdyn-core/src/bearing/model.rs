@@ -38,6 +38,7 @@ use crate::error::{Error, Result};
 use crate::geometry::end_flange::{Flange, FlangePlacement, RollerEnd};
 use crate::geometry::primitives::Vec3;
 use crate::geometry::roller::MassProperties;
+use crate::numerics::quadrature::{mapped_table, GAUSS_LEGENDRE_4, GAUSS_LEGENDRE_6};
 use crate::tribology::drag::roller_drag;
 use crate::tribology::film::ThermalCorrection;
 use nalgebra::DMatrix;
@@ -197,18 +198,15 @@ enum Geometry {
     End(Option<Contact>),
 }
 
-/// Gauss–Legendre nodes and weights on [−1, 1], 6 points (Abramowitz & Stegun, table
-/// 25.4): where the oil film of a line contact is evaluated. The film is smooth along the
-/// roller (its gap varies linearly with tilt and skew): 6 points integrate it as closely as
-/// B1's 20 slices would, at a third of the cost (test `six_gauss_points_integrate_the_film`).
-const GAUSS6: [(f64, f64); 6] = [
-    (-0.932_469_514_203_152, 0.171_324_492_379_170),
-    (-0.661_209_386_466_265, 0.360_761_573_048_139),
-    (-0.238_619_186_083_197, 0.467_913_934_572_691),
-    (0.238_619_186_083_197, 0.467_913_934_572_691),
-    (0.661_209_386_466_265, 0.360_761_573_048_139),
-    (0.932_469_514_203_152, 0.171_324_492_379_170),
-];
+/// Points along the roller at which the oil film of a line contact is evaluated
+/// (Gauss–Legendre). The film is smooth along the roller (its gap varies linearly with tilt
+/// and skew): 6 points integrate it as closely as B1's 20 slices would, at a third of the
+/// cost (test `six_gauss_points_integrate_the_film`).
+const FILM_POINTS: [(f64, f64); 6] = GAUSS_LEGENDRE_6;
+
+/// Points along the roller at which the drag of the oil–air mixture is evaluated
+/// (Gauss–Legendre; [`crate::tribology::drag`]).
+const DRAG_POINTS: [(f64, f64); 4] = GAUSS_LEGENDRE_4;
 
 /// One in how many contact evaluations the [`Profile`] times (a power of 2): a clock read
 /// costs about 25 ns, and timing every one of B1's 187 sections per right-hand side cost
@@ -246,6 +244,8 @@ pub struct BearingModel {
     /// Where the oil film of a line contact is evaluated: 6-point Gauss–Legendre along the
     /// straight length, (s, radius, weight as a length) [m].
     film_points: Vec<(f64, f64, f64)>,
+    /// Where the drag acts along the roller: (s, weight as a length) [m].
+    drag_stations: Vec<(f64, f64)>,
     slice_length: f64,
     pitch_radius: f64,
     elements: Vec<Element>,
@@ -288,13 +288,11 @@ impl BearingModel {
                 (s, r - params.crown_drop(s, straight))
             })
             .collect();
-        let film_points: Vec<(f64, f64, f64)> = GAUSS6
-            .iter()
-            .map(|&(x, w)| {
-                let s = 0.5 * straight * x;
-                (s, r - params.crown_drop(s, straight), 0.5 * straight * w)
-            })
+        let film_points: Vec<(f64, f64, f64)> = mapped_table(&FILM_POINTS, 0.5 * straight)
+            .into_iter()
+            .map(|(s, w)| (s, r - params.crown_drop(s, straight), w))
             .collect();
+        let drag_stations = mapped_table(&DRAG_POINTS, 0.5 * params.roller.length);
         let per_length = roller_mass.mass / straight;
         let line = |k: usize, r_other: f64, surface: &super::params::SurfacePair| LineKind {
             law: params.line_laws[k],
@@ -364,6 +362,7 @@ impl BearingModel {
                 }),
             slices,
             film_points,
+            drag_stations,
             slice_length,
             pitch_radius,
             elements,
@@ -579,7 +578,7 @@ impl BearingModel {
         };
         let start = self.stopwatch();
         let bound = self.penetration_bound(kind, a, b);
-        let geometry = if bound <= self.apart_below() {
+        let geometry = if self.is_apart(bound) {
             Geometry::Apart(bound)
         } else {
             let (slices, film) = self.line_geometry(kind, a, b, bound);
@@ -673,23 +672,17 @@ impl BearingModel {
 
     fn line_element(&self, kind: usize, a: &Kinematics, b: &Kinematics) -> ElementResult {
         let bound = self.penetration_bound(kind, a, b);
-        if bound <= self.apart_below() {
+        if self.is_apart(bound) {
             return Self::apart(bound);
         }
         let (slices, film) = self.line_geometry(kind, a, b, bound);
         self.line_forces(kind, a, b, &slices, &film)
     }
 
-    /// The penetration at and below which a line contact's slices carry nothing: the
-    /// (negative) reach of the film across gaps, or 0 without the film (strictly below 0
-    /// then, as a slice at δ = 0 carries nothing either).
-    fn apart_below(&self) -> f64 {
-        let reach = self.tribology.film.reach();
-        if reach > 0.0 {
-            -reach
-        } else {
-            -f64::MIN_POSITIVE
-        }
+    /// Whether a line contact whose penetration is at most `bound` carries nothing: no
+    /// slice touches and every gap is beyond the film's reach.
+    fn is_apart(&self, bound: f64) -> bool {
+        bound < -self.tribology.film.reach()
     }
 
     /// The result of a line contact whose bodies are apart: no force, and for the
@@ -752,11 +745,14 @@ impl BearingModel {
                 self.section_into(&mut out, kind, a, b, (n, p, *delta), None);
             }
         }
+        let roughness = self.kinds[kind].roughness;
         for ((n, p, delta), &(_, _, weight)) in film.iter().zip(&self.film_points) {
             if slices.is_empty() {
                 out.penetration = out.penetration.max(*delta);
             }
-            self.section_into(&mut out, kind, a, b, (n, p, *delta), Some(weight));
+            if self.tribology.film.acts(*delta, roughness) {
+                self.section_into(&mut out, kind, a, b, (n, p, *delta), Some(weight));
+            }
         }
         self.spend_time(start, |pr, t| pr.line_contacts += t);
         out
@@ -795,9 +791,6 @@ impl BearingModel {
             None => line_slice(tri, line, &section),
             Some(_) => film_slice(tri, line, &section),
         };
-        if f.normal == 0.0 && f.tangential == Vec3::zeros() {
-            return;
-        }
         self.accumulate(out, &f, n, p, a, b);
     }
 
@@ -1101,6 +1094,7 @@ impl BearingModel {
             &self.params.mixture,
             self.params.roller.radius,
             self.params.roller.length,
+            &self.drag_stations,
             &kin.axis,
             &kin.velocity,
             &kin.omega,
@@ -1477,9 +1471,9 @@ mod tests {
                         .sum()
                 };
                 let exact = midpoint(20_000);
-                let gauss: f64 = GAUSS6
-                    .iter()
-                    .map(|&(x, w)| load(0.5 * length * x) * 0.5 * length * w)
+                let gauss: f64 = mapped_table(&FILM_POINTS, 0.5 * length)
+                    .into_iter()
+                    .map(|(s, w)| load(s) * w)
                     .sum();
                 let (e_gauss, e_slices) = (
                     (gauss / exact - 1.0).abs(),

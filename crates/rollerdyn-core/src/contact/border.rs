@@ -28,6 +28,7 @@
 use super::{relative_radius, Contact, Pairing};
 use crate::geometry::end_flange::{Flange, RollerEnd};
 use crate::geometry::primitives::{meridian, relative_curvature_of, Curvature, Vec3};
+use crate::numerics::smooth::smoothstep;
 
 /// The half-widths of the blending bands.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -48,19 +49,6 @@ impl BorderBands {
         roller_angle: 1.5e-4,
         flange_length: 50e-6,
     };
-}
-
-/// C¹ step of half-width `band` about 0: 0 for x ≤ −band, 1 for x ≥ band,
-/// 3t² − 2t³ with t = (x/band + 1)/2 between; a sharp step for band = 0.
-pub fn smoothstep(x: f64, band: f64) -> f64 {
-    if band > 0.0 {
-        let t = (0.5 * (x / band + 1.0)).clamp(0.0, 1.0);
-        t * t * (3.0 - 2.0 * t)
-    } else if x >= 0.0 {
-        1.0
-    } else {
-        0.0
-    }
 }
 
 /// Angle between two unit vectors, accurate also for tiny angles [rad].

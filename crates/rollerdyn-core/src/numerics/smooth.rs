@@ -50,6 +50,33 @@ pub fn smooth_saturation(x: f64) -> f64 {
     smooth_min(x.abs(), 1.0).copysign(x)
 }
 
+/// The C¹ unit step 3t² − 2t³ of t clamped to [0, 1].
+#[inline]
+pub fn unit_smoothstep(t: f64) -> f64 {
+    let t = t.clamp(0.0, 1.0);
+    t * t * (3.0 - 2.0 * t)
+}
+
+/// C¹ step of half-width `band` about 0: 0 for x ≤ −band, 1 for x ≥ band,
+/// [`unit_smoothstep`] of t = (x/band + 1)/2 between; a sharp step for band = 0.
+#[inline]
+pub fn smoothstep(x: f64, band: f64) -> f64 {
+    if band > 0.0 {
+        unit_smoothstep(0.5 * (x / band + 1.0))
+    } else if x >= 0.0 {
+        1.0
+    } else {
+        0.0
+    }
+}
+
+/// 1 up to half the `cutoff`, falling with a C¹ [`unit_smoothstep`] to 0 at the cutoff:
+/// how a film force across a gap fades out.
+#[inline]
+pub fn fade_out(gap: f64, cutoff: f64) -> f64 {
+    1.0 - unit_smoothstep((2.0 * gap - cutoff) / cutoff)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

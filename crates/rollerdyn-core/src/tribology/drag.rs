@@ -13,7 +13,7 @@
 //!   skews or tilts), with White's fit for a circular cylinder, C_D = 1 + 10·Re^(−2/3),
 //!   Re = ρ_e·|v⊥|·d/η_e (F. M. White, *Fluid Mechanics*, 7th ed. 2011, sect. 7.6; the fit
 //!   holds for 1 ≤ Re ≤ 2·10⁵ and tends to a viscous drag ∝ |v|^{4/3} below). Integrated
-//!   along the roller by 4-point Gauss–Legendre.
+//!   along the roller by the caller's quadrature (the model: 4-point Gauss–Legendre).
 //! * **Along the axis**: pressure drag of the end faces, ½·C_D·ρ_e·πr²·|v_a|·v_a with
 //!   C_D = 0.9 (an axially moving cylinder of L/d ≈ 1; Hoerner, *Fluid-Dynamic Drag*, 1965,
 //!   ch. 3).
@@ -28,14 +28,6 @@ use std::f64::consts::PI;
 
 /// Drag coefficient of the end faces of an axially moving cylinder with L/d ≈ 1 (Hoerner).
 pub const AXIAL_DRAG_COEFFICIENT: f64 = 0.9;
-
-/// Gauss–Legendre nodes and weights on [−1, 1], 4 points (Abramowitz & Stegun, table 25.4).
-const GAUSS4: [(f64, f64); 4] = [
-    (-0.861_136_311_594_052_6, 0.347_854_845_137_453_9),
-    (-0.339_981_043_584_856_3, 0.652_145_154_862_546_1),
-    (0.339_981_043_584_856_3, 0.652_145_154_862_546_1),
-    (0.861_136_311_594_052_6, 0.347_854_845_137_453_9),
-];
 
 /// The oil–air mixture of the bearing cavity.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -94,11 +86,14 @@ pub fn crossflow_drag_coefficient(reynolds: f64) -> f64 {
 }
 
 /// Force and moment (about the centre) of the mixture's drag on a cylinder of radius `r`
-/// and length `length` with axis `axis`, centre velocity `v` and angular velocity `omega`.
+/// and length `length` with axis `axis`, centre velocity `v` and angular velocity `omega`;
+/// the crossflow is integrated over `stations` (s along the axis from the centre, weight as
+/// a length: a quadrature rule over the length).
 pub fn roller_drag(
     mixture: &Mixture,
     r: f64,
     length: f64,
+    stations: &[(f64, f64)],
     axis: &Vec3,
     v: &Vec3,
     omega: &Vec3,
@@ -109,11 +104,11 @@ pub fn roller_drag(
     let d = 2.0 * r;
     let mut force = Vec3::zeros();
     let mut moment = Vec3::zeros();
-    for (x, w) in GAUSS4 {
-        let arm = (0.5 * length * x) * axis;
+    for &(s, w) in stations {
+        let arm = s * axis;
         let vs = v + omega.cross(&arm);
         let across = vs - vs.dot(axis) * axis;
-        let f = mixture.crossflow(d, &across) * (0.5 * length * w);
+        let f = mixture.crossflow(d, &across) * w;
         force += f;
         moment += arm.cross(&f);
     }
@@ -128,6 +123,12 @@ pub fn roller_drag(
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    /// 4-point Gauss–Legendre stations along a roller of length `l`, as the model uses.
+    fn stations(l: f64) -> Vec<(f64, f64)> {
+        use crate::numerics::quadrature::{mapped_table, GAUSS_LEGENDRE_4};
+        mapped_table(&GAUSS_LEGENDRE_4, 0.5 * l)
+    }
 
     /// B1's mixture: 3 % FVA 3 (860 kg/m³, 16.5 mPa s at 80 °C) in air.
     fn b1() -> Mixture {
@@ -149,7 +150,7 @@ mod tests {
         let m = b1();
         let (r, l) = (2.2475e-3, 5e-3);
         let v = Vec3::new(0.0, 0.0, 0.26);
-        let (f, moment) = roller_drag(&m, r, l, &Vec3::x(), &v, &Vec3::zeros());
+        let (f, moment) = roller_drag(&m, r, l, &stations(l), &Vec3::x(), &v, &Vec3::zeros());
         let re = m.density * 0.26 * 2.0 * r / m.viscosity;
         let expected = 0.5 * crossflow_drag_coefficient(re) * m.density * 2.0 * r * l * 0.26 * 0.26;
         assert!((f.z + expected).abs() < 1e-12 * expected.max(1.0));
@@ -163,7 +164,7 @@ mod tests {
         let m = b1();
         let (r, l) = (2.2475e-3, 5e-3);
         let omega = Vec3::new(100.0, 0.0, 0.0);
-        let (f, moment) = roller_drag(&m, r, l, &Vec3::x(), &Vec3::zeros(), &omega);
+        let (f, moment) = roller_drag(&m, r, l, &stations(l), &Vec3::x(), &Vec3::zeros(), &omega);
         assert!(f.norm() < 1e-18);
         let stokes = 4.0 * PI * m.viscosity * r * r * l * 100.0;
         assert!((moment.x + stokes).abs() < 1e-12 * stokes);
@@ -171,7 +172,7 @@ mod tests {
         // ∫ s·f(ω s) ds, exact for the piecewise power law within 1e-3 (checked by 2000
         // midpoint sections).
         let skew = Vec3::new(0.0, 50.0, 0.0);
-        let (_, mk) = roller_drag(&m, r, l, &Vec3::x(), &Vec3::zeros(), &skew);
+        let (_, mk) = roller_drag(&m, r, l, &stations(l), &Vec3::x(), &Vec3::zeros(), &skew);
         let n = 2000;
         let brute: f64 = (0..n)
             .map(|k| {
@@ -194,7 +195,7 @@ mod tests {
         ) {
             let axis = Vec3::new(1.0, ay, 0.0).normalize();
             let (v, w) = (Vec3::new(vx, vy, vz), Vec3::new(wx, wy, wz));
-            let (f, m) = roller_drag(&b1(), 2.2475e-3, 5e-3, &axis, &v, &w);
+            let (f, m) = roller_drag(&b1(), 2.2475e-3, 5e-3, &stations(5e-3), &axis, &v, &w);
             prop_assert!(f.dot(&v) + m.dot(&w) <= 1e-15);
         }
     }

@@ -35,6 +35,7 @@
 //! Far away the film fades out between half the cutoff and the cutoff (the parabolic gap
 //! needs h₀ ≪ R).
 
+use crate::numerics::smooth::{fade_out, unit_smoothstep};
 use std::f64::consts::{PI, SQRT_2};
 
 /// Martin's load coefficient with the Reynolds cavitation condition: w = C·η·u_m·R/h₀.
@@ -73,15 +74,22 @@ impl RigidFilm {
     /// the cutoff, falling to 0 at the cutoff and over δ = 0 … σ (C¹ smoothsteps). None
     /// where the film does not act.
     pub fn gap_and_weight(&self, penetration: f64, roughness: f64) -> Option<(f64, f64)> {
-        if !self.enabled || penetration >= roughness || penetration <= -self.cutoff {
+        if !self.acts(penetration, roughness) {
             return None;
         }
         if penetration > 0.0 {
-            return Some((roughness, 1.0 - smoothstep(penetration / roughness)));
+            return Some((roughness, 1.0 - unit_smoothstep(penetration / roughness)));
         }
         let gap = -penetration;
-        let far = smoothstep((2.0 * gap - self.cutoff) / self.cutoff);
-        Some(((gap * gap + roughness * roughness).sqrt(), 1.0 - far))
+        let h = (gap * gap + roughness * roughness).sqrt();
+        Some((h, fade_out(gap, self.cutoff)))
+    }
+
+    /// Whether the film acts at the signed penetration δ for the roughness σ: enabled,
+    /// −cutoff < δ < σ.
+    #[inline]
+    pub fn acts(&self, penetration: f64, roughness: f64) -> bool {
+        self.enabled && penetration < roughness && penetration > -self.cutoff
     }
 }
 
@@ -112,13 +120,6 @@ pub fn film_line(eta: f64, r: f64, h: f64, u_m: f64, approach: f64) -> FilmLine 
         shear: eta * PI * SQRT_2 * root,
         rolling: ROLLING_FORCE * eta * u_m * root,
     }
-}
-
-/// 0 for x ≤ 0, 1 for x ≥ 1, 3x² − 2x³ between (C¹).
-#[inline]
-fn smoothstep(x: f64) -> f64 {
-    let t = x.clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
 }
 
 #[cfg(test)]

@@ -26,6 +26,8 @@
 //! composite roughness σ (B1: h_f = σ = 0.24 µm): below it the asperities touch and the
 //! contact's own laws (Hertz with its contact damping, load sharing) carry the load.
 
+use crate::numerics::smooth::fade_out;
+
 /// Squeeze-film settings of the roller end–flange contacts.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SqueezeFilm {
@@ -73,7 +75,7 @@ impl SqueezeFilm {
         let w2 = self.half_width * self.half_width;
         let bounded = |r: f64| 1.0 / (1.0 / r + 2.0 * h / w2);
         let c = squeeze_coefficient(eta, bounded(rx) * bounded(ry), h);
-        c * fade(gap, self.cutoff)
+        c * fade_out(gap, self.cutoff)
     }
 }
 
@@ -82,13 +84,6 @@ impl SqueezeFilm {
 #[inline]
 pub fn squeeze_coefficient(eta: f64, r_squared: f64, h: f64) -> f64 {
     6.0 * std::f64::consts::PI * eta * r_squared / h
-}
-
-/// 1 up to half the cutoff, falling with a C¹ smoothstep to 0 at the cutoff.
-#[inline]
-fn fade(gap: f64, cutoff: f64) -> f64 {
-    let t = ((2.0 * gap - cutoff) / cutoff).clamp(0.0, 1.0);
-    1.0 - t * t * (3.0 - 2.0 * t)
 }
 
 #[cfg(test)]
