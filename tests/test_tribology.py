@@ -43,10 +43,43 @@ def test_core_errors_are_value_errors_not_panics():
         _core.fit_line_power_law(2e-3, "convex", 1e-2, 2e-3, 2e11, 0.3, 2e11, 0.3, 1e5, 1e4, 64)
 
 
-def test_nan_inputs_give_no_panic():
-    # NaN in arrays propagates as NaN (no exception from inside the core)
-    out = tri.line_films(np.nan, 1.0, 1.0, 1e5, 2.3e11, 2e-8, 0.02)
-    assert set(out) == {"moes", "zev", "film"}
+@pytest.mark.parametrize(
+    ("call", "named"),
+    [
+        (lambda: tri.line_films(np.nan, 1.0, 1.0, 1e5, 2.3e11, 2e-8, 0.02), "r_eff = nan"),
+        (lambda: tri.hertz_line(1000.0, 0.0, 2e-3, 2.3e11), "length = 0.0"),
+        (lambda: tri.hertz_line([1.0, -5.0], 1e-3, 2e-3, 2.3e11), "force = -5.0"),
+        (lambda: tri.hertz_point(-1e-3, 2e-3, 2.3e11, 10.0, "exact"), "r1 = -0.001"),
+        (lambda: tri.vogel_viscosity(350.0, -6e-5, 1021.7, 101.6), "k = -6e-05"),
+        (lambda: tri.roelands_viscosity(1e8, 0.0, 6.3e-5, -1.96e8, 0.6), "eta0 = 0.0"),
+        (
+            lambda: tri.tripp_deflection(1e5, 2e-3, "convex", 1e-2, 0, 2e11, 0.3, 2e11, 0.7),
+            "nu2 = 0.7",
+        ),
+        (lambda: tri.elliptic_integrals(1.5), "m1 = 1.5"),
+        (lambda: tri.boundary_share(np.inf, 2.3, 0.97), "film_ratio = inf"),
+    ],
+)
+def test_bad_arguments_are_refused_naming_the_argument(call, named):
+    # NaN, negative radii, zero lengths and negative viscosity constants never reach the
+    # core (issue 16): a ValueError names the argument, its value and the rule.
+    with pytest.raises(ValueError, match="must") as err:
+        call()
+    assert named in str(err.value)
+
+
+def test_functions_show_their_signatures_and_docstrings():
+    import inspect
+
+    assert list(inspect.signature(tri.hertz_line).parameters) == [
+        "force",
+        "length",
+        "r_eff",
+        "e_prime",
+    ]
+    assert "eq. 18" in tri.hertz_line.__doc__
+    with pytest.raises(TypeError, match="e_prime"):
+        tri.hertz_line(1.0, 2.0, 3.0)
 
 
 def test_traction_is_odd_and_saturates():

@@ -13,12 +13,21 @@ from .report import report  # the function; its module: from rollerdyn.report im
 from .sweep import sweep  # the function; its module: from rollerdyn.sweep import ...
 
 
-def simulate(config, t_end=None, detector=None, progress=None, resume=None, threads=None):
-    """Run the dynamic model; see :func:`rollerdyn.simulation.simulate`."""
+def simulate(
+    config, t_end=None, detector=None, progress=None, resume=None, threads=None, force=False
+):
+    """Run the dynamic model of ``config`` (a BearingConfig or the path of a TOML file);
+    see :func:`rollerdyn.simulation.simulate`."""
     from .simulation import simulate as _simulate
 
     return _simulate(
-        config, t_end=t_end, detector=detector, progress=progress, resume=resume, threads=threads
+        config,
+        t_end=t_end,
+        detector=detector,
+        progress=progress,
+        resume=resume,
+        threads=threads,
+        force=force,
     )
 
 

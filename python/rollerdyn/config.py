@@ -30,6 +30,7 @@ from pydantic import (
     ConfigDict,
     Discriminator,
     Field,
+    PrivateAttr,
     Tag,
     ValidationError,
     create_model,
@@ -66,6 +67,16 @@ __all__ = [
 T0_CELSIUS = 273.15
 #: Reference temperature of ``lubricant.density.rho_15`` (15 degC), K.
 T_DENSITY_REF = 288.15
+
+# Limits on what drives a run's cost or lies beyond any bearing (refused before any work).
+#: Slices per roller: 500 slices of a 5 mm roller are 10 um wide; the cost grows with them.
+MAX_SLICES = 500
+#: Hertz pressure of the heaviest roller above which a load is refused [Pa] (2.5 times the
+#: 4 GPa that ISO 76 allows a roller bearing statically).
+MAX_HERTZ_PRESSURE = 10e9
+#: Pitch-circle speed above which an inner ring speed is refused [m/s] (the fastest rolling
+#: bearings, hybrid spindle bearings with n*d_m of about 3e6 mm/min, reach about 160 m/s).
+MAX_PITCH_SPEED = 300.0
 
 
 # --------------------------------------------------------------------------- errors
@@ -222,7 +233,7 @@ class RollerConfig(_Section):
     profile: Literal["straight", "crowned"] = "straight"
     crown_drop: Quantity("length", nonnegative=True, example="2 um") = "0 um"
     crown_length: Quantity("length", positive=True, example="1 mm") | None = None
-    slices: Integer(ge=1) = 20
+    slices: Integer(ge=1, le=MAX_SLICES) = 20
 
     @model_validator(mode="after")
     def _check(self) -> RollerConfig:
@@ -799,6 +810,13 @@ RadialHistory = QuantityOrTable("force", "RadialForce", ge=0.0)
 SpeedHistory = QuantityOrTable("angular velocity", "AngularVelocity")
 
 
+def _history_peak(value: float | TimeTable) -> float:
+    """Largest magnitude a load or speed history reaches (NaN stays NaN)."""
+    if isinstance(value, TimeTable):
+        return max(abs(v) for v in value.values)
+    return abs(value)
+
+
 def _history_at(value: float | TimeTable, ramp: RampConfig | None, t: float) -> float:
     if isinstance(value, TimeTable):
         return value.value_at(t)
@@ -887,7 +905,7 @@ class LineFitConfig(_Section):
 
     load_min: Quantity("force per length", positive=True) | None = None
     load_max: Quantity("force per length", positive=True) | None = None
-    samples: Integer(ge=2) = 64
+    samples: Integer(ge=2, le=10_000) = 64
 
     @model_validator(mode="after")
     def _check(self) -> LineFitConfig:
@@ -911,11 +929,11 @@ class LineFitConfig(_Section):
 class SolverConfig(_Section):
     """``[solver]``: time integration and numerical settings."""
 
-    rtol: Number(gt=0.0, lt=1.0) = 1e-5
-    atol: Number(gt=0.0) = 1e-9
+    rtol: Number(ge=1e-12, lt=1.0) = 1e-5
+    atol: Number(ge=1e-15) = 1e-9
     atol_time_scale: Quantity("time", positive=True, le="1 s") = "1e-5 s"
-    dt_max: Quantity("time", positive=True) = "1e-4 s"
-    output_interval: Quantity("time", positive=True) = "1e-4 s"
+    dt_max: Quantity("time", ge="1 ns") = "1e-4 s"
+    output_interval: Quantity("time", ge="1 ns") = "1e-4 s"
     checkpoint_interval: Quantity("time", positive=True) = "100 ms"
     detector: Literal["semi-analytical", "gradient", "mesh"] = "semi-analytical"
     start: Literal["rest", "equilibrium"] = "rest"
@@ -947,6 +965,14 @@ class BearingConfig(_Section):
     operating: OperatingConfig
     cavity: CavityConfig = Field(default_factory=CavityConfig)
     solver: SolverConfig = Field(default_factory=SolverConfig)
+    #: The TOML text the configuration was read from (None if built in Python).
+    _toml: str | None = PrivateAttr(default=None)
+
+    @property
+    def toml_text(self) -> str | None:
+        """The TOML text this configuration was read from (:func:`load_config`), as read;
+        None for a configuration built in Python."""
+        return self._toml
 
     @model_validator(mode="after")
     def _check(self) -> BearingConfig:
@@ -981,6 +1007,7 @@ class BearingConfig(_Section):
                 format_si(lub.density.slope, "density per temperature"),
                 f"gives a density <= 0 at the operating temperature ({t_shown})",
             )
+        self._check_operating_limits(cross)
         if op.end_time is None and op.final_inner_ring_speed == 0.0:
             cross.add(
                 "operating.end_time",
@@ -996,6 +1023,49 @@ class BearingConfig(_Section):
             )
         cross.raise_if_any()
         return self
+
+    def _check_operating_limits(self, cross: _Cross) -> None:
+        """Loads and speeds far beyond what any rolling bearing carries are refused before
+        any work (they would only make the solver fail after a long time)."""
+        op = self.operating
+        limit = self.load_limit
+        for field, value in (("radial_load", op.radial_load), ("axial_load", op.axial_load)):
+            peak = _history_peak(value)
+            if not peak <= limit:
+                cross.add(
+                    f"operating.{field}",
+                    format_si(peak, "force"),
+                    f"must be at most {format_si(limit, 'force')}: the heaviest roller "
+                    f"(Stribeck, 4.08 F/Z) would see a Hertz pressure above "
+                    f"{MAX_HERTZ_PRESSURE / 1e9:g} GPa, far beyond what bearing steel carries "
+                    "(ISO 76 allows 4 GPa)",
+                )
+        speed = _history_peak(op.inner_ring_speed)
+        pitch_speed = speed * self.geometry.pitch_diameter / 2.0
+        if not pitch_speed <= MAX_PITCH_SPEED:
+            cross.add(
+                "operating.inner_ring_speed",
+                f"{speed * 30.0 / math.pi:.6g} rpm",
+                f"must give a pitch-circle speed of at most {MAX_PITCH_SPEED:g} m/s "
+                f"(here {pitch_speed:.3g} m/s), beyond the fastest rolling bearings",
+            )
+
+    @property
+    def load_limit(self) -> float:
+        """Largest radial or axial load accepted [N]: the radial load whose heaviest roller
+        (Stribeck: Q = 4.08 F_r/Z) presses the inner race with the Hertz line-contact pressure
+        p0 = sqrt(Q E' / (2 pi R' l)) = :data:`MAX_HERTZ_PRESSURE`."""
+        g, m = self.geometry, self.materials
+        straight = g.roller.length - 2.0 * g.roller.edge_radius
+        r_roller = g.roller_diameter / 2.0
+        r_race = g.inner_raceway_diameter / 2.0
+        r_eff = r_roller * r_race / (r_roller + r_race)
+        e_prime = 2.0 / (
+            (1.0 - m.roller.poisson_ratio**2) / m.roller.youngs_modulus
+            + (1.0 - m.inner_ring.poisson_ratio**2) / m.inner_ring.youngs_modulus
+        )
+        q = MAX_HERTZ_PRESSURE**2 * 2.0 * math.pi * r_eff * straight / e_prime
+        return q * g.roller_count / 4.08
 
     # ---- kinematics and run length
 
@@ -1117,7 +1187,9 @@ def load_config(path: str | Path) -> BearingConfig:
         where = f"{p}:{m.group(1)}:{m.group(2)}" if m else f"{p}"
         reason = re.sub(r"\s*\(at (line \d+, column \d+|end of document)\)", "", msg)
         raise ConfigError(f"{where}: malformed TOML — {reason}", source=str(p)) from None
-    return parse_config(data, source=str(p))
+    config = parse_config(data, source=str(p))
+    config._toml = text
+    return config
 
 
 def parse_config(

@@ -30,12 +30,32 @@ import xarray as xr
 from . import _core
 from .config import BearingConfig, RampConfig, TimeTable
 from .model import Model
+from .provenance import check_same_configuration, record_attrs
 
 PAIRINGS = ("TO-CO", "TO-TO(root)", "TO-TO(rim)", "SP-CO", "SP-TO(root)", "SP-TO(rim)")
 """Roller end / flange pairings, in the order of ``flange_pairing`` (paper fig. 1)."""
 
 FLANGES = ("inner-x", "inner+x", "outer-x", "outer+x")
 """The four roller end / flange contacts of a roller: ring and side of the flange."""
+
+DETECTORS = ("semi-analytical", "gradient", "mesh")
+"""The roller end / flange contact detectors (``solver.detector``, ``--detector``)."""
+
+
+def _seconds(value: float | str) -> float:
+    """A time in seconds: a number (s) or a quantity string such as ``"50 ms"``."""
+    if isinstance(value, str):
+        from .units import QuantityError, parse_quantity
+
+        try:
+            return parse_quantity(value, "time")
+        except QuantityError as err:
+            raise ValueError(f"t_end = {value!r}: {err}") from None
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise ValueError(
+            f"t_end = {value!r}: must be a number of seconds or a time such as '50 ms'"
+        )
+    return float(value)
 
 
 def carried_axial_force(ds: xr.Dataset) -> xr.DataArray:
@@ -53,6 +73,71 @@ class SimulationError(RuntimeError):
     def __init__(self, message: str, dataset: xr.Dataset):
         super().__init__(message)
         self.dataset = dataset
+
+
+class SimulationInterrupted(SimulationError, KeyboardInterrupt):
+    """A run stopped by Ctrl-C (or SIGTERM through the CLI's handler): a
+    :class:`KeyboardInterrupt` that still carries everything computed (:attr:`dataset`)."""
+
+
+#: Result size above which a run is refused unless forced [bytes].
+MAX_RESULT_BYTES = 2e9
+#: Least number of steps (t_end / dt_max) above which a run is refused unless forced
+#: (B1's whole run takes about 50 000 steps).
+MAX_MIN_STEPS = 1e8
+
+
+def estimated_cost(config: BearingConfig, t_end: float, t_start: float = 0.0) -> dict:
+    """What a run will at least cost: outputs, result size [bytes] and steps (the span
+    over dt_max, a lower bound)."""
+    span = max(t_end - t_start, 0.0)
+    outputs = math.ceil(span / min(config.solver.output_interval, t_end)) + 1
+    z = config.geometry.roller_count
+    per_output = 8 * (14 + z * (16 + 4 * 8))  # scalars, ring; per roller and per flange
+    return {
+        "outputs": outputs,
+        "bytes": outputs * per_output,
+        "min_steps": span / config.solver.dt_max,
+    }
+
+
+def check_cost(config: BearingConfig, t_end: float, t_start: float = 0.0) -> None:
+    """Raises ValueError, with the estimate, if a run would be far beyond a normal one
+    (see :data:`MAX_RESULT_BYTES`, :data:`MAX_MIN_STEPS`); ``force=True`` of
+    :func:`simulate` skips this check (the core still refuses what it cannot hold)."""
+    cost = estimated_cost(config, t_end, t_start)
+    s = config.solver
+    if cost["bytes"] > MAX_RESULT_BYTES:
+        raise ValueError(
+            f"solver.output_interval = {s.output_interval:g} s: {cost['outputs']:.3g} outputs "
+            f"to t = {t_end:g} s would take {cost['bytes'] / 1e9:.3g} GB of results (more than "
+            f"{MAX_RESULT_BYTES / 1e9:g} GB); choose a longer interval, or force the run "
+            "(--force, force=True)"
+        )
+    if cost["min_steps"] > MAX_MIN_STEPS:
+        raise ValueError(
+            f"solver.dt_max = {s.dt_max:g} s: the run to t = {t_end:g} s takes at least "
+            f"{cost['min_steps']:.3g} steps (more than {MAX_MIN_STEPS:.0e}; B1 takes about "
+            "5e4); choose a larger dt_max, or force the run (--force, force=True)"
+        )
+
+
+def as_config(config: BearingConfig | str | os.PathLike) -> BearingConfig:
+    """A validated configuration: a path is read with :func:`load_config`; a
+    :class:`BearingConfig` is validated again (one changed with ``model_copy`` is not),
+    keeping the TOML text it was read from."""
+    from .config import load_config, parse_config
+
+    if isinstance(config, str | os.PathLike):
+        return load_config(config)
+    if not isinstance(config, BearingConfig):
+        raise TypeError(
+            f"config: expected a BearingConfig or a path to a TOML file, got "
+            f"{type(config).__name__}"
+        )
+    checked = parse_config(config.model_dump(), si_numbers=True)
+    checked._toml = config.toml_text
+    return checked
 
 
 def _e_prime(e1: float, nu1: float, e2: float, nu2: float) -> float:
@@ -274,6 +359,7 @@ def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
         "final_time_s": float(raw["final_time"]),
         "completed": int(raw["error"] is None and not raw["interrupted"]),
         "conventions": "x = bearing axis; on the inner ring: radial load -y, axial load +x",
+        **record_attrs(config),
     }
     for key, value in stats.items():
         attrs[f"stats_{key}"] = value
@@ -300,16 +386,21 @@ def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
 
 
 def simulate(
-    config: BearingConfig,
+    config: BearingConfig | str | os.PathLike,
     t_end: float | None = None,
     detector: str | None = None,
     progress: Callable[[Progress], bool | None] | None = None,
     resume: xr.Dataset | None = None,
     checkpoint: Callable[[xr.Dataset], None] | None = None,
     threads: int | None = None,
+    force: bool = False,
 ) -> xr.Dataset:
-    """Runs ``config`` from its consistent start to ``t_end`` (default: the configuration's
-    end time) and returns the Dataset.
+    """Runs ``config`` (a :class:`BearingConfig`, validated again, or the path of a TOML
+    file) from its consistent start to ``t_end`` (default: the configuration's end time)
+    and returns the Dataset. A run whose result or step count would be far beyond a
+    normal run is refused with the estimate (:func:`check_cost`) unless ``force``.
+    Ctrl-C raises :class:`SimulationInterrupted`, a :class:`KeyboardInterrupt` that
+    carries the Dataset so far.
 
     ``threads``: how many threads evaluate the contacts and the Jacobian's columns (default:
     all cores; the gradient detector always uses one). The result does not depend on it,
@@ -327,18 +418,23 @@ def simulate(
     without checkpoint, from an older version, continues from its final state with a fresh
     step-size history: equal to within the integration tolerance.)
     """
-    model = Model(config)
+    config = as_config(config)
     det = detector or config.solver.detector
-    params = model_parameters(config, det)
-    end = config.end_time if t_end is None else float(t_end)
+    if det not in DETECTORS:
+        raise ValueError(f"detector = {det!r}: must be one of {', '.join(DETECTORS)}")
+    end = config.end_time if t_end is None else _seconds(t_end)
     if not (end > 0.0 and math.isfinite(end)):
-        raise ValueError(f"t_end = {end}: must be a positive number of seconds")
+        raise ValueError(f"t_end = {t_end!r}: must be a positive, finite number of seconds")
     threads = default_threads() if threads is None else threads
     if isinstance(threads, bool) or not isinstance(threads, int) or threads < 1:
         raise ValueError(f"threads = {threads!r}: must be a whole number >= 1")
     start = None
     if resume is not None:
         start = _resume_point(resume, config, det, end)
+    if not force:
+        check_cost(config, end, 0.0 if start is None else start[0])
+    model = Model(config)
+    params = model_parameters(config, det)
     s = config.solver
     options = {
         "t_end": end,
@@ -387,6 +483,8 @@ def simulate(
         ds = _join(resume, ds)
     if "interruption" in raw:
         ds.attrs["error"] = f"interrupted at t = {raw['final_time']:.6g} s: {raw['interruption']}"
+        if raw["interruption"].startswith("KeyboardInterrupt"):
+            raise SimulationInterrupted(ds.attrs["error"], ds)
         raise SimulationError(ds.attrs["error"], ds)
     if raw["error"] is not None:
         raise SimulationError(raw["error"], ds)
@@ -418,6 +516,7 @@ def _resume_point(previous: xr.Dataset, config: BearingConfig, detector: str, en
                 f"resume: the earlier run's {key} is {found!r}, this run's {expected!r}: "
                 "a run can only be continued with the same configuration and detector"
             )
+    check_same_configuration(previous.attrs, config)
     if "final_state" not in previous:
         raise ValueError("resume: the earlier result has no final_state to continue from")
     t_final = float(previous.attrs["final_time_s"])

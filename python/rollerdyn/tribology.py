@@ -7,6 +7,8 @@ core evaluates elementwise, and the result has the broadcast shape. All quantiti
 
 from __future__ import annotations
 
+import functools
+import inspect
 from collections.abc import Callable
 from typing import Any
 
@@ -40,14 +42,74 @@ __all__ = [
 EhlTraction = _core.EhlTraction
 
 
-def _vectorize(core: Callable[..., Any], n_arrays: int) -> Callable[..., Any]:
-    """Wrap a core function whose first ``n_arrays`` arguments are equal-length 1-D arrays."""
+#: Argument name -> (rule, test on a float array). Names not listed must be finite.
+_POSITIVE = (
+    "must be positive and finite",
+    lambda x: np.isfinite(x) & (x > 0.0),
+)
+_NONNEGATIVE = (
+    "must be finite and >= 0",
+    lambda x: np.isfinite(x) & (x >= 0.0),
+)
+_FINITE = ("must be finite (not NaN or infinite)", np.isfinite)
+_RULES: dict[str, tuple[str, Callable[[np.ndarray], np.ndarray]]] = {
+    **dict.fromkeys(
+        (
+            "r1", "r2", "rx", "ry", "r_eff", "length", "e_prime", "e1", "e2", "eta0",
+            "viscosity", "radius_ratio", "roller_radius", "counter_radius",
+            "temperature", "k", "eta_p", "tau0", "n", "half_width", "thermal_conductivity",
+            "smoothing_speed", "s0",
+        ),
+        _POSITIVE,
+    ),
+    **dict.fromkeys(
+        (
+            "force", "load_per_length", "normal_force", "wall_thickness", "film_ratio",
+            "alpha_star", "alpha", "alpha_v", "mu_b0", "z",
+        ),
+        _NONNEGATIVE,
+    ),
+    "m1": ("must lie in [0, 1]", lambda x: np.isfinite(x) & (x >= 0.0) & (x <= 1.0)),
+    "nu1": ("must lie in (-1, 0.5)", lambda x: (x > -1.0) & (x < 0.5)),
+    "nu2": ("must lie in (-1, 0.5)", lambda x: (x > -1.0) & (x < 0.5)),
+}  # fmt: skip
 
+
+def _check(name: str, value: Any) -> None:
+    """Raises ValueError naming ``name`` if a numeric ``value`` breaks its rule."""
+    if isinstance(value, str) or value is None:
+        return
+    try:
+        x = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} = {value!r}: must be a number or an array of numbers") from None
+    rule, ok = _RULES.get(name, _FINITE)
+    bad = ~ok(x)
+    if np.any(bad):
+        first = float(x[bad].flat[0]) if x.ndim else float(x)
+        raise ValueError(f"{name} = {first!r}: {rule}")
+
+
+def _vectorize(core: Callable[..., Any], n_arrays: int) -> Callable[..., Any]:
+    """Wrap a core function whose first ``n_arrays`` arguments are equal-length 1-D arrays:
+    the arguments are checked (:data:`_RULES`, by name), broadcast, and the result takes
+    the broadcast shape. The wrapper has the core function's signature and docstring."""
+    signature = inspect.signature(core)
+    names = list(signature.parameters)
+
+    @functools.wraps(core)
     def wrapper(*args: Any, **kwargs: Any) -> Any:
-        arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in args[:n_arrays]))
+        try:
+            bound = signature.bind(*args, **kwargs)
+        except TypeError as err:
+            raise TypeError(f"{core.__name__}{signature}: {err}") from None
+        for name, value in bound.arguments.items():
+            _check(name, value)
+        values = [bound.arguments[n] for n in names if n in bound.arguments]
+        arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in values[:n_arrays]))
         shape = arrays[0].shape
         flat = [np.ascontiguousarray(a.ravel()) for a in arrays]
-        result = core(*flat, *args[n_arrays:], **kwargs)
+        result = core(*flat, *values[n_arrays:])
 
         def reshape(x: Any) -> Any:
             if isinstance(x, np.ndarray):
@@ -60,8 +122,7 @@ def _vectorize(core: Callable[..., Any], n_arrays: int) -> Callable[..., Any]:
 
         return reshape(result)
 
-    wrapper.__name__ = core.__name__
-    wrapper.__doc__ = core.__doc__
+    wrapper.__signature__ = signature
     return wrapper
 
 

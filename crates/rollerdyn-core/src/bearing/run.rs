@@ -40,6 +40,68 @@ pub struct RunOptions {
     pub start_from_equilibrium: bool,
 }
 
+/// Largest memory the records of one run may take [bytes]: a run that would record more
+/// is refused before it starts (the front end refuses far less without `--force`).
+pub const MAX_RECORD_BYTES: f64 = 8e9;
+
+/// Wall time between progress reports between output times [s]: a slow run still shows
+/// progress, and the front end reads signals at least this often between outputs.
+pub const PROGRESS_EVERY: f64 = 0.2;
+
+impl RunOptions {
+    /// Checks the settings before any work (the core never runs on a NaN tolerance or an
+    /// output grid it cannot hold); `rollers` sizes the records, `t0` is the start time.
+    pub fn validate(&self, rollers: usize, t0: f64) -> crate::Result<()> {
+        let positive = |name: &str, v: f64| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(crate::Error::invalid(name, v, "must be a positive, finite number"))
+            }
+        };
+        positive("t_end", self.t_end)?;
+        positive("atol", self.atol)?;
+        positive("atol_time_scale", self.atol_time_scale)?;
+        positive("dt_max", self.dt_max)?;
+        positive("output_interval", self.output_interval)?;
+        if !(self.rtol > 0.0 && self.rtol < 1.0) {
+            return Err(crate::Error::invalid("rtol", self.rtol, "must lie in (0, 1)"));
+        }
+        if let Some(c) = self.checkpoint_interval {
+            positive("checkpoint_interval", c)?;
+        }
+        let control = &self.step_control;
+        if !(control.max_growth > 1.0 && control.max_growth.is_finite()) {
+            return Err(crate::Error::invalid(
+                "max_step_growth",
+                control.max_growth,
+                "must be a finite number > 1",
+            ));
+        }
+        if !(control.gain > 0.0 && control.gain <= 1.0) {
+            return Err(crate::Error::invalid("step_gain", control.gain, "must lie in (0, 1]"));
+        }
+        let outputs = ((self.t_end - t0).max(0.0) / self.output_interval).ceil() + 2.0;
+        let bytes = outputs * record_bytes(rollers);
+        if bytes > MAX_RECORD_BYTES {
+            return Err(crate::Error::invalid(
+                "output_interval",
+                format!("{} s", self.output_interval),
+                format!(
+                    "{outputs:.3e} outputs to t_end = {} s would take {:.3e} bytes; at most {MAX_RECORD_BYTES:.0e}",
+                    self.t_end, bytes
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Memory of one output of a bearing with `rollers` rollers [bytes].
+pub fn record_bytes(rollers: usize) -> f64 {
+    (std::mem::size_of::<Record>() + rollers * std::mem::size_of::<RollerRecord>()) as f64
+}
+
 /// A checkpoint of a bearing run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunCheckpoint {
@@ -159,7 +221,8 @@ pub struct Progress {
 }
 
 /// Runs the model from `start` (or its consistent initial state at t = 0) to
-/// `options.t_end`. `progress` is called at every output time and `checkpoint` at every
+/// `options.t_end`. `progress` is called at every output time (and every
+/// [`PROGRESS_EVERY`] of wall time between them) and `checkpoint` at every
 /// checkpoint (with the records so far); either may stop the run. A start with a step
 /// continues from a checkpoint: its output at the start time is not repeated.
 pub fn run(
@@ -169,6 +232,7 @@ pub fn run(
     mut progress: impl FnMut(&Progress) -> ControlFlow<()>,
     mut checkpoint: impl FnMut(&RunCheckpoint, &[Record]) -> ControlFlow<()>,
 ) -> crate::Result<RunOutput> {
+    options.validate(model.layout.rollers, start.as_ref().map_or(0.0, |s| s.time))?;
     let start = match start {
         Some(s) => s,
         None => Start {
@@ -211,6 +275,7 @@ pub fn run(
     let mut records = Vec::new();
     let mut last = (t0, y0.clone());
     let mut interrupted = false;
+    let mut reported = std::time::Instant::now();
     let mut reached = RunCheckpoint {
         checkpoint: Checkpoint {
             time: t0,
@@ -226,6 +291,18 @@ pub fn run(
             Event::Output { time, state, stats } => {
                 records.push(record(model, time, state));
                 last = (time, state.to_vec());
+                reported = std::time::Instant::now();
+                progress(&Progress {
+                    time,
+                    t_end: options.t_end,
+                    stats: *stats,
+                })
+            }
+            Event::Step { time, stats } => {
+                if reported.elapsed().as_secs_f64() < PROGRESS_EVERY {
+                    return ControlFlow::Continue(());
+                }
+                reported = std::time::Instant::now();
                 progress(&Progress {
                     time,
                     t_end: options.t_end,
@@ -405,4 +482,64 @@ pub fn diagnose(model: &BearingModel, t: f64, y: &[f64]) -> String {
         "deepest contact: {name}, penetration {:.3e} m, normal force {:.3e} N",
         result.penetration, result.normal
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn options() -> RunOptions {
+        RunOptions {
+            t_end: 1.288,
+            rtol: 1e-5,
+            atol: 1e-9,
+            atol_time_scale: 1e-5,
+            dt_max: 1e-4,
+            output_interval: 1e-3,
+            method: Method::TrBdf2,
+            checkpoint_interval: Some(0.1),
+            step_control: StepControl::default(),
+            start_from_equilibrium: false,
+        }
+    }
+
+    #[test]
+    fn the_b1_settings_pass() {
+        assert!(options().validate(17, 0.0).is_ok());
+    }
+
+    /// The core never runs on a NaN tolerance or a step it cannot take (issue 16): each
+    /// bad setting is refused with its name.
+    #[test]
+    fn nan_negative_and_infinite_settings_are_refused_by_name() {
+        let cases: [(&str, fn(&mut RunOptions)); 8] = [
+            ("rtol", |o| o.rtol = f64::NAN),
+            ("rtol", |o| o.rtol = -1.0),
+            ("atol", |o| o.atol = 0.0),
+            ("dt_max", |o| o.dt_max = f64::NAN),
+            ("output_interval", |o| o.output_interval = -1.0),
+            ("t_end", |o| o.t_end = f64::INFINITY),
+            ("checkpoint_interval", |o| o.checkpoint_interval = Some(f64::NAN)),
+            ("max_step_growth", |o| o.step_control.max_growth = 1.0),
+        ];
+        for (name, change) in cases {
+            let mut o = options();
+            change(&mut o);
+            let message = o.validate(17, 0.0).unwrap_err().to_string();
+            assert!(message.contains(name), "{name}: {message}");
+        }
+    }
+
+    /// An output grid whose records would not fit in memory is refused before the run
+    /// allocates them: 1e-12 s over B1's 1.288 s is 1.3e12 outputs of 17 rollers.
+    #[test]
+    fn an_output_grid_beyond_memory_is_refused() {
+        let mut o = options();
+        o.output_interval = 1e-12;
+        let message = o.validate(17, 0.0).unwrap_err().to_string();
+        assert!(message.contains("output_interval") && message.contains("bytes"));
+        // the same interval over a short span is fine: the limit is the records' memory
+        o.t_end = 1e-9;
+        assert!(o.validate(17, 0.0).is_ok());
+    }
 }

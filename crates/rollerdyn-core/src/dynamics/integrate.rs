@@ -246,6 +246,14 @@ pub enum Event<'a> {
     },
     /// A checkpoint was reached; the solver restarts from it.
     Checkpoint(&'a Checkpoint),
+    /// A solver step was taken (before the outputs it passed are reported): for progress
+    /// displays and interruption checks between outputs.
+    Step {
+        /// Time reached [s].
+        time: f64,
+        /// Counters so far.
+        stats: &'a Stats,
+    },
 }
 
 /// Times closer than this count as equal when output and checkpoint times are compared
@@ -420,6 +428,15 @@ pub fn integrate<S: OdeSystem>(
                     &counters,
                 ));
             }
+            let stats = report(&counters, t, step);
+            if events(Event::Step {
+                time: t,
+                stats: &stats,
+            })
+            .is_break()
+            {
+                return Ok(stats);
+            }
             while !ended && next_output(k) <= t + slack(t) {
                 let to = next_output(k);
                 let y = match on!(&solver, s => s.interpolate(to.min(t))) {
@@ -565,6 +582,7 @@ mod tests {
             match event {
                 Event::Output { time, state, .. } => out.push((time, state.to_vec())),
                 Event::Checkpoint(c) => checkpoints.push(c.clone()),
+                Event::Step { .. } => {}
             }
             ControlFlow::Continue(())
         })
@@ -699,6 +717,7 @@ mod tests {
                 match event {
                     Event::Output { time, state, .. } => out.push((time, state.to_vec())),
                     Event::Checkpoint(c) => checkpoints.push(c.clone()),
+                    Event::Step { .. } => {}
                 }
                 ControlFlow::Continue(())
             })

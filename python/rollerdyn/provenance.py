@@ -1,0 +1,129 @@
+"""What made a result: the configuration (as read and resolved to SI), its hash, the
+rollerdyn version and the git commit. Every result file records them
+(:func:`record_attrs`), and ``--resume`` refuses to continue a run of another
+configuration (:func:`check_same_configuration`), naming the first fields that differ.
+
+The hash covers the resolved configuration except what may change between the parts of
+a resumed run without changing its physics: the checkpoint interval (``--checkpoint-
+interval``), the end time (a run may be extended) and the free-text description.
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import json
+import math
+import subprocess
+from pathlib import Path
+from typing import Any
+
+from .config import BearingConfig
+
+#: Dotted fields left out of the configuration hash (see the module's doc).
+NOT_HASHED = ("solver.checkpoint_interval", "operating.end_time", "description")
+
+#: How many differing fields a refusal names.
+SHOWN_DIFFERENCES = 3
+
+
+def resolved(config: BearingConfig) -> dict:
+    """The configuration resolved to SI numbers (JSON types)."""
+    return config.model_dump(mode="json")
+
+
+def flatten(data: Any, prefix: str = "") -> dict[str, Any]:
+    """Dotted paths to leaf values (lists are leaves)."""
+    if not isinstance(data, dict):
+        return {prefix: data}
+    out: dict[str, Any] = {}
+    for key, value in data.items():
+        out.update(flatten(value, f"{prefix}.{key}" if prefix else str(key)))
+    return out
+
+
+def _hashed(flat: dict[str, Any]) -> dict[str, Any]:
+    return {k: v for k, v in flat.items() if k not in NOT_HASHED}
+
+
+def config_hash(config: BearingConfig) -> str:
+    """SHA-256 of the resolved configuration without :data:`NOT_HASHED` (hex)."""
+    text = json.dumps(_hashed(flatten(resolved(config))), sort_keys=True)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
+@functools.cache
+def git_commit() -> str:
+    """The commit of the source tree rollerdyn runs from ('' when not a git checkout),
+    with '+dirty' when it has uncommitted changes."""
+    here = Path(__file__).resolve().parent
+    try:
+        head = subprocess.run(
+            ["git", "rev-parse", "HEAD"], cwd=here, capture_output=True, text=True, timeout=5
+        )
+        if head.returncode != 0:
+            return ""
+        dirty = subprocess.run(
+            ["git", "status", "--porcelain", "--untracked-files=no"],
+            cwd=here,
+            capture_output=True,
+            text=True,
+            timeout=5,
+        )
+    except (OSError, subprocess.SubprocessError):
+        return ""
+    return head.stdout.strip() + ("+dirty" if dirty.stdout.strip() else "")
+
+
+def record_attrs(config: BearingConfig) -> dict[str, str]:
+    """The Dataset attributes that record what made a result."""
+    from . import __version__
+
+    return {
+        "config_toml": config.toml_text or "",
+        "config_resolved": json.dumps(resolved(config), sort_keys=True),
+        "config_sha256": config_hash(config),
+        "rollerdyn_version": __version__,
+        "git_commit": git_commit(),
+    }
+
+
+def _same(a: Any, b: Any) -> bool:
+    if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
+        return True
+    return a == b
+
+
+def differences(earlier: dict, now: dict) -> list[str]:
+    """'field: earlier -> now' for each hashed field that differs, in the schema's order."""
+    old, new = _hashed(flatten(earlier)), _hashed(flatten(now))
+    keys = list(new) + [k for k in old if k not in new]
+    return [
+        f"{k}: {old.get(k, '(absent)')!r} -> {new.get(k, '(absent)')!r}"
+        for k in keys
+        if not _same(old.get(k, "(absent)"), new.get(k, "(absent)"))
+    ]
+
+
+def check_same_configuration(attrs: dict, config: BearingConfig) -> None:
+    """Raises ValueError unless the result with ``attrs`` was made by ``config`` (same
+    hash), naming the first fields that differ (SI values)."""
+    stored = attrs.get("config_sha256")
+    if not stored:
+        raise ValueError(
+            "resume: the earlier result records no configuration (config_sha256): it cannot "
+            "be checked to be a run of this configuration; start a new run"
+        )
+    if stored == config_hash(config):
+        return
+    try:
+        earlier = json.loads(attrs.get("config_resolved", ""))
+    except (TypeError, ValueError):
+        earlier = {}
+    diff = differences(earlier, resolved(config)) if isinstance(earlier, dict) else []
+    shown = "; ".join(diff[:SHOWN_DIFFERENCES]) or "(the stored values are unreadable)"
+    more = f" and {len(diff) - SHOWN_DIFFERENCES} more" if len(diff) > SHOWN_DIFFERENCES else ""
+    raise ValueError(
+        "resume: the earlier run was made with another configuration (SI values, earlier -> "
+        f"now): {shown}{more}; a run can only be continued with its own configuration"
+    )

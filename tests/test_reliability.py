@@ -1,0 +1,227 @@
+"""Issue 16 in the library: results record what made them, resume refuses another
+configuration, limits on what drives cost are checked before any work, the Python API
+validates as the CLI does, the core checks its own inputs, and Ctrl-C inside
+``simulate`` is a KeyboardInterrupt that keeps what was computed."""
+
+import json
+import math
+import os
+import signal
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+import rollerdyn
+from rollerdyn import _core
+from rollerdyn.config import ConfigError, load_config
+from rollerdyn.model import Model
+from rollerdyn.provenance import config_hash
+from rollerdyn.simulation import (
+    SimulationInterrupted,
+    check_cost,
+    estimated_cost,
+    model_parameters,
+    simulate,
+)
+
+B1 = Path(__file__).resolve().parents[1] / "examples" / "b1.toml"
+
+
+@pytest.fixture(scope="module")
+def b1():
+    return load_config(B1)
+
+
+@pytest.fixture(scope="module")
+def short_run(b1):
+    return simulate(b1, t_end=0.003, threads=1)
+
+
+def _changed(cfg, section: str, **values):
+    return cfg.model_copy(update={section: getattr(cfg, section).model_copy(update=values)})
+
+
+def _variant(tmp_path: Path, old: str, new: str) -> Path:
+    text = B1.read_text(encoding="utf-8")
+    assert old in text
+    path = tmp_path / "variant.toml"
+    path.write_text(text.replace(old, new), encoding="utf-8")
+    return path
+
+
+# --------------------------------------------------------------------------- provenance
+
+
+def test_a_result_records_its_configuration_version_and_commit(short_run, b1):
+    a = short_run.attrs
+    assert a["config_toml"] == B1.read_text(encoding="utf-8")
+    resolved = json.loads(a["config_resolved"])
+    assert resolved["operating"]["radial_load"] == 5000.0  # SI, as resolved
+    assert a["config_sha256"] == config_hash(b1) and len(a["config_sha256"]) == 64
+    assert a["rollerdyn_version"] == rollerdyn.__version__
+    assert "git_commit" in a
+
+
+def test_the_hash_ignores_only_what_a_resumed_run_may_change(b1):
+    assert config_hash(_changed(b1, "solver", checkpoint_interval=0.05)) == config_hash(b1)
+    assert config_hash(_changed(b1, "operating", end_time=2.0)) == config_hash(b1)
+    assert config_hash(_changed(b1, "operating", radial_load=5001.0)) != config_hash(b1)
+    assert config_hash(_changed(b1, "solver", rtol=2e-5)) != config_hash(b1)
+
+
+def test_resume_refuses_another_configuration_naming_the_field(short_run, b1):
+    # a B1 run resumed with radial_load = 100 N was spliced onto the 5000 N run before
+    other = _changed(b1, "operating", radial_load=100.0)
+    with pytest.raises(ValueError, match="another configuration") as err:
+        simulate(other, t_end=0.006, resume=short_run, threads=1)
+    assert "operating.radial_load: 5000.0 -> 100.0" in str(err.value)
+
+
+def test_resume_refuses_a_result_without_a_configuration_record(short_run, b1):
+    stripped = short_run.copy()
+    del stripped.attrs["config_sha256"]
+    with pytest.raises(ValueError, match="records no configuration"):
+        simulate(b1, t_end=0.006, resume=stripped, threads=1)
+
+
+# --------------------------------------------------------------------------- limits
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "field"),
+    [
+        ("slices = 20 ", "slices = 100000000 ", "geometry.roller.slices"),
+        ('output_interval = "1e-3 s"', 'output_interval = "1e-12 s"', "solver.output_interval"),
+        ('dt_max = "1e-4 s"', 'dt_max = "1e-15 s"', "solver.dt_max"),
+        ("rtol = 1e-5 ", "rtol = 1e-30 ", "solver.rtol"),
+        ('radial_load = "5000 N"', 'radial_load = "1e300 N"', "operating.radial_load"),
+        ('axial_load = "1000 N"', 'axial_load = "1e7 N"', "operating.axial_load"),
+        ('inner_ring_speed = "500 rpm"', 'inner_ring_speed = "1e300 rpm"', "inner_ring_speed"),
+        ("samples = 64 ", "samples = 100000000 ", "solver.line_fit.samples"),
+    ],
+)
+def test_what_drives_cost_or_lies_beyond_any_bearing_is_refused(tmp_path, old, new, field):
+    # slices = 1e8 hung at 1.7 GB and output_interval = 1e-12 s aborted in Rust before
+    start = time.monotonic()
+    with pytest.raises(ConfigError) as err:
+        load_config(_variant(tmp_path, old, new))
+    assert field in str(err.value) and "must" in str(err.value)
+    assert time.monotonic() - start < 5.0  # refused before any work, not after a hang
+
+
+def test_the_load_limit_is_a_hertz_pressure_of_10_gpa(b1):
+    # Independent check: Stribeck's heaviest roller Q = 4.08 F/Z at the limit load gives
+    # p0 = sqrt(Q E' / (2 pi R' l)) = 10 GPa on B1's inner race (Harris & Kotzalas, eq. 6.39).
+    q = 4.08 * b1.load_limit / 17
+    r_eff = 1 / (1 / 2.2475e-3 + 1 / 10e-3)
+    e_prime = 2 / (2 * (1 - 0.3**2) / 210e9)
+    p0 = math.sqrt(q * e_prime / (2 * math.pi * r_eff * 4e-3))
+    assert p0 == pytest.approx(10e9, rel=1e-9)
+    assert 5000.0 < b1.load_limit < 1e6  # B1's own loads pass
+
+
+def test_a_run_far_beyond_a_normal_one_is_refused_with_its_estimate(b1):
+    fine = _changed(b1, "solver", output_interval=1e-8)  # allowed by the schema (>= 1 ns)
+    cost = estimated_cost(fine, 1.288)
+    assert cost["outputs"] == pytest.approx(1.288e8, rel=1e-6)
+    with pytest.raises(ValueError, match=r"solver.output_interval = 1e-08 s.*GB.*--force"):
+        simulate(fine, threads=1)
+    slow = _changed(b1, "solver", dt_max=1e-9)
+    with pytest.raises(ValueError, match=r"solver.dt_max = 1e-09 s.*steps"):
+        check_cost(slow, 1.288)
+    check_cost(b1, b1.end_time)  # B1 itself is a normal run
+
+
+# --------------------------------------------------------------------------- Python API
+
+
+def test_simulate_takes_a_path(tmp_path):
+    ds = rollerdyn.simulate(B1, t_end="2 ms", threads=1)
+    assert float(ds.attrs["final_time_s"]) == pytest.approx(0.002)
+    with pytest.raises(ConfigError, match="not found"):
+        rollerdyn.simulate(tmp_path / "nope.toml", t_end=0.001)
+
+
+@pytest.mark.parametrize(
+    ("section", "values", "field"),
+    [
+        ("solver", {"rtol": -1.0}, "solver.rtol"),
+        ("solver", {"dt_max": float("nan")}, "solver.dt_max"),
+        ("solver", {"output_interval": -1.0}, "solver.output_interval"),
+        ("operating", {"radial_load": float("inf")}, "operating.radial_load"),
+    ],
+)
+def test_a_config_changed_in_python_is_validated_again(b1, section, values, field):
+    # rtol = -1 and dt_max = nan ran to "completed", output_interval = -1 hung before
+    with pytest.raises(ConfigError) as err:
+        simulate(_changed(b1, section, **values), t_end=0.001, threads=1)
+    assert field in str(err.value)
+
+
+@pytest.mark.parametrize("t_end", ["5 N", -1.0, float("nan"), "soon"])
+def test_a_bad_end_time_is_refused(b1, t_end):
+    with pytest.raises(ValueError, match="t_end"):
+        simulate(b1, t_end=t_end, threads=1)
+
+
+@pytest.mark.parametrize(
+    ("option", "value"),
+    [("rtol", float("nan")), ("dt_max", -1e-4), ("output_interval", 0.0), ("atol", math.inf)],
+)
+def test_the_core_checks_its_own_run_options(b1, option, value):
+    # the core never runs on a NaN tolerance, even when called past the front end
+    options = {
+        "t_end": 0.001,
+        "rtol": 1e-5,
+        "atol": 1e-9,
+        "atol_time_scale": 1e-5,
+        "dt_max": 1e-4,
+        "output_interval": 1e-3,
+        "method": "tr-bdf2",
+        "max_step_growth": 1.3,
+        "step_gain": 0.3,
+        "jacobian_after_newton_failure": False,
+        "checkpoint_interval": 0.1,
+        "threads": 1,
+        "start": "rest",
+        option: value,
+    }
+    with pytest.raises(ValueError, match=option):
+        _core.simulate(model_parameters(b1), Model(b1).traction, options)
+
+
+# --------------------------------------------------------------------------- signals
+
+
+def test_ctrl_c_inside_simulate_is_a_keyboard_interrupt_within_a_second(b1):
+    # The interrupt is read between outputs too (every 0.2 s of wall time), so a run with
+    # one output per 0.5 s of simulated time still stops within a second of Ctrl-C.
+    sparse = _changed(b1, "solver", output_interval=0.5, checkpoint_interval=1.0)
+    sent: list[float] = []
+
+    def interrupt():
+        sent.append(time.monotonic())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    timer = threading.Timer(2.0, interrupt)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt) as err:
+            simulate(sparse, t_end=1.0, threads=1)
+    finally:
+        timer.cancel()
+    latency = time.monotonic() - sent[0]
+    assert latency < 1.0, latency
+    assert isinstance(err.value, SimulationInterrupted)
+    assert err.value.dataset.sizes["time"] >= 1  # what was computed is kept
+
+
+def test_progress_is_reported_between_outputs(b1):
+    # 15 ms of B1 take about 1.5 s of wall time: several reports fall between its outputs
+    sparse = _changed(b1, "solver", output_interval=0.015)
+    seen = []
+    simulate(sparse, t_end=0.015, threads=1, progress=seen.append)
+    between = [p for p in seen if 0.0 < p.time < 0.015 - 1e-12]
+    assert between, [p.time for p in seen]  # a slow run's bar moves between outputs
