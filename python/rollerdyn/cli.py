@@ -7,23 +7,38 @@ All inputs and outputs are SI unless a column says otherwise.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import signal
+import time
 from pathlib import Path
 from typing import Annotated
 
 import typer
 from rich.console import Console
 from rich.table import Table
+from rich.text import Text
 
 from .config import ConfigError, load_config
+from .paths import (
+    OutputPathError,
+    check_output_dir,
+    check_output_file,
+    remove_stale_temporaries,
+)
 
+# rich_markup_mode=None: help texts are plain text (a "[s]" or "[arrays]" stays as typed)
+# and click wraps each paragraph once to the terminal's width.
 app = typer.Typer(
     help="rollerdyn: dynamics of full-complement cylindrical roller bearings.",
     no_args_is_help=True,
     add_completion=False,
+    rich_markup_mode=None,
 )
-console = Console(width=200 if not Console().is_terminal else None)
+# markup=False: text from files and options (a bearing named "B1 [/x]", a file
+# "nope[/x].nc") is printed as it is, never read as rich markup; colours are set with
+# Text styles.
+console = Console(markup=False, width=200 if not Console().is_terminal else None)
 
 ConfigOption = Annotated[
     Path | None,
@@ -36,11 +51,68 @@ ConfigOption = Annotated[
 ]
 
 
+def plain(text: object) -> str:
+    """``text`` as printable text: bytes of a file name that are not UTF-8 (kept by
+    Python as surrogates) shown as ``\\xff`` instead of failing to print."""
+    try:
+        raw = str(text).encode("utf-8", "surrogateescape")
+    except UnicodeEncodeError:  # a surrogate that is no escaped byte
+        raw = str(text).encode("utf-8", "backslashreplace")
+    return raw.decode("utf-8", "backslashreplace")
+
+
+def say(text: object, style: str | None = None, out: Console | None = None) -> None:
+    """Prints ``text`` as it is (never as markup), unwrapped: one message, one line."""
+    (out or console).print(Text(plain(text), style=style or ""), soft_wrap=True)
+
+
+def error(text: object, out: Console | None = None) -> None:
+    """Prints an error message in red, as it is (never as markup)."""
+    say(text, "red", out)
+
+
+def refuse(text: object, code: int = 2) -> typer.Exit:
+    """Prints ``text`` as an error and returns the exit to raise (status 2: bad input)."""
+    error(text)
+    return typer.Exit(code)
+
+
+def checked(check, *args, **kwargs):
+    """``check(*args, **kwargs)`` of :mod:`rollerdyn.paths`; its refusal exits with 2."""
+    try:
+        return check(*args, **kwargs)
+    except OutputPathError as err:
+        raise refuse(err) from None
+
+
+def time_option(option: str, text: str | None) -> float | None:
+    """The value of a time option (``--t-end``) in s: ``"50 ms"``, ``"0.05 s"`` or a bare
+    number of seconds (``"0.05"``); None stays None. Exits with status 2 naming the
+    option, the value and the rule for anything but a positive, finite time."""
+    from .units import QuantityError, parse_quantity
+
+    if text is None:
+        return None
+    rule = "must be a positive time, e.g. 50 ms, 0.05 s or 0.05 (seconds)"
+    try:
+        value = float(text)
+    except ValueError:
+        try:
+            value = parse_quantity(text.strip(), "time")
+        except QuantityError as err:  # its first clause says what is wrong, then a hint
+            reason = str(err).split("; ")[0]
+            raise refuse(f"{option} = {text!r}: {reason}; {rule}") from None
+    if not (math.isfinite(value) and value > 0.0):
+        raise refuse(f"{option} = {text!r}: {rule}")
+    return value
+
+
 def _load(path: Path):
     try:
         return load_config(path)
     except ConfigError as err:
-        console.print(f"[red]invalid configuration[/red]\n{err}")
+        text = str(err)
+        error(text if text.startswith("invalid configuration") else f"invalid configuration\n{text}")
         raise typer.Exit(2) from None
 
 
@@ -59,12 +131,14 @@ def validate(config: ConfigOption = None) -> None:
     for col in ("group", "case", "source", "expected", "computed", "rel. error", "tol.", "pass"):
         table.add_column(col, overflow="fold")
     failures = 0
-    with console.status("running validation cases..."):
+    with console.status(Text("running validation cases...")):
         results = list(run(cfg))
     for r in results:
         c = r.case
         verdict = (
-            "info" if c.report_only else ("[green]pass[/green]" if r.passed else "[red]FAIL[/red]")
+            Text("info")
+            if c.report_only
+            else (Text("pass", style="green") if r.passed else Text("FAIL", style="red"))
         )
         failures += 0 if r.passed else 1
         table.add_row(
@@ -144,10 +218,13 @@ def bench(
         int, typer.Option(min=10, help="Trajectory steps of the contact benchmark.")
     ] = 6283,
     t_end: Annotated[
-        float | None,
+        str | None,
         typer.Option(
             "--t-end",
-            help="mbs: simulated end time in s (default: the configuration's, 1.288 s for B1).",
+            help="mbs: simulated end time, with a unit as in the configuration (50 ms, "
+            "0.05 s) or a bare number of seconds (default: the configuration's, 1.288 s "
+            "for B1).",
+            metavar="TIME",
         ),
     ] = None,
     sweep_dt_max: Annotated[
@@ -210,62 +287,81 @@ def bench(
     ] = None,
     config: ConfigOption = None,
 ) -> None:
-    """Time the hot paths on one core and print tables (times in ns per evaluation).
+    """Time the hot paths and print tables (times in ns per evaluation unless a column
+    says otherwise).
 
     traction: one line slice and one elliptical contact with the configuration's
-    traction model. contact: one roller end passing once around the bearing against an
-    inner-ring flange of the configuration (steps of 1e-3 rad of roller-set azimuth),
-    every method evaluating all six pairings; the gradient method warm-started from the
-    previous step; accuracy against the reference solver every 100th step. For
-    statistically careful numbers use ``cargo bench -p rollerdyn-core``. mbs: the whole run
-    (to --t-end) on one core with each detector: wall time, steps, right-hand-side and
-    Jacobian evaluations, and where the time goes: detection, line contacts and flange
-    forces (summed over every contact evaluation, in right-hand sides and Jacobians alike),
-    the time inside Jacobians, and the rest (linear algebra and the solver's own work).
+    traction model, on one core.
+
+    contact: one roller end passing once around the bearing against an inner-ring flange
+    of the configuration (steps of 1e-3 rad of roller-set azimuth), every method
+    evaluating all six pairings; the gradient method warm-started from the previous step;
+    accuracy against the reference solver every 100th step. For statistically careful
+    numbers use "cargo bench -p rollerdyn-core".
+
     model: the mean time of one right-hand side (2 000 of them) and one Jacobian (200) at
     the final state of --state, in µs, and the right-hand side's split into detection,
     line contacts and flange forces.
+
+    mbs: the whole run (to --t-end) on one core with each detector: wall time, steps,
+    right-hand-side and Jacobian evaluations, and where the time goes: detection, line
+    contacts and flange forces (summed over every contact evaluation, in right-hand sides
+    and Jacobians alike), the time inside Jacobians, and the rest (linear algebra and the
+    solver's own work). With --sweep-dt-max: the runtime study of the paper's fig. 14;
+    with --cases: whole runs of operating points.
     """
-    from .model import Model
     from .validation import default_config_path
 
     if target not in ("traction", "contact", "model", "mbs", "all"):
-        console.print(
-            f"[red]target = {target!r}: must be traction, contact, model, mbs or all[/red]"
-        )
-        raise typer.Exit(2)
+        raise refuse(f"target = {target!r}: must be traction, contact, model, mbs or all")
+    end = time_option("--t-end", t_end)
+    dt_max_values = None if sweep_dt_max is None else _dt_max_values(sweep_dt_max)
+    thread_counts = _thread_counts(threads)
+    if target == "mbs" and (cases is not None or dt_max_values is not None):
+        checked(check_output_dir, output, "-o")
     cfg = _load(config if config is not None else default_config_path())
     if target in ("traction", "all"):
-        traction = Model(cfg).traction
-        traction.time_per_evaluation(10_000)  # warm-up
-        line, ellipse = traction.time_per_evaluation(repetitions)
-        table = Table(title="EHL traction evaluation (one core)")
-        for col in ("contact", "time per evaluation [ns]", "scheme"):
-            table.add_column(col)
-        scheme = f"{cfg.solver.traction} ({cfg.solver.traction_nodes} nodes direct)"
-        table.add_row("line slice", f"{line:.0f}", scheme)
-        table.add_row("ellipse", f"{ellipse:.0f}", scheme)
-        console.print(table)
+        _bench_traction(cfg, repetitions)
     if target in ("contact", "all"):
         _bench_contact(cfg, steps)
     if target == "model":
         _bench_model(cfg, state)
     if target == "mbs" and cases is not None:
-        _bench_cases(cfg, cases, _thread_counts(threads), max_wall, output)
-    elif target == "mbs" and sweep_dt_max is not None:
-        try:
-            values = [float(v) for v in sweep_dt_max.split(",") if v.strip()]
-        except ValueError:
-            values = []
-        if not values or not all(v > 0.0 and math.isfinite(v) for v in values):
-            console.print(
-                f"[red]--sweep-dt-max = {sweep_dt_max!r}: must be comma-separated positive "
-                "times in s, e.g. 1e-5,3e-5,1e-4[/red]"
-            )
-            raise typer.Exit(2)
-        _runtime_study(cfg, t_end, sorted(values), output)
+        _bench_cases(cfg, cases, thread_counts, max_wall, output)
+    elif target == "mbs" and dt_max_values is not None:
+        _runtime_study(cfg, end, dt_max_values, output)
     elif target == "mbs":
-        _bench_mbs(cfg, t_end)
+        _bench_mbs(cfg, end)
+
+
+def _dt_max_values(text: str) -> list[float]:
+    """``--sweep-dt-max`` of ``bench``: comma-separated positive times in s, sorted."""
+    try:
+        values = [float(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        values = []
+    if not values or not all(v > 0.0 and math.isfinite(v) for v in values):
+        raise refuse(
+            f"--sweep-dt-max = {text!r}: must be comma-separated positive times in s, "
+            "e.g. 1e-5,3e-5,1e-4"
+        )
+    return sorted(values)
+
+
+def _bench_traction(cfg, repetitions: int) -> None:
+    """One line slice and one ellipse of the configuration's traction model, timed."""
+    from .model import Model
+
+    traction = Model(cfg).traction
+    traction.time_per_evaluation(10_000)  # warm-up
+    line, ellipse = traction.time_per_evaluation(repetitions)
+    table = Table(title="EHL traction evaluation (one core)")
+    for col in ("contact", "time per evaluation [ns]", "scheme"):
+        table.add_column(col)
+    scheme = f"{cfg.solver.traction} ({cfg.solver.traction_nodes} nodes direct)"
+    table.add_row("line slice", f"{line:.0f}", scheme)
+    table.add_row("ellipse", f"{ellipse:.0f}", scheme)
+    console.print(table)
 
 
 def _bench_model(cfg, state: Path | None) -> None:
@@ -281,21 +377,19 @@ def _bench_model(cfg, state: Path | None) -> None:
     if state is None:
         t, y, where = 0.0, _core.initial_state(params, traction), "the initial state"
     else:
-        import xarray as xr
+        from .report import ReportError, open_result
 
         try:
-            with xr.open_dataset(state, engine="h5netcdf") as ds:
-                y = np.asarray(ds["final_state"].values, dtype=float).tolist()
-                t = float(ds.attrs["final_time_s"])
-        except (OSError, KeyError, ValueError) as err:
-            console.print(f"[red]--state = {state}: not a rollerdyn result file ({err})[/red]")
-            raise typer.Exit(2) from err
+            ds = open_result(state, required=("final_state",))
+        except ReportError as err:
+            raise refuse(f"--state {err}") from None
+        y = np.asarray(ds["final_state"].values, dtype=float).tolist()
+        t = float(ds.attrs["final_time_s"])
         where = f"the final state of {state} (t = {t:.6g} s)"
     try:
         r = _core.model_timing(params, traction, t, y, 2000, 200)
     except ValueError as err:
-        console.print(f"[red]--state = {state}: {err}[/red]")
-        raise typer.Exit(2) from err
+        raise refuse(f"--state {state}: {err}") from None
     table = Table(title=f"{cfg.name}: the model at {where}, one core")
     for col in ("", "time [µs]"):
         table.add_column(col)
@@ -317,7 +411,7 @@ def _mbs_runs(cfg, t_end: float | None, label: str = "") -> list:
 
     rows = []
     for detector in ("semi-analytical", "gradient"):
-        with console.status(f"running {cfg.name}{label} with the {detector} detector..."):
+        with console.status(Text(f"running {cfg.name}{label} with the {detector} detector...")):
             try:
                 ds = simulate(cfg, t_end=t_end, detector=detector)
             except SimulationError as err:
@@ -378,13 +472,11 @@ def _runtime_study(cfg, t_end: float | None, dt_max_values: list, out: Path) -> 
             continue
         saving = 100 * (1 - row["wall_s"]["semi-analytical"] / row["wall_s"]["gradient"])
         console.print(f"Δt_max = {dt_max:g} s: semi-analytical {saving:.0f} % below gradient")
-    console.print(f"wrote {out / 'runtime_study.csv'} and " + ", ".join(str(p) for p in paths))
+    say(f"wrote {out / 'runtime_study.csv'} and " + ", ".join(str(p) for p in paths))
 
 
 def _thread_counts(text: str) -> list[int]:
     """``--threads`` of ``bench``: comma-separated counts or 'all'."""
-    from rich.markup import escape
-
     from .simulation import default_threads
 
     counts = []
@@ -395,11 +487,9 @@ def _thread_counts(text: str) -> list[int]:
         elif part.isdigit() and int(part) >= 1:
             counts.append(int(part))
         else:
-            console.print(
-                f"[red]--threads = {escape(repr(text))}: must be comma-separated whole "
-                "numbers >= 1 or 'all'[/red]"
+            raise refuse(
+                f"--threads = {text!r}: must be comma-separated whole numbers >= 1 or 'all'"
             )
-            raise typer.Exit(2)
     return counts
 
 
@@ -418,23 +508,22 @@ def _bench_cases(cfg, cases: str, thread_counts: list, max_wall: float, out: Pat
         names = [c.strip() for c in cases.split(",") if c.strip()]
     unknown = [n for n in names if n not in CASES]
     if not names or unknown:
-        from rich.markup import escape
-
-        what = escape(", ".join(unknown) or "empty")
-        console.print(
-            f"[red]--cases = {escape(repr(cases))}: {what} not a case; choose from "
-            f"{', '.join(CASES)}, default or all[/red]"
+        what = ", ".join(unknown) or "empty"
+        raise refuse(
+            f"--cases = {cases!r}: {what} not a case; choose from {', '.join(CASES)}, "
+            "default or all"
         )
-        raise typer.Exit(2)
     results = []
     for name in names:
         for n in thread_counts:
-            with console.status(f"{cfg.name}: case {name} ({CASES[name][0]})...") as status:
+            with console.status(Text(f"{cfg.name}: case {name} ({CASES[name][0]})...")) as status:
 
                 def show(p, status=status, name=name, n=n) -> None:
                     status.update(
-                        f"{cfg.name}: case {name} on {n} thread(s), t = {p.time:.4f} / "
-                        f"{p.t_end:.4f} s, {p.steps} steps"
+                        Text(
+                            f"{cfg.name}: case {name} on {n} thread(s), t = {p.time:.4f} / "
+                            f"{p.t_end:.4f} s, {p.steps} steps"
+                        )
                     )
 
                 results.append(run_case(cfg, name, max_wall, show, threads=n))
@@ -476,7 +565,7 @@ def _bench_cases(cfg, cases: str, thread_counts: list, max_wall: float, out: Pat
         [{**r.__dict__, "sim_per_wall": r.sim_per_wall} for r in results]
     )
     frame.to_csv(out / "bench_cases.csv", index=False)
-    console.print(f"wrote {out / 'bench_cases.csv'}")
+    say(f"wrote {out / 'bench_cases.csv'}")
 
 
 def _bench_mbs(cfg, t_end: float | None) -> None:
@@ -530,7 +619,7 @@ def _bench_contact(cfg, steps: int) -> None:
 
     g = cfg.geometry
     fl = g.inner_flange
-    with console.status("timing roller end / flange detection..."):
+    with console.status(Text("timing roller end / flange detection...")):
         r = _core.contact_benchmark(
             roller_diameter=g.roller_diameter,
             roller_length=g.roller.length,
@@ -619,14 +708,26 @@ def _bench_contact(cfg, steps: int) -> None:
 def run(
     config: Annotated[Path, typer.Argument(help="Bearing configuration (TOML).")],
     output: Annotated[
-        Path, typer.Option("--output", "-o", help="Result file (netCDF, xarray/h5netcdf).")
+        Path,
+        typer.Option(
+            "--output",
+            "-o",
+            help="Result file (netCDF, xarray/h5netcdf). Its folder must exist; an existing "
+            "file is refused unless --overwrite is given or --resume names the same file.",
+        ),
     ] = Path("result.nc"),
+    overwrite: Annotated[
+        bool,
+        typer.Option("--overwrite", help="Replace the file -o names if it exists."),
+    ] = False,
     t_end: Annotated[
-        float | None,
+        str | None,
         typer.Option(
             "--t-end",
-            help="Simulated end time in seconds. Default: the configuration's end time "
+            help="Simulated end time, with a unit as in the configuration (50 ms, 0.05 s) "
+            "or a bare number of seconds (0.05). Default: the configuration's end time "
             "(speed ramp end + two roller-set revolutions, about 1.288 s for B1).",
+            metavar="TIME",
         ),
     ] = None,
     detector: Annotated[
@@ -644,21 +745,22 @@ def run(
             help="Continue an unfinished run (interrupted, killed, failed, or stopped by "
             "--t-end) from the last checkpoint saved in its result file; the output holds "
             "both parts and equals an uninterrupted run bit for bit. Same configuration and "
-            "detector required. -o may name the same file.",
+            "detector required. -o may name the same file (the way to continue a run in "
+            "place).",
         ),
     ] = None,
     checkpoint_interval: Annotated[
-        float | None,
+        str | None,
         typer.Option(
             "--checkpoint-interval",
-            help="Checkpoint interval in seconds of simulated time (not wall-clock time): "
-            "the result file is rewritten and the solver restarted every SECONDS; at most "
-            "this much simulated time is lost after kill -9. A positive number of seconds. "
-            "Overrides solver.checkpoint_interval of the configuration (default 100 ms = "
-            "0.1). With --resume the default is the earlier run's interval, which a "
-            "bit-for-bit continuation needs (another interval changes the result within "
-            "the tolerances).",
-            metavar="SECONDS",
+            help="Checkpoint interval in simulated time (not wall-clock time), with a unit "
+            "(100 ms) or a bare number of seconds (0.1): the result file is rewritten and "
+            "the solver restarted every TIME; at most this much simulated time is lost "
+            "after kill -9. Overrides solver.checkpoint_interval of the configuration "
+            "(default 100 ms). With --resume the default is the earlier run's interval, "
+            "which a bit-for-bit continuation needs (another interval changes the result "
+            "within the tolerances).",
+            metavar="TIME",
         ),
     ] = None,
     threads: Annotated[
@@ -671,97 +773,64 @@ def run(
             "it, bit for bit.",
         ),
     ] = None,
+    force: Annotated[
+        bool,
+        typer.Option(
+            "--force",
+            help="Run even when the estimated result size or cost is far beyond a normal "
+            "run (the refusal prints the estimate).",
+        ),
+    ] = False,
 ) -> None:
     """Run the dynamic simulation and write its results to a netCDF file.
 
     Units: SI throughout the file (every variable has a 'units' attribute; time in s,
     forces in N, torques in N*m, angles in rad, speeds in rad/s). Outputs are saved every
-    solver.output_interval by interpolation. A progress bar shows simulated time, solver
-    steps, speed (simulated seconds per wall second) and the time left. If the run fails
-    or is interrupted (Ctrl-C), everything computed until then is written and the command
-    exits with status 1 (130 after Ctrl-C, 143 after SIGTERM). The result file is also
-    written at every checkpoint (every --checkpoint-interval seconds of simulated time,
-    by default solver.checkpoint_interval, 100 ms; atomically), so after kill -9 or a
-    crash it holds the run up to the last checkpoint, and --resume finishes the run.
-    """
-    from rich.progress import (
-        BarColumn,
-        Progress,
-        TextColumn,
-        TimeElapsedColumn,
-        TimeRemainingColumn,
-    )
+    solver.output_interval by interpolation.
 
+    Progress: on a terminal a bar shows simulated time, solver steps, speed (simulated
+    time per wall second) and the time left; otherwise (a log, a pipe) one line is
+    printed at every 10 % of the simulated time and at least every 10 s.
+
+    The output is checked before the run: its folder must exist and be writable, and an
+    existing file is only replaced with --overwrite (or continued with --resume naming
+    it). If the run fails or is interrupted (Ctrl-C), everything computed until then is
+    written and the command exits with status 1 (130 after Ctrl-C, 143 after SIGTERM).
+    The result file is also written at every checkpoint (every --checkpoint-interval of
+    simulated time, by default solver.checkpoint_interval, 100 ms; atomically), so after
+    kill -9 or a crash it holds the run up to the last checkpoint, and --resume finishes
+    the run. Bad input exits with status 2 before any work.
+    """
     from .simulation import SimulationError, resume_state, simulate, write
 
     if detector is not None and detector not in ("semi-analytical", "gradient", "mesh"):
-        console.print(
-            f"[red]--detector = {detector!r}: must be semi-analytical, gradient or mesh[/red]"
-        )
-        raise typer.Exit(2)
-    if checkpoint_interval is not None and not (
-        checkpoint_interval > 0.0 and math.isfinite(checkpoint_interval)
-    ):
-        console.print(
-            f"[red]--checkpoint-interval = {checkpoint_interval}: must be a positive, finite "
-            "time in seconds[/red]"
-        )
-        raise typer.Exit(2)
+        raise refuse(f"--detector = {detector!r}: must be semi-analytical, gradient or mesh")
+    interval = time_option("--checkpoint-interval", checkpoint_interval)
+    end = time_option("--t-end", t_end)
     cfg = _load(config)
-    end = cfg.end_time if t_end is None else t_end
-    if not end > 0.0:
-        console.print(f"[red]--t-end = {t_end}: must be a positive time in seconds[/red]")
-        raise typer.Exit(2)
-    previous = None
-    if resume is not None:
-        import xarray as xr
+    end = cfg.end_time if end is None else end
+    _check_run_output(output, config, resume, overwrite)
+    previous = None if resume is None else _open_resume(resume, end)
+    if interval is None and previous is not None:
+        earlier = previous.attrs.get("checkpoint_interval_s")
+        if earlier is not None and math.isfinite(float(earlier)) and float(earlier) > 0.0:
+            interval = float(earlier)
+    if interval is not None:
+        solver = cfg.solver.model_copy(update={"checkpoint_interval": float(interval)})
+        cfg = cfg.model_copy(update={"solver": solver})
+    for tmp, pid in remove_stale_temporaries(output):
+        say(f"removed {tmp}: a temporary file of process {pid}, which no longer runs")
+    t_start = 0.0 if previous is None else float(resume_state(previous)[0])
+    unsaved: list[OSError] = []  # a checkpoint that could not be written stops the run
 
-        if not resume.is_file():
-            console.print(f"[red]--resume = {resume}: result file not found[/red]")
-            raise typer.Exit(2)
-        with xr.open_dataset(resume, engine="h5netcdf") as opened:
-            previous = opened.load()
-        t_prev = float(previous.attrs.get("final_time_s", float("nan")))
-        if not end > t_prev:
-            console.print(
-                f"[red]--resume: the run in {resume} already reached t = {t_prev} s; "
-                f"--t-end = {end} s must lie after it[/red]"
-            )
-            raise typer.Exit(2)
-        if checkpoint_interval is None:
-            earlier = previous.attrs.get("checkpoint_interval_s")
-            if earlier is not None and math.isfinite(float(earlier)) and float(earlier) > 0.0:
-                checkpoint_interval = float(earlier)
-    if checkpoint_interval is not None:
-        cfg = cfg.model_copy(
-            update={
-                "solver": cfg.solver.model_copy(
-                    update={"checkpoint_interval": float(checkpoint_interval)}
-                )
-            }
-        )
-    columns = (
-        TextColumn("[bold]{task.description}"),
-        BarColumn(),
-        TextColumn("t = {task.completed:.4f} / {task.total:.4f} s"),
-        TextColumn("{task.fields[steps]} steps"),
-        TextColumn("{task.fields[rate]}"),
-        TimeElapsedColumn(),
-        TimeRemainingColumn(),
-    )
-    import time as _time
+    def checkpoint(partial) -> None:
+        try:
+            write(partial, output)
+        except OSError as err:
+            unsaved.append(err)
 
-    start = _time.perf_counter()
-    t_start = 0.0 if previous is None else resume_state(previous)[0]
     status = 0
-    with Progress(*columns, console=console, transient=False) as bar:
-        task = bar.add_task(cfg.name, total=end, steps=0, rate="")
-
-        def progress(p):
-            wall = _time.perf_counter() - start
-            rate = f"{(p.time - t_start) / wall * 1e3:.2f} ms/s" if wall > 0 else ""
-            bar.update(task, completed=p.time, steps=p.steps, rate=rate)
-
+    with _run_progress(cfg.name, t_start, end) as show:
         # SIGTERM (a batch system or `kill`) stops the run like Ctrl-C: at the next output
         # time, with everything computed so far written (exit status 143).
         previous_handler = signal.signal(signal.SIGTERM, _terminate)
@@ -770,34 +839,147 @@ def run(
                 cfg,
                 t_end=end,
                 detector=detector,
-                progress=progress,
+                progress=lambda p: show(p) or bool(unsaved),
                 resume=previous,
-                checkpoint=lambda partial: write(partial, output),
+                checkpoint=checkpoint,
                 threads=threads,
+                **({"force": True} if force else {}),
             )
         except ValueError as err:
-            console.print(f"[red]{err}[/red]")
-            raise typer.Exit(2) from None
+            raise refuse(err) from None
         except SimulationError as err:
             ds = err.dataset
-            if "SIGTERM" in str(err):
-                status = 143
-            else:
-                status = 130 if "KeyboardInterrupt" in str(err) else 1
-            console.print(f"[red]run stopped:[/red] {err}")
+            status = _stop_status(str(err))
+            error(f"run stopped: {err}")
         finally:
             signal.signal(signal.SIGTERM, previous_handler)
-    write(ds, output)
+    if unsaved:
+        raise refuse(f"-o {output}: could not write the checkpoint ({unsaved[0]}); run stopped", 1)
+    try:
+        write(ds, output)
+    except OSError as err:
+        raise refuse(f"-o {output}: could not write the result ({err})", 1) from None
+    say(_run_line(output, ds))
+    if status:
+        raise typer.Exit(status)
+
+
+def _stop_status(message: str) -> int:
+    """Exit status of a run stopped by ``message``: 143 SIGTERM, 130 Ctrl-C, else 1."""
+    if "SIGTERM" in message:
+        return 143
+    return 130 if "KeyboardInterrupt" in message else 1
+
+
+def _check_run_output(output: Path, config: Path, resume: Path | None, overwrite: bool) -> None:
+    """Exits with status 2 unless ``run`` may write ``output`` (see :mod:`rollerdyn.paths`):
+    an existing file only with --overwrite or as the --resume file."""
+    from .paths import same_file
+
+    in_place = resume is not None and same_file(output, resume)
+    checked(
+        check_output_file,
+        output,
+        "-o",
+        inputs=[("the configuration file", config)],
+        overwrite=overwrite or in_place,
+        hint="; pass --overwrite to replace it, or --resume with the same file to continue "
+        "its run",
+    )
+
+
+def _open_resume(resume: Path, end: float):
+    """The earlier result of ``--resume``, loaded; exits with status 2 naming the file and
+    what is wrong if it is no rollerdyn result or already reached ``end``."""
+    from .report import REQUIRED, ReportError, open_result
+
+    try:
+        previous = open_result(resume, required=(*REQUIRED, "final_state"))
+    except ReportError as err:
+        raise refuse(f"--resume {err}") from None
+    t_prev = float(previous.attrs["final_time_s"])
+    if not end > t_prev:
+        raise refuse(
+            f"--resume {resume}: the run already reached t = {t_prev} s; --t-end = {end} s "
+            "must lie after it"
+        )
+    return previous
+
+
+def _run_line(output: Path, ds) -> str:
+    """The closing line of ``run``: what was written and what it cost."""
     st = ds.attrs
-    console.print(
+    return (
         f"wrote {output}: {ds.sizes['time']} outputs to t = {st['final_time_s']:.6g} s; "
         f"{st['stats_steps']} steps ({st.get('stats_error_test_failures', 0)} rejected), "
         f"{st['stats_rhs_evaluations']} right-hand sides, "
         f"{st['stats_jacobian_evaluations']} Jacobians, {st['stats_total_seconds']:.1f} s wall "
         f"on {st.get('threads', 1)} thread(s)"
     )
-    if status:
-        raise typer.Exit(status)
+
+
+def _rate(simulated: float, wall: float) -> str:
+    """Simulated time per wall second, as text."""
+    return f"{simulated / wall * 1e3:.3g} ms/s" if wall > 0 else ""
+
+
+class ProgressLines:
+    """Progress of a run as plain lines, for a log or a pipe (no terminal): one at every
+    10 % of the simulated time and at least one every ``every`` seconds of wall time."""
+
+    def __init__(self, name: str, t_start: float, t_end: float, every: float = 10.0):
+        self.name, self.t_start, self.t_end, self.every = name, t_start, t_end, every
+        self.started = self.last = time.perf_counter()
+        self.next_share = 0.1
+
+    def __call__(self, p) -> None:
+        now = time.perf_counter()
+        span = self.t_end - self.t_start
+        share = (p.time - self.t_start) / span if span > 0 else 1.0
+        if share < self.next_share - 1e-9 and now - self.last < self.every:
+            return
+        while self.next_share <= share + 1e-9:
+            self.next_share += 0.1
+        self.last = now
+        wall = now - self.started
+        say(
+            f"{self.name}: t = {p.time:.6g} / {self.t_end:.6g} s ({100 * share:.0f} %), "
+            f"{p.steps} steps, {_rate(p.time - self.t_start, wall)}, {wall:.1f} s wall"
+        )
+
+
+@contextlib.contextmanager
+def _run_progress(name: str, t_start: float, t_end: float):
+    """The progress callback of a run: rich's live bar on a terminal, else plain lines."""
+    if not console.is_terminal:
+        yield ProgressLines(name, t_start, t_end)
+        return
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    columns = (
+        TextColumn("{task.description}", style="bold", markup=False),
+        BarColumn(),
+        TextColumn("t = {task.completed:.4f} / {task.total:.4f} s", markup=False),
+        TextColumn("{task.fields[steps]} steps", markup=False),
+        TextColumn("{task.fields[rate]}", markup=False),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+    )
+    start = time.perf_counter()
+    with Progress(*columns, console=console, transient=False) as bar:
+        task = bar.add_task(plain(name), total=t_end, steps=0, rate="")
+
+        def show(p) -> None:
+            rate = _rate(p.time - t_start, time.perf_counter() - start)
+            bar.update(task, completed=p.time, steps=p.steps, rate=rate)
+
+        yield show
 
 
 def _terminate(signum, frame) -> None:
@@ -808,25 +990,36 @@ def _terminate(signum, frame) -> None:
 @app.command()
 def plot(
     results: Annotated[list[Path], typer.Argument(help="Result files (netCDF) of rollerdyn run.")],
-    out: Annotated[Path, typer.Option("--output", "-o", help="Directory for the figures.")] = Path(
-        "plots"
-    ),
+    out: Annotated[
+        Path,
+        typer.Option(
+            "--output",
+            "-o",
+            help="Folder for the figures; created if missing (its parent must exist). "
+            "Figures of the same names in it are replaced.",
+        ),
+    ] = Path("plots"),
 ) -> None:
-    """Draw the paper's figures from result files (PNG and SVG, axes in SI units):
-    bearing frictional torque over time (fig. 10), flange friction force of roller 0 over
-    time (fig. 11), axial force of a roller over its azimuth (fig. 12), slide-to-roll ratio
-    at the inner race over azimuth (fig. 13), roller loads over azimuth, and the roller end /
-    flange pairings in contact (figs. 8, 9).
+    """Draw the paper's figures from result files (PNG and SVG, axes in SI units).
+
+    Bearing frictional torque over time (fig. 10), flange friction force of roller 0 over
+    time (fig. 11), axial force of a roller over its azimuth (fig. 12), slide-to-roll
+    ratio at the inner race over azimuth (fig. 13), roller loads over azimuth, and the
+    roller end / flange pairings in contact (figs. 8, 9). A missing file or one that is
+    not a rollerdyn result exits with status 2.
     """
     from .plots import plot_results
+    from .report import ReportError
 
-    for r in results:
-        if not r.is_file():
-            console.print(f"[red]{r}: result file not found[/red]")
-            raise typer.Exit(2)
-    written = plot_results(results, out)
+    checked(check_output_dir, out, "-o")
+    try:
+        written = plot_results(results, out)
+    except ReportError as err:
+        raise refuse(err) from None
+    except OSError as err:
+        raise refuse(f"-o {out}: could not write the figures ({err})", 1) from None
     for w in written:
-        console.print(f"wrote {w}")
+        say(f"wrote {w}")
 
 
 # --------------------------------------------------------------------------- sweeps

@@ -27,14 +27,20 @@ def _full_speed(ds: xr.Dataset) -> xr.Dataset:
 
 
 def plot_results(paths: list[Path], out: Path) -> list[Path]:
-    """Writes every figure for the given results into ``out``; returns the files."""
+    """Writes every figure for the given results into ``out``; returns the files. Every
+    file is read first: :class:`rollerdyn.report.ReportError` (naming the file and what
+    is wrong) for one that is missing or not a rollerdyn result, before any figure."""
     import matplotlib
+
+    from .report import REQUIRED, open_result
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    paths = [Path(p) for p in paths]
+    sets = [(p, open_result(p, required=(*REQUIRED, "ring_tilt"))) for p in paths]
+    out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    sets = [(p, xr.open_dataset(p, engine="h5netcdf")) for p in paths]
     written: list[Path] = []
 
     def save(fig, name: str) -> None:
@@ -111,8 +117,6 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
         ax.set(ylabel="share of contact outputs [-]", title=f"{title}: pairings at the {ring} ring")
         ax.legend()
         save(fig, f"fig{8 if ring == 'inner' else 9}_pairings_{ring}")
-    for _, ds in sets:
-        ds.close()
     return written
 
 

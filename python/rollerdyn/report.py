@@ -57,26 +57,38 @@ class ReportError(ValueError):
 # --------------------------------------------------------------------------- reading
 
 
-def open_result(path: Path) -> xr.Dataset:
-    """The result in ``path``, loaded into memory; :class:`ReportError` if it is missing
-    or not a rollerdyn result."""
+def open_result(path: Path, required: tuple[str, ...] = REQUIRED) -> xr.Dataset:
+    """The result in ``path``, loaded into memory; :class:`ReportError` (one line naming
+    the file and what is wrong) if it is missing, unreadable or not a rollerdyn result
+    (one of the ``required`` variables or its final time missing, or no outputs)."""
     path = Path(path)
+    if path.is_dir():
+        raise ReportError(f"{path}: is a folder, not a result file")
     if not path.is_file():
         raise ReportError(f"{path}: result file not found")
+    if path.stat().st_size == 0:
+        raise ReportError(f"{path}: not a rollerdyn result (the file is empty)")
     try:
         with xr.open_dataset(path, engine="h5netcdf") as opened:
             ds = opened.load()
     except Exception as err:  # h5py/h5netcdf raise several kinds for non-HDF5 input
+        reason = " ".join(str(err).split()) or type(err).__name__
         raise ReportError(
-            f"{path}: not a rollerdyn result (cannot be read as netCDF: {err})"
+            f"{path}: not a rollerdyn result (cannot be read as netCDF: {reason})"
         ) from None
-    missing = [v for v in REQUIRED if v not in ds]
+    missing = [v for v in required if v not in ds]
     if missing or "final_time_s" not in ds.attrs:
-        what = ", ".join(missing) if missing else "attribute final_time_s"
+        what = _listed(missing) if missing else "attribute final_time_s"
         raise ReportError(f"{path}: not a rollerdyn result (missing {what})")
     if ds.sizes.get("time", 0) == 0:
         raise ReportError(f"{path}: the result holds no outputs (empty time axis)")
     return ds
+
+
+def _listed(names: list[str], most: int = 4) -> str:
+    """``a, b, c and 5 more``: the first ``most`` names and how many follow."""
+    shown = ", ".join(names[:most])
+    return shown + (f" and {len(names) - most} more" if len(names) > most else "")
 
 
 def _labels(paths: list[Path], sets: list[xr.Dataset]) -> list[str]:
@@ -112,6 +124,16 @@ def _nanmax(a) -> float:
     return float(a.max()) if a.size else float("nan")
 
 
+def max_abs_srr_inner(ds: xr.Dataset) -> float:
+    """Largest |slide-to-roll ratio| at the inner race over the outputs at which the inner
+    ring turns (any roller; NaN outputs ignored); NaN if it never turns: before the ring
+    turns the ratio has no meaning (it divides by a rolling speed that is not there)."""
+    turning = np.abs(np.asarray(ds.ring_speed.values, dtype=float)) > 0.0
+    if not turning.any():
+        return float("nan")
+    return _nanmax(np.abs(ds.srr_inner.values[turning]))
+
+
 # --------------------------------------------------------------------------- summary
 
 SUMMARY_ROWS = (
@@ -141,7 +163,7 @@ def summary(ds: xr.Dataset) -> dict:
             _nanmax(ds.inner_normal_force.values), _nanmax(ds.outer_normal_force.values)
         ),
         "max_flange_force": _nanmax(ds.flange_normal_force.values),
-        "max_srr_inner": _nanmax(np.abs(ds.srr_inner.values)),
+        "max_srr_inner": max_abs_srr_inner(ds),
         "final_time": float(a["final_time_s"]),
         "steps": (int(a.get("stats_steps", -1)), int(a.get("stats_error_test_failures", 0))),
         "wall": float(a.get("stats_total_seconds", float("nan"))),
@@ -550,8 +572,9 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
     body.append(
         f'<p class="note">Mean torque over the last {LAST_SHARE:.0%} of each run\'s simulated '
         "time; maxima over every output, roller and contact. Slide-to-roll ratio: eq. 49 of "
-        "the paper ('n/a' where no roller rolls). Steps: accepted solver steps (rejected in "
-        "brackets); wall time: the run's, on one core.</p>"
+        "the paper, over the outputs at which the inner ring turns ('n/a' if it never "
+        "does: the ratio has no meaning before). Steps: accepted solver steps (rejected "
+        "in brackets); wall time: the run's, on one core.</p>"
     )
 
     # Inputs.
@@ -632,23 +655,52 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
 def report(paths, out, max_frames: int = MAX_FRAMES) -> Path:
     """Writes one self-contained HTML report of the result files ``paths`` (netCDF written
     by ``rollerdyn run``) to ``out`` and returns its path. Raises :class:`ReportError` for
-    a missing file or one that is not a rollerdyn result."""
+    a missing file or one that is not a rollerdyn result, and for ``out`` naming one of
+    them."""
+    from .paths import same_file
+
     if isinstance(paths, str | Path):
         paths = [paths]
-    page = build_html([Path(p) for p in paths], max_frames=max_frames)
-    out = Path(out)
+    paths, out = [Path(p) for p in paths], Path(out)
+    for p in paths:
+        if same_file(out, p):
+            raise ReportError(f"-o {out}: is the result file {p}, an input; choose another")
+    page = build_html(paths, max_frames=max_frames)
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(page, encoding="utf-8")
     return out
+
+
+def check_report_output(results: list[Path], output: Path) -> Path:
+    """Checks before any work that ``output`` may take the report (see
+    :mod:`rollerdyn.paths`): not an input, its folder there and writable, and if it
+    exists an earlier report (``.html``/``.htm``), not a result or any other file."""
+    from .paths import check_output_file, is_result_file
+
+    output = Path(output)
+    replaceable = output.suffix.lower() in (".html", ".htm") and not is_result_file(output)
+    return check_output_file(
+        output,
+        "-o",
+        inputs=[(f"the result file {r}", r) for r in results],
+        overwrite=replaceable,
+        hint="; only an earlier report (.html) is replaced: choose another name",
+    )
 
 
 def report_command(
     results: Annotated[
         list[Path], typer.Argument(help="Result files (netCDF) written by rollerdyn run.")
     ],
-    output: Annotated[Path, typer.Option("--output", "-o", help="The HTML file to write.")] = Path(
-        "report.html"
-    ),
+    output: Annotated[
+        Path,
+        typer.Option(
+            "--output",
+            "-o",
+            help="The HTML file to write. Its folder must exist; an existing file is "
+            "replaced only if it is an earlier report (.html).",
+        ),
+    ] = Path("report.html"),
     max_frames: Annotated[
         int,
         typer.Option(
@@ -665,27 +717,33 @@ def report_command(
     degrees and the roller-set view in mm, as the axes say. The page shows:
 
     - inputs: each run's attributes (bearing, detector, solver settings, statistics) and
-      its radial and axial load (N) and inner ring speed (rad/s) over time;
+    its radial and axial load (N) and inner ring speed (rad/s) over time;
+
     - a summary table, one column per result: mean bearing frictional torque over the
-      last 20 % of the run (N*m), largest roller-race load (N), largest flange normal
-      force (N), largest |slide-to-roll ratio| at the inner race, final time (s), solver
-      steps and wall time (s);
+    last 20 % of the run (N*m), largest roller-race load (N), largest flange normal force
+    (N), largest |slide-to-roll ratio| at the inner race while the ring turns (n/a if it
+    never does), final time (s), solver steps and wall time (s);
+
     - the paper's figures, interactive, every result in the same plot: fig. 10 frictional
-      torque over time, fig. 11 flange friction force of roller 0 over time, fig. 12 axial
-      force on a roller over its azimuth, fig. 13 inner slide-to-roll ratio over azimuth,
-      figs. 8 and 9 share of time per roller end / flange pairing at each ring;
+    torque over time, fig. 11 flange friction force of roller 0 over time, fig. 12 axial
+    force on a roller over its azimuth, fig. 13 inner slide-to-roll ratio over azimuth,
+    figs. 8 and 9 share of time per roller end / flange pairing at each ring;
+
     - an animation of the roller set (orbit positions, skew, inner race load) with a
-      slider through time, at most --max-frames frames (default 200).
+    slider through time, at most --max-frames frames (default 200).
 
-    Exits with status 2 if a file is missing or is not a rollerdyn result.
+    Exits with status 2 if a file is missing or is not a rollerdyn result, or if -o
+    cannot take the report (checked before any work).
     """
-    from rich.console import Console
+    from .cli import checked, error, refuse, say
 
-    console = Console(width=200 if not Console().is_terminal else None)
+    checked(check_report_output, results, output)
     try:
         written = report(results, output, max_frames=max_frames)
     except ReportError as err:
-        console.print(f"[red]{err}[/red]", highlight=False)
-        raise typer.Exit(2) from None
+        raise refuse(err) from None
+    except OSError as err:
+        error(f"-o {output}: could not write the report ({err})")
+        raise typer.Exit(1) from None
     size = written.stat().st_size / 1e6
-    console.print(f"wrote {written} ({size:.1f} MB)", highlight=False)
+    say(f"wrote {written} ({size:.1f} MB)")

@@ -16,6 +16,7 @@ complete file and one summary row. See ``docs/sweeps.md``.
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import math
 import os
@@ -57,7 +58,8 @@ SUMMARY_COLUMNS = {
     "max_flange_normal_force [N]": "largest roller end / flange normal force (any roller, "
     "any flange, any output time)",
     "max_abs_srr_inner [1]": "largest |slide-to-roll ratio| at the inner race (eq. 49, "
-    "any roller, any output time; NaN outputs ignored)",
+    "any roller, any output time at which the inner ring turns; NaN outputs ignored; NaN "
+    "if the ring never turns: the ratio has no meaning before)",
     "steps": "integrator steps",
     "wall [s]": "wall time of the run in its worker (simulation and writing its file)",
     "file": "result file in the output directory (empty if none was written)",
@@ -268,6 +270,7 @@ def build_grid(
 
 def summarize(ds) -> dict:
     """The summary numbers of one result Dataset (see :data:`SUMMARY_COLUMNS`)."""
+    from .report import max_abs_srr_inner
 
     def finite_max(values) -> float:
         arr = np.asarray(values, dtype=float)
@@ -293,7 +296,7 @@ def summarize(ds) -> dict:
         "mean_frictional_torque [N*m]": torque,
         "max_race_load [N]": finite_max(race),
         "max_flange_normal_force [N]": finite_max(ds["flange_normal_force"].values),
-        "max_abs_srr_inner [1]": finite_max(np.abs(ds["srr_inner"].values)),
+        "max_abs_srr_inner [1]": max_abs_srr_inner(ds),
         "steps": int(ds.attrs.get("stats_steps", 0)),
     }
 
@@ -382,6 +385,7 @@ def sweep(
     detector: str | None = None,
     progress: Callable[[int, int, dict | None], Any] | None = None,
     retries: int = 2,
+    connect_timeout: float = 10.0,
 ):
     """Run the grid of ``parameters`` over ``config`` on Dask; return the summary.
 
@@ -400,10 +404,11 @@ def sweep(
     from its attempt that returned. Returns a :class:`pandas.DataFrame`, one row per run in
     run order (columns: :data:`SUMMARY_COLUMNS` and, per path, the value as given and, for numeric
     fields, its SI value in ``"<path> [<unit>]"``), also written to
-    ``outdir/summary.parquet``.
+    ``outdir/summary.parquet``. A scheduler that cannot be reached (within
+    ``connect_timeout`` seconds) raises :class:`SweepError` before ``outdir`` is touched.
     """
     import pandas as pd
-    from distributed import Client, LocalCluster, as_completed
+    from distributed import as_completed
 
     if detector is not None and detector not in DETECTORS:
         raise SweepError(f"detector = {detector!r}: must be {', '.join(DETECTORS)}")
@@ -415,22 +420,12 @@ def sweep(
         raise SweepError(f"retries = {retries}: must be 0 or more")
     points = build_grid(config, parameters)
     out = Path(outdir).resolve()
-    out.mkdir(parents=True, exist_ok=True)
-    for p in points:  # no stale result of an earlier sweep can pass for this one's
-        (out / p.file).unlink(missing_ok=True)
-
-    cluster = None
-    if scheduler is None:
-        cluster = LocalCluster(
-            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
-        )
-        client = Client(cluster)
-    elif isinstance(scheduler, Client):
-        client = scheduler
-    else:
-        client = Client(scheduler)
+    client, cluster = _connect(scheduler, workers, connect_timeout)
     rows: dict[int, dict] = {}
     try:
+        out.mkdir(parents=True, exist_ok=True)
+        for p in points:  # no stale result of an earlier sweep can pass for this one's
+            (out / p.file).unlink(missing_ok=True)
         futures, by_key = [], {}
         for p in points:
             fut = client.submit(
@@ -477,12 +472,81 @@ def sweep(
     return frame
 
 
+def _check_reachable(address: str, timeout: float) -> None:
+    """Raises :class:`SweepError` (one line) unless a Dask scheduler answers at ``address``
+    within ``timeout`` seconds: a refused connection or an unknown host fails at once, and
+    a server that accepts the connection but never answers (where Dask's own handshake
+    waits forever) after ``timeout``. Addresses of other schemes than tcp are left to
+    Dask."""
+    import socket
+
+    from distributed.comm import parse_address, parse_host_port
+
+    try:
+        scheme, location = parse_address(address)
+        host, port = parse_host_port(location) if scheme in ("tcp", "tls") else (None, None)
+    except (ValueError, TypeError) as err:
+        raise SweepError(f"scheduler = {address!r}: not a scheduler address ({err})") from None
+    if host is None:
+        return
+    try:
+        socket.create_connection((host, port), timeout=timeout).close()
+        if scheme == "tcp":
+            _handshake(address, timeout)
+    except (OSError, TimeoutError, EOFError) as err:
+        reason = getattr(err, "strerror", None) or str(err) or type(err).__name__
+        if isinstance(err, TimeoutError):
+            reason = f"no answer within {timeout:g} s"
+        raise SweepError(f"scheduler = {address!r}: cannot connect ({reason})") from None
+    except Exception as err:  # a server that answers, but not as a Dask scheduler
+        reason = " ".join(str(err).split()) or type(err).__name__
+        raise SweepError(f"scheduler = {address!r}: no Dask scheduler there ({reason})") from None
+
+
+def _handshake(address: str, timeout: float) -> None:
+    """Opens and closes one Dask connection to ``address`` (its handshake included), given
+    up after ``timeout`` seconds; in a thread of its own, so that it works inside a
+    running event loop too."""
+    import asyncio
+    from concurrent.futures import ThreadPoolExecutor
+
+    from distributed.comm import connect
+
+    async def probe() -> None:
+        comm = await asyncio.wait_for(connect(address, timeout=timeout), timeout)
+        await comm.close()
+
+    with ThreadPoolExecutor(1) as pool:
+        pool.submit(asyncio.run, probe()).result()
+
+
+def _connect(scheduler: Any, workers: int, timeout: float):
+    """(client, cluster or None): a new local cluster, the given Client, or a Client of the
+    scheduler at an address; :class:`SweepError` if that cannot be reached."""
+    from distributed import Client, LocalCluster
+
+    if scheduler is None:
+        cluster = LocalCluster(
+            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
+        )
+        return Client(cluster), cluster
+    if isinstance(scheduler, Client):
+        return scheduler, None
+    _check_reachable(str(scheduler), timeout)
+    try:
+        return Client(scheduler, timeout=timeout), None
+    except Exception as err:  # Dask raises OSError, TimeoutError, ValueError, ...
+        reason = " ".join(str(err).split()) or type(err).__name__
+        raise SweepError(f"scheduler = {scheduler!r}: cannot connect ({reason})") from None
+
+
 # --------------------------------------------------------------------------- command line
 
 
 def _fmt(value: Any, spec: str = ".6g") -> str:
+    """A summary value as text; NaN (nothing to report) as n/a."""
     if isinstance(value, float):
-        return "-" if math.isnan(value) else format(value, spec)
+        return "n/a" if math.isnan(value) else format(value, spec)
     return str(value)
 
 
@@ -507,18 +571,27 @@ def sweep_command(
         typer.Option(
             "--output",
             "-o",
-            help="Output directory: run_0000.nc, run_0001.nc, ... (netCDF, SI units, as "
-            "written by rollerdyn run) and summary.parquet. Created if missing; existing "
-            "files of the same names are overwritten.",
+            help="Output folder: run_0000.nc, run_0001.nc, ... (netCDF, SI units, as "
+            "written by rollerdyn run) and summary.parquet. Created if missing (its parent "
+            "must exist); a folder that holds an earlier sweep's results is refused unless "
+            "--overwrite is given.",
         ),
     ] = Path("sweep"),
+    overwrite: Annotated[
+        bool,
+        typer.Option(
+            "--overwrite",
+            help="Replace the results of an earlier sweep in the output folder.",
+        ),
+    ] = False,
     scheduler: Annotated[
         str | None,
         typer.Option(
             "--scheduler",
             help="Address of a running Dask scheduler (e.g. tcp://10.0.0.5:8786); its "
-            "workers need rollerdyn installed and must see the output directory. "
-            "Default: a local cluster of --workers processes.",
+            "workers need rollerdyn installed and must see the output folder. An address "
+            "that cannot be reached within 10 s exits with status 2. Default: a local "
+            "cluster of --workers processes.",
         ),
     ] = None,
     workers: Annotated[
@@ -531,11 +604,13 @@ def sweep_command(
         ),
     ] = 2,
     t_end: Annotated[
-        float | None,
+        str | None,
         typer.Option(
             "--t-end",
-            help="Simulated end time of every run in seconds. Default: each configuration's "
+            help="Simulated end time of every run, with a unit as in the configuration "
+            "(50 ms, 0.05 s) or a bare number of seconds. Default: each configuration's "
             "end time (speed ramp end + two roller-set revolutions, about 1.288 s for B1).",
+            metavar="TIME",
         ),
     ] = None,
     detector: Annotated[
@@ -549,28 +624,61 @@ def sweep_command(
 ) -> None:
     """Run a grid of variants of a configuration on Dask and summarise them.
 
-    Every grid point is validated before any run starts; a bad one exits with status 2
-    naming the --set path, the value and the rule. Each run writes its own result file.
-    The summary (one row per run; units SI, given in the column names: run, each swept
-    value as given and in SI, status, error, final time [s], mean frictional torque over
-    the last 20 % of the run [N*m], maximum roller race load [N], maximum flange normal
-    force [N], maximum |slide-to-roll ratio| at the inner race [1], steps, wall time [s],
-    file) is written to summary.parquet and printed. A failed run keeps its partial
-    result and its error in the summary, and the sweep goes on; the command then exits
-    with status 1.
+    Every grid point and the output folder are checked before any run starts; a bad one
+    exits with status 2 naming the --set path (or option), the value and the rule. Each
+    run writes its own result file. The summary (one row per run; units SI, given in the
+    column names: run, each swept value as given and in SI, status, error, final time
+    [s], mean frictional torque over the last 20 % of the run [N*m], maximum roller race
+    load [N], maximum flange normal force [N], maximum |slide-to-roll ratio| at the inner
+    race while the ring turns [1] (n/a if it never does), steps, wall time [s], file) is
+    written to summary.parquet and printed. A failed run keeps its partial result and its
+    error in the summary, and the sweep goes on; the command then exits with status 1.
     """
-    from rich.markup import escape
-    from rich.progress import (
-        BarColumn,
-        MofNCompleteColumn,
-        Progress,
-        TextColumn,
-        TimeElapsedColumn,
-        TimeRemainingColumn,
-    )
-    from rich.table import Table
+    from .cli import _load, checked, console, refuse, say, time_option
+    from .paths import check_output_dir
 
-    from .cli import _load, console
+    parameters = _parameters(sets)
+    end = time_option("--t-end", t_end)
+    _load(config)  # a bad file: the same message and exit status as rollerdyn run
+    if detector is not None and detector not in DETECTORS:
+        raise refuse(f"--detector = {detector!r}: must be semi-analytical, gradient or mesh")
+    checked(
+        check_output_dir,
+        output,
+        "-o",
+        results=("run_[0-9][0-9][0-9][0-9].nc", SUMMARY_FILE),
+        overwrite=overwrite,
+        hint="; pass --overwrite to replace them, or choose another folder",
+    )
+    try:
+        build_grid(config, parameters)  # validate every grid point before the cluster starts
+        with _sweep_progress(console, scheduler) as progress:
+            frame = sweep(
+                config,
+                parameters,
+                output,
+                scheduler=scheduler,
+                workers=workers,
+                t_end=end,
+                detector=detector,
+                progress=progress,
+            )
+    except SweepError as err:
+        raise refuse(err) from None
+    except OSError as err:
+        raise refuse(f"-o {output}: {err}", 1) from None
+    failed = _print_summary(frame, config, output, list(parameters))
+    say(
+        f"wrote {output / SUMMARY_FILE} and {int((frame['file'] != '').sum())} result files; "
+        f"{len(frame) - failed} completed, {failed} failed"
+    )
+    if failed:
+        raise typer.Exit(1)
+
+
+def _parameters(sets: list[str]) -> dict[str, list[Any]]:
+    """The --set options as {path: values}; exits with status 2 on a malformed one."""
+    from .cli import refuse
 
     parameters: dict[str, list[Any]] = {}
     try:
@@ -580,88 +688,96 @@ def sweep_command(
                 raise SweepError(f"--set {path}: given twice; list all its values in one --set")
             parameters[path] = values
     except SweepError as err:
-        console.print(f"[red]{escape(str(err))}[/red]", highlight=False, soft_wrap=True)
-        raise typer.Exit(2) from None
-    _load(config)  # a bad file: the same message and exit status as rollerdyn run
-    if detector is not None and detector not in DETECTORS:
-        console.print(
-            f"[red]--detector = {detector!r}: must be semi-analytical, gradient or mesh[/red]"
-        )
-        raise typer.Exit(2)
-    if t_end is not None and not t_end > 0.0:
-        console.print(f"[red]--t-end = {t_end}: must be a positive time in seconds[/red]")
-        raise typer.Exit(2)
-    try:
-        build_grid(config, parameters)  # validate every grid point before the cluster starts
-    except SweepError as err:
-        console.print(str(err), markup=False, highlight=False, soft_wrap=True)
-        raise typer.Exit(2) from None
+        raise refuse(err) from None
+    return parameters
+
+
+class _Lines:
+    """The sweep's progress as plain lines (no terminal: a log, a pipe), one per run."""
+
+    def __init__(self, say: Callable[[str], None]):
+        self.say, self.started = say, time.perf_counter()
+
+    def __call__(self, done: int, total: int, row: dict | None) -> None:
+        wall = time.perf_counter() - self.started
+        if row is None:
+            self.say(f"sweep: {total} runs submitted ({wall:.1f} s)")
+        else:
+            status = row["status"]
+            self.say(f"sweep: run {row['run']} {status}; {done} of {total} done ({wall:.1f} s)")
+
+
+@contextlib.contextmanager
+def _sweep_progress(console, scheduler: str | None):
+    """The progress callback of :func:`sweep`: a live bar on a terminal, else lines."""
+    from .cli import plain, say
+
+    start = "starting Dask workers" if scheduler is None else f"connecting to {scheduler}"
+    if not console.is_terminal:
+        say(f"sweep: {start}")
+        yield _Lines(say)
+        return
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
 
     columns = (
-        TextColumn("[bold]{task.description}"),
+        TextColumn("{task.description}", style="bold", markup=False),
         BarColumn(),
         MofNCompleteColumn(),
-        TextColumn("runs"),
+        TextColumn("runs", markup=False),
         TimeElapsedColumn(),
         TimeRemainingColumn(),
-        TextColumn("{task.fields[last]}"),
+        TextColumn("{task.fields[last]}", markup=False),
     )
     with Progress(*columns, console=console, transient=False) as bar:
-        task = bar.add_task("starting Dask workers", total=None, last="")
+        task = bar.add_task(plain(start), total=None, last="")
 
         def progress(done: int, total: int, row: dict | None) -> None:
-            last = ""
-            if row is not None:
-                last = f"run {row['run']} {row['status']}"
+            last = "" if row is None else f"run {row['run']} {row['status']}"
             bar.update(task, description="sweep", completed=done, total=total, last=last)
 
-        frame = sweep(
-            config,
-            parameters,
-            output,
-            scheduler=scheduler,
-            workers=workers,
-            t_end=t_end,
-            detector=detector,
-            progress=progress,
-        )
+        yield progress
 
-    table = Table(title=escape(f"sweep of {config.name}: {len(frame)} runs, in {output}"))
-    swept = list(parameters)  # as given; their SI values are in summary.parquet
+
+def _print_summary(frame, config: Path, output: Path, swept: list[str]) -> int:
+    """Prints the summary table and each failed run's error; returns how many failed."""
+    from rich.table import Table
+    from rich.text import Text
+
+    from .cli import console, error, plain
+
+    table = Table(title=plain(f"sweep of {config.name}: {len(frame)} runs, in {output}"))
     headers = {
         "final_time [s]": "final t [s]",
         "mean_frictional_torque [N*m]": "mean torque, last 20 % [N*m]",
         "max_race_load [N]": "max race load [N]",
         "max_flange_normal_force [N]": "max flange force [N]",
-        "max_abs_srr_inner [1]": "max |SRR| inner",
+        "max_abs_srr_inner [1]": "max |SRR| inner, ring turning",
         "steps": "steps",
         "wall [s]": "wall [s]",
         "file": "file",
     }
-    shown = ["run", *swept, "status", *headers]
+    shown = ["run", *swept, "status", *headers]  # swept values as given; SI in the parquet
     for col in shown:
-        table.add_column(escape(headers.get(col, col)), overflow="fold")
+        table.add_column(headers.get(col, col), overflow="fold")
     for _, row in frame.iterrows():
         cells = []
         for col in shown:
             value = row[col]
             if col == "status":
                 ok = value == "completed"
-                cells.append("[green]completed[/green]" if ok else "[red]failed[/red]")
+                cells.append(Text(value, style="green" if ok else "red"))
                 continue
-            cells.append(escape(_fmt(value, ".1f" if col == "wall [s]" else ".6g")))
+            cells.append(Text(plain(_fmt(value, ".1f" if col == "wall [s]" else ".6g"))))
         table.add_row(*cells)
     console.print(table)
     failed = frame[frame["status"] != "completed"]
     for _, row in failed.iterrows():
-        console.print(
-            f"[red]run {row['run']} failed:[/red] {escape(row['error'])}",
-            highlight=False,
-            soft_wrap=True,
-        )
-    console.print(
-        f"wrote {output / SUMMARY_FILE} and {int((frame['file'] != '').sum())} result files; "
-        f"{len(frame) - len(failed)} completed, {len(failed)} failed"
-    )
-    if len(failed):
-        raise typer.Exit(1)
+        error(f"run {row['run']} failed: {row['error']}")
+    return len(failed)
