@@ -17,6 +17,7 @@ Short mode (CI): ``CONFIG_FUZZ_EXAMPLES`` examples per test, 300 by default. Lon
 from __future__ import annotations
 
 import copy
+import io
 import json
 import math
 import os
@@ -29,8 +30,11 @@ from typing import Any
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from rich.console import Console
+from rich.text import Text
 
 from rollerdyn.config import BearingConfig, ConfigError, load_config
+from rollerdyn.simulation import check_cost, estimated_cost
 
 B1_TOML = Path(__file__).resolve().parents[1] / "examples" / "b1.toml"
 B1_BYTES = B1_TOML.read_bytes()
@@ -199,6 +203,22 @@ def scalars() -> st.SearchStrategy:
                 "exact",
                 "tabulated",
                 "direct",
+                # rich markup in text: printed as text, never interpreted (issue 16)
+                "5000 [/x] N",
+                "B1 [/x]",
+                "[red]",
+                "[bold]5 mm[/bold]",
+                "[mass]",
+                "[/]",
+                # values that drive cost or lie beyond any bearing (issue 16)
+                "1e-12 s",
+                "1e-30 s",
+                "1e300 N",
+                "1e300 rpm",
+                "1e12 rpm",
+                "1e-300 mm",
+                100000000,
+                10**18,
             ]
         ),
     )
@@ -330,10 +350,13 @@ def dump_toml(data: dict, prefix: tuple = ()) -> str:
 
 def check_load(path: Path) -> BearingConfig | None:
     """load_config(path) returns a configuration or raises ConfigError naming the field of
-    every problem; anything else fails the test."""
+    every problem; anything else fails the test. An accepted configuration has a cost
+    estimate, and a run far beyond a normal one is refused by :func:`check_cost` with a
+    ValueError before any work; every message prints as plain text through rich."""
     try:
-        return load_config(path)
+        config = load_config(path)
     except ConfigError as err:
+        _prints_as_text(str(err))
         message = str(err)
         assert message.strip(), "empty message"
         if err.problems:
@@ -347,6 +370,25 @@ def check_load(path: Path) -> BearingConfig | None:
                 reason in message for reason in ("malformed TOML", "not UTF-8", "expected a table")
             ), message
         return None
+    cost = estimated_cost(config, config.end_time)
+    assert cost["outputs"] >= 1 and cost["min_steps"] > 0, cost
+    try:
+        check_cost(config, config.end_time)
+    except ValueError as err:
+        _prints_as_text(str(err))
+        assert str(err).startswith("solver."), err
+    return config
+
+
+def _prints_as_text(message: str) -> None:
+    """The CLI prints messages as rich Text: any brackets in them must survive."""
+    out = io.StringIO()
+    Console(file=out, width=300).print(Text(message, style="red"))
+    shown, expected = (
+        "".join(c for c in t if c.isprintable() and not c.isspace())
+        for t in (out.getvalue(), message)
+    )
+    assert shown == expected  # layout and control characters aside, nothing is lost
 
 
 def test_the_writer_round_trips_b1(tmp_path: Path) -> None:
