@@ -253,7 +253,8 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
 
 @dataclass(frozen=True)
 class Progress:
-    """What a progress callback receives at every output time."""
+    """What a progress callback receives at every output time and every 0.2 s of wall
+    time between them (``at_output`` False)."""
 
     time: float
     t_end: float
@@ -261,6 +262,7 @@ class Progress:
     rhs_evaluations: int
     jacobian_evaluations: int
     step_size: float
+    at_output: bool = True
 
 
 _SCALARS = {
@@ -405,7 +407,8 @@ def simulate(
     ``threads``: how many threads evaluate the contacts and the Jacobian's columns (default:
     all cores; the gradient detector always uses one). The result does not depend on it,
     bit for bit. ``progress(Progress)`` is called at every output
-    time; returning True stops the run (the Dataset then ends there). Raises
+    time and every 0.2 s of wall time between them (``Progress.at_output`` tells which);
+    returning True stops the run (the Dataset then ends at the last output). Raises
     :class:`SimulationError` (with the partial Dataset) if the integration fails.
 
     ``checkpoint(ds)`` is called at every checkpoint (every ``solver.checkpoint_interval``
@@ -452,10 +455,10 @@ def simulate(
         "start": s.start,
     }
 
-    def callback(t, t_end_, steps, rhs, jac, step):
+    def callback(t, t_end_, steps, rhs, jac, step, at_output):
         if progress is None:
             return False
-        return bool(progress(Progress(t, t_end_, steps, rhs, jac, step)))
+        return bool(progress(Progress(t, t_end_, steps, rhs, jac, step, at_output)))
 
     saving = {"seconds": 0.0}
 

@@ -1421,6 +1421,7 @@ mod simulation {
                     s.rhs_evaluations,
                     s.jacobian_evaluations,
                     s.last_step,
+                    p.at_output,
                 )))
             },
             |c: &RunCheckpoint, records: &[Record]| {

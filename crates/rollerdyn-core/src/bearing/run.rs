@@ -218,6 +218,8 @@ pub struct Progress {
     pub t_end: f64,
     /// Counters.
     pub stats: Stats,
+    /// At an output time (false: a report between outputs, see [`PROGRESS_EVERY`]).
+    pub at_output: bool,
 }
 
 /// Runs the model from `start` (or its consistent initial state at t = 0) to
@@ -296,6 +298,7 @@ pub fn run(
                     time,
                     t_end: options.t_end,
                     stats: *stats,
+                    at_output: true,
                 })
             }
             Event::Step { time, stats } => {
@@ -307,6 +310,7 @@ pub fn run(
                     time,
                     t_end: options.t_end,
                     stats: *stats,
+                    at_output: false,
                 })
             }
             Event::Checkpoint(c) => {
