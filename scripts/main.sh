@@ -12,7 +12,7 @@ bash scripts/setup.sh
 .venv/bin/rollerdyn validate
 mkdir -p results
 status=0
-.venv/bin/rollerdyn run examples/b1.toml -o results/b1.nc "$@" || status=$?
+.venv/bin/rollerdyn run examples/b1.toml -o results/b1.nc --overwrite "$@" || status=$?
 .venv/bin/rollerdyn plot results/b1.nc -o results/plots
 .venv/bin/rollerdyn report results/b1.nc -o results/report.html
 exit "$status"

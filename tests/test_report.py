@@ -141,7 +141,9 @@ def test_page_is_self_contained_and_holds_every_part(page, result):
         "inner ring speed [rad/s]",
         "tr-bdf2",
         "semi-analytical",
-        "holds no configuration text",
+        # built in Python (no TOML text): the resolved configuration the result records
+        "configuration (resolved to SI; built in Python, no TOML text)",
+        '"radial_load": 5000.0',
     ):
         assert words in plain, words
     assert "rolling (F_a = 1000 N)" in text and "rolling_copy (F_a = 1000 N)" in text

@@ -151,7 +151,9 @@ def test_sweep_on_two_workers_equals_the_runs_in_series(swept):
         race = max(float(ref.inner_normal_force.max()), float(ref.outer_normal_force.max()))
         assert expected["max_race_load [N]"] == race > 0
         assert expected["max_flange_normal_force [N]"] == float(ref.flange_normal_force.max())
-        assert expected["max_abs_srr_inner [1]"] == float(np.nanmax(np.abs(ref.srr_inner.values)))
+        # this sweep's ring never turns: the slide-to-roll ratio has no meaning yet
+        assert float(ref.ring_speed.max()) == 0.0
+        assert math.isnan(expected["max_abs_srr_inner [1]"])
     # progress: once at submission, then once per finished run
     assert calls[0] == (0, 2, None)
     assert [c[0] for c in calls[1:]] == [1, 2] and all(c[1] == 2 for c in calls)

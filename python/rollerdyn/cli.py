@@ -1,8 +1,15 @@
 """The ``rollerdyn`` command line.
 
 Commands: ``validate`` (every model against published values), ``check`` (validate a
-configuration file and show its derived quantities), ``bench`` (time the hot path).
-All inputs and outputs are SI unless a column says otherwise.
+configuration file and show its derived quantities), ``bench`` (time the hot paths),
+``run``, ``plot``, ``sweep`` and ``report``. All inputs and outputs are SI unless a column
+says otherwise.
+
+Bad input (an option value, a configuration, a file that is no result, an output path
+that cannot or must not be written, see :mod:`rollerdyn.paths`) exits with status 2 and
+one message naming the option or field, the value and the rule, before any work. Every
+message is printed as plain text (:func:`say`, :func:`error`): text from files and
+options is never read as rich markup.
 """
 
 from __future__ import annotations
@@ -108,11 +115,14 @@ def time_option(option: str, text: str | None) -> float | None:
 
 
 def _load(path: Path):
+    """The configuration in ``path``; exits with status 2 and its problems if invalid."""
     try:
         return load_config(path)
     except ConfigError as err:
         text = str(err)
-        error(text if text.startswith("invalid configuration") else f"invalid configuration\n{text}")
+        error(
+            text if text.startswith("invalid configuration") else f"invalid configuration\n{text}"
+        )
         raise typer.Exit(2) from None
 
 
@@ -160,7 +170,7 @@ def validate(config: ConfigOption = None) -> None:
 
 @app.command()
 def check(
-    config: Annotated[Path, typer.Argument(help="Bearing configuration (TOML).")],
+    config: Annotated[Path, typer.Argument(help="Bearing configuration (TOML).", metavar="CONFIG")],
 ) -> None:
     """Validate a configuration file and print its derived quantities (SI units).
 
@@ -706,7 +716,7 @@ def _bench_contact(cfg, steps: int) -> None:
 
 @app.command()
 def run(
-    config: Annotated[Path, typer.Argument(help="Bearing configuration (TOML).")],
+    config: Annotated[Path, typer.Argument(help="Bearing configuration (TOML).", metavar="CONFIG")],
     output: Annotated[
         Path,
         typer.Option(
@@ -883,8 +893,7 @@ def _check_run_output(output: Path, config: Path, resume: Path | None, overwrite
         "-o",
         inputs=[("the configuration file", config)],
         overwrite=overwrite or in_place,
-        hint="; pass --overwrite to replace it, or --resume with the same file to continue "
-        "its run",
+        hint="; pass --overwrite to replace it, or --resume with the same file to continue its run",
     )
 
 
@@ -989,7 +998,10 @@ def _terminate(signum, frame) -> None:
 
 @app.command()
 def plot(
-    results: Annotated[list[Path], typer.Argument(help="Result files (netCDF) of rollerdyn run.")],
+    results: Annotated[
+        list[Path],
+        typer.Argument(help="Result files (netCDF) of rollerdyn run.", metavar="RESULT"),
+    ],
     out: Annotated[
         Path,
         typer.Option(

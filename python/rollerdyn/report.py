@@ -148,6 +148,20 @@ SUMMARY_ROWS = (
 )
 
 
+#: Attributes that hold the configuration's text (shown as text, not in the table).
+_CONFIG_TEXTS = ("config_toml", "config_resolved", "config")
+
+
+def _pretty_json(text: str) -> str:
+    """``text`` indented if it is JSON, else as it is."""
+    import json
+
+    try:
+        return json.dumps(json.loads(text), indent=2)
+    except ValueError:
+        return text
+
+
 def summary(ds: xr.Dataset) -> dict:
     """The summary quantities of one result (SI), keyed as :data:`SUMMARY_ROWS`."""
     t = ds.time.values
@@ -585,7 +599,11 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
             body.append(
                 f'<p class="warn">The run stopped early: {html.escape(ds.attrs["error"])}</p>'
             )
-        plain = [[k, _attr_text(v)] for k, v in ds.attrs.items() if not k.startswith("stats_")]
+        plain = [
+            [k, _attr_text(v)]
+            for k, v in ds.attrs.items()
+            if not k.startswith("stats_") and k not in _CONFIG_TEXTS
+        ]
         stats = [[k[6:], _attr_text(v)] for k, v in ds.attrs.items() if k.startswith("stats_")]
         body.append(_table(["attribute", "value"], plain, numeric_from=9))
         if stats:
@@ -594,11 +612,18 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
             body.append("</details>")
         text = next(
             (ds.attrs[k] for k in ("config_toml", "config") if isinstance(ds.attrs.get(k), str)),
-            None,
+            "",
         )
-        if text is not None:
-            body.append("<details open><summary>configuration (TOML)</summary>")
+        resolved = ds.attrs.get("config_resolved")
+        if text:
+            body.append("<details open><summary>configuration (TOML, as read)</summary>")
             body.append(f"<pre>{html.escape(text)}</pre></details>")
+        elif isinstance(resolved, str) and resolved:
+            body.append(
+                "<details open><summary>configuration (resolved to SI; built in Python, "
+                "no TOML text)</summary>"
+            )
+            body.append(f"<pre>{html.escape(_pretty_json(resolved), quote=False)}</pre></details>")
         else:
             body.append(
                 '<p class="note">The result file holds no configuration text; the '
@@ -690,7 +715,8 @@ def check_report_output(results: list[Path], output: Path) -> Path:
 
 def report_command(
     results: Annotated[
-        list[Path], typer.Argument(help="Result files (netCDF) written by rollerdyn run.")
+        list[Path],
+        typer.Argument(help="Result files (netCDF) written by rollerdyn run.", metavar="RESULT"),
     ],
     output: Annotated[
         Path,

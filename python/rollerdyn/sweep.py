@@ -551,11 +551,14 @@ def _fmt(value: Any, spec: str = ".6g") -> str:
 
 
 def sweep_command(
-    config: Annotated[Path, typer.Argument(help="Bearing configuration (TOML) to vary.")],
+    config: Annotated[
+        Path, typer.Argument(help="Bearing configuration (TOML) to vary.", metavar="CONFIG")
+    ],
     sets: Annotated[
         list[str],
         typer.Option(
             "--set",
+            metavar="PATH=VALUES",
             help="PATH=VALUE[,VALUE...]: a dotted configuration path and the values it "
             'takes, e.g. --set operating.axial_load="0 N,500 N,1000 N". Each value is '
             "written as in the TOML file: with its unit for dimensional fields "

@@ -1,0 +1,453 @@
+"""Issue 16 on the command line: no hang, no traceback, nothing overwritten, output a person
+can follow.
+
+A. every output path is checked before any work (exit status 2, one line naming the option,
+   the path and the rule); an existing result is replaced only with --overwrite (or
+   continued in place with --resume); stale ``*.tmp<pid>`` files of dead writers go.
+B. text from files and options is printed as it is (never as rich markup); a file that is
+   no rollerdyn result, an unreachable scheduler or an unwritable folder: one line, exit 2.
+C. progress as plain lines without a terminal; help wrapped once; --t-end with units;
+   no max |SRR| before the ring turns.
+D. run --force reaches simulate.
+
+The runs are 1-2 ms of B1 (a few seconds each).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+import socket
+import subprocess
+import sys
+import threading
+import time
+from functools import partial
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+from typer.testing import CliRunner
+
+from rollerdyn.cli import app
+
+RUNNER = CliRunner()
+ROOT = Path(__file__).resolve().parents[1]
+B1 = ROOT / "examples" / "b1.toml"
+ROLLERDYN = Path(sys.executable).with_name("rollerdyn")
+COMMANDS = ("validate", "check", "bench", "run", "plot", "sweep", "report")
+
+
+def invoke(*args: str, code: int, says: tuple[str, ...] = (), env=None):
+    """Runs the CLI in-process; checks the exit status, that no exception escaped (no
+    traceback), and that the output holds each of ``says``."""
+    result = RUNNER.invoke(app, [str(a) for a in args], env=env)
+    assert result.exit_code == code, result.output
+    escaped = result.exception
+    assert escaped is None or isinstance(escaped, SystemExit), repr(escaped)
+    assert "Traceback" not in result.output
+    for text in says:
+        assert text in result.output, (text, result.output)
+    return result
+
+
+def one_line_saying(output: str, *texts: str) -> str:
+    """The one line of ``output`` that holds every one of ``texts``."""
+    lines = [line for line in output.splitlines() if all(t in line for t in texts)]
+    assert lines, (texts, output)
+    return lines[0]
+
+
+@pytest.fixture(scope="module")
+def result(tmp_path_factory) -> Path:
+    """A real 2 ms result of B1 (the inner ring does not turn yet)."""
+    from rollerdyn.config import load_config
+    from rollerdyn.simulation import simulate, write
+
+    path = tmp_path_factory.mktemp("result") / "b1.nc"
+    write(simulate(load_config(B1), t_end=0.002), path)
+    return path
+
+
+def config_with(tmp_path: Path, old: str, new: str, name: str = "variant.toml") -> Path:
+    """B1's configuration file with one text replaced."""
+    text = B1.read_text(encoding="utf-8")
+    assert old in text
+    path = tmp_path / name
+    path.write_text(text.replace(old, new, 1), encoding="utf-8")
+    return path
+
+
+# --------------------------------------------------------------------------- A: output paths
+
+
+def test_run_refuses_bad_output_paths_before_any_work(tmp_path):
+    """Missing folder, a file where a folder is needed, a folder where a file is, the
+    configuration itself (even with --overwrite), a device: exit 2 at once, nothing
+    written."""
+    regular = tmp_path / "regular.txt"
+    regular.write_text("x")
+    config = tmp_path / "b1.toml"
+    config.write_bytes(B1.read_bytes())
+    cases = [
+        (tmp_path / "missing" / "r.nc", "does not exist"),
+        (regular / "r.nc", "is a file, not a folder"),  # also how a read-only place looks to root
+        (tmp_path, "is a folder"),
+        (config, "is the configuration file"),
+        (Path("/dev/null"), "not a regular file"),
+    ]
+    for out, rule in cases:
+        started = time.monotonic()
+        res = invoke("run", config, "-o", out, "--t-end", "0.001", "--overwrite", code=2)
+        line = one_line_saying(res.output, "-o", str(out), rule)
+        assert line.strip() == res.output.strip()  # one line, nothing else
+        assert time.monotonic() - started < 5.0
+    assert config.read_bytes() == B1.read_bytes()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["b1.toml", "regular.txt"]
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root may write anywhere")
+def test_read_only_folder_is_refused(tmp_path):
+    folder = tmp_path / "ro"
+    folder.mkdir()
+    folder.chmod(0o500)
+    try:
+        res = invoke("run", B1, "-o", folder / "r.nc", "--t-end", "0.001", code=2)
+        assert "not writable" in res.output
+    finally:
+        folder.chmod(0o700)
+
+
+def test_a_place_os_access_calls_read_only_is_refused(tmp_path, monkeypatch):
+    """The same as root: os.access says the folder (or the file) is not writable."""
+    import rollerdyn.paths as paths
+
+    folder = tmp_path / "ro"
+    folder.mkdir()
+    (folder / "old.html").write_text("<html></html>")
+    real = os.access
+
+    def access(path, mode, denied=folder):
+        return not (Path(path) == denied and mode & os.W_OK) and real(path, mode)
+
+    monkeypatch.setattr(paths.os, "access", access)  # os.access everywhere
+    sweep = ("sweep", B1, "--set", "operating.axial_load=0 N", "--t-end", "0.001")
+    for args in (
+        ("run", B1, "-o", folder / "r.nc", "--t-end", "0.001"),
+        (*sweep, "-o", folder),
+        (*sweep, "-o", folder / "new"),
+        ("plot", "x.nc", "-o", folder),
+        ("report", "x.nc", "-o", folder / "r.html"),
+    ):
+        res = invoke(*args, code=2)
+        one_line_saying(res.output, "-o", str(folder), "not writable")
+    monkeypatch.setattr(paths.os, "access", partial(access, denied=folder / "old.html"))
+    res = invoke("report", "x.nc", "-o", folder / "old.html", code=2)
+    one_line_saying(res.output, "old.html", "not writable")
+    assert [p.name for p in folder.iterdir()] == ["old.html"]
+
+
+def test_existing_result_is_kept_unless_overwrite_or_resume(tmp_path):
+    """A second run onto the same file is refused (the file untouched); --overwrite
+    replaces it; --resume with the same file continues it in place. Stale temporary
+    files of a killed writer go, those of a live process stay."""
+    out = tmp_path / "r.nc"
+    invoke("run", B1, "-o", out, "--t-end", "0.001", code=0, says=("wrote",))
+    before = out.read_bytes()
+    res = invoke("run", B1, "-o", out, "--t-end", "0.002", code=2, says=("--overwrite",))
+    one_line_saying(res.output, "-o", str(out), "exists")
+    assert out.read_bytes() == before
+    dead = subprocess.Popen([sys.executable, "-c", "pass"])
+    dead.wait()
+    stale = tmp_path / f"r.nc.tmp{dead.pid}"
+    live = tmp_path / f"r.nc.tmp{os.getppid()}"  # a live process (not ours)
+    stale.write_bytes(b"half")
+    live.write_bytes(b"mine")
+    res = invoke("run", B1, "-o", out, "--t-end", "0.002", "--overwrite", code=0)
+    assert "removed" in res.output and not stale.exists() and live.exists()
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        assert float(ds.attrs["final_time_s"]) == pytest.approx(0.002)
+    invoke("run", B1, "-o", out, "--resume", out, "--t-end", "0.003", code=0)
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        assert float(ds.attrs["final_time_s"]) == pytest.approx(0.003)
+
+
+def test_stale_temporaries_are_those_of_dead_processes(tmp_path):
+    from rollerdyn.paths import remove_stale_temporaries
+
+    dead = subprocess.Popen([sys.executable, "-c", "pass"])
+    dead.wait()
+    out = tmp_path / "r[1].nc"  # glob characters in the name are taken literally
+    names = [f"r[1].nc.tmp{dead.pid}", f"r[1].nc.tmp{os.getppid()}", "r[1].nc.tmpx", "r1.nc.tmp7"]
+    for name in names:
+        (tmp_path / name).write_text("x")
+    removed = remove_stale_temporaries(out)
+    assert removed == [(tmp_path / names[0], dead.pid)]
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(names[1:])
+
+
+def test_plot_report_sweep_check_their_outputs_first(tmp_path, result):
+    regular = tmp_path / "regular.txt"
+    regular.write_text("x")
+    earlier = tmp_path / "earlier"
+    earlier.mkdir()
+    (earlier / "summary.parquet").write_bytes(b"x")
+    sweep = ("sweep", B1, "--set", "operating.axial_load=0 N", "--t-end", "0.001")
+    for args, texts in (
+        (("plot", result, "-o", regular), ("is a file, not a folder",)),
+        (("plot", result, "-o", tmp_path / "a" / "b"), ("does not exist",)),
+        (("report", result, "-o", tmp_path), ("is a folder",)),
+        (("report", result, "-o", result), ("an input",)),
+        (("report", result, "-o", tmp_path / "a" / "r.html"), ("does not exist",)),
+        (("report", result, "-o", regular), ("exists", "only an earlier report")),
+        (("report", result, "-o", B1), ("exists",)),
+        ((*sweep, "-o", regular), ("is a file, not a folder",)),
+        ((*sweep, "-o", regular / "s"), ("is a file, not a folder",)),
+        ((*sweep, "-o", tmp_path / "a" / "s"), ("does not exist",)),
+        ((*sweep, "-o", earlier), ("summary.parquet", "--overwrite")),
+    ):
+        res = invoke(*args, code=2)
+        one_line_saying(res.output, "-o", *texts)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["earlier", "regular.txt"]
+    assert [p.name for p in earlier.iterdir()] == ["summary.parquet"]
+
+
+def test_path_checks_library():
+    from rollerdyn.paths import OutputPathError, check_output_dir, check_output_file
+
+    with pytest.raises(OutputPathError, match="--out x/y.nc: the folder x does not exist"):
+        check_output_file(Path("x/y.nc"), "--out")
+    assert check_output_file(B1, overwrite=True) == B1
+    with pytest.raises(OutputPathError, match="exists; see"):
+        check_output_file(B1, hint="; see")
+    with pytest.raises(OutputPathError, match="is the configuration file"):
+        check_output_file(B1, inputs=[("the configuration file", B1)], overwrite=True)
+    assert check_output_dir(ROOT / "new-folder") == ROOT / "new-folder"
+    with pytest.raises(OutputPathError, match="holds earlier results"):
+        check_output_dir(ROOT / "examples", results=("*.toml",), overwrite=False)
+
+
+# --------------------------------------------------------------------------- B: no markup
+
+
+def test_bracketed_config_values_and_names_print_as_they_are(tmp_path):
+    """A value "5000 [/x] N" (rich's closing tag) and a bearing "B1 [/x] [mass]": no
+    MarkupError, and the brackets are not swallowed; in a real process too."""
+    bad = config_with(tmp_path, 'radial_load = "5000 N"', 'radial_load = "5000 [/x] N"')
+    for args in (("check", bad), ("run", bad, "-o", tmp_path / "r.nc")):
+        res = invoke(*args, code=2)
+        one_line_saying(res.output, "operating.radial_load", "5000 [/x] N")
+    done = subprocess.run(
+        [str(ROLLERDYN), "check", str(bad)], capture_output=True, text=True, timeout=60
+    )
+    assert done.returncode == 2 and "5000 [/x] N" in done.stdout + done.stderr
+    assert "Traceback" not in done.stdout + done.stderr
+    named = config_with(tmp_path, 'name = "B1"', 'name = "B1 [/x] [mass]"', "named.toml")
+    invoke("check", named, code=0, says=("B1 [/x] [mass]: derived quantities", "roller mass"))
+    res = invoke("run", named, "-o", tmp_path / "n.nc", "--t-end", "0.001", code=0)
+    one_line_saying(res.output, "B1 [/x] [mass]: t = 0.001")
+
+
+def test_bracketed_file_names_print_as_they_are(tmp_path):
+    for args in (
+        ("plot", "nope[/x].nc"),
+        ("report", "nope[/x].nc"),
+        ("run", B1, "--resume", "nope[/x].nc", "-o", tmp_path / "r.nc"),
+        ("bench", "model", "--state", "nope[/x].nc"),
+    ):
+        res = invoke(*args, code=2)
+        one_line_saying(res.output, "nope[/x].nc", "not found")
+
+
+def test_help_keeps_brackets_and_is_wrapped_once():
+    """Every command's help at 80 columns: bracketed text as typed, no line longer than
+    80, and no paragraph broken twice (a short line inside a paragraph)."""
+    for command in COMMANDS:
+        res = invoke(command, "--help", code=0, env={"COLUMNS": "80"})
+        lines = res.output.splitlines()
+        assert all(len(line) <= 80 for line in lines), command
+        head = res.output.split("\nArguments:")[0].split("\nOptions:")[0]
+        for paragraph in head.split("\n\n")[1:]:
+            body = paragraph.splitlines()[:-1]
+            assert all(len(line) >= 55 for line in body), (command, paragraph)
+    helps = {c: invoke(c, "--help", code=0, env={"COLUMNS": "80"}).output for c in COMMANDS}
+    assert "wall time [s]" in helps["bench"]
+    assert "[arrays]" in helps["sweep"] and "[N*m]" in helps["sweep"]
+    assert "--force" in helps["run"] and "--overwrite" in helps["run"]
+
+
+# --------------------------------------------------------------------------- B: bad files
+
+
+def _bad_files(tmp_path: Path, good: Path) -> dict[str, tuple[Path, str]]:
+    """Files that are no rollerdyn result, and what the message says about each."""
+    text = tmp_path / "text.nc"
+    text.write_text("this is not netCDF\n")
+    empty = tmp_path / "empty.nc"
+    empty.write_bytes(b"")
+    truncated = tmp_path / "truncated.nc"
+    truncated.write_bytes(good.read_bytes()[:3000])
+    foreign = tmp_path / "foreign.nc"
+    xr.Dataset({"a": ("x", np.arange(3.0))}).to_netcdf(foreign, engine="h5netcdf")
+    folder = tmp_path / "folder.nc"
+    folder.mkdir()
+    return {
+        "text": (text, "cannot be read as netCDF"),
+        "empty": (empty, "empty"),
+        "truncated": (truncated, "truncated"),
+        "foreign": (foreign, "missing"),
+        "folder": (folder, "is a folder"),
+    }
+
+
+def test_files_that_are_no_result_give_one_line(tmp_path, result):
+    out = tmp_path / "out"
+    out.mkdir()
+    for path, what in _bad_files(tmp_path, result).values():
+        for args in (
+            ("plot", path, "-o", out / "plots"),
+            ("report", path, "-o", out / "r.html"),
+            ("run", B1, "--resume", path, "-o", out / "r.nc", "--t-end", "0.003"),
+            ("bench", "model", "--state", path),
+        ):
+            res = invoke(*args, code=2)
+            line = one_line_saying(res.output, str(path), what)
+            assert line.strip() == res.output.strip(), res.output
+    assert list(out.iterdir()) == []
+
+
+# --------------------------------------------------------------------------- B: sweeps
+
+
+def _closed_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def test_sweep_unreachable_scheduler_is_one_line(tmp_path):
+    out = tmp_path / "s"
+    base = ("sweep", B1, "--set", "operating.axial_load=0 N", "--t-end", "0.001", "-o", out)
+    for address, what in (
+        (f"tcp://127.0.0.1:{_closed_port()}", "cannot connect"),
+        ("tcp://nohost.invalid:8786", "cannot connect"),
+        ("nonsense", "not a scheduler address"),
+    ):
+        started = time.monotonic()
+        res = invoke(*base, "--scheduler", address, code=2)
+        one_line_saying(res.output, "scheduler", address, what)
+        assert time.monotonic() - started < 15.0
+    assert not out.exists()
+
+
+def test_a_server_that_never_answers_is_no_hang():
+    """Dask's own handshake waits forever on a server that accepts and stays silent."""
+    from rollerdyn.sweep import SweepError, _check_reachable
+
+    server = socket.socket()
+    server.bind(("127.0.0.1", 0))
+    server.listen(4)
+    held = []
+    thread = threading.Thread(target=lambda: held.append(server.accept()), daemon=True)
+    thread.start()
+    started = time.monotonic()
+    try:
+        with pytest.raises(SweepError, match="no answer within 1 s"):
+            _check_reachable(f"tcp://127.0.0.1:{server.getsockname()[1]}", 1.0)
+    finally:
+        server.close()
+    assert time.monotonic() - started < 5.0
+
+
+# --------------------------------------------------------------------------- C: output
+
+
+def test_progress_is_plain_lines_without_a_terminal(tmp_path):
+    res = invoke("run", B1, "-o", tmp_path / "r.nc", "--t-end", "0.002", code=0)
+    assert "━" not in res.output  # no bar
+    one_line_saying(res.output, "B1: t = 0.001 / 0.002 s (50 %)", "steps", "ms/s")
+    one_line_saying(res.output, "B1: t = 0.002 / 0.002 s (100 %)")
+    one_line_saying(res.output, "wrote", "to t = 0.002 s")
+
+
+def test_t_end_takes_units_and_refuses_other_quantities(tmp_path):
+    out = tmp_path / "r.nc"
+    invoke("run", B1, "-o", out, "--t-end", "1.5 ms", code=0, says=("to t = 0.0015 s",))
+    for bad, rule in (
+        ("5 N", "got a force"),
+        ("-1 ms", "positive"),
+        ("0", "positive"),
+        ("nan", "positive"),
+        ("fast", "positive time"),
+    ):
+        for args in (
+            ("run", B1, "-o", tmp_path / "x.nc"),
+            ("bench", "mbs"),
+            ("sweep", B1, "--set", "operating.axial_load=0 N", "-o", tmp_path / "s"),
+        ):
+            res = invoke(*args, "--t-end", bad, code=2)
+            one_line_saying(res.output, "--t-end", repr(bad), rule)
+    res = invoke("run", B1, "-o", tmp_path / "x.nc", "--checkpoint-interval", "1 kg", code=2)
+    one_line_saying(res.output, "--checkpoint-interval", "got a mass")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.nc"]
+
+
+def test_no_slide_to_roll_ratio_before_the_ring_turns(result):
+    from rollerdyn.report import _fmt, summary
+    from rollerdyn.sweep import summarize
+
+    with xr.open_dataset(result, engine="h5netcdf") as opened:
+        ds = opened.load()
+    assert not np.any(ds.ring_speed.values)
+    assert np.nanmax(np.abs(ds.srr_inner.values)) > 1.0  # what used to be reported
+    assert math.isnan(summary(ds)["max_srr_inner"]) and _fmt("max_srr_inner", math.nan) == "n/a"
+    assert math.isnan(summarize(ds)["max_abs_srr_inner [1]"])
+    turning = ds.assign(ring_speed=ds.ring_speed.copy(data=[0.0, 0.0, 10.0]))
+    last = float(np.nanmax(np.abs(ds.srr_inner.values[-1])))
+    assert summary(turning)["max_srr_inner"] == last
+    assert summarize(turning)["max_abs_srr_inner [1]"] == last
+
+
+# --------------------------------------------------------------------------- D and writes
+
+
+def test_force_reaches_simulate_and_a_failed_write_is_one_line(tmp_path, result, monkeypatch):
+    import rollerdyn.simulation as simulation
+
+    with xr.open_dataset(result, engine="h5netcdf") as opened:
+        ds = opened.load()
+    seen = []
+
+    def fake(cfg, **kwargs):
+        seen.append(kwargs.get("force", False))
+        if not kwargs.get("force", False):
+            raise ValueError("solver.dt_max = 1e-12 s: takes 1e9 steps; force the run (--force)")
+        kwargs["checkpoint"](ds)
+        return ds
+
+    monkeypatch.setattr(simulation, "simulate", fake)
+    res = invoke("run", B1, "-o", tmp_path / "a.nc", code=2)
+    one_line_saying(res.output, "solver.dt_max", "--force")
+    invoke("run", B1, "-o", tmp_path / "a.nc", "--force", code=0, says=("wrote",))
+    assert seen == [False, True]
+
+    def failing(ds, path):
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(simulation, "write", failing)
+    res = invoke("run", B1, "-o", tmp_path / "b.nc", "--force", code=1)
+    assert one_line_saying(res.output, "-o", "could not write", "No space").strip() == (
+        res.output.strip()
+    )
+    assert not (tmp_path / "b.nc").exists()
+
+
+def test_no_markup_left_in_the_commands():
+    """The commands print through Text or plain strings: no rich markup tag in their
+    source, and no escape() (which would print its backslashes now)."""
+    for name in ("cli", "report", "sweep", "plots", "bench_cases"):
+        source = (ROOT / "python" / "rollerdyn" / f"{name}.py").read_text(encoding="utf-8")
+        assert not re.search(r"\[/?(red|green|bold)\]", source), name
+        assert not re.search(r"(?<![.\w])escape\(", source), name  # html.escape is fine
