@@ -225,3 +225,37 @@ def test_progress_is_reported_between_outputs(b1):
     simulate(sparse, t_end=0.015, threads=1, progress=seen.append)
     between = [p for p in seen if 0.0 < p.time < 0.015 - 1e-12]
     assert between, [p.time for p in seen]  # a slow run's bar moves between outputs
+
+
+@pytest.mark.parametrize("delay", [0.05, 0.4, 1.2])
+def test_ctrl_c_while_the_command_starts_is_one_line(tmp_path, delay):
+    # Ctrl-C while Python imports the libraries or builds the model (before the run's own
+    # handler): one line and status 130, never a traceback (typer alone exits silently).
+    import subprocess
+    import sys
+
+    command = Path(sys.executable).parent / "rollerdyn"
+    args = [str(command), "run", str(B1), "-o", str(tmp_path / "r.nc"), "--t-end", "0.05"]
+    proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    time.sleep(delay)
+    proc.send_signal(signal.SIGINT)
+    out, _ = proc.communicate(timeout=60)
+    assert proc.returncode == 130, out
+    assert "Traceback" not in out
+    assert "interrupted" in out, out
+
+
+def test_the_package_imports_light_and_keeps_its_functions():
+    # `import rollerdyn` loads no heavy library (the command can be interrupted while it
+    # starts); rollerdyn.report and rollerdyn.sweep stay the functions after their
+    # modules are imported.
+    import subprocess
+    import sys
+
+    code = (
+        "import sys, rollerdyn; light = 'xarray' not in sys.modules; "
+        "import rollerdyn.report, rollerdyn.sweep; "
+        "print(light, callable(rollerdyn.report), rollerdyn.sweep.__name__)"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert out.stdout.split() == ["True", "True", "sweep"], out.stderr

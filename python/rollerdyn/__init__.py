@@ -6,11 +6,63 @@ configuration (:mod:`rollerdyn.config`), the force laws on numpy arrays
 the validation cases (:mod:`rollerdyn.validation`), runs of the dynamic model
 (:mod:`rollerdyn.simulation`), figures (:mod:`rollerdyn.plots`) and the command line
 (:mod:`rollerdyn.cli`).
+
+The names below are imported when first used, so that the command line starts (and can
+be interrupted) before the heavy libraries load.
 """
 
-from .config import BearingConfig, ConfigError, load_config, parse_config
-from .report import report  # the function; its module: from rollerdyn.report import ...
-from .sweep import sweep  # the function; its module: from rollerdyn.sweep import ...
+from __future__ import annotations
+
+import importlib
+import sys
+import types
+from typing import Any
+
+__version__ = "0.1.0"
+
+#: Public name -> module that defines it.
+_LAZY = {
+    "BearingConfig": ".config",
+    "ConfigError": ".config",
+    "load_config": ".config",
+    "parse_config": ".config",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        value = getattr(importlib.import_module(_LAZY[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'rollerdyn' has no attribute {name!r}")
+
+
+class _Package(types.ModuleType):
+    """``rollerdyn.report`` and ``rollerdyn.sweep`` are the functions, though modules of
+    the same names exist: properties of the package, whose setters ignore the import
+    system's binding of the submodules (``from rollerdyn.report import ...`` still
+    reaches the modules through ``sys.modules``)."""
+
+    @property
+    def report(self) -> Any:
+        """:func:`rollerdyn.report.report`."""
+        return importlib.import_module(".report", __name__).report
+
+    @report.setter
+    def report(self, _module: Any) -> None:
+        pass
+
+    @property
+    def sweep(self) -> Any:
+        """:func:`rollerdyn.sweep.sweep`."""
+        return importlib.import_module(".sweep", __name__).sweep
+
+    @sweep.setter
+    def sweep(self, _module: Any) -> None:
+        pass
+
+
+sys.modules[__name__].__class__ = _Package
 
 
 def simulate(
@@ -41,4 +93,3 @@ __all__ = [
     "sweep",
     "__version__",
 ]
-__version__ = "0.1.0"
