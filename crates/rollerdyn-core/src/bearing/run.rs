@@ -56,7 +56,11 @@ impl RunOptions {
             if v.is_finite() && v > 0.0 {
                 Ok(())
             } else {
-                Err(crate::Error::invalid(name, v, "must be a positive, finite number"))
+                Err(crate::Error::invalid(
+                    name,
+                    v,
+                    "must be a positive, finite number",
+                ))
             }
         };
         positive("t_end", self.t_end)?;
@@ -65,7 +69,11 @@ impl RunOptions {
         positive("dt_max", self.dt_max)?;
         positive("output_interval", self.output_interval)?;
         if !(self.rtol > 0.0 && self.rtol < 1.0) {
-            return Err(crate::Error::invalid("rtol", self.rtol, "must lie in (0, 1)"));
+            return Err(crate::Error::invalid(
+                "rtol",
+                self.rtol,
+                "must lie in (0, 1)",
+            ));
         }
         if let Some(c) = self.checkpoint_interval {
             positive("checkpoint_interval", c)?;
@@ -79,7 +87,11 @@ impl RunOptions {
             ));
         }
         if !(control.gain > 0.0 && control.gain <= 1.0) {
-            return Err(crate::Error::invalid("step_gain", control.gain, "must lie in (0, 1]"));
+            return Err(crate::Error::invalid(
+                "step_gain",
+                control.gain,
+                "must lie in (0, 1]",
+            ));
         }
         let outputs = ((self.t_end - t0).max(0.0) / self.output_interval).ceil() + 2.0;
         let bytes = outputs * record_bytes(rollers);
@@ -516,14 +528,17 @@ mod tests {
     /// bad setting is refused with its name.
     #[test]
     fn nan_negative_and_infinite_settings_are_refused_by_name() {
-        let cases: [(&str, fn(&mut RunOptions)); 8] = [
+        type Change = fn(&mut RunOptions);
+        let cases: [(&str, Change); 8] = [
             ("rtol", |o| o.rtol = f64::NAN),
             ("rtol", |o| o.rtol = -1.0),
             ("atol", |o| o.atol = 0.0),
             ("dt_max", |o| o.dt_max = f64::NAN),
             ("output_interval", |o| o.output_interval = -1.0),
             ("t_end", |o| o.t_end = f64::INFINITY),
-            ("checkpoint_interval", |o| o.checkpoint_interval = Some(f64::NAN)),
+            ("checkpoint_interval", |o| {
+                o.checkpoint_interval = Some(f64::NAN)
+            }),
             ("max_step_growth", |o| o.step_control.max_growth = 1.0),
         ];
         for (name, change) in cases {
