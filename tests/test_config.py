@@ -621,7 +621,7 @@ BAD = [
         "solver.detector",
         'must be one of "semi-analytical", "gradient" or "mesh"',
     ),
-    ("rtol >= 1", "solver.rtol", 1.0, "solver.rtol", "must be > 0 and < 1"),
+    ("rtol >= 1", "solver.rtol", 1.0, "solver.rtol", "must be >= 1e-12 and < 1"),
     (
         "line fit range half given",
         "solver.line_fit.load_min",

@@ -164,13 +164,16 @@ def test_a_run_from_equilibrium_at_full_load_and_speed_starts_settled() -> None:
 
 
 def test_no_equilibrium_is_a_clear_error_naming_the_residual_and_the_body() -> None:
-    cfg = parse_config(_no_ramps(**{"operating.radial_load": "1e7 N"}))
+    # 30 kN axially is more than B1's flanges carry before the rollers ride over their
+    # rims (a radial load large enough to have no equilibrium is refused by the
+    # configuration's load limit before any work)
+    cfg = parse_config(_no_ramps(**{"operating.axial_load": "30 kN"}))
     with pytest.raises(ValueError, match=r"no equilibrium found .* residual force .* inner ring"):
         simulate(cfg, t_end=0.001, threads=1)
 
 
 def test_a_case_that_cannot_start_is_reported_not_raised() -> None:
-    cfg = parse_config(changed(**{"operating.radial_load": "1e7 N"}))
+    cfg = parse_config(changed(**{"operating.axial_load": "30 kN"}))
     result = run_case(cfg, "equilibrium-500rpm", max_wall=10.0)
     assert not result.completed and result.steps == 0
     assert "no equilibrium found" in result.message

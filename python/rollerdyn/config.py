@@ -968,6 +968,16 @@ class BearingConfig(_Section):
     #: The TOML text the configuration was read from (None if built in Python).
     _toml: str | None = PrivateAttr(default=None)
 
+    def __eq__(self, other: object) -> bool:
+        """Equal values, whatever text they were read from (the TOML text is a record)."""
+        if not isinstance(other, BearingConfig):
+            return NotImplemented
+        return (
+            self.__dict__ == other.__dict__ and self.__pydantic_extra__ == other.__pydantic_extra__
+        )
+
+    __hash__ = None  # type: ignore[assignment]  # mutable values, as pydantic's own
+
     @property
     def toml_text(self) -> str | None:
         """The TOML text this configuration was read from (:func:`load_config`), as read;
