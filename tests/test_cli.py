@@ -1,14 +1,12 @@
 """The command line: exit codes, clean errors, and the commands' output."""
 
-from pathlib import Path
-
 import pytest
+from b1 import B1, b1_file_with
 from typer.testing import CliRunner
 
 from rollerdyn.cli import app
 
 RUNNER = CliRunner()
-B1 = Path(__file__).resolve().parents[1] / "examples" / "b1.toml"
 
 
 def test_validate_passes_and_prints_the_table():
@@ -25,9 +23,7 @@ def test_check_prints_derived_quantities():
 
 
 def test_bad_config_is_a_clean_error(tmp_path):
-    bad = tmp_path / "bad.toml"
-    text = B1.read_text(encoding="utf-8")
-    bad.write_text(text.replace('radial_load = "5000 N"', 'radial_load = "5000 mm"'))
+    bad = b1_file_with(tmp_path, 'radial_load = "5000 N"', 'radial_load = "5000 mm"', "bad.toml")
     result = RUNNER.invoke(app, ["check", str(bad)])
     assert result.exit_code == 2
     assert "operating.radial_load" in result.output and "expected a force" in result.output

@@ -2,15 +2,14 @@
 
 from __future__ import annotations
 
-import copy
 import math
 import re
 import sys
-import tomllib
 import types
 from pathlib import Path
 
 import pytest
+from b1 import B1_TEXT, b1_file_with, changed_b1, load_b1
 from pydantic import BaseModel, ValidationError
 
 from rollerdyn.config import (
@@ -24,33 +23,13 @@ from rollerdyn.config import (
 from rollerdyn.units import Integer, Number, Quantity, QuantityError, parse_quantity
 
 ROOT = Path(__file__).resolve().parents[1]
-B1_TOML = ROOT / "examples" / "b1.toml"
 DOCS = ROOT / "docs" / "configuration.md"
 DEL = object()
 
 
-@pytest.fixture(scope="module")
-def b1() -> BearingConfig:
-    return load_config(B1_TOML)
-
-
-@pytest.fixture()
-def raw() -> dict:
-    with open(B1_TOML, "rb") as f:
-        return tomllib.load(f)
-
-
 def mutate(data: dict, path: str, value: object) -> dict:
-    data = copy.deepcopy(data)
-    *parents, last = path.split(".")
-    cur = data
-    for key in parents:
-        cur = cur.setdefault(key, {})
-    if value is DEL:
-        del cur[last]
-    else:
-        cur[last] = value
-    return data
+    """A copy of ``data`` with ``path`` set to ``value`` (DEL: removed); tests/b1.py."""
+    return changed_b1({path: None if value is DEL else value}, data)
 
 
 # --------------------------------------------------------------------------- B1 loads
@@ -792,8 +771,7 @@ def test_not_utf8(tmp_path: Path) -> None:
 
 
 def test_invalid_file_names_source(tmp_path: Path) -> None:
-    p = tmp_path / "b1_bad.toml"
-    p.write_text(B1_TOML.read_text(encoding="utf-8").replace('"5.0 mm"', '"5.0 N"'), "utf-8")
+    p = b1_file_with(tmp_path, '"5.0 mm"', '"5.0 N"', "b1_bad.toml")
     with pytest.raises(ConfigError) as info:
         load_config(p)
     assert info.value.source == str(p)
@@ -814,7 +792,7 @@ ORIGINS = (
 
 def test_b1_every_value_has_origin_comment() -> None:
     n = 0
-    for number, line in enumerate(B1_TOML.read_text(encoding="utf-8").splitlines(), 1):
+    for number, line in enumerate(B1_TEXT.splitlines(), 1):
         stripped = line.strip()
         if not stripped or stripped.startswith(("#", "[")):
             continue
@@ -827,7 +805,7 @@ def test_b1_every_value_has_origin_comment() -> None:
 
 
 def test_b1_assumed_lubricant_values_marked() -> None:
-    text = B1_TOML.read_text(encoding="utf-8")
+    text = B1_TEXT
     for key in ("tau0", "n", "chi", "p_star", "tau_l0"):
         (line,) = [ln for ln in text.splitlines() if re.match(rf"^{key}\s*=", ln)]
         assert "ASSUMED, to be replaced by cited values" in line
@@ -938,7 +916,7 @@ def _rounded_roller(d: float, length: float, r_e: float, rho: float, n: int = 20
 
 def test_roller_mass_properties_real(b1: BearingConfig) -> None:
     pytest.importorskip("rollerdyn._core")
-    cfg = load_config(B1_TOML)  # fresh object: no value cached by other tests
+    cfg = load_b1()  # fresh object: no value cached by other tests
     assert cfg.roller_mass == pytest.approx(0.62e-3, rel=0.03)
     m, j_ax, j_tr = _rounded_roller(4.495e-3, 5e-3, 0.5e-3, 7850.0)
     assert cfg.roller_mass == pytest.approx(m, rel=0.01)

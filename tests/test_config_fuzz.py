@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import copy
 import io
-import json
 import math
 import os
 import subprocess
@@ -28,6 +27,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from b1 import B1_BYTES, b1_data, dump_toml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from rich.console import Console
@@ -36,9 +36,7 @@ from rich.text import Text
 from rollerdyn.config import BearingConfig, ConfigError, load_config
 from rollerdyn.simulation import check_cost, estimated_cost
 
-B1_TOML = Path(__file__).resolve().parents[1] / "examples" / "b1.toml"
-B1_BYTES = B1_TOML.read_bytes()
-B1 = tomllib.loads(B1_BYTES.decode("utf-8"))
+B1 = b1_data()
 EXAMPLES = int(os.environ.get("CONFIG_FUZZ_EXAMPLES", "300"))
 FUZZ = settings(
     max_examples=EXAMPLES,
@@ -296,53 +294,6 @@ def mutated(mutations: list[tuple[str, tuple, Any]]) -> dict:
         else:
             _replace(data, path, value)
     return data
-
-
-# ------------------------------------------------------------------ TOML writer
-
-
-def _string(text: str) -> str:
-    """A TOML basic string: JSON's escapes plus DEL (TOML forbids it unescaped)."""
-    return json.dumps(text, ensure_ascii=False).replace("\x7f", "\\u007f")
-
-
-def _key(key: str) -> str:
-    return _string(str(key))
-
-
-def _toml_value(value: Any) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        if math.isnan(value):
-            return "nan"
-        if math.isinf(value):
-            return "inf" if value > 0 else "-inf"
-        return repr(value)
-    if isinstance(value, str):
-        return _string(value)
-    if isinstance(value, list):
-        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
-    if isinstance(value, dict):
-        return "{" + ", ".join(f"{_key(k)} = {_toml_value(v)}" for k, v in value.items()) + "}"
-    raise TypeError(type(value))
-
-
-def dump_toml(data: dict, prefix: tuple = ()) -> str:
-    """TOML text of nested dicts (keys always quoted; tables as [headers])."""
-    lines, tables = [], []
-    for key, value in data.items():
-        if isinstance(value, dict) and value:
-            tables.append((key, value))
-        else:
-            lines.append(f"{_key(key)} = {_toml_value(value)}")
-    out = "\n".join(lines) + "\n"
-    for key, value in tables:
-        name = (*prefix, key)
-        out += "\n[" + ".".join(_key(k) for k in name) + "]\n" + dump_toml(value, name)
-    return out
 
 
 # ------------------------------------------------------------------ the property

@@ -6,18 +6,16 @@ takes seconds: loads ramp over 20 ms, the speed over the next 10 ms.
 
 from __future__ import annotations
 
-import copy
 import math
 import time
-import tomllib
 from functools import cache
 from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
+from b1 import B1, changed_b1, dump_toml, variant
 
-import rollerdyn
 from rollerdyn import _core
 from rollerdyn.model import Model
 from rollerdyn.simulation import PAIRINGS, SimulationError, model_parameters, simulate
@@ -36,30 +34,6 @@ def brentq(f, a, b, xtol=1e-12):
         if b - a < xtol:
             break
     return 0.5 * (a + b)
-
-
-B1 = Path(__file__).resolve().parents[1] / "examples" / "b1.toml"
-
-
-def variant(**changes) -> rollerdyn.BearingConfig:
-    """B1 with dotted-path changes, e.g. ``{"operating.axial_load": "0 N"}``."""
-    return rollerdyn.parse_config(changed_b1(changes))
-
-
-def changed_b1(changes: dict, base: dict | None = None) -> dict:
-    """B1's TOML data (or a deep copy of ``base``) with dotted-path changes (None removes
-    a key)."""
-    data = copy.deepcopy(base) if base else tomllib.loads(B1.read_text())
-    for path, value in changes.items():
-        section = data
-        *parents, key = path.split(".")
-        for p in parents:
-            section = section.setdefault(p, {})
-        if value is None:
-            section.pop(key, None)
-        else:
-            section[key] = value
-    return data
 
 
 STATIC = {
@@ -519,7 +493,7 @@ def test_an_interrupted_run_resumes_to_the_uninterrupted_result(tmp_path):
     path = tmp_path / "part.nc"
     part.to_netcdf(path, engine="h5netcdf")
     config_path = tmp_path / "variant.toml"
-    config_path.write_text(_dump_toml(changed_b1(RESUMED)))
+    config_path.write_text(dump_toml(changed_b1(RESUMED)))
     runner = CliRunner()
     bad = runner.invoke(
         app, ["run", str(config_path), "--resume", str(path), "--detector", "gradient"]
@@ -554,7 +528,7 @@ def test_kill_9_loses_at_most_a_checkpoint_interval_and_resume_finishes_the_run(
 
     cfg, base = resume_base()
     config_path = tmp_path / "variant.toml"
-    config_path.write_text(_dump_toml(changed_b1(RESUMED)))
+    config_path.write_text(dump_toml(changed_b1(RESUMED)))
     start = tmp_path / "base.nc"
     base.to_netcdf(start, engine="h5netcdf")
     out = tmp_path / "killed.nc"
@@ -583,32 +557,6 @@ def test_kill_9_loses_at_most_a_checkpoint_interval_and_resume_finishes_the_run(
     with xr.open_dataset(out, engine="h5netcdf") as opened:
         finished = opened.load()
     assert_bit_identical(finished, written(resumed_reference(), tmp_path / "whole.nc"))
-
-
-def _dump_toml(data: dict, prefix: str = "") -> str:
-    lines, tables = [], []
-    for key, value in data.items():
-        if isinstance(value, dict):
-            tables.append((key, value))
-        else:
-            lines.append(f"{key} = {_toml_value(value)}")
-    out = "\n".join(lines) + "\n"
-    for key, value in tables:
-        name = f"{prefix}{key}"
-        out += f"\n[{name}]\n" + _dump_toml(value, name + ".")
-    return out
-
-
-def _toml_value(value) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, str):
-        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
-    if isinstance(value, list):
-        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
-    if isinstance(value, dict):
-        return "{" + ", ".join(f"{k} = {_toml_value(v)}" for k, v in value.items()) + "}"
-    return repr(value)
 
 
 AXIALLY_LOADED_ROLLING = {

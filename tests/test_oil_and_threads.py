@@ -4,12 +4,9 @@ benchmark (docs/dynamics.md, "What holds an unloaded roller")."""
 
 from __future__ import annotations
 
-import copy
-import tomllib
-from pathlib import Path
-
 import numpy as np
 import pytest
+from b1 import b1_data, changed_b1, variant
 
 from rollerdyn import _core
 from rollerdyn.bench_cases import CASES, case_config, run_case
@@ -17,26 +14,12 @@ from rollerdyn.config import ConfigError, parse_config
 from rollerdyn.model import Model
 from rollerdyn.simulation import model_parameters, simulate
 
-ROOT = Path(__file__).resolve().parents[1]
-RAW = tomllib.loads((ROOT / "examples" / "b1.toml").read_text())
-
-
-def changed(**changes) -> dict:
-    data = copy.deepcopy(RAW)
-    for path, value in changes.items():
-        section = data
-        *parents, key = path.split(".")
-        for p in parents:
-            section = section.setdefault(p, {})
-        section[key] = value
-    return data
-
 
 def test_gravity_is_on_by_default_and_takes_a_vector() -> None:
-    data = changed()
+    data = b1_data()
     del data["operating"]["gravity"]
     assert parse_config(data).operating.gravity == (0.0, -9.81, 0.0)
-    cfg = parse_config(changed(**{"operating.gravity": ["1 m/s^2", "0 m/s^2", "-2 m/s^2"]}))
+    cfg = variant(**{"operating.gravity": ["1 m/s^2", "0 m/s^2", "-2 m/s^2"]})
     assert cfg.operating.gravity == (1.0, 0.0, -2.0)
     assert model_parameters(cfg)["gravity"] == [1.0, 0.0, -2.0]
 
@@ -54,7 +37,7 @@ def test_gravity_is_on_by_default_and_takes_a_vector() -> None:
 )
 def test_bad_oil_and_gravity_input_names_the_field_and_the_rule(path, value, words) -> None:
     with pytest.raises(ConfigError) as err:
-        parse_config(changed(**{path: value}))
+        variant(**{path: value})
     text = str(err.value)
     assert path.split(".")[-1] in text and words in text, text
 
@@ -68,7 +51,7 @@ def test_an_unloaded_roller_is_held_by_the_film_and_gravity_pulls_it_down() -> N
     0.2 m/s^2 against a roller's 9.81 (measured: up to 0.14). A roller
     moving towards the outer race is pushed back by the film's squeeze (the paper's model:
     no force at all across a gap)."""
-    cfg = parse_config(changed())
+    cfg = variant()
     params = model_parameters(cfg)
     traction = Model(cfg).traction
     y = list(_core.initial_state(params, traction))
@@ -88,7 +71,7 @@ def test_an_unloaded_roller_is_held_by_the_film_and_gravity_pulls_it_down() -> N
 
 
 def test_results_do_not_depend_on_the_thread_count() -> None:
-    cfg = parse_config(changed(**{"operating.load_ramp.end": "5 ms"}))
+    cfg = variant(**{"operating.load_ramp.end": "5 ms"})
     one = simulate(cfg, t_end=0.006, threads=1)
     two = simulate(cfg, t_end=0.006, threads=2)
     assert one.attrs["threads"] == 1 and two.attrs["threads"] == 2
@@ -99,7 +82,7 @@ def test_results_do_not_depend_on_the_thread_count() -> None:
 
 
 def test_operating_point_cases_change_the_configuration_and_stop_at_the_wall_cap() -> None:
-    cfg = parse_config(changed())
+    cfg = variant()
     fast = case_config(cfg, "full-speed-3000rpm")
     assert fast.end_time == pytest.approx(0.1)
     assert fast.operating.final_inner_ring_speed == pytest.approx(3000 * 2 * np.pi / 60)
@@ -118,10 +101,15 @@ def test_operating_point_cases_change_the_configuration_and_stop_at_the_wall_cap
 
 
 def _no_ramps(**changes) -> dict:
-    data = changed(**{"solver.start": "equilibrium", **changes})
-    data["operating"].pop("load_ramp")
-    data["operating"].pop("speed_ramp")
-    return data
+    """B1's data started from equilibrium, without its load and speed ramps."""
+    return changed_b1(
+        {
+            "solver.start": "equilibrium",
+            **changes,
+            "operating.load_ramp": None,
+            "operating.speed_ramp": None,
+        }
+    )
 
 
 def test_equilibrium_start_gives_the_quasi_static_load_distribution() -> None:
@@ -173,7 +161,7 @@ def test_no_equilibrium_is_a_clear_error_naming_the_residual_and_the_body() -> N
 
 
 def test_a_case_that_cannot_start_is_reported_not_raised() -> None:
-    cfg = parse_config(changed(**{"operating.axial_load": "30 kN"}))
+    cfg = variant(**{"operating.axial_load": "30 kN"})
     result = run_case(cfg, "equilibrium-500rpm", max_wall=10.0)
     assert not result.completed and result.steps == 0
     assert "no equilibrium found" in result.message

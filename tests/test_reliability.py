@@ -12,6 +12,7 @@ import time
 from pathlib import Path
 
 import pytest
+from b1 import B1, B1_TEXT, b1_file_with
 
 import rollerdyn
 from rollerdyn import _core
@@ -26,13 +27,6 @@ from rollerdyn.simulation import (
     simulate,
 )
 
-B1 = Path(__file__).resolve().parents[1] / "examples" / "b1.toml"
-
-
-@pytest.fixture(scope="module")
-def b1():
-    return load_config(B1)
-
 
 @pytest.fixture(scope="module")
 def short_run(b1):
@@ -43,20 +37,12 @@ def _changed(cfg, section: str, **values):
     return cfg.model_copy(update={section: getattr(cfg, section).model_copy(update=values)})
 
 
-def _variant(tmp_path: Path, old: str, new: str) -> Path:
-    text = B1.read_text(encoding="utf-8")
-    assert old in text
-    path = tmp_path / "variant.toml"
-    path.write_text(text.replace(old, new), encoding="utf-8")
-    return path
-
-
 # --------------------------------------------------------------------------- provenance
 
 
 def test_a_result_records_its_configuration_version_and_commit(short_run, b1):
     a = short_run.attrs
-    assert a["config_toml"] == B1.read_text(encoding="utf-8")
+    assert a["config_toml"] == B1_TEXT
     resolved = json.loads(a["config_resolved"])
     assert resolved["operating"]["radial_load"] == 5000.0  # SI, as resolved
     assert a["config_sha256"] == config_hash(b1) and len(a["config_sha256"]) == 64
@@ -106,7 +92,7 @@ def test_what_drives_cost_or_lies_beyond_any_bearing_is_refused(tmp_path, old, n
     # slices = 1e8 hung at 1.7 GB and output_interval = 1e-12 s aborted in Rust before
     start = time.monotonic()
     with pytest.raises(ConfigError) as err:
-        load_config(_variant(tmp_path, old, new))
+        load_config(b1_file_with(tmp_path, old, new))
     assert field in str(err.value) and "must" in str(err.value)
     assert time.monotonic() - start < 5.0  # refused before any work, not after a hang
 

@@ -29,13 +29,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
+from b1 import B1, ROOT, b1_file_with, load_b1
 from typer.testing import CliRunner
 
 from rollerdyn.cli import app
 
 RUNNER = CliRunner()
-ROOT = Path(__file__).resolve().parents[1]
-B1 = ROOT / "examples" / "b1.toml"
 ROLLERDYN = Path(sys.executable).with_name("rollerdyn")
 COMMANDS = ("validate", "check", "bench", "run", "plot", "sweep", "report")
 
@@ -63,20 +62,10 @@ def one_line_saying(output: str, *texts: str) -> str:
 @pytest.fixture(scope="module")
 def result(tmp_path_factory) -> Path:
     """A real 2 ms result of B1 (the inner ring does not turn yet)."""
-    from rollerdyn.config import load_config
     from rollerdyn.simulation import simulate, write
 
     path = tmp_path_factory.mktemp("result") / "b1.nc"
-    write(simulate(load_config(B1), t_end=0.002), path)
-    return path
-
-
-def config_with(tmp_path: Path, old: str, new: str, name: str = "variant.toml") -> Path:
-    """B1's configuration file with one text replaced."""
-    text = B1.read_text(encoding="utf-8")
-    assert old in text
-    path = tmp_path / name
-    path.write_text(text.replace(old, new, 1), encoding="utf-8")
+    write(simulate(load_b1(), t_end=0.002), path)
     return path
 
 
@@ -235,7 +224,7 @@ def test_path_checks_library():
 def test_bracketed_config_values_and_names_print_as_they_are(tmp_path):
     """A value "5000 [/x] N" (rich's closing tag) and a bearing "B1 [/x] [mass]": no
     MarkupError, and the brackets are not swallowed; in a real process too."""
-    bad = config_with(tmp_path, 'radial_load = "5000 N"', 'radial_load = "5000 [/x] N"')
+    bad = b1_file_with(tmp_path, 'radial_load = "5000 N"', 'radial_load = "5000 [/x] N"', count=1)
     for args in (("check", bad), ("run", bad, "-o", tmp_path / "r.nc")):
         res = invoke(*args, code=2)
         one_line_saying(res.output, "operating.radial_load", "5000 [/x] N")
@@ -244,7 +233,7 @@ def test_bracketed_config_values_and_names_print_as_they_are(tmp_path):
     )
     assert done.returncode == 2 and "5000 [/x] N" in done.stdout + done.stderr
     assert "Traceback" not in done.stdout + done.stderr
-    named = config_with(tmp_path, 'name = "B1"', 'name = "B1 [/x] [mass]"', "named.toml")
+    named = b1_file_with(tmp_path, 'name = "B1"', 'name = "B1 [/x] [mass]"', "named.toml", count=1)
     invoke("check", named, code=0, says=("B1 [/x] [mass]: derived quantities", "roller mass"))
     res = invoke("run", named, "-o", tmp_path / "n.nc", "--t-end", "0.001", code=0)
     one_line_saying(res.output, "B1 [/x] [mass]: t = 0.001")
@@ -447,7 +436,14 @@ def test_force_reaches_simulate_and_a_failed_write_is_one_line(tmp_path, result,
 def test_no_markup_left_in_the_commands():
     """The commands print through Text or plain strings: no rich markup tag in their
     source, and no escape() (which would print its backslashes now)."""
-    for name in ("cli", "report", "sweep", "plots", "bench_cases"):
-        source = (ROOT / "python" / "rollerdyn" / f"{name}.py").read_text(encoding="utf-8")
+    package = ROOT / "python" / "rollerdyn"
+    commands = sorted(package.glob("cli/*.py")) + [
+        package / f"{name}.py"
+        for name in ("report", "report_figures", "sweep", "plots", "bench_cases")
+    ]
+    assert len(commands) > 5
+    for path in commands:
+        source = path.read_text(encoding="utf-8")
+        name = path.relative_to(package)
         assert not re.search(r"\[/?(red|green|bold)\]", source), name
         assert not re.search(r"(?<![.\w])escape\(", source), name  # html.escape is fine

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
-from test_dynamics import variant
+from b1 import variant
 from typer.testing import CliRunner
 
 import rollerdyn

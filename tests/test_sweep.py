@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 import pytest
 import xarray as xr
-from test_dynamics import changed_b1
+from b1 import B1, changed_b1
 from typer.testing import CliRunner
 
 import rollerdyn
@@ -31,7 +31,6 @@ from rollerdyn.sweep import (
     toml_value,
 )
 
-B1 = Path(__file__).resolve().parents[1] / "examples" / "b1.toml"
 RUNNER = CliRunner()
 
 SHORT = {
@@ -45,18 +44,13 @@ SHORT = {
 AXIAL = ["0 N", "500 N"]
 
 
-def changed(base: dict, changes: dict) -> dict:
-    """A copy of ``base`` (B1's TOML data if empty) with dotted-path changes (None removes)."""
-    return changed_b1(changes, base)
-
-
-SHORT_DATA = changed({}, SHORT)
+SHORT_DATA = changed_b1(SHORT)
 
 
 @cache
 def serial(axial: str) -> xr.Dataset:
     """The same run in this process, in series."""
-    cfg = rollerdyn.parse_config(changed(SHORT_DATA, {"operating.axial_load": axial}))
+    cfg = rollerdyn.parse_config(changed_b1({"operating.axial_load": axial}, SHORT_DATA))
     return rollerdyn.simulate(cfg)
 
 

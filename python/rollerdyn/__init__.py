@@ -4,8 +4,9 @@ The physics runs in a Rust core (``rollerdyn._core``); this package is its front
 configuration (:mod:`rollerdyn.config`), the force laws on numpy arrays
 (:mod:`rollerdyn.tribology`), the model's derived parameters (:mod:`rollerdyn.model`),
 the validation cases (:mod:`rollerdyn.validation`), runs of the dynamic model
-(:mod:`rollerdyn.simulation`), figures (:mod:`rollerdyn.plots`) and the command line
-(:mod:`rollerdyn.cli`).
+(:mod:`rollerdyn.simulation`), the names it shares with the core (:mod:`rollerdyn.names`),
+figures (:mod:`rollerdyn.plots`), the HTML report (:mod:`rollerdyn.report`), parameter
+sweeps (:mod:`rollerdyn.sweep`) and the command line (:mod:`rollerdyn.cli`).
 
 The names below are imported when first used, so that the command line starts (and can
 be interrupted) before the heavy libraries load.

@@ -7,7 +7,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .simulation import FLANGES, PAIRINGS, carried_axial_force
+from .names import PAIRINGS, flange_indices
+from .simulation import carried_axial_force, full_speed
 
 
 def _label(ds: xr.Dataset, path: Path) -> str:
@@ -16,14 +17,6 @@ def _label(ds: xr.Dataset, path: Path) -> str:
     if tilt > 0:
         label += f", IR tilt {tilt:.3g} deg"
     return label + ")"
-
-
-def _full_speed(ds: xr.Dataset) -> xr.Dataset:
-    """The part of the run at (at least 99 % of) full inner ring speed."""
-    speed = np.abs(ds.ring_speed.values)
-    if speed.max() <= 0:
-        return ds
-    return ds.isel(time=np.nonzero(speed >= 0.99 * speed.max())[0])
 
 
 def plot_results(paths: list[Path], out: Path) -> list[Path]:
@@ -87,7 +80,7 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
     ):
         fig, ax = plt.subplots(figsize=(7, 4))
         for p, ds in sets:
-            d = _full_speed(ds)
+            d = full_speed(ds)
             psi = np.degrees(d.azimuth.values.ravel())
             if var == "axial":
                 v = carried_axial_force(d).values.ravel()
@@ -107,7 +100,7 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
         fig, ax = plt.subplots(figsize=(7, 4))
         width = 0.8 / max(1, len(sets))
         for j, (p, ds) in enumerate(sets):
-            idx = [k for k, f in enumerate(FLANGES) if f.startswith(ring)]
+            idx = flange_indices(ring)
             pairing = ds.flange_pairing.isel(flange=idx).values.ravel()
             counts = [(pairing == k).sum() for k in range(len(PAIRINGS))]
             total = max(1, (pairing >= 0).sum())

@@ -14,6 +14,9 @@ Dataset keeps the last checkpoint (``checkpoint_time``, ``checkpoint_step``,
 (``resume=``) takes the same path as the uninterrupted run and so equals it bit for bit in
 every data variable. Attributes that measure wall time (``stats_*_seconds``,
 ``checkpoint_stats_*_seconds``) differ, and a resumed result has ``resumed_at_s``.
+
+The names the result shares with the core (pairings, flanges, detectors) are those of
+:mod:`rollerdyn.names`, re-exported here.
 """
 
 from __future__ import annotations
@@ -30,16 +33,9 @@ import xarray as xr
 from . import _core
 from .config import BearingConfig, RampConfig, TimeTable
 from .model import Model
+from .names import DETECTORS, FLANGES, GRADIENT, PAIRINGS, flange_indices
 from .provenance import check_same_configuration, record_attrs
-
-PAIRINGS = ("TO-CO", "TO-TO(root)", "TO-TO(rim)", "SP-CO", "SP-TO(root)", "SP-TO(rim)")
-"""Roller end / flange pairings, in the order of ``flange_pairing`` (paper fig. 1)."""
-
-FLANGES = ("inner-x", "inner+x", "outer-x", "outer+x")
-"""The four roller end / flange contacts of a roller: ring and side of the flange."""
-
-DETECTORS = ("semi-analytical", "gradient", "mesh")
-"""The roller end / flange contact detectors (``solver.detector``, ``--detector``)."""
+from .tribology import effective_modulus
 
 
 def _seconds(value: float | str) -> float:
@@ -62,9 +58,17 @@ def carried_axial_force(ds: xr.Dataset) -> xr.DataArray:
     """Axial force each roller carries from the inner ring to the outer ring [N] (paper
     fig. 12): the axial force of the inner ring's two flanges on it (the outer ring's
     flanges take it back, so the sum over all four is the roller's small net force)."""
-    inner = [k for k, f in enumerate(FLANGES) if f.startswith("inner")]
-    carried = ds.flange_axial_force.isel(flange=inner).sum("flange")
+    carried = ds.flange_axial_force.isel(flange=flange_indices("inner")).sum("flange")
     return carried.assign_attrs(units="N", long_name="axial force carried by the roller")
+
+
+def full_speed(ds: xr.Dataset) -> xr.Dataset:
+    """The part of a result at (at least 99 % of) full inner ring speed, the outputs the
+    azimuth figures use; the whole result if the ring never turns."""
+    speed = np.abs(ds.ring_speed.values)
+    if speed.max() <= 0:
+        return ds
+    return ds.isel(time=np.nonzero(speed >= 0.99 * speed.max())[0])
 
 
 class SimulationError(RuntimeError):
@@ -140,11 +144,6 @@ def as_config(config: BearingConfig | str | os.PathLike) -> BearingConfig:
     return checked
 
 
-def _e_prime(e1: float, nu1: float, e2: float, nu2: float) -> float:
-    """E' = 2/((1 - nu1^2)/E1 + (1 - nu2^2)/E2) (paper, nomenclature)."""
-    return 2.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2)
-
-
 def _history(value: float | TimeTable, ramp: RampConfig | None) -> dict:
     if isinstance(value, TimeTable):
         return {"kind": "table", "times": list(value.times), "values": list(value.values)}
@@ -178,19 +177,19 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
         "roller_density": m.roller.density,
         "inner_raceway_radius": g.inner_raceway_diameter / 2.0,
         "outer_raceway_radius": g.outer_raceway_diameter / 2.0,
-        "e_prime_inner": _e_prime(
+        "e_prime_inner": effective_modulus(
             m.roller.youngs_modulus,
             m.roller.poisson_ratio,
             m.inner_ring.youngs_modulus,
             m.inner_ring.poisson_ratio,
         ),
-        "e_prime_outer": _e_prime(
+        "e_prime_outer": effective_modulus(
             m.roller.youngs_modulus,
             m.roller.poisson_ratio,
             m.outer_ring.youngs_modulus,
             m.outer_ring.poisson_ratio,
         ),
-        "e_prime_roller": _e_prime(
+        "e_prime_roller": effective_modulus(
             m.roller.youngs_modulus,
             m.roller.poisson_ratio,
             m.roller.youngs_modulus,
@@ -481,7 +480,7 @@ def simulate(
     )
     raw["stats"]["checkpoint_seconds"] = saving["seconds"]
     ds = to_dataset(raw, config, det)
-    ds.attrs["threads"] = threads if det != "gradient" else 1
+    ds.attrs["threads"] = threads if det != GRADIENT else 1
     if resume is not None:
         ds = _join(resume, ds)
     if "interruption" in raw:

@@ -11,12 +11,12 @@ small dict of summary numbers travels back. The summary (one row per run, see
 error; the sweep goes on. A worker that dies mid-run (killed, out of memory) loses nothing:
 Dask runs the task again on another worker (``retries``), and since a run writes its file
 under a temporary name and renames it into place, a retried or duplicated run leaves one
-complete file and one summary row. See ``docs/sweeps.md``.
+complete file and one summary row. See ``docs/sweeps.md``; the command is
+:mod:`rollerdyn.cli.sweep`.
 """
 
 from __future__ import annotations
 
-import contextlib
 import itertools
 import math
 import os
@@ -25,12 +25,12 @@ import tomllib
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Any
 
 import numpy as np
-import typer
 
 from .config import BearingConfig, ConfigError, _field_at, parse_config
+from .names import DETECTORS
 from .units import IntegerSpec, NumberSpec, QuantitySpec
 
 __all__ = [
@@ -42,7 +42,6 @@ __all__ = [
     "run_one",
     "summarize",
     "sweep",
-    "sweep_command",
 ]
 
 #: The summary's result columns and their meaning (units in the column names).
@@ -66,8 +65,6 @@ SUMMARY_COLUMNS = {
 }
 
 SUMMARY_FILE = "summary.parquet"
-
-DETECTORS = ("semi-analytical", "gradient", "mesh")
 
 
 class SweepError(ValueError):
@@ -538,249 +535,3 @@ def _connect(scheduler: Any, workers: int, timeout: float):
     except Exception as err:  # Dask raises OSError, TimeoutError, ValueError, ...
         reason = " ".join(str(err).split()) or type(err).__name__
         raise SweepError(f"scheduler = {scheduler!r}: cannot connect ({reason})") from None
-
-
-# --------------------------------------------------------------------------- command line
-
-
-def _fmt(value: Any, spec: str = ".6g") -> str:
-    """A summary value as text; NaN (nothing to report) as n/a."""
-    if isinstance(value, float):
-        return "n/a" if math.isnan(value) else format(value, spec)
-    return str(value)
-
-
-def sweep_command(
-    config: Annotated[
-        Path, typer.Argument(help="Bearing configuration (TOML) to vary.", metavar="CONFIG")
-    ],
-    sets: Annotated[
-        list[str],
-        typer.Option(
-            "--set",
-            metavar="PATH=VALUES",
-            help="PATH=VALUE[,VALUE...]: a dotted configuration path and the values it "
-            'takes, e.g. --set operating.axial_load="0 N,500 N,1000 N". Each value is '
-            "written as in the TOML file: with its unit for dimensional fields "
-            '("500 N", "3000 rpm", "80 degC"); bare numbers (0.3, 20) and true/false '
-            "are numbers and booleans, valid only for dimensionless fields (a bare 500 "
-            "for a force is refused: no unit); anything else is a string. Commas inside "
-            "quotes, [arrays] or {inline tables} do not split. Repeat --set for more "
-            "paths: the runs are the full grid (cartesian product).",
-        ),
-    ],
-    output: Annotated[
-        Path,
-        typer.Option(
-            "--output",
-            "-o",
-            help="Output folder: run_0000.nc, run_0001.nc, ... (netCDF, SI units, as "
-            "written by rollerdyn run) and summary.parquet. Created if missing (its parent "
-            "must exist); a folder that holds an earlier sweep's results is refused unless "
-            "--overwrite is given.",
-        ),
-    ] = Path("sweep"),
-    overwrite: Annotated[
-        bool,
-        typer.Option(
-            "--overwrite",
-            help="Replace the results of an earlier sweep in the output folder.",
-        ),
-    ] = False,
-    scheduler: Annotated[
-        str | None,
-        typer.Option(
-            "--scheduler",
-            help="Address of a running Dask scheduler (e.g. tcp://10.0.0.5:8786); its "
-            "workers need rollerdyn installed and must see the output folder. An address "
-            "that cannot be reached within 10 s exits with status 2. Default: a local "
-            "cluster of --workers processes.",
-        ),
-    ] = None,
-    workers: Annotated[
-        int,
-        typer.Option(
-            "--workers",
-            min=1,
-            help="Worker processes of the local cluster (one thread, so one run, each). "
-            "Ignored with --scheduler.",
-        ),
-    ] = 2,
-    t_end: Annotated[
-        str | None,
-        typer.Option(
-            "--t-end",
-            help="Simulated end time of every run, with a unit as in the configuration "
-            "(50 ms, 0.05 s) or a bare number of seconds. Default: each configuration's "
-            "end time (speed ramp end + two roller-set revolutions, about 1.288 s for B1).",
-            metavar="TIME",
-        ),
-    ] = None,
-    detector: Annotated[
-        str | None,
-        typer.Option(
-            "--detector",
-            help="Roller end / flange detector: semi-analytical, gradient or mesh. "
-            "Default: solver.detector of each configuration (semi-analytical).",
-        ),
-    ] = None,
-) -> None:
-    """Run a grid of variants of a configuration on Dask and summarise them.
-
-    Every grid point and the output folder are checked before any run starts; a bad one
-    exits with status 2 naming the --set path (or option), the value and the rule. Each
-    run writes its own result file. The summary (one row per run; units SI, given in the
-    column names: run, each swept value as given and in SI, status, error, final time
-    [s], mean frictional torque over the last 20 % of the run [N*m], maximum roller race
-    load [N], maximum flange normal force [N], maximum |slide-to-roll ratio| at the inner
-    race while the ring turns [1] (n/a if it never does), steps, wall time [s], file) is
-    written to summary.parquet and printed. A failed run keeps its partial result and its
-    error in the summary, and the sweep goes on; the command then exits with status 1.
-    """
-    from .cli import _load, checked, console, refuse, say, time_option
-    from .paths import check_output_dir
-
-    parameters = _parameters(sets)
-    end = time_option("--t-end", t_end)
-    _load(config)  # a bad file: the same message and exit status as rollerdyn run
-    if detector is not None and detector not in DETECTORS:
-        raise refuse(f"--detector = {detector!r}: must be semi-analytical, gradient or mesh")
-    checked(
-        check_output_dir,
-        output,
-        "-o",
-        results=("run_[0-9][0-9][0-9][0-9].nc", SUMMARY_FILE),
-        overwrite=overwrite,
-        hint="; pass --overwrite to replace them, or choose another folder",
-    )
-    try:
-        build_grid(config, parameters)  # validate every grid point before the cluster starts
-        with _sweep_progress(console, scheduler) as progress:
-            frame = sweep(
-                config,
-                parameters,
-                output,
-                scheduler=scheduler,
-                workers=workers,
-                t_end=end,
-                detector=detector,
-                progress=progress,
-            )
-    except SweepError as err:
-        raise refuse(err) from None
-    except OSError as err:
-        raise refuse(f"-o {output}: {err}", 1) from None
-    failed = _print_summary(frame, config, output, list(parameters))
-    say(
-        f"wrote {output / SUMMARY_FILE} and {int((frame['file'] != '').sum())} result files; "
-        f"{len(frame) - failed} completed, {failed} failed"
-    )
-    if failed:
-        raise typer.Exit(1)
-
-
-def _parameters(sets: list[str]) -> dict[str, list[Any]]:
-    """The --set options as {path: values}; exits with status 2 on a malformed one."""
-    from .cli import refuse
-
-    parameters: dict[str, list[Any]] = {}
-    try:
-        for option in sets:
-            path, values = parse_set(option)
-            if path in parameters:
-                raise SweepError(f"--set {path}: given twice; list all its values in one --set")
-            parameters[path] = values
-    except SweepError as err:
-        raise refuse(err) from None
-    return parameters
-
-
-class _Lines:
-    """The sweep's progress as plain lines (no terminal: a log, a pipe), one per run."""
-
-    def __init__(self, say: Callable[[str], None]):
-        self.say, self.started = say, time.perf_counter()
-
-    def __call__(self, done: int, total: int, row: dict | None) -> None:
-        wall = time.perf_counter() - self.started
-        if row is None:
-            self.say(f"sweep: {total} runs submitted ({wall:.1f} s)")
-        else:
-            status = row["status"]
-            self.say(f"sweep: run {row['run']} {status}; {done} of {total} done ({wall:.1f} s)")
-
-
-@contextlib.contextmanager
-def _sweep_progress(console, scheduler: str | None):
-    """The progress callback of :func:`sweep`: a live bar on a terminal, else lines."""
-    from .cli import plain, say
-
-    start = "starting Dask workers" if scheduler is None else f"connecting to {scheduler}"
-    if not console.is_terminal:
-        say(f"sweep: {start}")
-        yield _Lines(say)
-        return
-    from rich.progress import (
-        BarColumn,
-        MofNCompleteColumn,
-        Progress,
-        TextColumn,
-        TimeElapsedColumn,
-        TimeRemainingColumn,
-    )
-
-    columns = (
-        TextColumn("{task.description}", style="bold", markup=False),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TextColumn("runs", markup=False),
-        TimeElapsedColumn(),
-        TimeRemainingColumn(),
-        TextColumn("{task.fields[last]}", markup=False),
-    )
-    with Progress(*columns, console=console, transient=False) as bar:
-        task = bar.add_task(plain(start), total=None, last="")
-
-        def progress(done: int, total: int, row: dict | None) -> None:
-            last = "" if row is None else f"run {row['run']} {row['status']}"
-            bar.update(task, description="sweep", completed=done, total=total, last=last)
-
-        yield progress
-
-
-def _print_summary(frame, config: Path, output: Path, swept: list[str]) -> int:
-    """Prints the summary table and each failed run's error; returns how many failed."""
-    from rich.table import Table
-    from rich.text import Text
-
-    from .cli import console, error, plain
-
-    table = Table(title=plain(f"sweep of {config.name}: {len(frame)} runs, in {output}"))
-    headers = {
-        "final_time [s]": "final t [s]",
-        "mean_frictional_torque [N*m]": "mean torque, last 20 % [N*m]",
-        "max_race_load [N]": "max race load [N]",
-        "max_flange_normal_force [N]": "max flange force [N]",
-        "max_abs_srr_inner [1]": "max |SRR| inner, ring turning",
-        "steps": "steps",
-        "wall [s]": "wall [s]",
-        "file": "file",
-    }
-    shown = ["run", *swept, "status", *headers]  # swept values as given; SI in the parquet
-    for col in shown:
-        table.add_column(headers.get(col, col), overflow="fold")
-    for _, row in frame.iterrows():
-        cells = []
-        for col in shown:
-            value = row[col]
-            if col == "status":
-                ok = value == "completed"
-                cells.append(Text(value, style="green" if ok else "red"))
-                continue
-            cells.append(Text(plain(_fmt(value, ".1f" if col == "wall [s]" else ".6g"))))
-        table.add_row(*cells)
-    console.print(table)
-    failed = frame[frame["status"] != "completed"]
-    for _, row in failed.iterrows():
-        error(f"run {row['run']} failed: {row['error']}")
-    return len(failed)

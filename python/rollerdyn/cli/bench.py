@@ -1,0 +1,188 @@
+"""``rollerdyn bench``: the command, its options and which target runs; the targets
+themselves (tables of timings) are in :mod:`.bench_targets`."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from ..names import GRADIENT, SEMI_ANALYTICAL
+from ..paths import check_output_dir
+from .bench_targets import (
+    bench_cases,
+    bench_contact,
+    bench_mbs,
+    bench_model,
+    bench_traction,
+    runtime_study,
+)
+from .common import ConfigOption, checked, load, refuse, time_option
+
+
+def bench(
+    target: Annotated[
+        str,
+        typer.Argument(
+            help="What to time: 'traction' (EHL traction integral), 'contact' (roller "
+            f"end/flange detection: {SEMI_ANALYTICAL}, pruned, {GRADIENT}), 'model' (one "
+            "right-hand side and one Jacobian of the bearing model at a state), 'mbs' "
+            f"(whole runs with the {SEMI_ANALYTICAL} and the {GRADIENT} detector) or 'all' "
+            "(traction and contact)."
+        ),
+    ] = "all",
+    repetitions: Annotated[
+        int, typer.Option(min=1000, help="Traction evaluations timed per contact type.")
+    ] = 200_000,
+    steps: Annotated[
+        int, typer.Option(min=10, help="Trajectory steps of the contact benchmark.")
+    ] = 6283,
+    t_end: Annotated[
+        str | None,
+        typer.Option(
+            "--t-end",
+            help="mbs: simulated end time, with a unit as in the configuration (50 ms, "
+            "0.05 s) or a bare number of seconds (default: the configuration's, 1.288 s "
+            "for B1).",
+            metavar="TIME",
+        ),
+    ] = None,
+    sweep_dt_max: Annotated[
+        str | None,
+        typer.Option(
+            "--sweep-dt-max",
+            help="mbs: the runtime study of the paper's fig. 14. Comma-separated maximum "
+            "step sizes Δt_max in s (e.g. 1e-5,3e-5,1e-4); each is run with both detectors "
+            "to --t-end, and the table and a plot (runtime over Δt_max) are written to "
+            "--output.",
+        ),
+    ] = None,
+    output: Annotated[
+        Path,
+        typer.Option(
+            "--output",
+            "-o",
+            help="mbs --sweep-dt-max: directory for table and plot; mbs --cases: directory "
+            "for bench_cases.csv.",
+        ),
+    ] = Path("runtime-study"),
+    cases: Annotated[
+        str | None,
+        typer.Option(
+            "--cases",
+            help=f"mbs: comma-separated operating points to run with the {SEMI_ANALYTICAL} "
+            "detector instead of the detector comparison: whole, full-speed-500rpm, "
+            "full-speed-3000rpm, equilibrium-500rpm, equilibrium-3000rpm, free-tilt, axial-0N, "
+            "axial-500N, axial-2000N, axial-3000N; "
+            "'default' (the first five) or 'all'. Prints steps, Newton failures, right-hand "
+            "sides, wall time [s] and simulated seconds per wall second, and writes "
+            "bench_cases.csv to --output.",
+        ),
+    ] = None,
+    threads: Annotated[
+        str,
+        typer.Option(
+            "--threads",
+            help="mbs --cases: thread counts to run each case on, comma-separated (e.g. 1,2); "
+            "'all' for all cores. Default 1.",
+        ),
+    ] = "1",
+    max_wall: Annotated[
+        float,
+        typer.Option(
+            "--max-wall",
+            min=1.0,
+            help="mbs --cases: wall time [s] after which a case is stopped and reported "
+            "as far as it got.",
+        ),
+    ] = 300.0,
+    state: Annotated[
+        Path | None,
+        typer.Option(
+            "--state",
+            help="model: a result file (netCDF from `rollerdyn run`) of the same "
+            "configuration whose final state is timed (default: the consistent initial "
+            "state, where nothing is loaded yet).",
+        ),
+    ] = None,
+    config: ConfigOption = None,
+) -> None:
+    """Time the hot paths and print tables (times in ns per evaluation unless a column
+    says otherwise).
+
+    traction: one line slice and one elliptical contact with the configuration's
+    traction model, on one core.
+
+    contact: one roller end passing once around the bearing against an inner-ring flange
+    of the configuration (steps of 1e-3 rad of roller-set azimuth), every method
+    evaluating all six pairings; the gradient method warm-started from the previous step;
+    accuracy against the reference solver every 100th step. For statistically careful
+    numbers use "cargo bench -p rollerdyn-core".
+
+    model: the mean time of one right-hand side (2 000 of them) and one Jacobian (200) at
+    the final state of --state, in µs, and the right-hand side's split into detection,
+    line contacts and flange forces.
+
+    mbs: the whole run (to --t-end) on one core with each detector: wall time, steps,
+    right-hand-side and Jacobian evaluations, and where the time goes: detection, line
+    contacts and flange forces (summed over every contact evaluation, in right-hand sides
+    and Jacobians alike), the time inside Jacobians, and the rest (linear algebra and the
+    solver's own work). With --sweep-dt-max: the runtime study of the paper's fig. 14;
+    with --cases: whole runs of operating points.
+    """
+    from ..validation import default_config_path
+
+    if target not in ("traction", "contact", "model", "mbs", "all"):
+        raise refuse(f"target = {target!r}: must be traction, contact, model, mbs or all")
+    end = time_option("--t-end", t_end)
+    dt_max_values = None if sweep_dt_max is None else _dt_max_values(sweep_dt_max)
+    thread_counts = _thread_counts(threads)
+    if target == "mbs" and (cases is not None or dt_max_values is not None):
+        checked(check_output_dir, output, "-o")
+    cfg = load(config if config is not None else default_config_path())
+    if target in ("traction", "all"):
+        bench_traction(cfg, repetitions)
+    if target in ("contact", "all"):
+        bench_contact(cfg, steps)
+    if target == "model":
+        bench_model(cfg, state)
+    if target == "mbs" and cases is not None:
+        bench_cases(cfg, cases, thread_counts, max_wall, output)
+    elif target == "mbs" and dt_max_values is not None:
+        runtime_study(cfg, end, dt_max_values, output)
+    elif target == "mbs":
+        bench_mbs(cfg, end)
+
+
+def _dt_max_values(text: str) -> list[float]:
+    """``--sweep-dt-max`` of ``bench``: comma-separated positive times in s, sorted."""
+    try:
+        values = [float(v) for v in text.split(",") if v.strip()]
+    except ValueError:
+        values = []
+    if not values or not all(v > 0.0 and math.isfinite(v) for v in values):
+        raise refuse(
+            f"--sweep-dt-max = {text!r}: must be comma-separated positive times in s, "
+            "e.g. 1e-5,3e-5,1e-4"
+        )
+    return sorted(values)
+
+
+def _thread_counts(text: str) -> list[int]:
+    """``--threads`` of ``bench``: comma-separated counts or 'all'."""
+    from ..simulation import default_threads
+
+    counts = []
+    for part in text.split(","):
+        part = part.strip()
+        if part == "all":
+            counts.append(default_threads())
+        elif part.isdigit() and int(part) >= 1:
+            counts.append(int(part))
+        else:
+            raise refuse(
+                f"--threads = {text!r}: must be comma-separated whole numbers >= 1 or 'all'"
+            )
+    return counts

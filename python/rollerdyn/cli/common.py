@@ -1,0 +1,119 @@
+"""What every command of the command line shares: the console, printing text as it is,
+refusing bad input with exit status 2, the ``--config`` and ``--detector`` options, time
+options and loading a configuration.
+
+Every message is printed as plain text (:func:`say`, :func:`error`): text from files and
+options is never read as rich markup.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.text import Text
+
+from ..config import ConfigError, load_config
+from ..names import DETECTORS, SEMI_ANALYTICAL, one_of
+from ..paths import OutputPathError
+
+# markup=False: text from files and options (a bearing named "B1 [/x]", a file
+# "nope[/x].nc") is printed as it is, never read as rich markup; colours are set with
+# Text styles.
+console = Console(markup=False, width=200 if not Console().is_terminal else None)
+
+ConfigOption = Annotated[
+    Path | None,
+    typer.Option(
+        "--config",
+        "-c",
+        help="Bearing configuration (TOML) for the B1-specific cases; "
+        "default: examples/b1.toml of the source tree.",
+    ),
+]
+
+
+def detector_help(default: str) -> str:
+    """The help of a ``--detector`` option whose default is ``solver.detector`` of
+    ``default`` (e.g. "the configuration")."""
+    return (
+        f"Roller end / flange detector: {one_of(DETECTORS)}. "
+        f"Default: solver.detector of {default} ({SEMI_ANALYTICAL})."
+    )
+
+
+def plain(text: object) -> str:
+    """``text`` as printable text: bytes of a file name that are not UTF-8 (kept by
+    Python as surrogates) shown as ``\\xff`` instead of failing to print."""
+    try:
+        raw = str(text).encode("utf-8", "surrogateescape")
+    except UnicodeEncodeError:  # a surrogate that is no escaped byte
+        raw = str(text).encode("utf-8", "backslashreplace")
+    return raw.decode("utf-8", "backslashreplace")
+
+
+def say(text: object, style: str | None = None, out: Console | None = None) -> None:
+    """Prints ``text`` as it is (never as markup), unwrapped: one message, one line."""
+    (out or console).print(Text(plain(text), style=style or ""), soft_wrap=True)
+
+
+def error(text: object, out: Console | None = None) -> None:
+    """Prints an error message in red, as it is (never as markup)."""
+    say(text, "red", out)
+
+
+def refuse(text: object, code: int = 2) -> typer.Exit:
+    """Prints ``text`` as an error and returns the exit to raise (status 2: bad input)."""
+    error(text)
+    return typer.Exit(code)
+
+
+def checked(check, *args, **kwargs):
+    """``check(*args, **kwargs)`` of :mod:`rollerdyn.paths`; its refusal exits with 2."""
+    try:
+        return check(*args, **kwargs)
+    except OutputPathError as err:
+        raise refuse(err) from None
+
+
+def time_option(option: str, text: str | None) -> float | None:
+    """The value of a time option (``--t-end``) in s: ``"50 ms"``, ``"0.05 s"`` or a bare
+    number of seconds (``"0.05"``); None stays None. Exits with status 2 naming the
+    option, the value and the rule for anything but a positive, finite time."""
+    from ..units import QuantityError, parse_quantity
+
+    if text is None:
+        return None
+    rule = "must be a positive time, e.g. 50 ms, 0.05 s or 0.05 (seconds)"
+    try:
+        value = float(text)
+    except ValueError:
+        try:
+            value = parse_quantity(text.strip(), "time")
+        except QuantityError as err:  # its first clause says what is wrong, then a hint
+            reason = str(err).split("; ")[0]
+            raise refuse(f"{option} = {text!r}: {reason}; {rule}") from None
+    if not (math.isfinite(value) and value > 0.0):
+        raise refuse(f"{option} = {text!r}: {rule}")
+    return value
+
+
+def check_detector(detector: str | None) -> None:
+    """Exits with status 2 unless ``--detector`` is None or names a detector."""
+    if detector is not None and detector not in DETECTORS:
+        raise refuse(f"--detector = {detector!r}: must be {one_of(DETECTORS)}")
+
+
+def load(path: Path):
+    """The configuration in ``path``; exits with status 2 and its problems if invalid."""
+    try:
+        return load_config(path)
+    except ConfigError as err:
+        text = str(err)
+        error(
+            text if text.startswith("invalid configuration") else f"invalid configuration\n{text}"
+        )
+        raise typer.Exit(2) from None

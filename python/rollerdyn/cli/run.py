@@ -1,0 +1,307 @@
+"""``rollerdyn run``: a dynamic simulation written to a netCDF file, with its progress
+(a live bar on a terminal, else plain lines), checkpoints, --resume, and Ctrl-C or SIGTERM
+stopping the run with everything computed so far written."""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import signal
+import time
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from ..paths import check_output_file, remove_stale_temporaries
+from .common import (
+    check_detector,
+    checked,
+    console,
+    detector_help,
+    error,
+    load,
+    plain,
+    refuse,
+    say,
+    time_option,
+)
+
+
+def run(
+    config: Annotated[Path, typer.Argument(help="Bearing configuration (TOML).", metavar="CONFIG")],
+    output: Annotated[
+        Path,
+        typer.Option(
+            "--output",
+            "-o",
+            help="Result file (netCDF, xarray/h5netcdf). Its folder must exist; an existing "
+            "file is refused unless --overwrite is given or --resume names the same file.",
+        ),
+    ] = Path("result.nc"),
+    overwrite: Annotated[
+        bool,
+        typer.Option("--overwrite", help="Replace the file -o names if it exists."),
+    ] = False,
+    t_end: Annotated[
+        str | None,
+        typer.Option(
+            "--t-end",
+            help="Simulated end time, with a unit as in the configuration (50 ms, 0.05 s) "
+            "or a bare number of seconds (0.05). Default: the configuration's end time "
+            "(speed ramp end + two roller-set revolutions, about 1.288 s for B1).",
+            metavar="TIME",
+        ),
+    ] = None,
+    detector: Annotated[
+        str | None,
+        typer.Option(
+            "--detector",
+            help=detector_help("the configuration"),
+        ),
+    ] = None,
+    resume: Annotated[
+        Path | None,
+        typer.Option(
+            "--resume",
+            help="Continue an unfinished run (interrupted, killed, failed, or stopped by "
+            "--t-end) from the last checkpoint saved in its result file; the output holds "
+            "both parts and equals an uninterrupted run bit for bit. Same configuration and "
+            "detector required. -o may name the same file (the way to continue a run in "
+            "place).",
+        ),
+    ] = None,
+    checkpoint_interval: Annotated[
+        str | None,
+        typer.Option(
+            "--checkpoint-interval",
+            help="Checkpoint interval in simulated time (not wall-clock time), with a unit "
+            "(100 ms) or a bare number of seconds (0.1): the result file is rewritten and "
+            "the solver restarted every TIME; at most this much simulated time is lost "
+            "after kill -9. Overrides solver.checkpoint_interval of the configuration "
+            "(default 100 ms). With --resume the default is the earlier run's interval, "
+            "which a bit-for-bit continuation needs (another interval changes the result "
+            "within the tolerances).",
+            metavar="TIME",
+        ),
+    ] = None,
+    threads: Annotated[
+        int | None,
+        typer.Option(
+            "--threads",
+            min=1,
+            help="Threads that evaluate the contacts and the Jacobian's columns (default: all "
+            "cores; the gradient detector always uses one). The result does not depend on "
+            "it, bit for bit.",
+        ),
+    ] = None,
+    force: Annotated[
+        bool,
+        typer.Option(
+            "--force",
+            help="Run even when the estimated result size or cost is far beyond a normal "
+            "run (the refusal prints the estimate).",
+        ),
+    ] = False,
+) -> None:
+    """Run the dynamic simulation and write its results to a netCDF file.
+
+    Units: SI throughout the file (every variable has a 'units' attribute; time in s,
+    forces in N, torques in N*m, angles in rad, speeds in rad/s). Outputs are saved every
+    solver.output_interval by interpolation.
+
+    Progress: on a terminal a bar shows simulated time, solver steps, speed (simulated
+    time per wall second) and the time left; otherwise (a log, a pipe) one line is
+    printed at every 10 % of the simulated time and at least every 10 s.
+
+    The output is checked before the run: its folder must exist and be writable, and an
+    existing file is only replaced with --overwrite (or continued with --resume naming
+    it). If the run fails or is interrupted (Ctrl-C), everything computed until then is
+    written and the command exits with status 1 (130 after Ctrl-C, 143 after SIGTERM).
+    The result file is also written at every checkpoint (every --checkpoint-interval of
+    simulated time, by default solver.checkpoint_interval, 100 ms; atomically), so after
+    kill -9 or a crash it holds the run up to the last checkpoint, and --resume finishes
+    the run. Bad input exits with status 2 before any work.
+    """
+    from ..simulation import SimulationError, resume_state, simulate, write
+
+    check_detector(detector)
+    interval = time_option("--checkpoint-interval", checkpoint_interval)
+    end = time_option("--t-end", t_end)
+    cfg = load(config)
+    end = cfg.end_time if end is None else end
+    _check_run_output(output, config, resume, overwrite)
+    previous = None if resume is None else _open_resume(resume, end)
+    if interval is None and previous is not None:
+        earlier = previous.attrs.get("checkpoint_interval_s")
+        if earlier is not None and math.isfinite(float(earlier)) and float(earlier) > 0.0:
+            interval = float(earlier)
+    if interval is not None:
+        solver = cfg.solver.model_copy(update={"checkpoint_interval": float(interval)})
+        cfg = cfg.model_copy(update={"solver": solver})
+    for tmp, pid in remove_stale_temporaries(output):
+        say(f"removed {tmp}: a temporary file of process {pid}, which no longer runs")
+    t_start = 0.0 if previous is None else float(resume_state(previous)[0])
+    unsaved: list[OSError] = []  # a checkpoint that could not be written stops the run
+
+    def checkpoint(partial) -> None:
+        try:
+            write(partial, output)
+        except OSError as err:
+            unsaved.append(err)
+
+    status = 0
+    with _run_progress(cfg.name, t_start, end) as show:
+        # SIGTERM (a batch system or `kill`) stops the run like Ctrl-C: at the next output
+        # time, with everything computed so far written (exit status 143).
+        previous_handler = signal.signal(signal.SIGTERM, _terminate)
+        try:
+            ds = simulate(
+                cfg,
+                t_end=end,
+                detector=detector,
+                progress=lambda p: show(p) or bool(unsaved),
+                resume=previous,
+                checkpoint=checkpoint,
+                threads=threads,
+                **({"force": True} if force else {}),
+            )
+        except ValueError as err:
+            raise refuse(err) from None
+        except SimulationError as err:
+            ds = err.dataset
+            status = _stop_status(str(err))
+            error(f"run stopped: {err}")
+        finally:
+            signal.signal(signal.SIGTERM, previous_handler)
+    if unsaved:
+        raise refuse(f"-o {output}: could not write the checkpoint ({unsaved[0]}); run stopped", 1)
+    try:
+        write(ds, output)
+    except OSError as err:
+        raise refuse(f"-o {output}: could not write the result ({err})", 1) from None
+    say(_run_line(output, ds))
+    if status:
+        raise typer.Exit(status)
+
+
+def _stop_status(message: str) -> int:
+    """Exit status of a run stopped by ``message``: 143 SIGTERM, 130 Ctrl-C, else 1."""
+    if "SIGTERM" in message:
+        return 143
+    return 130 if "KeyboardInterrupt" in message else 1
+
+
+def _check_run_output(output: Path, config: Path, resume: Path | None, overwrite: bool) -> None:
+    """Exits with status 2 unless ``run`` may write ``output`` (see :mod:`rollerdyn.paths`):
+    an existing file only with --overwrite or as the --resume file."""
+    from ..paths import same_file
+
+    in_place = resume is not None and same_file(output, resume)
+    checked(
+        check_output_file,
+        output,
+        "-o",
+        inputs=[("the configuration file", config)],
+        overwrite=overwrite or in_place,
+        hint="; pass --overwrite to replace it, or --resume with the same file to continue its run",
+    )
+
+
+def _open_resume(resume: Path, end: float):
+    """The earlier result of ``--resume``, loaded; exits with status 2 naming the file and
+    what is wrong if it is no rollerdyn result or already reached ``end``."""
+    from ..report import REQUIRED, ReportError, open_result
+
+    try:
+        previous = open_result(resume, required=(*REQUIRED, "final_state"))
+    except ReportError as err:
+        raise refuse(f"--resume {err}") from None
+    t_prev = float(previous.attrs["final_time_s"])
+    if not end > t_prev:
+        raise refuse(
+            f"--resume {resume}: the run already reached t = {t_prev} s; --t-end = {end} s "
+            "must lie after it"
+        )
+    return previous
+
+
+def _run_line(output: Path, ds) -> str:
+    """The closing line of ``run``: what was written and what it cost."""
+    st = ds.attrs
+    return (
+        f"wrote {output}: {ds.sizes['time']} outputs to t = {st['final_time_s']:.6g} s; "
+        f"{st['stats_steps']} steps ({st.get('stats_error_test_failures', 0)} rejected), "
+        f"{st['stats_rhs_evaluations']} right-hand sides, "
+        f"{st['stats_jacobian_evaluations']} Jacobians, {st['stats_total_seconds']:.1f} s wall "
+        f"on {st.get('threads', 1)} thread(s)"
+    )
+
+
+def _rate(simulated: float, wall: float) -> str:
+    """Simulated time per wall second, as text."""
+    return f"{simulated / wall * 1e3:.3g} ms/s" if wall > 0 else ""
+
+
+class ProgressLines:
+    """Progress of a run as plain lines, for a log or a pipe (no terminal): one at every
+    10 % of the simulated time and at least one every ``every`` seconds of wall time."""
+
+    def __init__(self, name: str, t_start: float, t_end: float, every: float = 10.0):
+        self.name, self.t_start, self.t_end, self.every = name, t_start, t_end, every
+        self.started = self.last = time.perf_counter()
+        self.next_share = 0.1
+
+    def __call__(self, p) -> None:
+        now = time.perf_counter()
+        span = self.t_end - self.t_start
+        share = (p.time - self.t_start) / span if span > 0 else 1.0
+        if share < self.next_share - 1e-9 and now - self.last < self.every:
+            return
+        while self.next_share <= share + 1e-9:
+            self.next_share += 0.1
+        self.last = now
+        wall = now - self.started
+        say(
+            f"{self.name}: t = {p.time:.6g} / {self.t_end:.6g} s ({100 * share:.0f} %), "
+            f"{p.steps} steps, {_rate(p.time - self.t_start, wall)}, {wall:.1f} s wall"
+        )
+
+
+@contextlib.contextmanager
+def _run_progress(name: str, t_start: float, t_end: float):
+    """The progress callback of a run: rich's live bar on a terminal, else plain lines."""
+    if not console.is_terminal:
+        yield ProgressLines(name, t_start, t_end)
+        return
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    columns = (
+        TextColumn("{task.description}", style="bold", markup=False),
+        BarColumn(),
+        TextColumn("t = {task.completed:.4f} / {task.total:.4f} s", markup=False),
+        TextColumn("{task.fields[steps]} steps", markup=False),
+        TextColumn("{task.fields[rate]}", markup=False),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+    )
+    start = time.perf_counter()
+    with Progress(*columns, console=console, transient=False) as bar:
+        task = bar.add_task(plain(name), total=t_end, steps=0, rate="")
+
+        def show(p) -> None:
+            rate = _rate(p.time - t_start, time.perf_counter() - start)
+            bar.update(task, completed=p.time, steps=p.steps, rate=rate)
+
+        yield show
+
+
+def _terminate(signum, frame) -> None:
+    """SIGTERM handler of `run`: raised inside the core's signal check, it stops the run."""
+    raise KeyboardInterrupt("terminated by SIGTERM")

@@ -1,0 +1,94 @@
+"""``rollerdyn validate`` (every model against published values) and ``rollerdyn check``
+(a configuration file and its derived quantities)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.table import Table
+from rich.text import Text
+
+from .common import ConfigOption, console, load
+
+
+def validate(config: ConfigOption = None) -> None:
+    """Check every model against published values and closed-form limits.
+
+    Prints one row per case: group, case, source, expected and computed value (SI units),
+    relative error, tolerance and pass/fail ("info" rows report a known model error and
+    never fail). Exits with status 1 if any case fails.
+    """
+    from ..validation import run
+
+    cfg = load(config) if config is not None else None
+    table = Table(title="rollerdyn validation", show_lines=False)
+    for col in ("group", "case", "source", "expected", "computed", "rel. error", "tol.", "pass"):
+        table.add_column(col, overflow="fold")
+    failures = 0
+    with console.status(Text("running validation cases...")):
+        results = list(run(cfg))
+    for r in results:
+        c = r.case
+        verdict = (
+            Text("info")
+            if c.report_only
+            else (Text("pass", style="green") if r.passed else Text("FAIL", style="red"))
+        )
+        failures += 0 if r.passed else 1
+        table.add_row(
+            c.group,
+            c.name,
+            c.source,
+            f"{c.expected:.6g}",
+            f"{r.computed:.6g}",
+            f"{r.relative_error:.2e}",
+            "-" if c.report_only else f"{c.rtol:.0e}",
+            verdict,
+        )
+    console.print(table)
+    total = len(results)
+    console.print(f"{total - failures} passed, {failures} failed")
+    if failures:
+        raise typer.Exit(1)
+
+
+def check(
+    config: Annotated[Path, typer.Argument(help="Bearing configuration (TOML).", metavar="CONFIG")],
+) -> None:
+    """Validate a configuration file and print its derived quantities (SI units).
+
+    Shows roller diameter, pitch diameter, gap between rollers, roller mass and inertias,
+    end time, lubricant state at the run temperature (eta0, Roelands z, alpha*) and the
+    line-contact power laws (eq. 11) fitted to Tripp with their errors.
+    """
+    from ..model import Model
+
+    cfg = load(config)
+    model = Model(cfg)
+    g = cfg.geometry
+    rows = [
+        ("roller diameter", g.roller_diameter, "m"),
+        ("pitch diameter", g.pitch_diameter, "m"),
+        ("gap between neighbouring rollers", g.circumferential_gap, "m"),
+        ("roller mass", cfg.roller_mass, "kg"),
+        ("roller axial inertia", cfg.roller_axial_inertia, "kg m^2"),
+        ("roller transverse inertia", cfg.roller_transverse_inertia, "kg m^2"),
+        ("roller-set speed at full speed", cfg.roller_set_speed, "rad/s"),
+        ("end time", cfg.end_time, "s"),
+        ("eta0 at run temperature", model.eta0, "Pa s"),
+        ("Roelands z", model.roelands_z, "-"),
+        ("alpha* (eq. 32 fit)", model.alpha_star, "1/Pa"),
+        ("alpha* fit max. relative error", model.alpha_star_fit["max_relative_error"], "-"),
+    ]
+    for name, law in model.line_contacts.items():
+        rows.append((f"eq. 11 roller-{name}: k1", law.k1, "SI"))
+        rows.append((f"eq. 11 roller-{name}: k2", law.k2, "-"))
+        rows.append((f"eq. 11 roller-{name}: max force error vs Tripp", law.max_force_error, "-"))
+    table = Table(title=f"{cfg.name}: derived quantities")
+    for col in ("quantity", "value", "unit"):
+        table.add_column(col)
+    for name, value, unit in rows:
+        table.add_row(name, f"{value:.6g}", unit)
+    console.print(table)

@@ -1,0 +1,697 @@
+"""The configuration's schema: one pydantic model per TOML section, with the rules of each
+field (units, bounds) and the cross-field checks, up to :class:`BearingConfig`, the whole
+file.
+
+Every numeric field holds a plain SI float once validated (:mod:`rollerdyn.units` converts
+at the boundary). The values derived from the fields are the sections' mixins in
+:mod:`.derived`; problems found by the checks are rendered by :mod:`.errors`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Annotated, Any, Literal
+
+from pydantic import BeforeValidator, Field, PrivateAttr, model_validator
+from pydantic_core import PydanticCustomError
+
+from ..names import DETECTORS, SEMI_ANALYTICAL
+from ..units import Integer, Number, Quantity, Vector, format_si
+from .base import (
+    MAX_HERTZ_PRESSURE,
+    MAX_PITCH_SPEED,
+    MAX_SLICES,
+    ForceHistory,
+    Hint,
+    RadialHistory,
+    SpeedHistory,
+    TimeTable,
+    _Cross,
+    _mm,
+    _Section,
+)
+from .derived import (
+    BearingDerived,
+    DickeDerived,
+    GeometryDerived,
+    LubricantDensityDerived,
+    LubricantDerived,
+    OperatingDerived,
+    RampDerived,
+    RollerDerived,
+    SurfacesDerived,
+    VogelDerived,
+    _history_peak,
+)
+
+# --------------------------------------------------------------------------- geometry
+
+
+class RollerConfig(RollerDerived, _Section):
+    """``[geometry.roller]``: one roller (all rollers are equal)."""
+
+    length: Quantity("length", positive=True, example="5 mm")
+    edge_radius: Quantity("length", positive=True, example="0.5 mm")
+    end_face_radius: Quantity("length", positive=True, example="5000 mm")
+    profile: Literal["straight", "crowned"] = "straight"
+    crown_drop: Quantity("length", nonnegative=True, example="2 um") = "0 um"
+    crown_length: Quantity("length", positive=True, example="1 mm") | None = None
+    slices: Integer(ge=1, le=MAX_SLICES) = 20
+
+    @model_validator(mode="after")
+    def _check(self) -> RollerConfig:
+        cross = _Cross()
+        straight = self.length - 2.0 * self.edge_radius
+        if straight <= 0.0:
+            cross.add(
+                "edge_radius",
+                _mm(self.edge_radius),
+                f"must be < length/2 = {_mm(self.length / 2)} "
+                "(the roller length must exceed 2*edge_radius)",
+            )
+        if self.profile == "straight":
+            if self.crown_drop != 0.0:
+                cross.add(
+                    "crown_drop",
+                    _mm(self.crown_drop),
+                    'a crown drop needs profile = "crowned" (profile is "straight")',
+                )
+            if self.crown_length is not None:
+                cross.add(
+                    "crown_length",
+                    _mm(self.crown_length),
+                    'crown_length is only used with profile = "crowned"',
+                )
+        else:
+            if self.crown_drop <= 0.0:
+                cross.add("crown_drop", _mm(self.crown_drop), "must be > 0 for a crowned profile")
+            if self.crown_length is None:
+                cross.add("crown_length", "(missing)", "required for a crowned profile")
+            elif straight > 0.0 and self.crown_length > straight / 2.0:
+                cross.add(
+                    "crown_length",
+                    _mm(self.crown_length),
+                    "must be <= (length - 2*edge_radius)/2 = "
+                    f"{_mm(straight / 2)} (the crowned zone at each end)",
+                )
+        cross.raise_if_any()
+        return self
+
+
+class FlangeConfig(_Section):
+    """``[geometry.flange]``: a cone between a root torus (at the raceway) and a rim torus."""
+
+    opening_angle: Quantity("angle", ge=0.0, lt="90 deg", example="0.11 deg")
+    height: Quantity("length", positive=True, example="1.1 mm")
+    root_radius: Quantity("length", positive=True, example="0.2 mm")
+    rim_radius: Quantity("length", positive=True, example="0.3 mm")
+    axial_play: Quantity("length", nonnegative=True, example="20 um")
+
+
+_FLANGE_OVERRIDES = ("inner_ring_flange", "outer_ring_flange")
+
+
+class GeometryConfig(GeometryDerived, _Section):
+    """``[geometry]``: raceways, clearance, outer ring wall, roller and flanges."""
+
+    roller_count: Integer(ge=3)
+    inner_raceway_diameter: Quantity("length", positive=True, example="20 mm")
+    outer_raceway_diameter: Quantity("length", positive=True, example="29 mm")
+    diametral_clearance: Quantity("length", nonnegative=True, example="10 um")
+    outer_ring_wall_thickness: Quantity("length", positive=True, example="2.5 mm")
+    roller: RollerConfig
+    flange: FlangeConfig
+    inner_ring_flange: FlangeConfig | None = None
+    outer_ring_flange: FlangeConfig | None = None
+
+    @model_validator(mode="before")
+    @classmethod
+    def _merge_flange_overrides(cls, data: Any) -> Any:
+        # geometry.inner_ring_flange / outer_ring_flange override single keys of geometry.flange
+        if isinstance(data, Mapping) and isinstance(data.get("flange"), Mapping):
+            data = dict(data)
+            for key in _FLANGE_OVERRIDES:
+                if isinstance(data.get(key), Mapping):
+                    data[key] = {**data["flange"], **data[key]}
+        return data
+
+    @model_validator(mode="after")
+    def _check(self) -> GeometryConfig:
+        cross = _Cross()
+        d_i, d_o, c = (
+            self.inner_raceway_diameter,
+            self.outer_raceway_diameter,
+            self.diametral_clearance,
+        )
+        if d_o <= d_i:
+            cross.add(
+                "outer_raceway_diameter",
+                _mm(d_o),
+                f"must be > inner_raceway_diameter ({_mm(d_i)})",
+            )
+            cross.raise_if_any()
+        dia = self.roller_diameter
+        if dia <= 0.0:
+            cross.add(
+                "diametral_clearance",
+                _mm(c),
+                "leaves no room for rollers: roller diameter (D_o - D_i)/2 - clearance/2 = "
+                f"{_mm(dia)} must be > 0",
+            )
+            cross.raise_if_any()
+        gap = self.circumferential_gap
+        if gap <= 0.0:
+            z_max = math.ceil(math.pi / math.asin(min(1.0, dia / self.pitch_diameter))) - 1
+            cross.add(
+                "roller_count",
+                str(self.roller_count),
+                f"rollers do not fit: pitch_diameter*sin(pi/Z) - roller_diameter = {_mm(gap)} "
+                f"must be > 0 (roller diameter {_mm(dia)}, pitch diameter "
+                f"{_mm(self.pitch_diameter)}; at most {z_max} rollers fit)",
+            )
+        r = self.roller
+        if r.edge_radius >= dia / 2.0:
+            cross.add(
+                "roller.edge_radius",
+                _mm(r.edge_radius),
+                f"must be < roller diameter/2 = {_mm(dia / 2)}",
+            )
+        if r.end_face_radius <= dia / 2.0:
+            cross.add(
+                "roller.end_face_radius",
+                _mm(r.end_face_radius),
+                f"must be > roller diameter/2 = {_mm(dia / 2)} (convex end face sphere)",
+            )
+        for key in ("flange", *_FLANGE_OVERRIDES):
+            fl: FlangeConfig | None = getattr(self, key)
+            if fl is None:
+                continue
+            if fl.height >= dia:
+                cross.add(
+                    f"{key}.height",
+                    _mm(fl.height),
+                    f"must be < roller diameter ({_mm(dia)}): the flange is taller than the roller",
+                )
+            if fl.height <= fl.root_radius + fl.rim_radius:
+                cross.add(
+                    f"{key}.height",
+                    _mm(fl.height),
+                    f"must be > root_radius + rim_radius = {_mm(fl.root_radius + fl.rim_radius)} "
+                    "(room for the cone between the tori)",
+                )
+        cross.raise_if_any()
+        return self
+
+
+# --------------------------------------------------------------------------- materials
+
+
+class MaterialConfig(_Section):
+    """An isotropic elastic solid."""
+
+    youngs_modulus: Quantity("pressure", positive=True, example="210 GPa")
+    poisson_ratio: Number(gt=0.0, lt=0.5)
+    density: Quantity("density", positive=True, example="7850 kg/m^3")
+
+
+class MaterialsConfig(_Section):
+    """``[materials.*]``: roller, inner ring and outer ring."""
+
+    roller: MaterialConfig
+    inner_ring: MaterialConfig
+    outer_ring: MaterialConfig
+
+
+class InnerRingConfig(_Section):
+    """``[inner_ring]``: the inner ring together with its (rigid) shaft."""
+
+    mass: Quantity("mass", positive=True, example="0.1 kg")
+    axial_inertia: Quantity("moment of inertia", positive=True) | None = None
+    transverse_inertia: Quantity("moment of inertia", positive=True) | None = None
+    tilt: Literal["locked", "free"] = "locked"
+    # Prescribed tilt of a locked ring about z (perpendicular to the radial load along -y and
+    # the axial load along +x, as the paper's tilt, sect. 5.2); the ring's axis is
+    # (cos g, sin g, 0) for the whole run.
+    misalignment: Quantity("angle", ge="-1 deg", le="1 deg") = "0 deg"
+
+    @model_validator(mode="after")
+    def _check(self) -> InnerRingConfig:
+        if self.tilt == "free" and self.misalignment != 0.0:
+            cross = _Cross()
+            cross.add(
+                "misalignment",
+                f"{self.misalignment:.6g} rad",
+                'a prescribed misalignment needs tilt = "locked" '
+                "(the free ring finds its own tilt)",
+            )
+            cross.raise_if_any()
+        return self
+
+
+# --------------------------------------------------------------------------- lubricant
+
+
+class VogelConfig(VogelDerived, _Section):
+    """Vogel law ``eta0 = k*exp(b/(theta + c))``, theta in degC."""
+
+    k: Quantity("dynamic viscosity", positive=True, example="0.062 mPa*s")
+    b: Quantity("temperature interval", positive=True, example="1021.7 K")
+    c: Quantity("temperature interval", example="101.5517 K")
+
+
+class ReferenceViscosityConfig(_Section):
+    """A measured viscosity that rescales the Vogel factor ``k``."""
+
+    temperature: Quantity("temperature", example="40 degC")
+    viscosity: Quantity("dynamic viscosity", positive=True, example="81 mPa*s")
+
+
+def _z_value(value: Any) -> Any:
+    if value == "fit":
+        return value
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        raise PydanticCustomError(
+            "quantity", "{rule}", {"rule": 'expected a positive number or "fit"'}
+        )
+    if not math.isfinite(value) or value <= 0.0:
+        raise PydanticCustomError("quantity", "{rule}", {"rule": "must be finite and > 0"})
+    return float(value)
+
+
+class RoelandsConfig(_Section):
+    """Roelands pressure-viscosity law (eq. 19)."""
+
+    eta_p: Quantity("dynamic viscosity", positive=True) = "0.0631 mPa*s"
+    p_p: Quantity("pressure", lt=0.0, example="-196 MPa") = "-196 MPa"
+    z: Annotated[
+        float | Literal["fit"], BeforeValidator(_z_value), Hint('a positive number or "fit"')
+    ]
+    z_fit: Literal["initial_slope", "least_squares"] = "initial_slope"
+    fit_pressure_max: Quantity("pressure", positive=True) = "1 GPa"
+
+    @model_validator(mode="after")
+    def _check(self) -> RoelandsConfig:
+        cross = _Cross()
+        if self.z != "fit":
+            for key in ("z_fit", "fit_pressure_max"):
+                if key in self.model_fields_set:
+                    cross.add(key, "", f'only used with z = "fit" (z is {self.z:g})')
+        cross.raise_if_any()
+        return self
+
+
+class DickeConfig(DickeDerived, _Section):
+    """Dicke law ``eta = eta0*exp(p/(a1 + a2*theta + (b1 + b2*theta)*p))``, theta in degC."""
+
+    a1: Quantity("pressure", positive=True, example="327.7918 bar")
+    a2: Quantity("pressure per temperature", example="2.9862 bar/K")
+    b1: Number()
+    b2: Quantity("inverse temperature", example="3.0115e-4 1/K")
+
+
+class CarreauConfig(_Section):
+    """Carreau shear thinning (eq. 21)."""
+
+    tau0: Quantity("pressure", positive=True, example="5 MPa")
+    n: Number(gt=0.0, le=1.0)
+
+
+class LimitingShearStressConfig(_Section):
+    """Bilinear limiting shear stress of Wang (eq. 50)."""
+
+    chi: Number(ge=0.0)
+    p_star: Quantity("pressure", positive=True, example="1.5 GPa")
+    tau_l0: Quantity("pressure", positive=True, example="0.12 GPa")
+
+    @model_validator(mode="after")
+    def _check(self) -> LimitingShearStressConfig:
+        cross = _Cross()
+        at_zero = self.tau_l0 - self.chi * self.p_star
+        if at_zero < -1e-9 * self.tau_l0:
+            cross.add(
+                "tau_l0",
+                format_si(self.tau_l0, "pressure"),
+                f"must be >= chi*p_star = {format_si(self.chi * self.p_star, 'pressure')} "
+                "(else the limiting shear stress is negative at p = 0)",
+            )
+        cross.raise_if_any()
+        return self
+
+
+class AlphaStarFitConfig(_Section):
+    """Temperature range of the fit ``alpha*(T) = c1*exp(c2*T) + c3*exp(c4*T)`` (eq. 32)."""
+
+    t_min: Quantity("temperature") = "20 degC"
+    t_max: Quantity("temperature") = "140 degC"
+
+    @model_validator(mode="after")
+    def _check(self) -> AlphaStarFitConfig:
+        cross = _Cross()
+        if self.t_min >= self.t_max:
+            cross.add(
+                "t_max",
+                format_si(self.t_max, "temperature"),
+                f"must be > t_min ({format_si(self.t_min, 'temperature')})",
+            )
+        cross.raise_if_any()
+        return self
+
+
+class LubricantDensityConfig(LubricantDensityDerived, _Section):
+    """Density ``rho(T) = rho_15 + slope*(T - 15 degC)``."""
+
+    rho_15: Quantity("density", positive=True, example="887.6 kg/m^3")
+    slope: Quantity("density per temperature", example="-0.6 kg/m^3/K")
+
+
+class LubricantConfig(LubricantDerived, _Section):
+    """``[lubricant]``: rheology and thermal data of the oil."""
+
+    name: Annotated[str, Field(min_length=1)]
+    vogel: VogelConfig
+    reference_viscosity: ReferenceViscosityConfig | None = None
+    roelands: RoelandsConfig
+    dicke: DickeConfig | None = None
+    carreau: CarreauConfig
+    limiting_shear_stress: LimitingShearStressConfig
+    alpha_star_fit: AlphaStarFitConfig = Field(default_factory=AlphaStarFitConfig)
+    density: LubricantDensityConfig
+    thermal_conductivity: Quantity("thermal conductivity", positive=True)
+
+    @model_validator(mode="after")
+    def _check(self) -> LubricantConfig:
+        cross = _Cross()
+        if self.roelands.z == "fit" and self.dicke is None:
+            cross.add(
+                "roelands.z",
+                '"fit"',
+                'z = "fit" needs a [lubricant.dicke] section to fit against',
+            )
+        pole = self.vogel.pole()
+        checks = [("alpha_star_fit.t_min", self.alpha_star_fit.t_min)]
+        if self.reference_viscosity is not None:
+            checks.append(("reference_viscosity.temperature", self.reference_viscosity.temperature))
+        for loc, t in checks:
+            if t <= pole:
+                cross.add(
+                    loc,
+                    format_si(t, "temperature"),
+                    f"must be above the Vogel pole theta = -c ({format_si(pole, 'temperature')})",
+                )
+        cross.raise_if_any()
+        return self
+
+
+# --------------------------------------------------------------------------- surfaces
+
+
+class SurfacePairConfig(_Section):
+    """Roughness and Zhou-Hoeprich load-sharing parameters (eq. 53) of one contact type."""
+
+    roughness: Quantity("length", positive=True, example="0.16 um")
+    zh_b: Number(gt=0.0)
+    zh_c: Number(gt=0.0)
+
+
+class BoundaryFrictionConfig(_Section):
+    """Boundary friction (eqs. 51, 52) and its smoothing at small sliding speed."""
+
+    mu_b0: Number(ge=0.0)
+    s0: Number(gt=0.0)
+    smoothing_speed: Quantity("speed", positive=True) = "1 mm/s"
+
+
+class SqueezeFilmConfig(_Section):
+    """``[surfaces.squeeze_film]``: squeeze-film damping of the oil between roller ends and
+    flanges (not in the paper; docs/dynamics.md)."""
+
+    enabled: bool = True
+    half_width: Quantity("length", positive=True, le="10 mm") = "0.5 mm"
+    floor: Quantity("length", positive=True, le="100 um") = "0.24 um"
+    cutoff: Quantity("length", positive=True, le="1 mm") = "20 um"
+
+
+class RaceFilmConfig(_Section):
+    """``[surfaces.race_film]``: the rigid-isoviscous oil film in the roller-race and
+    roller-roller gaps (Martin's load, squeeze, Couette shear; not in the paper;
+    docs/dynamics.md). Its gap floor is each contact's composite roughness."""
+
+    enabled: bool = True
+    cutoff: Quantity("length", positive=True, le="1 mm") = "100 um"
+
+
+class SurfacesConfig(SurfacesDerived, _Section):
+    """``[surfaces]``."""
+
+    raceway: SurfacePairConfig
+    flange: SurfacePairConfig
+    roller_roller: SurfacePairConfig | None = None
+    boundary_friction: BoundaryFrictionConfig
+    hysteresis_coefficient: Number(ge=0.0)
+    damping_ratio: Number(ge=0.0, le=2.0) = 0.1
+    border_band_roller: Quantity("angle", ge=0.0, le="1 deg") = "1.5e-4 rad"
+    border_band_flange: Quantity("length", ge=0.0, le="1 mm") = "50 um"
+    squeeze_film: SqueezeFilmConfig = Field(default_factory=SqueezeFilmConfig)
+    race_film: RaceFilmConfig = Field(default_factory=RaceFilmConfig)
+    friction: bool = True
+
+
+# --------------------------------------------------------------------------- operating
+
+
+class CavityConfig(_Section):
+    """``[cavity]``: the oil-air mixture in the bearing's cavity, whose drag acts on the
+    rollers (Harris & Kotzalas; not in the paper; docs/dynamics.md). Air at 80 degC."""
+
+    oil_fraction: Number(ge=0.0, le=1.0) = 0.03
+    air_density: Quantity("density", ge=0.0, le="100 kg/m^3") = "1.0 kg/m^3"
+    air_viscosity: Quantity("dynamic viscosity", ge=0.0, le="1 Pa*s") = "2.1e-5 Pa*s"
+
+
+class RampConfig(RampDerived, _Section):
+    """A ramp from 0 to the full value between ``start`` and ``end``."""
+
+    start: Quantity("time", ge=0.0, example="0 s")
+    end: Quantity("time", positive=True, example="0.5 s")
+    shape: Literal["cosine", "linear"] = "cosine"
+
+    @model_validator(mode="after")
+    def _check(self) -> RampConfig:
+        cross = _Cross()
+        if self.end <= self.start:
+            cross.add("end", f"{self.end:g} s", f"must be > start ({self.start:g} s)")
+        cross.raise_if_any()
+        return self
+
+
+class OperatingConfig(OperatingDerived, _Section):
+    """``[operating]``: loads on the inner ring, its speed, temperature, ramps, end time."""
+
+    radial_load: RadialHistory
+    axial_load: ForceHistory
+    inner_ring_speed: SpeedHistory
+    temperature: Quantity("temperature", example="80 degC")
+    load_ramp: RampConfig | None = None
+    speed_ramp: RampConfig | None = None
+    end_time: Quantity("time", positive=True, example="1.3 s") | None = None
+    gravity: Vector(
+        "acceleration", example='"9.81 m/s^2" or ["0 m/s^2", "-9.81 m/s^2", "0 m/s^2"]'
+    ) = "9.81 m/s^2"
+
+    @model_validator(mode="after")
+    def _check(self) -> OperatingConfig:
+        cross = _Cross()
+        if self.load_ramp is not None and all(
+            isinstance(v, TimeTable) for v in (self.radial_load, self.axial_load)
+        ):
+            cross.add(
+                "load_ramp",
+                "",
+                "both loads are time tables; a load ramp only applies to constant loads",
+            )
+        if self.speed_ramp is not None and isinstance(self.inner_ring_speed, TimeTable):
+            cross.add(
+                "speed_ramp",
+                "",
+                "inner_ring_speed is a time table; a speed ramp only applies to a constant speed",
+            )
+        if self.end_time is not None and self.end_time <= self.speed_history_end:
+            cross.add(
+                "end_time",
+                f"{self.end_time:g} s",
+                f"must be > the end of the speed ramp/table ({self.speed_history_end:g} s)",
+            )
+        cross.raise_if_any()
+        return self
+
+
+# --------------------------------------------------------------------------- solver
+
+
+class LineFitConfig(_Section):
+    """Range of the fit of eq. 11 to Tripp's line-contact law (load per unit length).
+
+    Without ``load_min``/``load_max`` the ranges follow from the radial load: with the
+    Stribeck/Harris estimate of the heaviest roller, ``q_ref = 4.08 F_r / (Z l)`` (l the
+    straight roller length), race contacts are fitted over ``[0.1, 2] q_ref`` and
+    roller-roller contacts over ``[0.01, 0.2] q_ref`` (see :class:`rollerdyn.model.Model`).
+    Given values apply to all three contact kinds.
+    """
+
+    load_min: Quantity("force per length", positive=True) | None = None
+    load_max: Quantity("force per length", positive=True) | None = None
+    samples: Integer(ge=2, le=10_000) = 64
+
+    @model_validator(mode="after")
+    def _check(self) -> LineFitConfig:
+        cross = _Cross()
+        if (self.load_min is None) != (self.load_max is None):
+            cross.add(
+                "load_max" if self.load_max is None else "load_min",
+                "(missing)",
+                "give both load_min and load_max, or neither (derived from the radial load)",
+            )
+        elif self.load_max is not None and self.load_max <= self.load_min:
+            cross.add(
+                "load_max",
+                format_si(self.load_max, "force per length"),
+                f"must be > load_min ({format_si(self.load_min, 'force per length')})",
+            )
+        cross.raise_if_any()
+        return self
+
+
+class SolverConfig(_Section):
+    """``[solver]``: time integration and numerical settings."""
+
+    rtol: Number(ge=1e-12, lt=1.0) = 1e-5
+    atol: Number(ge=1e-15) = 1e-9
+    atol_time_scale: Quantity("time", positive=True, le="1 s") = "1e-5 s"
+    dt_max: Quantity("time", ge="1 ns") = "1e-4 s"
+    output_interval: Quantity("time", ge="1 ns") = "1e-4 s"
+    checkpoint_interval: Quantity("time", positive=True) = "100 ms"
+    detector: Literal[DETECTORS] = SEMI_ANALYTICAL
+    start: Literal["rest", "equilibrium"] = "rest"
+    method: Literal["tr-bdf2", "esdirk34"] = "tr-bdf2"
+    max_step_growth: Number(gt=1.0, le=10.0) = 1.3
+    step_gain: Number(gt=0.0, le=1.0) = 0.3
+    jacobian_after_newton_failure: bool = False
+    pruning: bool = True
+    mesh_around: Integer(ge=8, le=1024) = 64
+    mesh_along: Integer(ge=2, le=256) = 16
+    traction_nodes: Integer(ge=1, le=200) = 12
+    traction: Literal["tabulated", "direct"] = "tabulated"
+    line_fit: LineFitConfig = Field(default_factory=LineFitConfig)
+
+
+# --------------------------------------------------------------------------- top level
+
+
+class BearingConfig(BearingDerived, _Section):
+    """A complete bearing simulation: geometry, materials, lubricant, operation, solver."""
+
+    name: Annotated[str, Field(min_length=1)]
+    description: str | None = None
+    geometry: GeometryConfig
+    materials: MaterialsConfig
+    inner_ring: InnerRingConfig
+    lubricant: LubricantConfig
+    surfaces: SurfacesConfig
+    operating: OperatingConfig
+    cavity: CavityConfig = Field(default_factory=CavityConfig)
+    solver: SolverConfig = Field(default_factory=SolverConfig)
+    #: The TOML text the configuration was read from (None if built in Python).
+    _toml: str | None = PrivateAttr(default=None)
+
+    def __eq__(self, other: object) -> bool:
+        """Equal field values, whatever text they were read from (the TOML text is a record)
+        and whichever derived values were computed and cached already."""
+        if not isinstance(other, BearingConfig):
+            return NotImplemented
+        fields = type(self).model_fields
+        return all(self.__dict__.get(k) == other.__dict__.get(k) for k in fields)
+
+    __hash__ = None  # type: ignore[assignment]  # mutable values, as pydantic's own
+
+    @property
+    def toml_text(self) -> str | None:
+        """The TOML text this configuration was read from (:func:`load_config`), as read;
+        None for a configuration built in Python."""
+        return self._toml
+
+    @model_validator(mode="after")
+    def _check(self) -> BearingConfig:
+        cross = _Cross()
+        op, lub = self.operating, self.lubricant
+        t = op.temperature
+        t_shown = format_si(t, "temperature")
+        fit = lub.alpha_star_fit
+        if not fit.t_min <= t <= fit.t_max:
+            cross.add(
+                "operating.temperature",
+                t_shown,
+                "must lie within lubricant.alpha_star_fit "
+                f"[{format_si(fit.t_min, 'temperature')}, {format_si(fit.t_max, 'temperature')}]",
+            )
+        if t <= lub.vogel.pole():
+            cross.add(
+                "operating.temperature",
+                t_shown,
+                "must be above the Vogel pole theta = -c "
+                f"({format_si(lub.vogel.pole(), 'temperature')})",
+            )
+        if lub.roelands.z == "fit" and lub.dicke is not None and lub.dicke.denominator(0.0, t) <= 0:
+            cross.add(
+                "lubricant.dicke.a2",
+                format_si(lub.dicke.a2, "pressure per temperature"),
+                f"a1 + a2*theta must be > 0 at the operating temperature ({t_shown})",
+            )
+        if lub.density_at(t) <= 0.0:
+            cross.add(
+                "lubricant.density.slope",
+                format_si(lub.density.slope, "density per temperature"),
+                f"gives a density <= 0 at the operating temperature ({t_shown})",
+            )
+        self._check_operating_limits(cross)
+        if op.end_time is None and op.final_inner_ring_speed == 0.0:
+            cross.add(
+                "operating.end_time",
+                "(missing)",
+                "required when the final inner ring speed is 0 "
+                "(no roller-set revolutions to count)",
+            )
+        elif self.solver.output_interval >= self.end_time:
+            cross.add(
+                "solver.output_interval",
+                f"{self.solver.output_interval:g} s",
+                f"must be < the end time ({self.end_time:g} s)",
+            )
+        cross.raise_if_any()
+        return self
+
+    def _check_operating_limits(self, cross: _Cross) -> None:
+        """Loads and speeds far beyond what any rolling bearing carries are refused before
+        any work (they would only make the solver fail after a long time)."""
+        op = self.operating
+        limit = self.load_limit
+        for field, value in (("radial_load", op.radial_load), ("axial_load", op.axial_load)):
+            peak = _history_peak(value)
+            if not peak <= limit:
+                cross.add(
+                    f"operating.{field}",
+                    format_si(peak, "force"),
+                    f"must be at most {format_si(limit, 'force')}: the heaviest roller "
+                    f"(Stribeck, 4.08 F/Z) would see a Hertz pressure above "
+                    f"{MAX_HERTZ_PRESSURE / 1e9:g} GPa, far beyond what bearing steel carries "
+                    "(ISO 76 allows 4 GPa)",
+                )
+        speed = _history_peak(op.inner_ring_speed)
+        pitch_speed = speed * self.geometry.pitch_diameter / 2.0
+        if not pitch_speed <= MAX_PITCH_SPEED:
+            cross.add(
+                "operating.inner_ring_speed",
+                f"{speed * 30.0 / math.pi:.6g} rpm",
+                f"must give a pitch-circle speed of at most {MAX_PITCH_SPEED:g} m/s "
+                f"(here {pitch_speed:.3g} m/s), beyond the fastest rolling bearings",
+            )

@@ -1,0 +1,50 @@
+"""Names shared by the Rust core and the Python front: the roller end / flange pairings,
+the four flange contacts of a roller and the contact detectors.
+
+This module is their one Python source: the configuration's ``solver.detector``, the
+result file's ``pairing`` and ``flange`` coordinates, the ``--detector`` options and their
+messages, the figures and the report all take them from here. Their order is the core's
+(``flange_pairing`` holds an index into :data:`PAIRINGS`, the ``flange`` axis of a result
+follows :data:`FLANGES`).
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "DETECTORS",
+    "FLANGES",
+    "GRADIENT",
+    "MESH",
+    "PAIRINGS",
+    "SEMI_ANALYTICAL",
+    "flange_indices",
+    "one_of",
+]
+
+PAIRINGS = ("TO-CO", "TO-TO(root)", "TO-TO(rim)", "SP-CO", "SP-TO(root)", "SP-TO(rim)")
+"""Roller end / flange pairings, in the order of ``flange_pairing`` (paper fig. 1)."""
+
+FLANGES = ("inner-x", "inner+x", "outer-x", "outer+x")
+"""The four roller end / flange contacts of a roller: ring and side of the flange."""
+
+
+def flange_indices(ring: str) -> list[int]:
+    """Indices into :data:`FLANGES` (the ``flange`` axis of a result) of the two flanges of
+    ``ring``, ``"inner"`` or ``"outer"``."""
+    return [k for k, f in enumerate(FLANGES) if f.startswith(ring)]
+
+
+SEMI_ANALYTICAL = "semi-analytical"
+"""The paper's semi-analytical detector (sect. 2.1), the default."""
+GRADIENT = "gradient"
+"""Koch's gradient method (sect. 2.2), for comparison."""
+MESH = "mesh"
+"""Triangle meshes (parry3d), a baseline."""
+
+DETECTORS = (SEMI_ANALYTICAL, GRADIENT, MESH)
+"""The roller end / flange contact detectors (``solver.detector``, ``--detector``)."""
+
+
+def one_of(names: tuple[str, ...]) -> str:
+    """``("a", "b", "c")`` -> ``"a, b or c"``: the choices as a message lists them."""
+    return names[0] if len(names) == 1 else f"{', '.join(names[:-1])} or {names[-1]}"
