@@ -1,7 +1,9 @@
 """Names shared by the Rust core and the Python front: the roller end / flange pairings,
 the four flange contacts of a roller and the contact detectors.
 
-This module is their one Python source: the configuration's ``solver.detector``, the
+The values come from the core (``_core.PAIRINGS``, ``_core.FLANGES``,
+``_core.DETECTORS``, built from its own tables and tested there); this module is their
+one Python home: the configuration's ``solver.detector``, the
 result file's ``pairing`` and ``flange`` coordinates, the ``--detector`` options and their
 messages, the figures and the report all take them from here. Their order is the core's
 (``flange_pairing`` holds an index into :data:`PAIRINGS`, the ``flange`` axis of a result
@@ -9,6 +11,8 @@ follows :data:`FLANGES`).
 """
 
 from __future__ import annotations
+
+from . import _core
 
 __all__ = [
     "DETECTORS",
@@ -21,10 +25,10 @@ __all__ = [
     "one_of",
 ]
 
-PAIRINGS = ("TO-CO", "TO-TO(root)", "TO-TO(rim)", "SP-CO", "SP-TO(root)", "SP-TO(rim)")
+PAIRINGS: tuple[str, ...] = tuple(_core.PAIRINGS)
 """Roller end / flange pairings, in the order of ``flange_pairing`` (paper fig. 1)."""
 
-FLANGES = ("inner-x", "inner+x", "outer-x", "outer+x")
+FLANGES: tuple[str, ...] = tuple(_core.FLANGES)
 """The four roller end / flange contacts of a roller: ring and side of the flange."""
 
 
@@ -34,14 +38,11 @@ def flange_indices(ring: str) -> list[int]:
     return [k for k, f in enumerate(FLANGES) if f.startswith(ring)]
 
 
-SEMI_ANALYTICAL = "semi-analytical"
-"""The paper's semi-analytical detector (sect. 2.1), the default."""
-GRADIENT = "gradient"
-"""Koch's gradient method (sect. 2.2), for comparison."""
-MESH = "mesh"
-"""Triangle meshes (parry3d), a baseline."""
+SEMI_ANALYTICAL, GRADIENT, MESH = _core.DETECTORS
+"""The paper's semi-analytical detector (sect. 2.1, the default), Koch's gradient method
+(sect. 2.2, for comparison) and triangle meshes (parry3d, a baseline)."""
 
-DETECTORS = (SEMI_ANALYTICAL, GRADIENT, MESH)
+DETECTORS: tuple[str, ...] = (SEMI_ANALYTICAL, GRADIENT, MESH)
 """The roller end / flange contact detectors (``solver.detector``, ``--detector``)."""
 
 

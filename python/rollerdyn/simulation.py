@@ -7,7 +7,7 @@ fails keeps everything computed until then: the Dataset holds those records and 
 ``attrs["error"]`` says when and where the run failed; :func:`simulate` then raises
 :class:`SimulationError` carrying that partial Dataset.
 
-Checkpoints (issue 6, point 4): every ``solver.checkpoint_interval`` of simulated time
+Checkpoints: every ``solver.checkpoint_interval`` of simulated time
 (from t = 0) the integration restarts its solver from the state reached, in every run. The
 Dataset keeps the last checkpoint (``checkpoint_time``, ``checkpoint_step``,
 ``checkpoint_state``, counters in ``attrs["checkpoint_stats_*"]``); a run resumed from it

@@ -5,7 +5,7 @@
 //! Conventions: body A and body B, the unit normal `n` points from A towards B, the
 //! penetration δ > 0 is overlap, and the force on B is +F_n·n + F_t (A gets the
 //! opposite). Surface speeds are taken relative to the moving contact location
-//! (model-notes, "Kinematics at a contact"): u_i = tangential part of
+//! (docs/dynamics.md, "Contacts"): u_i = tangential part of
 //! (v_material,i − v_frame), sliding u_rel = u_B − u_A.
 
 use super::state::Kinematics;
@@ -74,7 +74,7 @@ impl Tribology {
     /// traction falls linearly to zero, as the boundary friction does (paper fig. 5). At GPa
     /// pressures the Carreau/limiting-shear-stress curve rises to its plateau within
     /// nanometres per second of sliding, a near-Coulomb switch that stalls any implicit
-    /// integrator (model-notes, "Stiffness and the integrator"); v_s (config
+    /// integrator (docs/model.md, "Smoothing"); v_s (config
     /// `surfaces.boundary_friction.smoothing_speed`) sets the width of this creep zone.
     #[inline]
     pub fn creep(&self, sliding: f64) -> (f64, f64) {

@@ -1,5 +1,6 @@
 //! The model's immutable parameters, all SI, as the front end hands them over after
-//! validating and deriving them from a configuration file.
+//! validating and deriving them from a configuration file: the physical parameters
+//! ([`BearingParams`]) and, within them, the numerical settings ([`ModelOptions`]).
 
 use crate::contact::border::BorderBands;
 use crate::error::{Error, Result};
@@ -124,6 +125,20 @@ pub enum Detector {
     Mesh,
 }
 
+impl Detector {
+    /// All three, in the order the configuration lists them.
+    pub const ALL: [Detector; 3] = [Detector::SemiAnalytical, Detector::Gradient, Detector::Mesh];
+
+    /// The detector's name in the configuration (`solver.detector`) and in results.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Detector::SemiAnalytical => "semi-analytical",
+            Detector::Gradient => "gradient",
+            Detector::Mesh => "mesh",
+        }
+    }
+}
+
 /// The friction data of one kind of contact surface pair.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SurfacePair {
@@ -198,8 +213,6 @@ pub struct BearingParams {
     pub hysteresis_coefficient: f64,
     /// Damping ratio ζ of the normal contact damping [-].
     pub damping_ratio: f64,
-    /// Friction (tangential forces, rolling resistance) on; off only for checks.
-    pub friction: bool,
     /// Gravity [m/s²] (B1: 9.81 m/s² along −y, a horizontal shaft).
     pub gravity: Vec3,
     /// The oil film in the roller–race and roller–roller gaps (not in the paper;
@@ -214,6 +227,19 @@ pub struct BearingParams {
     pub axial_load: History,
     /// Inner ring speed [rad/s] about +x.
     pub inner_ring_speed: History,
+    /// Squeeze-film damping of the roller end–flange gaps (not in the paper;
+    /// [`crate::tribology::squeeze`]).
+    pub squeeze_film: SqueezeFilm,
+    /// The numerical settings ([`ModelOptions`]).
+    pub options: ModelOptions,
+}
+
+/// The model's numerical settings, apart from the physical parameters: how the roller
+/// end–flange contacts are detected and blended, and whether friction acts. (The EHL
+/// traction's choice between the integral and its table is made with the traction,
+/// [`EhlTraction::tabulated`].)
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelOptions {
     /// Roller end–flange detector.
     pub detector: Detector,
     /// Mesh resolution (around, along) for [`Detector::Mesh`].
@@ -223,9 +249,8 @@ pub struct BearingParams {
     /// Half-widths of the bands over which the roller end–flange curvature is blended
     /// across patch borders ([`crate::contact::border`]).
     pub border_bands: BorderBands,
-    /// Squeeze-film damping of the roller end–flange gaps (not in the paper;
-    /// [`crate::tribology::squeeze`]).
-    pub squeeze_film: SqueezeFilm,
+    /// Friction (tangential forces, rolling resistance) on; off only for checks.
+    pub friction: bool,
 }
 
 impl BearingParams {
@@ -311,8 +336,11 @@ impl BearingParams {
             }
         }
         for (name, v) in [
-            ("border_band_roller", self.border_bands.roller_angle),
-            ("border_band_flange", self.border_bands.flange_length),
+            ("border_band_roller", self.options.border_bands.roller_angle),
+            (
+                "border_band_flange",
+                self.options.border_bands.flange_length,
+            ),
             ("damping_ratio", self.damping_ratio),
             ("inner_axial_play", self.inner_axial_play),
             ("outer_axial_play", self.outer_axial_play),
@@ -367,6 +395,20 @@ impl BearingParams {
         self.axial_load.check("axial_load")?;
         self.inner_ring_speed.check("inner_ring_speed")?;
         Ok(())
+    }
+
+    /// Crown drop of the roller profile at axial position s (0 for a straight roller):
+    /// a circular-arc-like quadratic drop over `crown_length` at each end.
+    pub fn crown_drop(&self, s: f64, straight: f64) -> f64 {
+        if self.crown_drop <= 0.0 || self.crown_length <= 0.0 {
+            return 0.0;
+        }
+        let x = s.abs() - (0.5 * straight - self.crown_length);
+        if x <= 0.0 {
+            0.0
+        } else {
+            self.crown_drop * (x / self.crown_length).powi(2)
+        }
     }
 }
 

@@ -1,9 +1,12 @@
 //! A whole simulation: integrate the model and record what the figures need at every
-//! output time (issue 4, "Running it"); on a failure keep everything recorded so far and
+//! output time; on a failure keep everything recorded so far and
 //! say when and where it happened.
 
-use super::model::{BearingModel, Element, ElementResult, Profile, FLANGE_NAMES};
+use super::contacts::ElementResult;
+use super::model::BearingModel;
+use super::profile::Profile;
 use super::state::{azimuth, tilt_and_skew, Kinematics};
+use super::topology::{Element, FLANGE_NAMES};
 use crate::dynamics::integrate::{
     integrate, Checkpoint, Event, Method, Options, Start, Stats, StepControl,
 };
@@ -372,8 +375,8 @@ pub fn run(
 pub fn record(model: &BearingModel, t: f64, y: &[f64]) -> Record {
     let kin = model.kinematics(t, y);
     let results = model.evaluate_all(&kin);
-    let (ring_w, outer_w, _) = model.loads(&results);
-    let ring = kin.0;
+    let loads = model.loads(&results);
+    let ring = kin.inner_ring;
     let layout = model.layout;
     let ring_tilt = if layout.tilt_free {
         (y[6], y[7])
@@ -385,7 +388,7 @@ pub fn record(model: &BearingModel, t: f64, y: &[f64]) -> Record {
         fill(&mut rollers, element, r);
     }
     for (i, rec) in rollers.iter_mut().enumerate() {
-        let k = &kin.1[i];
+        let k = &kin.rollers[i];
         rec.azimuth = azimuth(&k.center);
         rec.position = k.center;
         (rec.tilt, rec.skew) = tilt_and_skew(&k.center, &k.axis);
@@ -403,8 +406,8 @@ pub fn record(model: &BearingModel, t: f64, y: &[f64]) -> Record {
             model.params.radial_load.at(t).0,
             model.params.axial_load.at(t).0,
         ),
-        frictional_torque: -ring_w.moment.dot(&ring.axis),
-        outer_ring_torque: outer_w.moment.x,
+        frictional_torque: -loads.inner_ring.moment.dot(&ring.axis),
+        outer_ring_torque: loads.outer_ring.moment.x,
         rollers,
     }
 }
@@ -472,7 +475,7 @@ pub fn diagnose(model: &BearingModel, t: f64, y: &[f64]) -> String {
     }
     let kin = model.kinematics(t, y);
     let p = &model.params;
-    for (i, k) in kin.1.iter().enumerate() {
+    for (i, k) in kin.rollers.iter().enumerate() {
         let rho = (k.center.y.powi(2) + k.center.z.powi(2)).sqrt();
         let radial_ok = rho > p.inner_raceway_radius && rho < p.outer_raceway_radius;
         let axial_ok = k.center.x.abs() < p.roller.length;
@@ -491,7 +494,7 @@ pub fn diagnose(model: &BearingModel, t: f64, y: &[f64]) -> String {
         .max_by(|a, b| a.1.penetration.total_cmp(&b.1.penetration))
         .expect("a bearing has contacts");
     let name = match *deepest {
-        super::model::Element::End(i, k) => format!("roller {i} end / flange {}", FLANGE_NAMES[k]),
+        Element::End(i, k) => format!("roller {i} end / flange {}", FLANGE_NAMES[k]),
         other => format!("{other:?}"),
     };
     format!(
@@ -524,7 +527,7 @@ mod tests {
         assert!(options().validate(17, 0.0).is_ok());
     }
 
-    /// The core never runs on a NaN tolerance or a step it cannot take (issue 16): each
+    /// The core never runs on a NaN tolerance or a step it cannot take: each
     /// bad setting is refused with its name.
     #[test]
     fn nan_negative_and_infinite_settings_are_refused_by_name() {

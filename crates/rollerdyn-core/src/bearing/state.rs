@@ -4,7 +4,9 @@
 //! (θ_y, θ_z) and the transverse angular velocity (3). Then per roller: centre (3), axis
 //! angles θ_y, θ_z (2), velocity (3), angular velocity ω (3, spin included) — 11 states.
 //! The inner ring's spin is prescribed and not a state; the outer ring is fixed.
+//! [`BearingKinematics`] gathers the kinematics of all moving bodies at one state.
 
+use super::topology::Body;
 use crate::dynamics::rigid::axis_from_angles;
 use crate::geometry::primitives::Vec3;
 
@@ -137,6 +139,27 @@ pub fn ring_kinematics(layout: &Layout, y: &[f64], spin: f64, locked_axis: &Vec3
     }
 }
 
+/// The kinematics of every moving body at one state: the inner ring and the rollers (the
+/// outer ring is fixed, [`Kinematics::fixed`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BearingKinematics {
+    /// The inner ring.
+    pub inner_ring: Kinematics,
+    /// The rollers, in order.
+    pub rollers: Vec<Kinematics>,
+}
+
+impl BearingKinematics {
+    /// The kinematics of `body`; `fixed` is the outer ring's.
+    pub fn of<'a>(&'a self, body: Body, fixed: &'a Kinematics) -> &'a Kinematics {
+        match body {
+            Body::InnerRing => &self.inner_ring,
+            Body::OuterRing => fixed,
+            Body::Roller(i) => &self.rollers[i],
+        }
+    }
+}
+
 /// Azimuth ψ of a point about the bearing axis, from +y towards +z, in [0, 2π).
 #[inline]
 pub fn azimuth(p: &Vec3) -> f64 {
@@ -145,7 +168,7 @@ pub fn azimuth(p: &Vec3) -> f64 {
 
 /// Tilt and skew of a roller axis in its azimuth frame: tilt turns the axis about the
 /// circumferential direction (towards radial), skew about the radial direction (towards
-/// circumferential) (model-notes, "Frames and state").
+/// circumferential) (docs/dynamics.md, "Bodies and state").
 #[inline]
 pub fn tilt_and_skew(center: &Vec3, axis: &Vec3) -> (f64, f64) {
     let psi = azimuth(center);

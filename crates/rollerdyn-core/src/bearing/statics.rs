@@ -1,8 +1,7 @@
 //! The quasi-static start of a run (`solver.start = "equilibrium"`): the positions of the
 //! inner ring and the rollers at which every body is in steady motion under the loads and
 //! the speed of the start time, so that a run at full load and speed need not ramp up
-//! through a loose roller set (model-notes, "Stiffness and the integrator": "start from a
-//! quasi-static equilibrium").
+//! through a loose roller set (docs/dynamics.md, "Start from equilibrium").
 //!
 //! The velocities are those of rolling without slip: the roller set orbits at the
 //! epicyclic speed ω_c = Ω·(1 − D/d_m)/2 of a fixed outer ring (Harris & Kotzalas, 2007,
@@ -27,7 +26,7 @@
 //! steady state of a dynamic run (tests/test_oil_and_threads.py).
 
 use super::model::BearingModel;
-use super::params::BearingParams;
+use super::params::{BearingParams, ModelOptions};
 use super::state::ROLLER_STATES;
 use crate::dynamics::integrate::OdeSystem;
 use crate::dynamics::rigid::axis_from_angles;
@@ -62,9 +61,12 @@ impl BearingModel {
     /// (module doc). Errors name the residual and the body where no equilibrium is found
     /// (a load larger than the bearing can carry).
     pub fn equilibrium_state(&self, t: f64) -> Result<Vec<f64>> {
-        if self.params.friction {
+        if self.params.options.friction {
             let frictionless = BearingModel::new(BearingParams {
-                friction: false,
+                options: ModelOptions {
+                    friction: false,
+                    ..self.params.options.clone()
+                },
                 ..self.params.clone()
             })?;
             return frictionless.equilibrium_state(t);

@@ -2,7 +2,7 @@
 //!
 //! A roller is axisymmetric, so its spin angle never enters a force: its orientation is
 //! the direction of its axis, two angles, and its angular velocity ω is a free
-//! 3-vector (model-notes, "Frames and state"). The axis is parametrised as
+//! 3-vector (docs/dynamics.md, "Bodies and state"). The axis is parametrised as
 //! a = R_z(θ_z)·R_y(θ_y)·e_x, singular only at θ_y = ±90°, far from any bearing pose.
 //!
 //! Euler's equations in the inertial frame, I·ω̇ = M − ω × (I·ω), with the inertia

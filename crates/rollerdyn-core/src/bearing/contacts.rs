@@ -1,0 +1,177 @@
+//! One contact of the bearing evaluated: what it does to its two bodies ([`ElementResult`],
+//! [`Wrench`]), dispatched to the line contacts ([`super::line_contacts`]: slices, eqs. 2,
+//! 3, 11, and the oil film) or the roller end–flange contacts ([`super::detection`],
+//! [`super::flange_contacts`]: sect. 2, Hertz eqs. 5–8).
+//!
+//! A contact can also be evaluated in two parts: its geometry, which depends on positions
+//! only (`Geometry`: slice geometry, detected flange contact), and its forces at that
+//! geometry. The Jacobian's columns of velocities, which move no contact, reuse the
+//! geometry of the unperturbed state ([`super::jacobian`]).
+//!
+//! Every force acts at its own contact location; the moment on each body is (P_m − c) × F
+//! (docs/dynamics.md, "Contacts").
+
+use super::forces::ContactForces;
+use super::line_contacts::LineGeometry;
+use super::model::BearingModel;
+use super::state::{BearingKinematics, Kinematics};
+use super::topology::Element;
+use crate::contact::Contact;
+use crate::geometry::primitives::Vec3;
+
+/// A force and a moment about the body's centre.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Wrench {
+    /// Force [N].
+    pub force: Vec3,
+    /// Moment about the body's centre of mass [N m].
+    pub moment: Vec3,
+}
+
+impl Wrench {
+    pub(super) fn add(&mut self, other: &Wrench) {
+        self.force += other.force;
+        self.moment += other.moment;
+    }
+    pub(super) fn sub(&mut self, other: &Wrench) {
+        self.force -= other.force;
+        self.moment -= other.moment;
+    }
+    /// Force `f` at point `p` on a body centred at `c`, plus a pure moment.
+    fn at(f: Vec3, p: &Vec3, c: &Vec3, pure: Vec3) -> Self {
+        Self {
+            force: f,
+            moment: (p - c).cross(&f) + pure,
+        }
+    }
+}
+
+/// What one contact did.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ElementResult {
+    /// Wrench on body A (ring, or roller i for a pair).
+    pub on_a: Wrench,
+    /// Wrench on body B (roller i, or roller i+1 for a pair).
+    pub on_b: Wrench,
+    /// Sum of the normal forces [N].
+    pub normal: f64,
+    /// Sum of the tangential forces on B [N].
+    pub tangential: Vec3,
+    /// Largest penetration [m] (−∞ if no pairing was valid; for a line contact whose bodies
+    /// are apart, an upper bound of it, below 0: see `BearingModel::penetration_bound`).
+    pub penetration: f64,
+    /// Roller end / flange: the active pairing (index in [`crate::contact::Pairing::ALL`]),
+    /// if any overlaps.
+    pub pairing: Option<usize>,
+    /// Contact location (roller end / flange) [m].
+    pub location: Vec3,
+}
+
+impl ElementResult {
+    /// Nothing yet: no force, and a penetration of −∞ (the start of a maximum).
+    pub(super) fn untouched() -> Self {
+        ElementResult {
+            penetration: f64::NEG_INFINITY,
+            ..Default::default()
+        }
+    }
+
+    /// Adds the forces `f` of one section (normal `n` from A to B, location `p`) between
+    /// bodies `a` and `b`.
+    pub(super) fn add_forces(
+        &mut self,
+        f: &ContactForces,
+        n: &Vec3,
+        p: &Vec3,
+        a: &Kinematics,
+        b: &Kinematics,
+    ) {
+        let on_b = f.force_on_b(n);
+        self.on_b.add(&Wrench::at(on_b, p, &b.center, f.moment_b));
+        self.on_a.add(&Wrench::at(-on_b, p, &a.center, f.moment_a));
+        self.normal += f.normal;
+        self.tangential += f.tangential;
+    }
+}
+
+/// What of a contact element depends on positions only.
+pub(super) enum Geometry {
+    /// A line contact: its slices' and film points' geometry.
+    Line(LineGeometry),
+    /// A line contact whose bodies are apart: the (negative) bound of its penetration,
+    /// [`BearingModel::penetration_bound`]; no slice computed.
+    Apart(f64),
+    /// The detected roller end–flange contact (None: no valid pairing).
+    End(Option<Contact>),
+}
+
+impl BearingModel {
+    /// The bodies A and B of `element` at `kin` (`fixed`: the outer ring).
+    fn bodies<'a>(
+        &self,
+        element: &Element,
+        kin: &'a BearingKinematics,
+        fixed: &'a Kinematics,
+    ) -> (&'a Kinematics, &'a Kinematics) {
+        let [a, b] = element.bodies(self.layout.rollers);
+        (kin.of(a, fixed), kin.of(b, fixed))
+    }
+
+    /// Evaluates one contact.
+    pub fn evaluate(&self, element: &Element, kin: &BearingKinematics) -> ElementResult {
+        let fixed = Kinematics::fixed();
+        let (a, b) = self.bodies(element, kin, &fixed);
+        match (*element, element.line()) {
+            (_, Some(line)) => self.line_element(line, a, b),
+            (Element::End(i, k), None) => self.flange_element(i, k, a, b),
+            _ => unreachable!("an element is a line contact or a roller end"),
+        }
+    }
+
+    /// Evaluates every contact, in the order of [`Self::elements`].
+    pub fn evaluate_all(&self, kin: &BearingKinematics) -> Vec<ElementResult> {
+        let elements = &self.topology.elements;
+        self.map(elements.len(), |e| self.evaluate(&elements[e], kin))
+    }
+
+    /// The part of `element` that depends on positions only (slice geometry, detected
+    /// flange contact), for [`Self::evaluate_at`].
+    pub(super) fn geometry(&self, element: &Element, kin: &BearingKinematics) -> Geometry {
+        let fixed = Kinematics::fixed();
+        let (a, b) = self.bodies(element, kin, &fixed);
+        let Some(line) = element.line() else {
+            let Element::End(i, k) = *element else {
+                unreachable!("an element is a line contact or a roller end")
+            };
+            let end = self.roller_end(k, b);
+            return Geometry::End(self.end_contact(&end, &self.flange(k, a), i, k));
+        };
+        let start = self.profiler.stopwatch();
+        let bound = self.penetration_bound(line, a, b);
+        let geometry = if self.is_apart(bound) {
+            Geometry::Apart(bound)
+        } else {
+            Geometry::Line(self.line_geometry(line, a, b, bound))
+        };
+        self.profiler
+            .spend_time(start, |pr, t| pr.line_contacts += t);
+        geometry
+    }
+
+    /// [`Self::evaluate`] with the element's `geometry` taken at the same positions.
+    pub(super) fn evaluate_at(
+        &self,
+        element: &Element,
+        kin: &BearingKinematics,
+        geometry: &Geometry,
+    ) -> ElementResult {
+        let fixed = Kinematics::fixed();
+        let (a, b) = self.bodies(element, kin, &fixed);
+        match (element.line(), geometry) {
+            (Some(line), Geometry::Line(sections)) => self.line_forces(line, a, b, sections),
+            (Some(_), Geometry::Apart(bound)) => Self::apart(*bound),
+            (None, Geometry::End(c)) => self.flange_element_at(a, b, c.as_ref()),
+            _ => unreachable!("geometry of another kind of element"),
+        }
+    }
+}

@@ -1,0 +1,210 @@
+//! The equations of motion y' = f(t, y) of the bearing (paper sect. 3, 4; docs/dynamics.md,
+//! "Bodies and state"): the bodies' kinematics read from the state, the contacts' wrenches
+//! summed per body ([`Loads`]), and the Newton–Euler rates of the rollers (contacts, the
+//! drag of the oil–air mixture, [`crate::tribology::drag`], and gravity) and of the inner
+//! ring (contacts, the external load, gravity; its spin prescribed). Also the mechanical
+//! energy, for conservation checks.
+
+use super::contacts::{ElementResult, Geometry, Wrench};
+use super::model::BearingModel;
+use super::state::ROLLER_STATES;
+use super::state::{ring_kinematics, roller_kinematics, BearingKinematics, Kinematics};
+use super::topology::Body;
+use crate::dynamics::rigid::{
+    angle_rates, angular_acceleration, angular_momentum, driven_transverse_acceleration,
+};
+use crate::geometry::primitives::Vec3;
+use crate::tribology::drag::roller_drag;
+use crate::tribology::hertz::{EllipticalContact, EllipticalMethod};
+
+/// The contacts' wrenches summed per body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Loads {
+    /// On the inner ring.
+    pub inner_ring: Wrench,
+    /// On the outer ring.
+    pub outer_ring: Wrench,
+    /// On each roller.
+    pub rollers: Vec<Wrench>,
+}
+
+impl Loads {
+    /// The wrench on `body`.
+    pub(super) fn on(&mut self, body: Body) -> &mut Wrench {
+        match body {
+            Body::InnerRing => &mut self.inner_ring,
+            Body::OuterRing => &mut self.outer_ring,
+            Body::Roller(i) => &mut self.rollers[i],
+        }
+    }
+}
+
+impl BearingModel {
+    /// Kinematics of all bodies: inner ring, then the rollers.
+    pub fn kinematics(&self, t: f64, y: &[f64]) -> BearingKinematics {
+        let spin = self.params.inner_ring_speed.at(t).0;
+        BearingKinematics {
+            inner_ring: ring_kinematics(&self.layout, y, spin, &self.locked_axis),
+            rollers: (0..self.layout.rollers)
+                .map(|i| roller_kinematics(&self.layout, y, i))
+                .collect(),
+        }
+    }
+
+    /// Sums contact wrenches per body.
+    pub fn loads(&self, results: &[ElementResult]) -> Loads {
+        let mut loads = Loads {
+            inner_ring: Wrench::default(),
+            outer_ring: Wrench::default(),
+            rollers: vec![Wrench::default(); self.layout.rollers],
+        };
+        for (element, r) in self.topology.elements.iter().zip(results) {
+            let [a, b] = element.bodies(self.layout.rollers);
+            loads.on(a).add(&r.on_a);
+            loads.on(b).add(&r.on_b);
+        }
+        loads
+    }
+
+    /// The external load on the inner ring at time t: axial +x, radial −y.
+    pub fn external_load(&self, t: f64) -> Vec3 {
+        Vec3::new(
+            self.params.axial_load.at(t).0,
+            -self.params.radial_load.at(t).0,
+            0.0,
+        )
+    }
+
+    /// Rates of roller i's states.
+    pub(super) fn roller_rates(&self, kin: &Kinematics, y: &[f64], w: &Wrench, dy: &mut [f64]) {
+        let m = &self.roller_mass;
+        let (drag, drag_moment) = roller_drag(
+            &self.params.mixture,
+            self.params.roller.radius,
+            self.params.roller.length,
+            &self.drag_stations,
+            &kin.axis,
+            &kin.velocity,
+            &kin.omega,
+        );
+        let acc = (w.force + drag) / m.mass + self.params.gravity;
+        let alpha = angular_acceleration(
+            &kin.axis,
+            &kin.omega,
+            &(w.moment + drag_moment),
+            m.axial_inertia,
+            m.transverse_inertia,
+        );
+        let (dty, dtz) = angle_rates(y[3], y[4], &kin.omega);
+        dy[..3].copy_from_slice(kin.velocity.as_slice());
+        dy[3] = dty;
+        dy[4] = dtz;
+        dy[5..8].copy_from_slice(acc.as_slice());
+        dy[8..11].copy_from_slice(alpha.as_slice());
+    }
+
+    /// Rates of the inner ring's states.
+    pub(super) fn ring_rates(
+        &self,
+        t: f64,
+        kin: &Kinematics,
+        y: &[f64],
+        w: &Wrench,
+        dy: &mut [f64],
+    ) {
+        let p = &self.params;
+        let acc = (w.force + self.external_load(t)) / p.inner_ring_mass + p.gravity;
+        dy[..3].copy_from_slice(kin.velocity.as_slice());
+        dy[3..6].copy_from_slice(acc.as_slice());
+        if self.layout.tilt_free {
+            let (dty, dtz) = angle_rates(y[6], y[7], &kin.omega);
+            let alpha = driven_transverse_acceleration(
+                &kin.axis,
+                &kin.omega,
+                &w.moment,
+                p.inner_ring_axial_inertia,
+                p.inner_ring_transverse_inertia,
+            );
+            dy[6] = dty;
+            dy[7] = dtz;
+            dy[8..11].copy_from_slice(alpha.as_slice());
+        }
+    }
+
+    /// f(t, y) from already summed loads.
+    pub(super) fn rates(
+        &self,
+        t: f64,
+        y: &[f64],
+        kin: &BearingKinematics,
+        loads: &Loads,
+        dy: &mut [f64],
+    ) {
+        let n = self.layout.ring_states();
+        self.ring_rates(t, &kin.inner_ring, &y[..n], &loads.inner_ring, &mut dy[..n]);
+        for i in 0..self.layout.rollers {
+            let s = self.layout.roller(i);
+            let r = s..s + ROLLER_STATES;
+            self.roller_rates(
+                &kin.rollers[i],
+                &y[r.clone()],
+                &loads.rollers[i],
+                &mut dy[r],
+            );
+        }
+    }
+
+    /// Elastic energy stored in all contacts [J]: ∫F dδ of eq. 11 per slice,
+    /// (l/k₁)·δ^(1/k₂+1)/(1/k₂+1), and 2/5·F·δ for a Hertz contact (F ∝ δ^1.5).
+    pub fn contact_energy(&self, kin: &BearingKinematics) -> f64 {
+        let mut energy = 0.0;
+        for element in &self.topology.elements {
+            match (self.geometry(element, kin), element.line()) {
+                (Geometry::End(Some(c)), _) if c.penetration > 0.0 => {
+                    let hertz = EllipticalContact::new(
+                        c.rx,
+                        c.ry,
+                        self.ellipse.e_prime,
+                        EllipticalMethod::BreweHamrock,
+                    );
+                    energy += 0.4 * hertz.force(c.penetration) * c.penetration;
+                }
+                (Geometry::Line(geometry), Some(line)) => {
+                    let law = &self.lines.kind(line).law;
+                    let e = 1.0 / law.k2 + 1.0;
+                    for section in &geometry.slices {
+                        let delta = section.penetration;
+                        if delta > 0.0 {
+                            energy += self.lines.slice_length / law.k1 * delta.powf(e) / e;
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        energy
+    }
+
+    /// Total mechanical energy [J]: kinetic energy of rollers and inner ring (its prescribed
+    /// spin excluded), gravity, the contacts' elastic energy, and the potential −F·x of the
+    /// external load at time t (conserved for constant loads without friction and damping).
+    pub fn energy(&self, t: f64, y: &[f64]) -> f64 {
+        let kin = self.kinematics(t, y);
+        let m = &self.roller_mass;
+        let g = self.params.gravity;
+        let mut energy = self.contact_energy(&kin);
+        for k in &kin.rollers {
+            let h = angular_momentum(&k.axis, &k.omega, m.axial_inertia, m.transverse_inertia);
+            energy += 0.5 * m.mass * k.velocity.norm_squared() + 0.5 * k.omega.dot(&h)
+                - m.mass * g.dot(&k.center);
+        }
+        let ring = &kin.inner_ring;
+        let mr = self.params.inner_ring_mass;
+        energy += 0.5 * mr * ring.velocity.norm_squared() - mr * g.dot(&ring.center);
+        if self.layout.tilt_free {
+            let transverse = ring.omega - ring.omega.dot(&ring.axis) * ring.axis;
+            energy += 0.5 * self.params.inner_ring_transverse_inertia * transverse.norm_squared();
+        }
+        energy - self.external_load(t).dot(&ring.center)
+    }
+}

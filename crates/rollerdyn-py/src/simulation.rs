@@ -1,0 +1,388 @@
+//! Bindings of the dynamic model (core `bearing`, paper sect. 3, 4): a whole run
+//! (`simulate`, with progress and checkpoint callbacks), the start states
+//! (`initial_state`, `equilibrium_state`) and the model's right-hand side, Jacobian,
+//! timing and energy at one state (for tests and `rollerdyn bench model`). The results of
+//! a run come back as a dict of flat arrays (`rollerdyn.simulation` shapes them).
+
+use crate::convert::{core_err, set_fields};
+use crate::params::{bearing_params, run_options};
+use crate::traction::PyEhlTraction;
+use numpy::PyArray1;
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+use rollerdyn_core::bearing::profile::Profile;
+use rollerdyn_core::bearing::run::{run, Progress, Record, RunCheckpoint, RunOutput};
+use rollerdyn_core::bearing::BearingModel;
+use rollerdyn_core::dynamics::integrate::{OdeSystem, Start, Stats};
+use std::ops::ControlFlow;
+use std::time::Instant;
+
+/// The quasi-static equilibrium state at time t (`solver.start = "equilibrium"`), or
+/// ValueError with the residual and the body where there is none.
+#[pyfunction]
+fn equilibrium_state(
+    params: &Bound<'_, PyDict>,
+    traction: &PyEhlTraction,
+    t: f64,
+) -> PyResult<Vec<f64>> {
+    let model = BearingModel::new(bearing_params(params, &traction.inner)?).map_err(core_err)?;
+    model.equilibrium_state(t).map_err(core_err)
+}
+
+/// Checks a parameter set and returns the initial state (or raises ValueError).
+#[pyfunction]
+fn initial_state(params: &Bound<'_, PyDict>, traction: &PyEhlTraction) -> PyResult<Vec<f64>> {
+    let model = BearingModel::new(bearing_params(params, &traction.inner)?).map_err(core_err)?;
+    model.initial_state().map_err(core_err)
+}
+
+/// The model of `params`, checked to have as many states as `y`.
+fn model_for(
+    params: &Bound<'_, PyDict>,
+    traction: &PyEhlTraction,
+    y: &[f64],
+) -> PyResult<BearingModel> {
+    let model = BearingModel::new(bearing_params(params, &traction.inner)?).map_err(core_err)?;
+    if y.len() != model.len() {
+        return Err(PyValueError::new_err(format!(
+            "y has {} states: the model has {}",
+            y.len(),
+            model.len()
+        )));
+    }
+    Ok(model)
+}
+
+/// f(t, y) and the structured Jacobian of the model at (t, y) (for tests).
+#[pyfunction]
+fn model_rhs(
+    params: &Bound<'_, PyDict>,
+    traction: &PyEhlTraction,
+    t: f64,
+    y: Vec<f64>,
+) -> PyResult<(Vec<f64>, Vec<f64>)> {
+    let model = model_for(params, traction, &y)?;
+    let n = model.len();
+    let mut dy = vec![0.0; n];
+    model.rhs(t, &y, &mut dy);
+    let mut jac = nalgebra::DMatrix::zeros(n, n);
+    model.jacobian(t, &y, &mut jac);
+    Ok((dy, jac.transpose().as_slice().to_vec()))
+}
+
+/// Times the model at (t, y) on this thread: `rhs_repetitions` right-hand sides, then
+/// `jacobian_repetitions` Jacobians (`rollerdyn bench model`). Returns the mean wall
+/// time of each [s] and the profile of the right-hand sides (detection, line
+/// contacts, flange forces [s per right-hand side]; sampled as in a run).
+#[pyfunction]
+fn model_timing<'py>(
+    py: Python<'py>,
+    params: &Bound<'py, PyDict>,
+    traction: &PyEhlTraction,
+    t: f64,
+    y: Vec<f64>,
+    rhs_repetitions: usize,
+    jacobian_repetitions: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let model = model_for(params, traction, &y)?;
+    let n = model.len();
+    let (rhs_n, jac_n) = (rhs_repetitions.max(1), jacobian_repetitions);
+    let mut dy = vec![0.0; n];
+    let mut jac = nalgebra::DMatrix::zeros(n, n);
+    model.rhs(t, &y, &mut dy); // warm-up (and the gradient detector's warm starts)
+    let before = model.profile();
+    let start = Instant::now();
+    for _ in 0..rhs_n {
+        model.rhs(t, std::hint::black_box(&y), &mut dy);
+    }
+    let rhs = start.elapsed().as_secs_f64() / rhs_n as f64;
+    let after = model.profile();
+    let start = Instant::now();
+    for _ in 0..jac_n {
+        model.jacobian(t, std::hint::black_box(&y), &mut jac);
+    }
+    let jacobian = start.elapsed().as_secs_f64() / jac_n.max(1) as f64;
+    let per = |a: f64, b: f64| (a - b) / rhs_n as f64;
+    let d = PyDict::new(py);
+    d.set_item("states", n)?;
+    d.set_item("rhs_seconds", rhs)?;
+    d.set_item(
+        "jacobian_seconds",
+        if jac_n > 0 { jacobian } else { f64::NAN },
+    )?;
+    d.set_item("detection_seconds", per(after.detection, before.detection))?;
+    d.set_item(
+        "line_contact_seconds",
+        per(after.line_contacts, before.line_contacts),
+    )?;
+    d.set_item(
+        "flange_force_seconds",
+        per(after.flange_forces, before.flange_forces),
+    )?;
+    d.set_item(
+        "detections",
+        (after.detections - before.detections) as f64 / rhs_n as f64,
+    )?;
+    Ok(d)
+}
+
+/// Total mechanical energy of the model at (t, y) [J] (for conservation checks).
+#[pyfunction]
+fn model_energy(
+    params: &Bound<'_, PyDict>,
+    traction: &PyEhlTraction,
+    t: f64,
+    y: Vec<f64>,
+) -> PyResult<f64> {
+    Ok(model_for(params, traction, &y)?.energy(t, &y))
+}
+
+/// Runs the dynamic model. `progress(time, t_end, steps, rhs, jac, step, at_output)` is
+/// called at every output time and every 0.2 s of wall time between them (`at_output`
+/// False), where signals are read too; returning True stops the run. `checkpoint(dict)` is called at every
+/// checkpoint with the results so far (the dict `simulate` returns, cut at the
+/// checkpoint); returning True stops the run. `start = (t, y, h)` starts from a state,
+/// `h` None for a fresh start, a checkpoint's step to continue from it bit for bit.
+/// Returns a dict of flat arrays (see `rollerdyn.simulation`), the solver counters, the
+/// profile, the final state, the last checkpoint (or the start) and the error (None if
+/// the run completed).
+#[pyfunction]
+#[pyo3(signature = (params, traction, options, progress=None, start=None, checkpoint=None))]
+fn simulate<'py>(
+    py: Python<'py>,
+    params: &Bound<'py, PyDict>,
+    traction: &PyEhlTraction,
+    options: &Bound<'py, PyDict>,
+    progress: Option<Bound<'py, PyAny>>,
+    start: Option<(f64, Vec<f64>, Option<f64>)>,
+    checkpoint: Option<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    let threads: usize = match options.get_item("threads")? {
+        Some(v) if !v.is_none() => v.extract()?,
+        _ => 1,
+    };
+    let model = BearingModel::new(bearing_params(params, &traction.inner)?)
+        .and_then(|m| m.with_threads(threads))
+        .map_err(core_err)?;
+    let opts = run_options(options)?;
+    let start = start.map(|(time, state, step)| Start { time, state, step });
+    let z = model.layout.rollers;
+    let callback_error = std::cell::RefCell::new(None::<PyErr>);
+    let stop = |r: PyResult<Bound<'py, PyAny>>| match r {
+        Ok(r) if r.is_truthy().unwrap_or(false) => ControlFlow::Break(()),
+        Ok(_) => ControlFlow::Continue(()),
+        Err(e) => {
+            *callback_error.borrow_mut() = Some(e);
+            ControlFlow::Break(())
+        }
+    };
+    let output = run(
+        &model,
+        start,
+        &opts,
+        |p: &Progress| {
+            if let Err(e) = py.check_signals() {
+                *callback_error.borrow_mut() = Some(e);
+                return ControlFlow::Break(());
+            }
+            let Some(cb) = &progress else {
+                return ControlFlow::Continue(());
+            };
+            let s = &p.stats;
+            stop(cb.call1((
+                p.time,
+                p.t_end,
+                s.steps,
+                s.rhs_evaluations,
+                s.jacobian_evaluations,
+                s.last_step,
+                p.at_output,
+            )))
+        },
+        |c: &RunCheckpoint, records: &[Record]| {
+            let Some(cb) = &checkpoint else {
+                return ControlFlow::Continue(());
+            };
+            let d = match partial_dict(py, c, records, z) {
+                Ok(d) => d,
+                Err(e) => return stop(Err(e)),
+            };
+            stop(cb.call1((d,)))
+        },
+    )
+    .map_err(core_err)?;
+    let out = to_dict(py, &output, z)?;
+    put_checkpoint(py, &out, &output.checkpoint)?;
+    if let Some(e) = callback_error.into_inner() {
+        out.set_item("interruption", e.to_string())?;
+    }
+    Ok(out)
+}
+
+/// The results up to a checkpoint, as `simulate` returns them (not completed).
+fn partial_dict<'py>(
+    py: Python<'py>,
+    c: &RunCheckpoint,
+    records: &[Record],
+    z: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let k = &c.checkpoint;
+    let partial = RunOutput {
+        records: records[..c.records].to_vec(),
+        stats: k.stats,
+        profile: c.profile,
+        final_state: k.state.clone(),
+        final_time: k.time,
+        error: None,
+        interrupted: true,
+        checkpoint: c.clone(),
+    };
+    let d = to_dict(py, &partial, z)?;
+    put_checkpoint(py, &d, c)?;
+    Ok(d)
+}
+
+/// The checkpoint entries: time, state, step (NaN: a fresh start) and counters.
+fn put_checkpoint(py: Python<'_>, d: &Bound<'_, PyDict>, c: &RunCheckpoint) -> PyResult<()> {
+    let k = &c.checkpoint;
+    d.set_item("checkpoint_time", k.time)?;
+    d.set_item("checkpoint_step", k.step)?;
+    d.set_item("checkpoint_state", PyList::new(py, &k.state)?)?;
+    d.set_item("checkpoint_stats", stats_dict(py, &k.stats, &c.profile)?)?;
+    Ok(())
+}
+
+fn stats_dict<'py>(py: Python<'py>, s: &Stats, p: &Profile) -> PyResult<Bound<'py, PyDict>> {
+    let stats = PyDict::new(py);
+    set_fields!(
+        stats,
+        s;
+        steps,
+        rhs_evaluations,
+        jacobian_evaluations,
+        rhs_seconds,
+        jacobian_seconds,
+        total_seconds,
+        t_reached,
+        error_test_failures,
+        newton_failures,
+        newton_iterations,
+        linear_solver_setups,
+    );
+    stats.set_item("detection_seconds", p.detection)?;
+    stats.set_item("line_contact_seconds", p.line_contacts)?;
+    stats.set_item("flange_force_seconds", p.flange_forces)?;
+    set_fields!(stats, p; detections, gradient_fallbacks);
+    Ok(stats)
+}
+
+fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let recs = &o.records;
+    let put = |name: &str, v: Vec<f64>| d.set_item(name, PyArray1::from_vec(py, v));
+    macro_rules! per_record {
+        ($name:literal, $f:expr) => {
+            put($name, recs.iter().map($f).collect())?
+        };
+    }
+    per_record!("time", |r| r.time);
+    put(
+        "ring_position",
+        recs.iter()
+            .flat_map(|r| r.ring_position.iter().copied().collect::<Vec<_>>())
+            .collect(),
+    )?;
+    put(
+        "ring_tilt",
+        recs.iter()
+            .flat_map(|r| [r.ring_tilt.0, r.ring_tilt.1])
+            .collect(),
+    )?;
+    per_record!("ring_speed", |r| r.ring_speed);
+    per_record!("radial_load", |r| r.loads.0);
+    per_record!("axial_load", |r| r.loads.1);
+    per_record!("frictional_torque", |r| r.frictional_torque);
+    per_record!("outer_ring_torque", |r| r.outer_ring_torque);
+    macro_rules! per_roller {
+        ($name:literal, $f:expr) => {
+            put(
+                $name,
+                recs.iter().flat_map(|r| r.rollers.iter().map($f)).collect(),
+            )?
+        };
+    }
+    per_roller!("azimuth", |x| x.azimuth);
+    per_roller!("tilt", |x| x.tilt);
+    per_roller!("skew", |x| x.skew);
+    per_roller!("spin_speed", |x| x.spin_speed);
+    per_roller!("orbital_speed", |x| x.orbital_speed);
+    per_roller!("srr_inner", |x| x.srr_inner);
+    per_roller!("srr_outer", |x| x.srr_outer);
+    per_roller!("inner_normal_force", |x| x.inner_normal);
+    per_roller!("outer_normal_force", |x| x.outer_normal);
+    per_roller!("inner_tangential_force", |x| x.inner_tangential);
+    per_roller!("outer_tangential_force", |x| x.outer_tangential);
+    per_roller!("roller_roller_normal_force", |x| x.pair_normal);
+    per_roller!("roller_roller_tangential_force", |x| x.pair_tangential);
+    put(
+        "position",
+        recs.iter()
+            .flat_map(|r| {
+                r.rollers
+                    .iter()
+                    .flat_map(|x| x.position.iter().copied().collect::<Vec<_>>())
+            })
+            .collect(),
+    )?;
+    macro_rules! per_flange {
+        ($name:literal, $f:expr) => {
+            put(
+                $name,
+                recs.iter()
+                    .flat_map(|r| r.rollers.iter().flat_map(|x| x.flanges.iter().map($f)))
+                    .collect(),
+            )?
+        };
+    }
+    per_flange!("flange_pairing", |f| f.pairing as f64);
+    per_flange!("flange_penetration", |f| if f.penetration.is_finite() {
+        f.penetration
+    } else {
+        f64::NAN
+    });
+    per_flange!("flange_normal_force", |f| f.normal_force);
+    per_flange!("flange_friction_force", |f| f.friction_force);
+    per_flange!("flange_axial_force", |f| f.axial_force);
+    put(
+        "flange_location",
+        recs.iter()
+            .flat_map(|r| {
+                r.rollers.iter().flat_map(|x| {
+                    x.flanges
+                        .iter()
+                        .flat_map(|f| f.location.iter().copied().collect::<Vec<_>>())
+                })
+            })
+            .collect(),
+    )?;
+    d.set_item("rollers", z)?;
+    let stats = stats_dict(py, &o.stats, &o.profile)?;
+    d.set_item("stats", stats)?;
+    d.set_item("final_state", PyList::new(py, &o.final_state)?)?;
+    d.set_item("final_time", o.final_time)?;
+    d.set_item("error", o.error.clone())?;
+    d.set_item("interrupted", o.interrupted)?;
+    Ok(d)
+}
+
+/// Adds this module's functions to `m`.
+pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(simulate, m)?)?;
+    m.add_function(wrap_pyfunction!(initial_state, m)?)?;
+    m.add_function(wrap_pyfunction!(equilibrium_state, m)?)?;
+    m.add_function(wrap_pyfunction!(model_rhs, m)?)?;
+    m.add_function(wrap_pyfunction!(model_timing, m)?)?;
+    m.add_function(wrap_pyfunction!(model_energy, m)?)?;
+    Ok(())
+}
