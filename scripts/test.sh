@@ -16,4 +16,6 @@ cargo clippy --workspace --all-targets --quiet -- -D warnings
 PROPTEST_RNG_SEED="${PROPTEST_RNG_SEED:-20261122}" cargo test --workspace --quiet
 .venv/bin/ruff check python tests
 .venv/bin/ruff format --check python tests
+# The core's type stubs (python/rollerdyn/_core.pyi) against the built extension.
+.venv/bin/python -m mypy.stubtest rollerdyn._core
 .venv/bin/python -m pytest -q
