@@ -5,7 +5,7 @@
 #   results/plots/     figs. 8-13 of the paper and the roller loads (PNG and SVG)
 #   results/report.html  one self-contained page: summary, interactive figures, animation
 # Extra arguments go to `rollerdyn run` (e.g. `--t-end 0.55` for a short run). Without
-# any, the whole job takes about 1.5 minutes on this 2-core machine (README).
+# any, the whole job takes about 1.5 minutes on this 2-core machine (86 s measured; README).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
