@@ -50,6 +50,14 @@ def test_a_result_records_its_configuration_version_and_commit(short_run, b1):
     assert "git_commit" in a
 
 
+def test_a_changed_configuration_records_no_stale_text(b1):
+    # the TOML text is recorded only while it still gives the configuration's values
+    changed = _changed(b1, "operating", radial_load=100.0)
+    ds = simulate(changed, t_end=0.001, threads=1)
+    assert ds.attrs["config_toml"] == ""
+    assert json.loads(ds.attrs["config_resolved"])["operating"]["radial_load"] == 100.0
+
+
 def test_the_hash_ignores_only_what_a_resumed_run_may_change(b1):
     assert config_hash(_changed(b1, "solver", checkpoint_interval=0.05)) == config_hash(b1)
     assert config_hash(_changed(b1, "operating", end_time=2.0)) == config_hash(b1)

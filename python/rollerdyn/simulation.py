@@ -128,9 +128,12 @@ def check_cost(config: BearingConfig, t_end: float, t_start: float = 0.0) -> Non
 
 def as_config(config: BearingConfig | str | os.PathLike) -> BearingConfig:
     """A validated configuration: a path is read with :func:`load_config`; a
-    :class:`BearingConfig` is validated again (one changed with ``model_copy`` is not),
-    keeping the TOML text it was read from."""
-    from .config import load_config, parse_config
+    :class:`BearingConfig` is validated again (one changed with ``model_copy`` is not). It
+    keeps the TOML text it was read from only while that text still gives its values (a
+    result then records no text, only the resolved values)."""
+    import tomllib
+
+    from .config import ConfigError, load_config, parse_config
 
     if isinstance(config, str | os.PathLike):
         return load_config(config)
@@ -140,7 +143,13 @@ def as_config(config: BearingConfig | str | os.PathLike) -> BearingConfig:
             f"{type(config).__name__}"
         )
     checked = parse_config(config.model_dump(), si_numbers=True)
-    checked._toml = config.toml_text
+    text = config.toml_text
+    if text is not None:
+        try:
+            unchanged = parse_config(tomllib.loads(text)) == checked
+        except (ConfigError, tomllib.TOMLDecodeError):
+            unchanged = False
+        checked._toml = text if unchanged else None
     return checked
 
 
