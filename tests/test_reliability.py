@@ -253,3 +253,21 @@ def test_the_package_imports_light_and_keeps_its_functions():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
     assert out.stdout.split() == ["True", "True", "sweep"], out.stderr
+
+
+def test_the_core_model_is_built_once_and_answers_as_the_functions_do(b1):
+    # _core.Model (issue 17's typed boundary): one model for every call, the same numbers
+    # as the one-shot functions, bit for bit; a wrong state length is a ValueError.
+    import numpy as np
+
+    params, traction = model_parameters(b1), Model(b1).traction
+    model = _core.Model(params, traction, 2)
+    y = model.initial_state()
+    assert y == _core.initial_state(params, traction) and model.states == len(y)
+    assert model.rollers == 17
+    f, jac = _core.model_rhs(params, traction, 0.0, y)
+    assert np.array_equal(model.rhs(0.0, y), f)
+    assert np.array_equal(model.jacobian(0.0, y), jac)
+    assert model.energy(0.0, y) == _core.model_energy(params, traction, 0.0, y)
+    with pytest.raises(ValueError, match="states"):
+        model.rhs(0.0, y[:-1])

@@ -479,14 +479,8 @@ def simulate(
         saving["seconds"] += time.perf_counter() - started
         return False
 
-    raw = _core.simulate(
-        params,
-        model.traction,
-        options,
-        callback,
-        start,
-        None if checkpoint is None else at_checkpoint,
-    )
+    core = _core.Model(params, model.traction, threads)  # built once for the whole run
+    raw = core.run(options, callback, start, None if checkpoint is None else at_checkpoint)
     raw["stats"]["checkpoint_seconds"] = saving["seconds"]
     ds = to_dataset(raw, config, det)
     ds.attrs["threads"] = threads if det != GRADIENT else 1

@@ -86,6 +86,19 @@ fn model_timing<'py>(
     jacobian_repetitions: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
     let model = model_for(params, traction, &y)?;
+    timing(py, &model, t, &y, rhs_repetitions, jacobian_repetitions)
+}
+
+/// [`model_timing`] of a built model.
+fn timing<'py>(
+    py: Python<'py>,
+    model: &BearingModel,
+    t: f64,
+    y: &[f64],
+    rhs_repetitions: usize,
+    jacobian_repetitions: usize,
+) -> PyResult<Bound<'py, PyDict>> {
+    let y = y.to_vec();
     let n = model.len();
     let (rhs_n, jac_n) = (rhs_repetitions.max(1), jacobian_repetitions);
     let mut dy = vec![0.0; n];
@@ -165,6 +178,18 @@ fn simulate<'py>(
     let model = BearingModel::new(bearing_params(params, &traction.inner)?)
         .and_then(|m| m.with_threads(threads))
         .map_err(core_err)?;
+    run_model(py, &model, options, progress, start, checkpoint)
+}
+
+/// [`simulate`] with a built model (its threads as built; `options["threads"]` unused).
+fn run_model<'py>(
+    py: Python<'py>,
+    model: &BearingModel,
+    options: &Bound<'py, PyDict>,
+    progress: Option<Bound<'py, PyAny>>,
+    start: Option<(f64, Vec<f64>, Option<f64>)>,
+    checkpoint: Option<Bound<'py, PyAny>>,
+) -> PyResult<Bound<'py, PyDict>> {
     let opts = run_options(options)?;
     let start = start.map(|(time, state, step)| Start { time, state, step });
     let z = model.layout.rollers;
@@ -178,7 +203,7 @@ fn simulate<'py>(
         }
     };
     let output = run(
-        &model,
+        model,
         start,
         &opts,
         |p: &Progress| {
@@ -376,8 +401,114 @@ fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py,
     Ok(d)
 }
 
+/// The bearing model, built once from its parameters and shared by every call: the
+/// states at the start, the right-hand side, Jacobian and energy at a state, their
+/// timing, and whole runs. `threads` evaluate the contacts and the Jacobian's columns
+/// (the result does not depend on them, bit for bit).
+#[pyclass(name = "Model", module = "rollerdyn._core", frozen)]
+pub struct PyModel {
+    model: BearingModel,
+}
+
+impl PyModel {
+    /// `y` checked to be a state of this model.
+    fn state<'a>(&self, y: &'a [f64]) -> PyResult<&'a [f64]> {
+        if y.len() != self.model.len() {
+            return Err(PyValueError::new_err(format!(
+                "y has {} states: the model has {}",
+                y.len(),
+                self.model.len()
+            )));
+        }
+        Ok(y)
+    }
+}
+
+#[pymethods]
+impl PyModel {
+    #[new]
+    #[pyo3(signature = (params, traction, threads=1))]
+    fn new(params: &Bound<'_, PyDict>, traction: &PyEhlTraction, threads: usize) -> PyResult<Self> {
+        let model = BearingModel::new(bearing_params(params, &traction.inner)?)
+            .and_then(|m| m.with_threads(threads))
+            .map_err(core_err)?;
+        Ok(PyModel { model })
+    }
+
+    /// Number of states.
+    #[getter]
+    fn states(&self) -> usize {
+        self.model.len()
+    }
+
+    /// Number of rollers.
+    #[getter]
+    fn rollers(&self) -> usize {
+        self.model.layout.rollers
+    }
+
+    /// The state at rest on the pitch circle (`solver.start = "rest"`).
+    fn initial_state(&self) -> PyResult<Vec<f64>> {
+        self.model.initial_state().map_err(core_err)
+    }
+
+    /// The quasi-static equilibrium state at time t (`solver.start = "equilibrium"`).
+    fn equilibrium_state(&self, t: f64) -> PyResult<Vec<f64>> {
+        self.model.equilibrium_state(t).map_err(core_err)
+    }
+
+    /// f(t, y).
+    fn rhs(&self, t: f64, y: Vec<f64>) -> PyResult<Vec<f64>> {
+        let y = self.state(&y)?;
+        let mut dy = vec![0.0; y.len()];
+        self.model.rhs(t, y, &mut dy);
+        Ok(dy)
+    }
+
+    /// ∂f/∂y at (t, y), row by row (n·n values).
+    fn jacobian(&self, t: f64, y: Vec<f64>) -> PyResult<Vec<f64>> {
+        let y = self.state(&y)?;
+        let n = y.len();
+        let mut jac = nalgebra::DMatrix::zeros(n, n);
+        self.model.jacobian(t, y, &mut jac);
+        Ok(jac.transpose().as_slice().to_vec())
+    }
+
+    /// Total mechanical energy at (t, y) [J].
+    fn energy(&self, t: f64, y: Vec<f64>) -> PyResult<f64> {
+        Ok(self.model.energy(t, self.state(&y)?))
+    }
+
+    /// Mean wall time of a right-hand side and a Jacobian at (t, y) (see `model_timing`).
+    fn timing<'py>(
+        &self,
+        py: Python<'py>,
+        t: f64,
+        y: Vec<f64>,
+        rhs_repetitions: usize,
+        jacobian_repetitions: usize,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let y = self.state(&y)?;
+        timing(py, &self.model, t, y, rhs_repetitions, jacobian_repetitions)
+    }
+
+    /// A whole run, as `simulate` (on the model's threads).
+    #[pyo3(signature = (options, progress=None, start=None, checkpoint=None))]
+    fn run<'py>(
+        &self,
+        py: Python<'py>,
+        options: &Bound<'py, PyDict>,
+        progress: Option<Bound<'py, PyAny>>,
+        start: Option<(f64, Vec<f64>, Option<f64>)>,
+        checkpoint: Option<Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        run_model(py, &self.model, options, progress, start, checkpoint)
+    }
+}
+
 /// Adds this module's functions to `m`.
 pub(crate) fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyModel>()?;
     m.add_function(wrap_pyfunction!(simulate, m)?)?;
     m.add_function(wrap_pyfunction!(initial_state, m)?)?;
     m.add_function(wrap_pyfunction!(equilibrium_state, m)?)?;

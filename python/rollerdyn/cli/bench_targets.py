@@ -38,10 +38,9 @@ def bench_model(cfg, state: Path | None) -> None:
     from ..model import Model
     from ..simulation import model_parameters
 
-    params = model_parameters(cfg, cfg.solver.detector)
-    traction = Model(cfg).traction
+    model = _core.Model(model_parameters(cfg, cfg.solver.detector), Model(cfg).traction)
     if state is None:
-        t, y, where = 0.0, _core.initial_state(params, traction), "the initial state"
+        t, y, where = 0.0, model.initial_state(), "the initial state"
     else:
         from ..report import ReportError, open_result
 
@@ -53,7 +52,7 @@ def bench_model(cfg, state: Path | None) -> None:
         t = float(ds.attrs["final_time_s"])
         where = f"the final state of {state} (t = {t:.6g} s)"
     try:
-        r = _core.model_timing(params, traction, t, y, 2000, 200)
+        r = model.timing(t, y, 2000, 200)
     except ValueError as err:
         raise refuse(f"--state {state}: {err}") from None
     table = Table(title=f"{cfg.name}: the model at {where}, one core")
