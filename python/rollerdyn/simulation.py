@@ -36,22 +36,7 @@ from .model import Model
 from .names import DETECTORS, FLANGES, GRADIENT, PAIRINGS, flange_indices
 from .provenance import check_same_configuration, record_attrs
 from .tribology import effective_modulus
-
-
-def _seconds(value: float | str) -> float:
-    """A time in seconds: a number (s) or a quantity string such as ``"50 ms"``."""
-    if isinstance(value, str):
-        from .units import QuantityError, parse_quantity
-
-        try:
-            return parse_quantity(value, "time")
-        except QuantityError as err:
-            raise ValueError(f"t_end = {value!r}: {err}") from None
-    if isinstance(value, bool) or not isinstance(value, int | float):
-        raise ValueError(
-            f"t_end = {value!r}: must be a number of seconds or a time such as '50 ms'"
-        )
-    return float(value)
+from .units import parse_time
 
 
 def carried_axial_force(ds: xr.Dataset) -> xr.DataArray:
@@ -433,9 +418,7 @@ def simulate(
     det = detector or config.solver.detector
     if det not in DETECTORS:
         raise ValueError(f"detector = {det!r}: must be one of {', '.join(DETECTORS)}")
-    end = config.end_time if t_end is None else _seconds(t_end)
-    if not (end > 0.0 and math.isfinite(end)):
-        raise ValueError(f"t_end = {t_end!r}: must be a positive, finite number of seconds")
+    end = config.end_time if t_end is None else parse_time(t_end, "t_end")
     threads = default_threads() if threads is None else threads
     if isinstance(threads, bool) or not isinstance(threads, int) or threads < 1:
         raise ValueError(f"threads = {threads!r}: must be a whole number >= 1")

@@ -50,6 +50,7 @@ from pydantic_core import PydanticCustomError
 
 __all__ = [
     "FAMILIES",
+    "parse_time",
     "Family",
     "Integer",
     "Number",
@@ -313,6 +314,26 @@ def parse_quantity(value: Any, fam: str | Family, *, si_numbers: bool = False) -
     if fam.temperature == "absolute" and si <= 0.0:
         raise QuantityError("an absolute temperature must be above 0 K")
     return si
+
+
+def parse_time(value: Any, name: str) -> float:
+    """A positive, finite time in s from a number of seconds, a number's text (``"0.05"``)
+    or a quantity (``"50 ms"``), for options such as ``--t-end`` and ``t_end=``; raises
+    :class:`ValueError` naming ``name``, the value and the rule."""
+    rule = "must be a positive time, e.g. 50 ms, 0.05 s or 0.05 (seconds)"
+    if isinstance(value, bool) or not isinstance(value, int | float | str):
+        raise ValueError(f"{name} = {value!r}: {rule}")
+    try:
+        seconds = float(value)
+    except ValueError:
+        try:
+            seconds = parse_quantity(value.strip(), "time")
+        except QuantityError as err:  # its first clause says what is wrong, then a hint
+            reason = str(err).split("; ")[0]
+            raise ValueError(f"{name} = {value!r}: {reason}; {rule}") from None
+    if not (math.isfinite(seconds) and seconds > 0.0):
+        raise ValueError(f"{name} = {value!r}: {rule}")
+    return seconds
 
 
 def _pint_reason(exc: Exception) -> str:

@@ -8,7 +8,6 @@ options is never read as rich markup.
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Annotated
 
@@ -82,23 +81,16 @@ def checked(check, *args, **kwargs):
 def time_option(option: str, text: str | None) -> float | None:
     """The value of a time option (``--t-end``) in s: ``"50 ms"``, ``"0.05 s"`` or a bare
     number of seconds (``"0.05"``); None stays None. Exits with status 2 naming the
-    option, the value and the rule for anything but a positive, finite time."""
-    from ..units import QuantityError, parse_quantity
+    option, the value and the rule for anything but a positive, finite time
+    (:func:`rollerdyn.units.parse_time`)."""
+    from ..units import parse_time
 
     if text is None:
         return None
-    rule = "must be a positive time, e.g. 50 ms, 0.05 s or 0.05 (seconds)"
     try:
-        value = float(text)
-    except ValueError:
-        try:
-            value = parse_quantity(text.strip(), "time")
-        except QuantityError as err:  # its first clause says what is wrong, then a hint
-            reason = str(err).split("; ")[0]
-            raise refuse(f"{option} = {text!r}: {reason}; {rule}") from None
-    if not (math.isfinite(value) and value > 0.0):
-        raise refuse(f"{option} = {text!r}: {rule}")
-    return value
+        return parse_time(text, option)
+    except ValueError as err:
+        raise refuse(err) from None
 
 
 def check_detector(detector: str | None) -> None:
