@@ -9,8 +9,8 @@
 //! By domain: `tribology` (the force laws) and `traction` (the `EhlTraction` class),
 //! `contact` (detection benchmark, circle–circle distance), `geometry` (roller mass
 //! properties), `params` (the parameter dicts marshalled into the core's types),
-//! `simulation` (runs and the model at one state), `constants` (`PAIRINGS`, `FLANGES`,
-//! `DETECTORS`); `convert` holds what they share.
+//! `simulation` (runs and the model at one state), `statics` (quasi-static equilibria),
+//! `constants` (`PAIRINGS`, `FLANGES`, `DETECTORS`); `convert` holds what they share.
 
 use pyo3::prelude::*;
 
@@ -20,6 +20,7 @@ mod convert;
 mod geometry;
 mod params;
 mod simulation;
+mod statics;
 mod traction;
 mod tribology;
 
@@ -30,6 +31,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     constants::register(m)?;
     m.add_class::<traction::PyEhlTraction>()?;
     simulation::register(m)?;
+    statics::register(m)?;
     geometry::register(m)?;
     contact::register(m)?;
     tribology::register(m)?;

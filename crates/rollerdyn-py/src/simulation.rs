@@ -407,7 +407,7 @@ fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py,
 /// (the result does not depend on them, bit for bit).
 #[pyclass(name = "Model", module = "rollerdyn._core", frozen)]
 pub struct PyModel {
-    model: BearingModel,
+    pub(crate) model: BearingModel,
 }
 
 impl PyModel {

@@ -198,7 +198,7 @@ impl BearingModel {
 
     /// Geometry (eqs. 2, 3) of the section at `s` along roller `b` (radius `radius`, for
     /// two rollers both) against body `a`.
-    fn slice_geometry(
+    pub(super) fn slice_geometry(
         &self,
         line: LineContact,
         a: &Kinematics,

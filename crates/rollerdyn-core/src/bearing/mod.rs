@@ -18,6 +18,7 @@ pub mod line_contacts;
 pub mod model;
 pub mod params;
 pub mod profile;
+pub mod quasi_static;
 pub mod run;
 pub mod state;
 pub mod statics;

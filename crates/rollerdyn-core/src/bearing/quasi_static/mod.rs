@@ -1,0 +1,126 @@
+//! Quasi-static analysis of the bearing (beyond the paper; the classical analysis of
+//! Harris & Kotzalas, "Rolling Bearing Analysis", 5th ed., ch. 7, and ISO/TS 16281:2008):
+//! the equilibrium of the inner ring and the rollers under a radial load, an axial load, a
+//! tilting moment or a prescribed misalignment, at rest or at a speed, with the contact
+//! laws of the dynamic model:
+//!
+//! * race contacts by slices (eq. 11 per slice, the roller's crowning in the slice radii,
+//!   the roller's tilt in the slice penetrations);
+//! * roller end–flange contacts by the semi-analytical detector with pruning (sect. 2.1,
+//!   5.3) and the curvature blended across patch borders, Hertz by Brewe–Hamrock (eqs. 5–8);
+//! * centrifugal force and the gyroscopic moment of the roller's steady motion (the roller
+//!   set orbits at the epicyclic speed ω_c = Ω(1 − D/d_m)/2 and each roller spins relative
+//!   to it at ω_s = −(Ω − ω_c) r_i/r, Harris & Kotzalas sect. 8.2), and gravity.
+//!
+//! Unknowns: the ring's centre (3) and tilt (2; prescribed unless free), and per roller
+//! its radial offset, axial position and tilt about its tangential axis ([`RollerPose`]).
+//! Each roller's azimuth stays where it is and its skew zero; roller–roller contacts and
+//! friction are left out (they act along the circumference, which nothing here resolves),
+//! as in ISO/TS 16281. Solved by Newton's method with a Jacobian by forward differences
+//! whose roller columns are grouped (the rollers touch only the rings, so one evaluation
+//! perturbs the same unknown of every roller), a backtracking line search, a step limit
+//! and, where Newton stalls, continuation in the load. The bearing's 5×5 stiffness is the
+//! Schur complement of the rollers in the Jacobian at the equilibrium ([`stiffness`]).
+
+mod relax;
+mod roller;
+mod solver;
+mod stiffness;
+
+pub use roller::{FlangeLoad, RollerForces, RollerPose, ROLLER_UNKNOWNS};
+pub use solver::RING_UNKNOWNS;
+
+use super::contacts::Wrench;
+use super::params::BearingParams;
+use crate::error::{Error, Result};
+
+/// The inner ring's tilt in a quasi-static case.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum RingTilt {
+    /// Solved from the tilting moment.
+    Free,
+    /// Prescribed angles (θ_y, θ_z) [rad], a misalignment; the moment that holds them is
+    /// a reaction ([`StaticSolution::ring_load`]).
+    Prescribed(f64, f64),
+}
+
+/// A load case of the quasi-static analysis (SI).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StaticCase {
+    /// Radial load on the inner ring along −y [N].
+    pub radial_load: f64,
+    /// Axial load on the inner ring along +x [N].
+    pub axial_load: f64,
+    /// Tilting moment on the inner ring about y and z [N·m].
+    pub moment: [f64; 2],
+    /// Inner ring speed Ω [rad/s] (0: at rest).
+    pub speed: f64,
+    /// The ring's tilt.
+    pub tilt: RingTilt,
+}
+
+impl StaticCase {
+    /// The case of `params` at time `t`: its loads and speed then, the ring's tilt free
+    /// when the configuration frees it, else its misalignment about z.
+    pub fn at_time(params: &BearingParams, t: f64) -> Self {
+        Self {
+            radial_load: params.radial_load.at(t).0,
+            axial_load: params.axial_load.at(t).0,
+            moment: [0.0, 0.0],
+            speed: params.inner_ring_speed.at(t).0,
+            tilt: if params.inner_ring_tilt_free {
+                RingTilt::Free
+            } else {
+                RingTilt::Prescribed(0.0, params.inner_ring_misalignment)
+            },
+        }
+    }
+
+    /// Refuses values that are not finite.
+    pub fn check(&self) -> Result<()> {
+        let named = [
+            ("radial_load", self.radial_load),
+            ("axial_load", self.axial_load),
+            ("moment about y", self.moment[0]),
+            ("moment about z", self.moment[1]),
+            ("speed", self.speed),
+        ];
+        for (name, value) in named {
+            if !value.is_finite() {
+                return Err(Error::invalid(name, value, "must be finite"));
+            }
+        }
+        if let RingTilt::Prescribed(a, b) = self.tilt {
+            if !(a.is_finite() && b.is_finite() && a.abs() < 0.1 && b.abs() < 0.1) {
+                return Err(Error::invalid(
+                    "misalignment",
+                    format!("({a}, {b}) rad"),
+                    "must be finite and below 0.1 rad",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The equilibrium of a [`StaticCase`].
+#[derive(Debug, Clone)]
+pub struct StaticSolution {
+    /// The case solved.
+    pub case: StaticCase,
+    /// The inner ring's displacement (x, y, z) [m] and tilt (θ_y, θ_z) [rad].
+    pub ring: [f64; RING_UNKNOWNS],
+    /// The rollers' poses.
+    pub rollers: Vec<RollerPose>,
+    /// Each roller's contact forces, with its slice loads.
+    pub forces: Vec<RollerForces>,
+    /// The sum of the contact forces on the inner ring (about its centre): minus the
+    /// external load, and with a prescribed tilt the moment that holds it.
+    pub ring_load: Wrench,
+    /// The largest unbalanced force left (moments over the roller radius) [N].
+    pub residual: f64,
+    /// Newton iterations taken.
+    pub iterations: usize,
+    /// Evaluations of the rollers' contact forces (each for every roller).
+    pub evaluations: usize,
+}

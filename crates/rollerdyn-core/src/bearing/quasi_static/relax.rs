@@ -1,0 +1,161 @@
+//! Each roller's own equilibrium with the inner ring held: the inner loop of the
+//! quasi-static solver. A roller touches only the rings, so its three unknowns are solved
+//! alone: Newton with a 3×3 Jacobian by forward differences and a backtracking line search
+//! on its own residual; a roller that touches no race is first set onto the race its
+//! radial force pushes it to, at the penetration of that force spread evenly over its
+//! slices (eq. 11 inverted), because from an open gap the power law gives Newton no
+//! stiffness to go by.
+
+use super::roller::{RollerForces, ROLLER_UNKNOWNS};
+use super::solver::{Problem, RING_UNKNOWNS};
+use crate::bearing::model::LineContact;
+use crate::bearing::state::Kinematics;
+use nalgebra::{Matrix3, Vector3};
+
+/// Newton iterations of one roller before it counts as not in equilibrium.
+const MAX_ROLLER_ITERATIONS: usize = 30;
+/// Trials of the roller's line search (each halving its step).
+const ROLLER_LINE_SEARCH: usize = 10;
+/// The largest move of a roller in one iteration [m] (arcs for its tilt).
+const MAX_ROLLER_MOVE: f64 = 2e-6;
+
+impl Problem<'_> {
+    /// Every roller in its own equilibrium with the ring at `u`'s pose (the rollers'
+    /// unknowns in `u` updated): whether all of them reached it.
+    pub(super) fn relax(&mut self, u: &mut [f64], tolerance: f64) -> bool {
+        let ring = self.ring(u);
+        let mut all = true;
+        for i in 0..self.azimuths.len() {
+            all &= self.relax_roller(&ring, u, i, tolerance);
+        }
+        all
+    }
+
+    /// Roller i's forces and residual (radial, axial force, tilting moment) at `u` with the
+    /// ring at `ring`.
+    fn roller_at(
+        &mut self,
+        ring: &Kinematics,
+        u: &[f64],
+        i: usize,
+    ) -> (RollerForces, Vector3<f64>) {
+        self.evaluations += 1;
+        let kin = self.pose(u, i).kinematics(self.pitch);
+        let f = self.model.quasi_static_roller(ring, &kin, false);
+        let r = self.roller_residual(u, i, &f);
+        (f, Vector3::from(r))
+    }
+
+    /// Roller i's residual over the weights (moments over the roller radius) [N].
+    fn scaled(&self, i: usize, r: &Vector3<f64>) -> Vector3<f64> {
+        let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+        Vector3::from_fn(|a, _| r[a] / self.weight(s + a))
+    }
+
+    /// Roller i in its own equilibrium with the ring at `ring` (module doc).
+    fn relax_roller(&mut self, ring: &Kinematics, u: &mut [f64], i: usize, tolerance: f64) -> bool {
+        let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+        let (_, mut r) = self.roller_at(ring, u, i);
+        for _ in 0..MAX_ROLLER_ITERATIONS {
+            let size = self.scaled(i, &r).amax();
+            if size < tolerance {
+                return true;
+            }
+            if self.set_onto_race(ring, u, i, r[0]) {
+                r = self.roller_at(ring, u, i).1;
+                continue;
+            }
+            let step = self.roller_step(ring, u, i, &r);
+            let merit = self.scaled(i, &r).norm_squared();
+            let start: [f64; ROLLER_UNKNOWNS] = std::array::from_fn(|a| u[s + a]);
+            let mut alpha = 1.0;
+            for attempt in 0..ROLLER_LINE_SEARCH {
+                for a in 0..ROLLER_UNKNOWNS {
+                    u[s + a] = start[a] + alpha * step[a];
+                }
+                let trial = self.roller_at(ring, u, i).1;
+                let trial_merit = self.scaled(i, &trial).norm_squared();
+                if trial_merit < (1.0 - 1e-4 * alpha) * merit || attempt + 1 == ROLLER_LINE_SEARCH {
+                    r = trial;
+                    break;
+                }
+                alpha *= 0.5;
+            }
+        }
+        self.scaled(i, &r).amax() < tolerance
+    }
+
+    /// Roller i's Newton step (3×3 Jacobian by forward differences, scaled to arcs and
+    /// forces, the stiffness floor on free directions, limited to [`MAX_ROLLER_MOVE`]).
+    fn roller_step(
+        &mut self,
+        ring: &Kinematics,
+        u: &mut [f64],
+        i: usize,
+        r: &Vector3<f64>,
+    ) -> Vector3<f64> {
+        let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+        let w: [f64; ROLLER_UNKNOWNS] = std::array::from_fn(|a| self.weight(s + a));
+        let mut jac = Matrix3::zeros();
+        for c in 0..ROLLER_UNKNOWNS {
+            let h = self.step(s + c);
+            let was = u[s + c];
+            u[s + c] = was + h;
+            let moved = self.roller_at(ring, u, i).1;
+            u[s + c] = was;
+            for a in 0..ROLLER_UNKNOWNS {
+                jac[(a, c)] = (moved[a] - r[a]) / h / (w[a] * w[c]);
+            }
+        }
+        let floor = self.floor();
+        for a in 0..ROLLER_UNKNOWNS {
+            if jac[(a, a)].abs() < floor {
+                jac[(a, a)] -= floor;
+            }
+        }
+        let rhs = -self.scaled(i, r);
+        let scaled_step = jac.lu().solve(&rhs).unwrap_or_else(|| -rhs / floor);
+        let largest = scaled_step.amax();
+        let scaled_step = if largest > MAX_ROLLER_MOVE {
+            scaled_step * (MAX_ROLLER_MOVE / largest)
+        } else {
+            scaled_step
+        };
+        Vector3::from_fn(|a, _| scaled_step[a] / w[a])
+    }
+
+    /// Sets roller i, if it touches neither race and a radial force `radial` [N] pushes
+    /// it, onto the race it is pushed to (module doc): whether it moved.
+    fn set_onto_race(&mut self, ring: &Kinematics, u: &mut [f64], i: usize, radial: f64) -> bool {
+        if radial == 0.0 {
+            return false;
+        }
+        let kin = self.pose(u, i).kinematics(self.pitch);
+        let outer = Kinematics::fixed();
+        let inner_depth = self.model.deepest_slice(LineContact::InnerRace, ring, &kin);
+        let outer_depth = self
+            .model
+            .deepest_slice(LineContact::OuterRace, &outer, &kin);
+        if inner_depth > 0.0 || outer_depth > 0.0 {
+            return false;
+        }
+        let line = if radial < 0.0 {
+            LineContact::InnerRace
+        } else {
+            LineContact::OuterRace
+        };
+        let lines = &self.model.lines;
+        let per_slice = radial.abs() / lines.slices.len() as f64;
+        let depth = lines
+            .kind(line)
+            .law
+            .deflection(per_slice, lines.slice_length);
+        let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+        // The inner penetration falls as the roller moves out, the outer one rises.
+        u[s] += match line {
+            LineContact::InnerRace => inner_depth - depth,
+            _ => depth - outer_depth,
+        };
+        true
+    }
+}

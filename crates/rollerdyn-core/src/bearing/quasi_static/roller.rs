@@ -1,0 +1,263 @@
+//! One roller of the quasi-static analysis: its pose from its unknowns, and the normal
+//! forces of its contacts with the two races (slices, eq. 11) and the four flanges
+//! (semi-analytical detection, Hertz by Brewe–Hamrock, eqs. 5–8), as a wrench on the roller
+//! and a wrench on the inner ring about the ring's centre.
+
+use crate::bearing::contacts::Wrench;
+use crate::bearing::model::{BearingModel, LineContact};
+use crate::bearing::state::Kinematics;
+use crate::contact::{border, pruning, Contact, Pairing};
+use crate::geometry::primitives::Vec3;
+use crate::tribology::hertz::{
+    line_half_width, line_max_pressure, EllipticalContact, EllipticalMethod,
+};
+
+/// Unknowns per roller: radial offset, axial position, tilt.
+pub const ROLLER_UNKNOWNS: usize = 3;
+
+/// The pose of a roller: its azimuth ψ (given), and its unknowns: the offset ρ of its
+/// centre from the pitch circle (outwards), its axial position a and its tilt τ about its
+/// tangential axis t = x × e_r (positive: the +x end moves outwards). Its skew stays zero:
+/// without friction nothing sets it (as in ISO/TS 16281).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RollerPose {
+    /// Azimuth ψ [rad], from +y towards +z.
+    pub azimuth: f64,
+    /// Radial offset ρ from the pitch circle [m].
+    pub radial: f64,
+    /// Axial position a [m].
+    pub axial: f64,
+    /// Tilt τ about the tangential axis [rad].
+    pub tilt: f64,
+}
+
+impl RollerPose {
+    /// The pose with unknowns `q` = (ρ, a, τ) at azimuth `azimuth`.
+    pub fn new(azimuth: f64, q: &[f64]) -> Self {
+        Self {
+            azimuth,
+            radial: q[0],
+            axial: q[1],
+            tilt: q[2],
+        }
+    }
+
+    /// The outward radial unit vector e_r = (0, cos ψ, sin ψ).
+    pub fn radial_direction(&self) -> Vec3 {
+        Vec3::new(0.0, self.azimuth.cos(), self.azimuth.sin())
+    }
+
+    /// The tangential unit vector t = x × e_r.
+    pub fn tangential_direction(&self) -> Vec3 {
+        Vec3::x().cross(&self.radial_direction())
+    }
+
+    /// Position and axis (at rest) on the pitch circle of radius `pitch`: the axis is
+    /// cos τ·x + sin τ·e_r, the bearing axis turned by τ about t.
+    pub fn kinematics(&self, pitch: f64) -> Kinematics {
+        let e_r = self.radial_direction();
+        Kinematics {
+            center: Vec3::x() * self.axial + e_r * (pitch + self.radial),
+            axis: Vec3::x() * self.tilt.cos() + e_r * self.tilt.sin(),
+            velocity: Vec3::zeros(),
+            omega: Vec3::zeros(),
+        }
+    }
+}
+
+/// The normal force of one flange contact of a roller.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct FlangeLoad {
+    /// Normal force [N].
+    pub force: f64,
+    /// Penetration [m] (negative: gap; NaN: no contact found).
+    pub penetration: f64,
+    /// Index into [`Pairing::ALL`] of the loaded pairing.
+    pub pairing: Option<usize>,
+    /// Hertz pressure p₀ = 3F/(2πab) [Pa].
+    pub pressure: f64,
+}
+
+/// What the contacts of one roller do.
+#[derive(Debug, Clone, Default)]
+pub struct RollerForces {
+    /// Wrench on the roller about its centre.
+    pub on_roller: Wrench,
+    /// Wrench on the inner ring about its centre.
+    pub on_ring: Wrench,
+    /// Slice loads at the inner race [N], from the −x end (only when asked for details).
+    pub inner_slices: Vec<f64>,
+    /// Slice loads at the outer race [N] (only when asked for details).
+    pub outer_slices: Vec<f64>,
+    /// Hertz pressure p₀ of each slice at the inner race [Pa] (with details).
+    pub inner_pressures: Vec<f64>,
+    /// Hertz pressure p₀ of each slice at the outer race [Pa] (with details).
+    pub outer_pressures: Vec<f64>,
+    /// Flange contacts 0–3 (inner −x, +x; outer −x, +x).
+    pub flanges: [FlangeLoad; 4],
+}
+
+impl BearingModel {
+    /// The normal forces of the contacts of a roller at `roller` (at rest) against the
+    /// inner ring at `ring` and the fixed outer ring; with `details`, the slice loads too.
+    pub(crate) fn quasi_static_roller(
+        &self,
+        ring: &Kinematics,
+        roller: &Kinematics,
+        details: bool,
+    ) -> RollerForces {
+        let mut out = RollerForces::default();
+        let outer = Kinematics::fixed();
+        for (line, race) in [
+            (LineContact::InnerRace, ring),
+            (LineContact::OuterRace, &outer),
+        ] {
+            let slices = self.race_slices(line, race, roller, ring, &mut out);
+            if details {
+                let kind = self.lines.kind(line);
+                let length = self.lines.slice_length;
+                let pressures = slices
+                    .iter()
+                    .map(|&f| {
+                        let b = line_half_width(f, length, kind.r_eff, kind.e_prime);
+                        if f > 0.0 {
+                            line_max_pressure(f, b, length)
+                        } else {
+                            0.0
+                        }
+                    })
+                    .collect();
+                match line {
+                    LineContact::InnerRace => {
+                        (out.inner_slices, out.inner_pressures) = (slices, pressures)
+                    }
+                    _ => (out.outer_slices, out.outer_pressures) = (slices, pressures),
+                }
+            }
+        }
+        for k in 0..4 {
+            let race = if k < 2 { ring } else { &outer };
+            out.flanges[k] = self.flange_load(k, race, roller, ring, &mut out);
+        }
+        out
+    }
+
+    /// The largest penetration of roller's slices against `race` in contact `line` [m]
+    /// (negative: the narrowest gap).
+    pub(crate) fn deepest_slice(
+        &self,
+        line: LineContact,
+        race: &Kinematics,
+        roller: &Kinematics,
+    ) -> f64 {
+        self.lines
+            .slices
+            .iter()
+            .map(|station| {
+                self.slice_geometry(line, race, roller, station.s, station.radius)
+                    .penetration
+            })
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// Adds the slices of race contact `line` (race body `race`) to `out` and returns
+    /// their loads.
+    fn race_slices(
+        &self,
+        line: LineContact,
+        race: &Kinematics,
+        roller: &Kinematics,
+        ring: &Kinematics,
+        out: &mut RollerForces,
+    ) -> Vec<f64> {
+        if self.penetration_bound(line, race, roller) <= 0.0 {
+            return vec![0.0; self.lines.slices.len()];
+        }
+        let kind = self.lines.kind(line);
+        self.lines
+            .slices
+            .iter()
+            .map(|station| {
+                let section = self.slice_geometry(line, race, roller, station.s, station.radius);
+                let force = kind.law.force(section.penetration, self.lines.slice_length);
+                if force > 0.0 {
+                    let f = force * section.normal;
+                    add_force(
+                        out,
+                        f,
+                        &section.location,
+                        roller,
+                        ring,
+                        line == LineContact::InnerRace,
+                    );
+                }
+                force
+            })
+            .collect()
+    }
+
+    /// The normal force of roller end k against flange k of `race`, added to `out`.
+    fn flange_load(
+        &self,
+        k: usize,
+        race: &Kinematics,
+        roller: &Kinematics,
+        ring: &Kinematics,
+        out: &mut RollerForces,
+    ) -> FlangeLoad {
+        let end = self.roller_end(k, roller);
+        let flange = self.flange(k, race);
+        let Some(found) =
+            pruning::composite_within_bounds(&end, &flange, &self.flange_bounds[k], 0.0)
+        else {
+            return FlangeLoad {
+                penetration: f64::NAN,
+                ..Default::default()
+            };
+        };
+        let c: Contact = border::blend(&found, &end, &flange, &self.params.options.border_bands);
+        let mut load = FlangeLoad {
+            penetration: c.penetration,
+            ..Default::default()
+        };
+        if !(c.valid && c.penetration > 0.0 && c.rx > 0.0 && c.ry > 0.0 && c.ry.is_finite()) {
+            return load;
+        }
+        let hertz = EllipticalContact::new(
+            c.rx,
+            c.ry,
+            self.ellipse.e_prime,
+            EllipticalMethod::BreweHamrock,
+        );
+        load.force = hertz.force(c.penetration);
+        load.pressure = hertz.at_force(load.force).max_pressure;
+        load.pairing = Pairing::ALL.iter().position(|q| *q == c.pairing);
+        add_force(
+            out,
+            load.force * c.normal,
+            &c.location(),
+            roller,
+            ring,
+            k < 2,
+        );
+        load
+    }
+}
+
+/// Adds the force `f` on the roller at `p` (and, when the race is the inner ring's, −f on
+/// the ring) to `out`, with its moments about each body's centre.
+fn add_force(
+    out: &mut RollerForces,
+    f: Vec3,
+    p: &Vec3,
+    roller: &Kinematics,
+    ring: &Kinematics,
+    on_inner_ring: bool,
+) {
+    out.on_roller.force += f;
+    out.on_roller.moment += (p - roller.center).cross(&f);
+    if on_inner_ring {
+        out.on_ring.force -= f;
+        out.on_ring.moment -= (p - ring.center).cross(&f);
+    }
+}

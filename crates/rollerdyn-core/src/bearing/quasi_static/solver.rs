@@ -1,0 +1,601 @@
+//! The Newton solver of the quasi-static equilibrium (module doc of [`super`]): the
+//! residual forces of the unknowns, their Jacobian by grouped forward differences, and the
+//! iteration with its line search, step limit and load continuation.
+
+use super::roller::{RollerForces, RollerPose, ROLLER_UNKNOWNS};
+use super::{RingTilt, StaticCase, StaticSolution};
+use crate::bearing::contacts::Wrench;
+use crate::bearing::model::{BearingModel, LineContact};
+use crate::bearing::state::Kinematics;
+use crate::dynamics::rigid::axis_from_angles;
+use crate::error::{Error, Result};
+use crate::geometry::primitives::Vec3;
+use nalgebra::{DMatrix, DVector};
+
+/// Unknowns of the inner ring: centre (x, y, z) and tilt (θ_y, θ_z).
+pub const RING_UNKNOWNS: usize = 5;
+/// Newton iterations per load level before the level counts as failed.
+const MAX_ITERATIONS: usize = 40;
+/// Trials of the line search (each halving the step) before the last is taken anyway.
+const LINE_SEARCH_STEPS: usize = 6;
+/// Halvings of the load step before the continuation gives up.
+const MAX_BISECTIONS: usize = 8;
+/// The largest move of a position (or arc: angle times the roller radius) in one
+/// iteration [m]: a fifth of B1's axial play, well inside the region where the contacts'
+/// linearisation holds.
+const MAX_MOVE: f64 = 4e-6;
+/// Forward-difference steps: positions [m] and angles [rad] (an arc of 0.2 nm on B1).
+const POSITION_STEP: f64 = 1e-10;
+const ANGLE_STEP: f64 = 1e-7;
+
+/// What stays fixed while the equilibrium of one case is sought.
+pub(super) struct Problem<'a> {
+    pub(super) model: &'a BearingModel,
+    pub(super) case: StaticCase,
+    /// Roller azimuths [rad].
+    pub(super) azimuths: Vec<f64>,
+    /// Pitch radius [m].
+    pub(super) pitch: f64,
+    /// Roller-set speed ω_c and roller spin relative to the set ω_s [rad/s].
+    pub(super) orbit: f64,
+    spin: f64,
+    /// The share of the external loads applied (continuation).
+    load_factor: f64,
+    /// Roller radius: the length that turns angles into arcs and moments into forces.
+    scale: f64,
+    /// Evaluations of one roller's contact forces so far.
+    pub(super) evaluations: usize,
+    /// A whole roller's stiffness against the inner race at 1 µm [N/m]: the scale of the
+    /// stiffness floor.
+    reference_stiffness: f64,
+}
+
+impl<'a> Problem<'a> {
+    pub(super) fn new(model: &'a BearingModel, case: &StaticCase) -> Self {
+        let p = &model.params;
+        let z = model.layout.rollers;
+        let pitch = model.pitch_radius();
+        let r = p.roller.radius;
+        let orbit = 0.5 * case.speed * (1.0 - r / pitch);
+        Self {
+            model,
+            case: *case,
+            azimuths: (0..z)
+                .map(|i| 2.0 * std::f64::consts::PI * i as f64 / z as f64)
+                .collect(),
+            pitch,
+            orbit,
+            spin: -(case.speed - orbit) * p.inner_raceway_radius / r,
+            load_factor: 1.0,
+            scale: r,
+            evaluations: 0,
+            reference_stiffness: {
+                let lines = &model.lines;
+                let law = lines.kind(LineContact::InnerRace).law;
+                let force = lines.slices.len() as f64 * law.force(1e-6, lines.slice_length);
+                force / (law.k2 * 1e-6)
+            },
+        }
+    }
+
+    /// Number of unknowns (ring and rollers, the ring's prescribed tilt included).
+    pub(super) fn len(&self) -> usize {
+        RING_UNKNOWNS + ROLLER_UNKNOWNS * self.azimuths.len()
+    }
+
+    /// Whether unknown k is an angle (its residual a moment).
+    pub(super) fn is_angle(&self, k: usize) -> bool {
+        if k < RING_UNKNOWNS {
+            k >= 3
+        } else {
+            (k - RING_UNKNOWNS) % ROLLER_UNKNOWNS == 2
+        }
+    }
+
+    /// The weight of unknown k and of its residual: the roller radius for angles (arcs,
+    /// moments over the radius), 1 otherwise.
+    pub(super) fn weight(&self, k: usize) -> f64 {
+        if self.is_angle(k) {
+            self.scale
+        } else {
+            1.0
+        }
+    }
+
+    /// The unknowns Newton moves: the ring's centre, its tilt when free, every roller's.
+    fn active(&self) -> Vec<usize> {
+        let free_tilt = self.case.tilt == RingTilt::Free;
+        (0..self.len())
+            .filter(|&k| !(3..RING_UNKNOWNS).contains(&k) || free_tilt)
+            .collect()
+    }
+
+    /// The inner ring at rest at the unknowns `u`.
+    pub(super) fn ring(&self, u: &[f64]) -> Kinematics {
+        Kinematics {
+            center: Vec3::new(u[0], u[1], u[2]),
+            axis: axis_from_angles(u[3], u[4]),
+            velocity: Vec3::zeros(),
+            omega: Vec3::zeros(),
+        }
+    }
+
+    /// Roller i's pose at the unknowns `u`.
+    pub(super) fn pose(&self, u: &[f64], i: usize) -> RollerPose {
+        let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+        RollerPose::new(self.azimuths[i], &u[s..s + ROLLER_UNKNOWNS])
+    }
+
+    /// The contact forces of every roller at the unknowns `u`.
+    pub(super) fn evaluate(&mut self, u: &[f64], details: bool) -> Vec<RollerForces> {
+        self.evaluations += self.azimuths.len();
+        let ring = self.ring(u);
+        (0..self.azimuths.len())
+            .map(|i| {
+                let kin = self.pose(u, i).kinematics(self.pitch);
+                self.model.quasi_static_roller(&ring, &kin, details)
+            })
+            .collect()
+    }
+
+    /// Roller i's unbalanced radial force, axial force and tilting moment [N, N, N·m]:
+    /// its contact forces, gravity and the centrifugal force, less the moment its steady
+    /// precession needs (dH/dt = ω_c x × H with H = J_a(ω·a)a + J_t(ω − (ω·a)a),
+    /// ω = ω_c x + ω_s a).
+    pub(super) fn roller_residual(&self, u: &[f64], i: usize, f: &RollerForces) -> [f64; 3] {
+        let pose = self.pose(u, i);
+        let kin = pose.kinematics(self.pitch);
+        let m = &self.model.roller_mass;
+        let e_r = pose.radial_direction();
+        let centrifugal = m.mass * self.orbit * self.orbit * (self.pitch + pose.radial) * e_r;
+        let force = f.on_roller.force + m.mass * self.model.params.gravity + centrifugal;
+        let x = Vec3::x();
+        let omega = self.orbit * x + self.spin * kin.axis;
+        let along = omega.dot(&kin.axis);
+        let momentum =
+            m.axial_inertia * along * kin.axis + m.transverse_inertia * (omega - along * kin.axis);
+        let needed = self.orbit * x.cross(&momentum);
+        [
+            force.dot(&e_r),
+            force.x,
+            (f.on_roller.moment - needed).dot(&pose.tangential_direction()),
+        ]
+    }
+
+    /// The external load on the ring at the current load factor: (force, moment).
+    fn external(&self) -> (Vec3, Vec3) {
+        let c = &self.case;
+        let force = self.load_factor * Vec3::new(c.axial_load, -c.radial_load, 0.0)
+            + self.model.params.inner_ring_mass * self.model.params.gravity;
+        let moment = self.load_factor * Vec3::new(0.0, c.moment[0], c.moment[1]);
+        (force, moment)
+    }
+
+    /// The rows of the ring's residual from a wrench: Fx, Fy, Fz, My, Mz.
+    fn ring_rows(w: &Wrench) -> [f64; RING_UNKNOWNS] {
+        [w.force.x, w.force.y, w.force.z, w.moment.y, w.moment.z]
+    }
+
+    /// The unbalanced forces and moments of every unknown's equation.
+    pub(super) fn residual(&self, u: &[f64], forces: &[RollerForces]) -> DVector<f64> {
+        let mut r = DVector::zeros(self.len());
+        let (force, moment) = self.external();
+        let mut ring = Wrench { force, moment };
+        for (i, f) in forces.iter().enumerate() {
+            ring.add(&f.on_ring);
+            let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+            r.as_mut_slice()[s..s + ROLLER_UNKNOWNS]
+                .copy_from_slice(&self.roller_residual(u, i, f));
+        }
+        r.as_mut_slice()[..RING_UNKNOWNS].copy_from_slice(&Self::ring_rows(&ring));
+        r
+    }
+
+    /// ∂(residual)/∂u by forward differences at `u` (forces `base`): the columns of the
+    /// ring's unknowns `ring_columns` one by one, the rollers' in three groups (one
+    /// unknown of every roller at once: roller i's forces depend on its own pose and the
+    /// ring's only).
+    pub(super) fn jacobian(
+        &mut self,
+        u: &[f64],
+        base: &[RollerForces],
+        ring_columns: &[usize],
+    ) -> DMatrix<f64> {
+        let n = self.len();
+        let mut jac = DMatrix::zeros(n, n);
+        let r0 = self.residual(u, base);
+        let mut v = u.to_vec();
+        for &k in ring_columns {
+            let h = self.step(k);
+            v[k] = u[k] + h;
+            let f = self.evaluate(&v, false);
+            jac.set_column(k, &((self.residual(&v, &f) - &r0) / h));
+            v[k] = u[k];
+        }
+        for j in 0..ROLLER_UNKNOWNS {
+            let h = self.step(RING_UNKNOWNS + j);
+            let columns: Vec<usize> = (0..self.azimuths.len())
+                .map(|i| RING_UNKNOWNS + ROLLER_UNKNOWNS * i + j)
+                .collect();
+            for &k in &columns {
+                v[k] = u[k] + h;
+            }
+            let f = self.evaluate(&v, false);
+            for (i, &k) in columns.iter().enumerate() {
+                let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+                let now = self.roller_residual(&v, i, &f[i]);
+                let was = self.roller_residual(u, i, &base[i]);
+                for (row, (a, b)) in now.iter().zip(was).enumerate() {
+                    jac[(s + row, k)] = (a - b) / h;
+                }
+                let now = Self::ring_rows(&f[i].on_ring);
+                let was = Self::ring_rows(&base[i].on_ring);
+                for (row, (a, b)) in now.iter().zip(was).enumerate() {
+                    jac[(row, k)] = (a - b) / h;
+                }
+            }
+            for &k in &columns {
+                v[k] = u[k];
+            }
+        }
+        jac
+    }
+
+    /// The stiffness given to a direction no contact holds [N/m]: 1e-6 of a roller's
+    /// against a race at 1 µm, so that an unbalanced force (a roller's weight) moves it by
+    /// at most about a micrometre per step and a balanced one not at all.
+    pub(super) fn floor(&self) -> f64 {
+        1e-6 * self.reference_stiffness
+    }
+
+    /// The difference step of unknown k.
+    pub(super) fn step(&self, k: usize) -> f64 {
+        if self.is_angle(k) {
+            ANGLE_STEP
+        } else {
+            POSITION_STEP
+        }
+    }
+
+    /// The largest unbalanced force of `r` over the active unknowns (moments over the
+    /// roller radius) [N].
+    fn largest(&self, r: &DVector<f64>, active: &[usize]) -> f64 {
+        active
+            .iter()
+            .map(|&k| (r[k] / self.weight(k)).abs())
+            .fold(0.0, f64::max)
+    }
+
+    /// The tolerance on the unbalanced forces [N]: 1e-9 of the largest load on the
+    /// bearing (external, weights, centrifugal), at least 1 nN.
+    pub(super) fn tolerance(&self) -> f64 {
+        let c = &self.case;
+        let p = &self.model.params;
+        let m = &self.model.roller_mass;
+        let z = self.azimuths.len() as f64;
+        let body = (p.inner_ring_mass + z * m.mass) * p.gravity.norm()
+            + z * m.mass * self.orbit * self.orbit * self.pitch;
+        let external = c.radial_load.abs()
+            + c.axial_load.abs()
+            + (c.moment[0].abs() + c.moment[1].abs()) / self.scale;
+        (1e-9 * (external + body)).max(1e-9)
+    }
+
+    /// Newton's method on the ring's unknowns from `u` at the current load factor, the
+    /// rollers held in their own equilibrium ([`Self::relax`]) at every iterate: the
+    /// unknowns reached, their residual, whether it converged and the iterations taken.
+    fn newton(&mut self, mut u: Vec<f64>) -> (Vec<f64>, DVector<f64>, bool, usize) {
+        let all = self.active();
+        let ring: Vec<usize> = all.iter().copied().filter(|&k| k < RING_UNKNOWNS).collect();
+        let tolerance = self.tolerance();
+        let mut rollers_held = self.relax(&mut u, tolerance);
+        let mut forces = self.evaluate(&u, false);
+        let mut r = self.residual(&u, &forces);
+        for iteration in 0..MAX_ITERATIONS {
+            if rollers_held && self.largest(&r, &all) < tolerance {
+                return (u, r, true, iteration);
+            }
+            let jac = self.jacobian(&u, &forces, &ring);
+            let step = self.condensed_step(&jac, &r, &ring);
+            let merit = self.merit(&r, &ring);
+            let mut alpha = 1.0;
+            for attempt in 0..LINE_SEARCH_STEPS {
+                let mut trial: Vec<f64> = u.iter().zip(&step).map(|(a, d)| a + alpha * d).collect();
+                let held = self.relax(&mut trial, tolerance);
+                let trial_forces = self.evaluate(&trial, false);
+                let trial_r = self.residual(&trial, &trial_forces);
+                let trial_merit = self.merit(&trial_r, &ring);
+                let last = attempt + 1 == LINE_SEARCH_STEPS;
+                if (trial_merit.is_finite() && trial_merit < (1.0 - 1e-4 * alpha) * merit) || last {
+                    (u, forces, r, rollers_held) = (trial, trial_forces, trial_r, held);
+                    break;
+                }
+                alpha *= 0.5;
+            }
+        }
+        let converged = rollers_held && self.largest(&r, &all) < tolerance;
+        (u, r, converged, MAX_ITERATIONS)
+    }
+
+    /// Σ (r_k / w_k)² over the unknowns `which`.
+    fn merit(&self, r: &DVector<f64>, which: &[usize]) -> f64 {
+        which.iter().map(|&k| (r[k] / self.weight(k)).powi(2)).sum()
+    }
+
+    /// The Newton step of the ring's unknowns `ring` with the rollers condensed out
+    /// (K = J_pp − Σ_i J_pq,i J_qq,i⁻¹ J_qp,i, roller i's block J_qq,i being 3×3 because
+    /// the rollers touch only the rings), and the rollers' predicted move with it,
+    /// dq_i = −J_qq,i⁻¹ (r_q,i + J_qp,i dp) ([`Self::roller_block`]). Scaled to arcs and
+    /// forces; a ring direction no contact holds gets the stiffness floor
+    /// ([`Self::floor`]), and the ring's step is limited to [`MAX_MOVE`].
+    fn condensed_step(&self, jac: &DMatrix<f64>, r: &DVector<f64>, ring: &[usize]) -> Vec<f64> {
+        let m = ring.len();
+        let w: Vec<f64> = ring.iter().map(|&k| self.weight(k)).collect();
+        let blocks: Vec<_> = (0..self.azimuths.len())
+            .map(|i| self.roller_block(jac, i))
+            .collect();
+        let (mut k, rhs) = self.condensed(jac, r, ring, &w, &blocks);
+        let floor = self.floor();
+        for i in 0..m {
+            if k[(i, i)].abs() < floor {
+                k[(i, i)] -= floor;
+            }
+        }
+        let dp = k
+            .lu()
+            .solve(&rhs)
+            .unwrap_or_else(|| rhs.map(|v| -v / floor));
+        let largest = dp.amax();
+        let dp = if largest > MAX_MOVE {
+            dp * (MAX_MOVE / largest)
+        } else {
+            dp
+        };
+        let mut step = vec![0.0; self.len()];
+        for (i, &kk) in ring.iter().enumerate() {
+            step[kk] = dp[i] / w[i];
+        }
+        for (i, inverse) in blocks.iter().enumerate() {
+            let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+            let jqp = DMatrix::from_fn(ROLLER_UNKNOWNS, m, |a, b| jac[(s + a, ring[b])] / w[b]);
+            let rq = DVector::from_fn(ROLLER_UNKNOWNS, |a, _| r[s + a]);
+            let dq = -(inverse * (rq + jqp * &dp));
+            for a in 0..ROLLER_UNKNOWNS {
+                step[s + a] = dq[a];
+            }
+        }
+        step
+    }
+
+    /// The ring's Jacobian over `ring` with the rollers condensed out and the right-hand
+    /// side of its Newton step: K = J_pp − Σ_i J_pq,i J_qq,i⁻¹ J_qp,i and
+    /// −r_p + Σ_i J_pq,i J_qq,i⁻¹ r_q,i, rows and columns divided by the weights `w`;
+    /// `blocks` the inverses of the rollers' blocks ([`Self::roller_block`]).
+    pub(super) fn condensed(
+        &self,
+        jac: &DMatrix<f64>,
+        r: &DVector<f64>,
+        ring: &[usize],
+        w: &[f64],
+        blocks: &[DMatrix<f64>],
+    ) -> (DMatrix<f64>, DVector<f64>) {
+        let m = ring.len();
+        let mut k = DMatrix::from_fn(m, m, |i, j| jac[(ring[i], ring[j])] / (w[i] * w[j]));
+        let mut rhs = DVector::from_fn(m, |i, _| -r[ring[i]] / w[i]);
+        for (i, inverse) in blocks.iter().enumerate() {
+            let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+            let jpq = DMatrix::from_fn(m, ROLLER_UNKNOWNS, |a, b| jac[(ring[a], s + b)] / w[a]);
+            let jqp = DMatrix::from_fn(ROLLER_UNKNOWNS, m, |a, b| jac[(s + a, ring[b])] / w[b]);
+            let rq = DVector::from_fn(ROLLER_UNKNOWNS, |a, _| r[s + a]);
+            k -= &jpq * inverse * &jqp;
+            rhs += &jpq * inverse * rq;
+        }
+        (k, rhs)
+    }
+
+    /// The inverse of roller i's block J_qq,i of `jac` over the directions a contact
+    /// holds, zero along the others (an unloaded roller's, or the axial position of a
+    /// roller without flange contact): the roller is taken as not moving along a direction
+    /// nothing resists, as friction would hold it, instead of as on a soft spring whose
+    /// stiffness would set the result. Held: a diagonal of at least the stiffness floor
+    /// ([`Self::floor`]), in arcs and forces.
+    pub(super) fn roller_block(&self, jac: &DMatrix<f64>, i: usize) -> DMatrix<f64> {
+        let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+        let floor = self.floor();
+        let held: Vec<usize> = (0..ROLLER_UNKNOWNS)
+            .filter(|&a| {
+                let w = self.weight(s + a);
+                jac[(s + a, s + a)].abs() / (w * w) >= floor
+            })
+            .collect();
+        let block = DMatrix::from_fn(held.len(), held.len(), |a, c| {
+            jac[(s + held[a], s + held[c])]
+        });
+        let mut inverse = DMatrix::zeros(ROLLER_UNKNOWNS, ROLLER_UNKNOWNS);
+        if let Some(b) = block.try_inverse() {
+            for (a, &ha) in held.iter().enumerate() {
+                for (c, &hc) in held.iter().enumerate() {
+                    inverse[(ha, hc)] = b[(a, c)];
+                }
+            }
+        }
+        inverse
+    }
+
+    /// The start of the search: the ring moved along its load by the radial clearance
+    /// and 1 µm, the rollers it faces (or whose body forces push them out) on the outer
+    /// race, the others on the inner; along an axial load the rollers against the outer
+    /// ring's loaded flange and the ring by both axial plays and 3 µm more.
+    fn guess(&self) -> Vec<f64> {
+        let mut u = vec![0.0; self.len()];
+        let p = &self.model.params;
+        if let RingTilt::Prescribed(a, b) = self.case.tilt {
+            u[3] = a;
+            u[4] = b;
+        }
+        let (force, _) = self.external();
+        let across = Vec3::new(0.0, force.y, force.z);
+        let clearance = p.outer_raceway_radius - p.inner_raceway_radius - 2.0 * p.roller.radius;
+        let down = if across.norm() > 0.0 {
+            across.normalize()
+        } else {
+            Vec3::zeros()
+        };
+        u[1] = (clearance + 1e-6) * down.y;
+        u[2] = (clearance + 1e-6) * down.z;
+        let m = &self.model.roller_mass;
+        for i in 0..self.azimuths.len() {
+            let pose = self.pose(&u, i);
+            let e_r = pose.radial_direction();
+            let outward = m.mass * (p.gravity.dot(&e_r) + self.orbit * self.orbit * self.pitch);
+            let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+            u[s] = if e_r.dot(&down) > 0.0 || outward > 0.0 {
+                0.5 * clearance
+            } else {
+                -0.5 * clearance + Vec3::new(0.0, u[1], u[2]).dot(&e_r)
+            };
+            if force.x != 0.0 {
+                u[s + 1] = force.x.signum() * p.outer_axial_play;
+            }
+        }
+        if force.x != 0.0 {
+            u[0] = force.x.signum() * (p.inner_axial_play + p.outer_axial_play + 3e-6);
+        }
+        u
+    }
+
+    /// The equilibrium from `start` (or from [`Self::guess`]): Newton at the full load,
+    /// and where it fails, continuation from the last load level reached in steps halved
+    /// up to [`MAX_BISECTIONS`] times.
+    pub(super) fn solve(
+        &mut self,
+        start: Option<Vec<f64>>,
+    ) -> Result<(Vec<f64>, DVector<f64>, usize)> {
+        let mut u = start.unwrap_or_else(|| {
+            self.load_factor = 1.0;
+            self.guess()
+        });
+        let (mut reached, mut step, mut iterations): (f64, f64, usize) = (0.0, 1.0, 0);
+        let mut halvings = 0;
+        loop {
+            self.load_factor = (reached + step).min(1.0);
+            let (found, r, converged, taken) = self.newton(u.clone());
+            iterations += taken;
+            if converged {
+                u = found;
+                reached = self.load_factor;
+                if reached >= 1.0 {
+                    return Ok((u, r, iterations));
+                }
+                step *= 2.0;
+                continue;
+            }
+            halvings += 1;
+            if halvings > MAX_BISECTIONS {
+                return Err(self.failure(reached, &r));
+            }
+            step *= 0.5;
+        }
+    }
+
+    /// The error of a case whose equilibrium was not found.
+    fn failure(&self, reached: f64, r: &DVector<f64>) -> Error {
+        let active = self.active();
+        let worst = active
+            .iter()
+            .copied()
+            .max_by(|&a, &b| {
+                (r[a] / self.weight(a))
+                    .abs()
+                    .total_cmp(&(r[b] / self.weight(b)).abs())
+            })
+            .unwrap_or(0);
+        Error::invalid(
+            "load",
+            format!(
+                "radial {} N, axial {} N",
+                self.case.radial_load, self.case.axial_load
+            ),
+            format!(
+                "no quasi-static equilibrium: reached {:.0} % of the load; at the next level the \
+                 residual is {:.3e} on {} (tolerance {:.1e} N); the bearing may not carry this load",
+                100.0 * reached,
+                r[worst],
+                self.unknown_name(worst),
+                self.tolerance()
+            ),
+        )
+    }
+
+    /// Which body and direction unknown k belongs to.
+    fn unknown_name(&self, k: usize) -> String {
+        if k < RING_UNKNOWNS {
+            return format!(
+                "the inner ring ({})",
+                [
+                    "force x [N]",
+                    "force y [N]",
+                    "force z [N]",
+                    "moment y [N m]",
+                    "moment z [N m]"
+                ][k]
+            );
+        }
+        let (i, j) = (
+            (k - RING_UNKNOWNS) / ROLLER_UNKNOWNS,
+            (k - RING_UNKNOWNS) % ROLLER_UNKNOWNS,
+        );
+        let what = [
+            "radial force [N]",
+            "axial force [N]",
+            "tilting moment [N m]",
+        ][j];
+        format!("roller {i} ({what})")
+    }
+}
+
+impl BearingModel {
+    /// The quasi-static equilibrium of `case` (module doc of [`super`]), from the unknowns
+    /// of `start` (a neighbouring case's solution) or from the loads' contacts.
+    pub fn statics(
+        &self,
+        case: &StaticCase,
+        start: Option<&StaticSolution>,
+    ) -> Result<StaticSolution> {
+        case.check()?;
+        let mut problem = Problem::new(self, case);
+        let from = start.map(|s| unknowns_of(s, &problem));
+        let (u, r, iterations) = problem.solve(from)?;
+        let forces = problem.evaluate(&u, true);
+        let mut ring_load = Wrench::default();
+        for f in &forces {
+            ring_load.add(&f.on_ring);
+        }
+        let active = problem.active();
+        Ok(StaticSolution {
+            case: *case,
+            ring: [u[0], u[1], u[2], u[3], u[4]],
+            rollers: (0..self.layout.rollers)
+                .map(|i| problem.pose(&u, i))
+                .collect(),
+            forces,
+            ring_load,
+            residual: problem.largest(&r, &active),
+            iterations,
+            evaluations: problem.evaluations,
+        })
+    }
+}
+
+/// The unknowns of a solution, with the ring's tilt set to `problem`'s when prescribed.
+pub(super) fn unknowns_of(s: &StaticSolution, problem: &Problem) -> Vec<f64> {
+    let mut u = s.ring.to_vec();
+    if let RingTilt::Prescribed(a, b) = problem.case.tilt {
+        u[3] = a;
+        u[4] = b;
+    }
+    for pose in &s.rollers {
+        u.extend([pose.radial, pose.axial, pose.tilt]);
+    }
+    u
+}
