@@ -19,6 +19,12 @@ const ROLLER_LINE_SEARCH: usize = 10;
 /// The largest move of a roller in one iteration [m] (arcs for its tilt).
 const MAX_ROLLER_MOVE: f64 = 2e-6;
 
+/// The sum of the magnitudes of a roller's contact forces [N]: its race loads (half the
+/// sum of the two races' forces on it) and its flange forces.
+fn contact_sum(f: &RollerForces) -> f64 {
+    f.flanges.iter().map(|x| x.force).sum::<f64>() + f.on_roller.force.norm()
+}
+
 impl Problem<'_> {
     /// Every roller in its own equilibrium with the ring at `u`'s pose (the rollers'
     /// unknowns in `u` updated): whether all of them reached it.
@@ -52,17 +58,21 @@ impl Problem<'_> {
         Vector3::from_fn(|a, _| r[a] / self.weight(s + a))
     }
 
-    /// Roller i in its own equilibrium with the ring at `ring` (module doc).
+    /// Roller i in its own equilibrium with the ring at `ring` (module doc), to `tolerance`
+    /// or 1e-5 of the sum of its contact forces, whichever is larger (a roller pinched
+    /// between two flanges and tilted onto its ends converges slowly below that).
     fn relax_roller(&mut self, ring: &Kinematics, u: &mut [f64], i: usize, tolerance: f64) -> bool {
         let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
-        let (_, mut r) = self.roller_at(ring, u, i);
+        let (mut f, mut r) = self.roller_at(ring, u, i);
+        let mut tol = tolerance;
         for _ in 0..MAX_ROLLER_ITERATIONS {
+            tol = tolerance.max(1e-5 * contact_sum(&f));
             let size = self.scaled(i, &r).amax();
-            if size < tolerance {
+            if size < tol {
                 return true;
             }
-            if self.set_onto_race(ring, u, i, r[0]) {
-                r = self.roller_at(ring, u, i).1;
+            if f.flanges.iter().all(|x| x.force == 0.0) && self.set_onto_race(ring, u, i, r[0]) {
+                (f, r) = self.roller_at(ring, u, i);
                 continue;
             }
             let step = self.roller_step(ring, u, i, &r);
@@ -73,16 +83,16 @@ impl Problem<'_> {
                 for a in 0..ROLLER_UNKNOWNS {
                     u[s + a] = start[a] + alpha * step[a];
                 }
-                let trial = self.roller_at(ring, u, i).1;
+                let (trial_f, trial) = self.roller_at(ring, u, i);
                 let trial_merit = self.scaled(i, &trial).norm_squared();
                 if trial_merit < (1.0 - 1e-4 * alpha) * merit || attempt + 1 == ROLLER_LINE_SEARCH {
-                    r = trial;
+                    (f, r) = (trial_f, trial);
                     break;
                 }
                 alpha *= 0.5;
             }
         }
-        self.scaled(i, &r).amax() < tolerance
+        self.scaled(i, &r).amax() < tol
     }
 
     /// Roller i's Newton step (3×3 Jacobian by forward differences, scaled to arcs and
