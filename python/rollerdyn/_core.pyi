@@ -26,6 +26,7 @@ __all__ = [
     "simulate",
     "initial_state",
     "equilibrium_state",
+    "statics",
     "model_rhs",
     "model_timing",
     "model_energy",
@@ -266,6 +267,18 @@ class Model:
 
 def initial_state(params: _Params, traction: EhlTraction) -> list[float]: ...
 def equilibrium_state(params: _Params, traction: EhlTraction, t: float) -> list[float]: ...
+
+#: A quasi-static load case: (radial load [N], axial load [N], moment about y [N*m], moment
+#: about z [N*m], inner ring speed [rad/s], prescribed tilt (about y, about z) [rad] or None
+#: for a free tilt).
+_StaticCase = tuple[float, float, float, float, float, tuple[float, float] | None]
+
+def statics(
+    model: Model, cases: Sequence[_StaticCase], chain: bool = True, stiffness: bool = False
+) -> list[dict[str, Any] | str]:
+    """The quasi-static equilibrium of each case: a dict of SI arrays, or the core's
+    message where none was found; with chain, each starts from the last solution."""
+
 def model_energy(params: _Params, traction: EhlTraction, t: float, y: Sequence[float]) -> float: ...
 def model_rhs(
     params: _Params, traction: EhlTraction, t: float, y: Sequence[float]

@@ -2,27 +2,27 @@
 
 Commands: ``validate`` (every model against published values), ``check`` (validate a
 configuration file and show its derived quantities), ``bench`` (time the hot paths),
-``run``, ``plot``, ``sweep`` and ``report``. All inputs and outputs are SI unless a column
-says otherwise.
+``run``, ``plot``, ``sweep``, ``report`` and ``statics`` (quasi-static analysis). All inputs
+and outputs are SI unless a column says otherwise.
 
-Bad input (an option value, a configuration, a file that is no result, an output path
-that cannot or must not be written, see :mod:`rollerdyn.paths`) exits with status 2 and
-one message naming the option or field, the value and the rule, before any work. Every
-message is printed as plain text (:func:`.common.say`, :func:`.common.error`): text from
-files and options is never read as rich markup.
+Bad input (an option value, a configuration, a file that is no result, an output path that
+cannot or must not be written, see :mod:`rollerdyn.paths`) exits with status 2 and one
+message naming the option or field, the value and the rule, before any work. Every message
+is printed as plain text (:func:`.common.say`, :func:`.common.error`): text from files and
+options is never read as rich markup.
 
 This package builds the typer :data:`app` and registers the commands, one module each:
 :mod:`.validate` (``validate``, ``check``), :mod:`.bench` (its targets in
-:mod:`.bench_targets`), :mod:`.run`, :mod:`.plot`, :mod:`.sweep` and :mod:`.report`;
-:mod:`.common` holds the console and what the commands share. It is the only part of
-rollerdyn that imports typer.
+:mod:`.bench_targets`), :mod:`.run`, :mod:`.plot`, :mod:`.sweep`, :mod:`.report` and
+:mod:`.statics`; :mod:`.common` holds the console and what the commands share. It is the
+only part of rollerdyn that imports typer.
 """
 
 from __future__ import annotations
 
 import typer
 
-from . import bench, plot, report, run, sweep, validate
+from . import bench, plot, report, run, statics, sweep, validate
 
 # rich_markup_mode=None: help texts are plain text (a "[s]" or "[arrays]" stays as typed)
 # and click wraps each paragraph once to the terminal's width.
@@ -40,5 +40,6 @@ app.command("run")(run.run)
 app.command("plot")(plot.plot)
 app.command("sweep")(sweep.sweep_command)
 app.command("report")(report.report_command)
+app.command("statics")(statics.statics_command)
 
 __all__ = ["app"]

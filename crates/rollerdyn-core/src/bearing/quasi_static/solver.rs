@@ -293,7 +293,7 @@ impl<'a> Problem<'a> {
         let mut forces = self.evaluate(&u, false);
         let mut r = self.residual(&u, &forces);
         for iteration in 0..MAX_ITERATIONS {
-            if rollers_held && self.largest(&r, &all) < tolerance {
+            if rollers_held && self.largest(&r, &ring) < tolerance {
                 return (u, r, true, iteration);
             }
             let jac = self.jacobian(&u, &forces, &ring);
@@ -314,7 +314,7 @@ impl<'a> Problem<'a> {
                 alpha *= 0.5;
             }
         }
-        let converged = rollers_held && self.largest(&r, &all) < tolerance;
+        let converged = rollers_held && self.largest(&r, &ring) < tolerance;
         (u, r, converged, MAX_ITERATIONS)
     }
 

@@ -1,0 +1,159 @@
+"""``rollerdyn statics``: the quasi-static equilibrium of a configuration's load case, or
+of a sweep of load cases (:mod:`rollerdyn.statics`), printed as a table, written as netCDF
+and drawn as curves."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.table import Table
+
+from .common import console, error, load, refuse, say
+
+
+def statics_command(
+    config: Annotated[Path, typer.Argument(help="Bearing configuration (TOML).", metavar="CONFIG")],
+    sets: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--set",
+            metavar="PATH=VALUES",
+            help="Vary the load case: PATH=START:STOP:COUNT or PATH=VALUE[,VALUE...], PATH "
+            "one of operating.radial_load, operating.axial_load [N], "
+            "operating.inner_ring_speed [rad/s], inner_ring.misalignment [rad], moment_y, "
+            'moment_z [N*m]. Values carry a unit ("3000 rpm", "0.05 deg") or are bare '
+            'numbers in the SI unit in brackets: --set operating.radial_load="0:10000:101". '
+            "One value changes the case; more make a sweep (the cartesian product of all "
+            "--set). Default: the configuration's loads and speed after its ramps.",
+        ),
+    ] = None,
+    output: Annotated[
+        Path | None,
+        typer.Option("--output", "-o", help="Write the results to this netCDF file (SI units)."),
+    ] = None,
+    plot: Annotated[
+        Path | None,
+        typer.Option(
+            "--plot",
+            help="Draw the load distribution (one case) or the roller load, ring "
+            "displacement and life curves (a sweep) to this PNG file.",
+        ),
+    ] = None,
+    contamination: Annotated[
+        float,
+        typer.Option(
+            help="ISO 281 contamination factor e_C for the modified life L_nmr, 0 ... 1 "
+            "(default 0.5: normal cleanliness)."
+        ),
+    ] = 0.5,
+    overwrite: Annotated[
+        bool, typer.Option(help="Replace existing --output / --plot files.")
+    ] = False,
+) -> None:
+    """Quasi-static analysis: load distribution, stiffness and rating life.
+
+    The inner ring's and every roller's equilibrium under the case's radial load (along
+    -y), axial load (+x), tilting moment or prescribed misalignment, at its speed
+    (centrifugal forces), with the dynamic model's contact laws: race slices (eq. 11) and
+    roller end / flange contacts by the semi-analytical detector. Prints the ring's
+    displacement, the heaviest roller, the load zone, the stiffness and the rating lives
+    (ISO 281 L_10, ISO/TS 16281 L_10r and L_nmr, in 10^6 revolutions).
+    """
+    from .. import statics as st
+
+    if not 0.0 <= contamination <= 1.0:
+        raise refuse(f"--contamination = {contamination}: must lie in [0, 1] (ISO 281 e_C)")
+    for path in (output, plot):
+        if path is not None and path.exists() and not overwrite:
+            raise refuse(f"{path}: exists; pass --overwrite to replace it")
+        if path is not None and not path.resolve().parent.is_dir():
+            raise refuse(f"{path}: the folder {path.parent} does not exist")
+    cfg = load(config)
+    grid: dict[str, list[float]] = {}
+    for option in sets or []:
+        path, sep, text = option.partition("=")
+        if not sep:
+            raise refuse(f"--set {option!r}: expected PATH=VALUES")
+        try:
+            grid[path.strip()] = st.parse_range(path.strip(), text)
+        except st.StaticsError as err:
+            raise refuse(err) from None
+    single = all(len(v) == 1 for v in grid.values())
+    try:
+        if single:
+            values = {st.STATIC_FIELDS[p][0]: v[0] for p, v in grid.items()}
+            moment = None
+            if "moment_y" in values or "moment_z" in values:
+                moment = (values.pop("moment_y", 0.0), values.pop("moment_z", 0.0))
+            ds = st.statics(cfg, moment=moment, contamination=contamination, **values)
+            _print_case(ds)
+        else:
+            with console.status("solving the load cases"):
+                ds = st.statics_sweep(cfg, grid, contamination=contamination)
+            _print_sweep(ds)
+    except st.StaticsError as err:
+        error(f"rollerdyn statics: {err}")
+        raise typer.Exit(1) from None
+    if output is not None:
+        ds.to_netcdf(output, engine="h5netcdf")
+        say(f"wrote {output}")
+    if plot is not None:
+        from ..statics_plots import draw
+
+        draw(ds, plot)
+        say(f"wrote {plot}")
+
+
+def _print_case(ds) -> None:
+    ring = ds.ring_displacement.values
+    k = ds.stiffness.values
+    table = Table(title="quasi-static equilibrium", show_header=False)
+    rows = [
+        (
+            "radial / axial load",
+            f"{float(ds.radial_load_applied):.6g} N / {float(ds.axial_load_applied):.6g} N",
+        ),
+        ("speed", f"{float(ds.speed_applied) * 30 / math.pi:.6g} rpm"),
+        ("ring displacement x, y, z", ", ".join(f"{v * 1e6:.4g} um" for v in ring[:3])),
+        ("ring tilt about y, z", ", ".join(f"{v * 1e3:.4g} mrad" for v in ring[3:])),
+        ("heaviest roller", f"{float(ds.max_roller_load):.6g} N"),
+        ("largest race pressure", f"{float(ds.max_pressure) / 1e9:.4g} GPa"),
+        ("largest flange force", f"{float(ds.max_flange_force):.6g} N"),
+        (
+            "load zone half-angle",
+            f"{float(ds.load_zone_angle):.4g} deg ({int(ds.loaded_rollers)} rollers loaded)",
+        ),
+        ("radial stiffness k_yy", f"{k[1, 1]:.4g} N/m"),
+        ("tilt stiffness k_zz", f"{k[4, 4]:.4g} N*m/rad"),
+        ("C_r (ISO 281)", f"{float(ds.dynamic_load_rating):.6g} N"),
+        ("L_10 (ISO 281, P = F_r)", f"{float(ds.l10):.4g} 1e6 rev"),
+        ("L_10r (ISO/TS 16281)", f"{float(ds.l10r):.4g} 1e6 rev"),
+        ("kappa, L_nmr", f"{float(ds.kappa):.3g}, {float(ds.lnmr):.4g} 1e6 rev"),
+    ]
+    for name, value in rows:
+        table.add_row(name, value)
+    console.print(table)
+
+
+def _print_sweep(ds) -> None:
+    swept = ds.attrs["swept"].split(",")
+    table = Table(title=f"quasi-static sweep: {ds.sizes['case']} cases")
+    for name in [*swept, "heaviest roller [N]", "ring y [um]", "L_10r [1e6 rev]"]:
+        table.add_column(name)
+    n = ds.sizes["case"]
+    shown = sorted({0, n // 4, n // 2, 3 * n // 4, n - 1})
+    for i in shown:
+        row = ds.isel(case=i)
+        table.add_row(
+            *[f"{float(row[s]):.6g}" for s in swept],
+            f"{float(row.max_roller_load):.6g}",
+            f"{float(row.ring_displacement[1]) * 1e6:.4g}",
+            f"{float(row.l10r):.4g}",
+        )
+    console.print(table)
+    if ds.attrs["failed_cases"]:
+        first = next(e for e in ds.error.values if e)
+        say(f"{ds.attrs['failed_cases']} cases without equilibrium (NaN); the first: {first}")

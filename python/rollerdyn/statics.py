@@ -1,0 +1,497 @@
+"""Quasi-static analysis: the equilibrium of the inner ring and the rollers under radial
+load, axial load, tilting moment or a prescribed misalignment, at rest or at a speed, with
+the dynamic model's contact laws (race slices, semi-analytical roller end / flange
+detection); the bearing's 5x5 stiffness there; and the rating life from the slice loads
+(ISO 281, ISO/TS 16281; :mod:`rollerdyn.life`). The solver is the core's
+(``crates/rollerdyn-core/src/bearing/quasi_static``); docs/statics.md describes it.
+
+:func:`statics` solves one case, :func:`statics_sweep` a grid of cases, each returned as an
+:class:`xarray.Dataset` whose variables carry their units in ``attrs["units"]``.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import os
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+import xarray as xr
+
+from . import _core, life
+from .config import BearingConfig
+from .model import Model
+from .names import FLANGES, PAIRINGS, SEMI_ANALYTICAL
+from .provenance import record_attrs
+from .simulation import as_config, model_parameters
+from .units import QuantityError, parse_quantity
+
+__all__ = ["STATIC_FIELDS", "StaticCase", "StaticsError", "parse_range", "statics", "statics_sweep"]
+
+RING_DOF = ("x", "y", "z", "tilt_y", "tilt_z")
+RING_UNITS = ("m", "m", "m", "rad", "rad")
+RING_LOAD_UNITS = ("N", "N", "N", "N*m", "N*m")
+
+STATIC_FIELDS: dict[str, tuple[str, str]] = {
+    "operating.radial_load": ("radial_load", "force"),
+    "operating.axial_load": ("axial_load", "force"),
+    "operating.inner_ring_speed": ("speed", "angular_velocity"),
+    "inner_ring.misalignment": ("misalignment", "angle"),
+    "moment_y": ("moment_y", "moment"),
+    "moment_z": ("moment_z", "moment"),
+}
+"""What a statics sweep can vary: the load case (path -> (case field, unit family)). Other
+configuration values change the model; sweep them with ``rollerdyn sweep``."""
+
+DEFAULT_CONTAMINATION = 0.5
+"""ISO 281 contamination factor e_C by default: "normal cleanliness" (ISO 281:2007, table 15,
+0.6 ... 0.5 for D_pw < 100 mm)."""
+
+
+class StaticsError(ValueError):
+    """A load case without equilibrium, or a bad statics option: the message names it."""
+
+
+@dataclass(frozen=True)
+class StaticCase:
+    """One load case (SI): loads on the inner ring (radial along -y, axial along +x), the
+    tilting moment about y and z, the inner ring speed, and the ring's misalignment about z
+    (None: the ring's tilt is free and found from the moment)."""
+
+    radial_load: float
+    axial_load: float
+    speed: float
+    misalignment: float | None
+    moment_y: float = 0.0
+    moment_z: float = 0.0
+
+    def core(self) -> tuple:
+        tilt = None if self.misalignment is None else (0.0, self.misalignment)
+        return (
+            self.radial_load,
+            self.axial_load,
+            self.moment_y,
+            self.moment_z,
+            self.speed,
+            tilt,
+        )
+
+
+def config_case(cfg: BearingConfig) -> StaticCase:
+    """The case of a configuration: its loads and speed after the ramps, its misalignment
+    (free tilt when ``inner_ring.tilt = "free"``)."""
+    op = cfg.operating
+    late = math.inf
+    return StaticCase(
+        radial_load=op.radial_load_at(late),
+        axial_load=op.axial_load_at(late),
+        speed=op.inner_ring_speed_at(late),
+        misalignment=None if cfg.inner_ring.tilt == "free" else cfg.inner_ring.misalignment,
+    )
+
+
+def _core_model(cfg: BearingConfig) -> _core.Model:
+    return _core.Model(model_parameters(cfg, SEMI_ANALYTICAL), Model(cfg).traction)
+
+
+def _solve(
+    cfg: BearingConfig,
+    cases: Sequence[StaticCase],
+    stiffness: bool,
+    progress: Callable[[int, int], None] | None = None,
+) -> list[dict | str]:
+    model = _core_model(cfg)
+    out: list[dict | str] = []
+    chunk = 50
+    for start in range(0, len(cases), chunk):
+        part = [c.core() for c in cases[start : start + chunk]]
+        out.extend(_core.statics(model, part, chain=True, stiffness=stiffness))
+        if progress is not None:
+            progress(len(out), len(cases))
+    return out
+
+
+def statics(
+    config: BearingConfig | str | os.PathLike,
+    *,
+    radial_load: float | None = None,
+    axial_load: float | None = None,
+    speed: float | None = None,
+    misalignment: float | None = None,
+    moment: tuple[float, float] | None = None,
+    contamination: float = DEFAULT_CONTAMINATION,
+) -> xr.Dataset:
+    """The equilibrium of one load case (SI values; None: the configuration's, after its
+    ramps). A ``moment`` (N*m about y and z) frees the ring's tilt; a ``misalignment`` (rad)
+    prescribes it. Raises :class:`StaticsError` when the bearing has no equilibrium for it."""
+    cfg = as_config(config)
+    case = _case_with(
+        config_case(cfg),
+        radial_load=radial_load,
+        axial_load=axial_load,
+        speed=speed,
+        misalignment=misalignment,
+        moment=moment,
+    )
+    (result,) = _solve(cfg, [case], stiffness=True)
+    if isinstance(result, str):
+        raise StaticsError(result)
+    ds = _case_dataset(cfg, case, result, contamination)
+    ds.attrs.update(record_attrs(cfg))
+    return ds
+
+
+def _case_with(case: StaticCase, *, moment=None, **values) -> StaticCase:
+    changes = {k: float(v) for k, v in values.items() if v is not None}
+    for name, value in changes.items():
+        if not math.isfinite(value):
+            raise StaticsError(f"{name} = {value}: must be finite")
+    case = replace(case, **changes)
+    if moment is not None:
+        my, mz = (float(v) for v in moment)
+        if not (math.isfinite(my) and math.isfinite(mz)):
+            raise StaticsError(f"moment = ({my}, {mz}) N*m: must be finite")
+        case = replace(case, moment_y=my, moment_z=mz)
+        if (my or mz) and "misalignment" not in changes:
+            case = replace(case, misalignment=None)
+    return case
+
+
+def parse_range(path: str, text: str) -> list[float]:
+    """The SI values of a sweep option: ``"a:b:n"`` (n values from a to b) or a comma list,
+    each value a quantity with its unit (``"500 rpm"``) or a bare number in the field's SI
+    unit (N, rad/s, rad, N*m)."""
+    if path not in STATIC_FIELDS:
+        raise StaticsError(
+            f"--set {path}: statics sweeps vary the load case only ({', '.join(STATIC_FIELDS)}); "
+            "sweep other values with 'rollerdyn sweep'"
+        )
+    family = STATIC_FIELDS[path][1]
+
+    def value(item: str) -> float:
+        try:
+            number = float(item)
+        except ValueError:
+            pass
+        else:
+            if not math.isfinite(number):
+                raise StaticsError(f"--set {path}={text}: {item.strip()} is not finite")
+            return number
+        try:
+            return parse_quantity(item.strip(), family)
+        except QuantityError as err:
+            raise StaticsError(f"--set {path}={text}: {err}") from None
+
+    parts = text.split(":")
+    if len(parts) == 3:
+        a, b = value(parts[0]), value(parts[1])
+        try:
+            n = int(parts[2])
+        except ValueError:
+            raise StaticsError(
+                f"--set {path}={text}: the count after the second ':' must be an integer"
+            ) from None
+        if not 1 <= n <= 100_000:
+            raise StaticsError(f"--set {path}={text}: the count must be 1 ... 100000, not {n}")
+        return list(np.linspace(a, b, n))
+    if len(parts) != 1:
+        raise StaticsError(f"--set {path}={text}: expected START:STOP:COUNT or a comma list")
+    values = [value(v) for v in text.split(",") if v.strip()]
+    if not values:
+        raise StaticsError(f"--set {path}={text}: no value given")
+    return values
+
+
+def statics_sweep(
+    config: BearingConfig | str | os.PathLike,
+    grid: Mapping[str, Sequence[float]],
+    *,
+    contamination: float = DEFAULT_CONTAMINATION,
+    stiffness: bool = True,
+    progress: Callable[[int, int], None] | None = None,
+) -> xr.Dataset:
+    """The equilibria of the cartesian product of ``grid`` (path -> SI values, paths of
+    :data:`STATIC_FIELDS`; the last varies fastest), along a ``case`` dimension with one
+    coordinate per swept path. A case without equilibrium keeps NaN values and its message in
+    ``error``; the others are solved, each from its neighbour's solution."""
+    cfg = as_config(config)
+    for path in grid:
+        if path not in STATIC_FIELDS:
+            parse_range(path, "0")  # raises the message naming the allowed paths
+    base = config_case(cfg)
+    paths = list(grid)
+    combos = list(itertools.product(*(grid[p] for p in paths)))
+    if not combos:
+        raise StaticsError("statics sweep: the grid is empty")
+    cases = []
+    for combo in combos:
+        fields = {STATIC_FIELDS[p][0]: v for p, v in zip(paths, combo, strict=True)}
+        moment = None
+        if "moment_y" in fields or "moment_z" in fields:
+            moment = (fields.pop("moment_y", 0.0), fields.pop("moment_z", 0.0))
+        cases.append(_case_with(base, moment=moment, **fields))
+    results = _solve(cfg, cases, stiffness=stiffness, progress=progress)
+    parts, errors = [], []
+    template = next((r for r in results if not isinstance(r, str)), None)
+    for case, result in zip(cases, results, strict=True):
+        if isinstance(result, str):
+            errors.append(result)
+            parts.append(None)
+        else:
+            errors.append("")
+            parts.append(_case_dataset(cfg, case, result, contamination))
+    if template is None:
+        raise StaticsError(f"no case of the sweep has an equilibrium; the first: {errors[0]}")
+    blank = xr.full_like(next(p for p in parts if p is not None), np.nan)
+    ds = xr.concat([p if p is not None else blank for p in parts], dim="case")
+    ds = ds.assign_coords(case=np.arange(len(cases)))
+    for path in paths:
+        name = STATIC_FIELDS[path][0]
+        column = [
+            getattr(c, name) if name != "misalignment" else (c.misalignment or 0.0) for c in cases
+        ]
+        ds = ds.assign_coords({path.split(".")[-1]: ("case", np.asarray(column, float))})
+    ds["error"] = ("case", np.asarray(errors, dtype=object))
+    ds.attrs.update(record_attrs(cfg))
+    ds.attrs["swept"] = ",".join(p.split(".")[-1] for p in paths)
+    ds.attrs["failed_cases"] = sum(1 for e in errors if e)
+    return ds
+
+
+# --------------------------------------------------------------------------- the dataset
+
+
+def _var(data, dims, units: str, description: str) -> xr.Variable:
+    return xr.Variable(dims, data, attrs={"units": units, "description": description})
+
+
+def _case_dataset(
+    cfg: BearingConfig, case: StaticCase, r: dict, contamination: float
+) -> xr.Dataset:
+    z, ns = cfg.geometry.roller_count, cfg.geometry.roller.slices
+    slices = {
+        k: np.asarray(r[k]).reshape(z, ns)
+        for k in ("inner_slices", "outer_slices", "inner_pressures", "outer_pressures")
+    }
+    flange = {
+        k: np.asarray(r[k]).reshape(z, 4)
+        for k in ("flange_force", "flange_pressure", "flange_penetration", "flange_pairing")
+    }
+    inner_load = slices["inner_slices"].sum(axis=1)
+    outer_load = slices["outer_slices"].sum(axis=1)
+    ring = np.asarray(r["ring"])
+    pairing = np.where(
+        flange["flange_pairing"] >= 0,
+        np.asarray(PAIRINGS + ("",), dtype=object)[flange["flange_pairing"].astype(int)],
+        "",
+    )
+    data = {
+        "roller_azimuth": _var(
+            np.degrees(r["roller_azimuth"]), ("roller",), "deg", "roller azimuth from +y towards +z"
+        ),
+        "roller_radial_offset": _var(
+            r["roller_radial"], ("roller",), "m", "roller centre from the pitch circle, outwards"
+        ),
+        "roller_axial_position": _var(
+            r["roller_axial"], ("roller",), "m", "roller centre along the bearing axis"
+        ),
+        "roller_tilt": _var(
+            r["roller_tilt"], ("roller",), "rad", "roller tilt about its tangential axis"
+        ),
+        "inner_slice_load": _var(
+            slices["inner_slices"],
+            ("roller", "slice"),
+            "N",
+            "slice load at the inner race (eq. 11)",
+        ),
+        "outer_slice_load": _var(
+            slices["outer_slices"],
+            ("roller", "slice"),
+            "N",
+            "slice load at the outer race (eq. 11)",
+        ),
+        "inner_slice_pressure": _var(
+            slices["inner_pressures"],
+            ("roller", "slice"),
+            "Pa",
+            "Hertz pressure p0 of the slice at the inner race (eqs. 17, 18)",
+        ),
+        "outer_slice_pressure": _var(
+            slices["outer_pressures"],
+            ("roller", "slice"),
+            "Pa",
+            "Hertz pressure p0 of the slice at the outer race (eqs. 17, 18)",
+        ),
+        "inner_race_load": _var(
+            inner_load, ("roller",), "N", "roller load at the inner race (sum of slices)"
+        ),
+        "outer_race_load": _var(
+            outer_load, ("roller",), "N", "roller load at the outer race (sum of slices)"
+        ),
+        "flange_force": _var(
+            flange["flange_force"],
+            ("roller", "flange"),
+            "N",
+            "roller end / flange normal force (Hertz, eqs. 5-8)",
+        ),
+        "flange_pressure": _var(
+            flange["flange_pressure"],
+            ("roller", "flange"),
+            "Pa",
+            "Hertz pressure p0 of the roller end / flange contact",
+        ),
+        "flange_penetration": _var(
+            flange["flange_penetration"],
+            ("roller", "flange"),
+            "m",
+            "roller end / flange penetration (negative: gap; NaN: none found)",
+        ),
+        "flange_pairing": _var(
+            pairing.astype(str),
+            ("roller", "flange"),
+            "",
+            "pairing of the loaded roller end / flange contact (paper fig. 1)",
+        ),
+        "ring_displacement": _var(
+            ring,
+            ("ring_dof",),
+            "m or rad",
+            "inner ring displacement (x, y, z) [m] and tilt (about y, z) [rad]",
+        ),
+        "ring_reaction": _var(
+            np.asarray(r["ring_load"])[[0, 1, 2, 4, 5]],
+            ("ring_dof",),
+            "N or N*m",
+            "sum of the contact forces on the inner ring: minus the load, with a prescribed "
+            "tilt the moment that holds it",
+        ),
+        "max_roller_load": _var(
+            float(inner_load.max()), (), "N", "heaviest roller load at the inner race"
+        ),
+        "max_pressure": _var(
+            float(max(slices["inner_pressures"].max(), slices["outer_pressures"].max())),
+            (),
+            "Pa",
+            "largest race contact pressure",
+        ),
+        "max_flange_force": _var(
+            float(flange["flange_force"].max()), (), "N", "largest roller end / flange force"
+        ),
+        "loaded_rollers": _var(
+            float((inner_load > 1e-6 * max(inner_load.max(), 1e-30)).sum()),
+            (),
+            "1",
+            "rollers loaded at the inner race",
+        ),
+        "load_zone_angle": _var(
+            _load_zone_angle(cfg, ring),
+            (),
+            "deg",
+            "load zone half-angle psi_l, cos psi_l = P_d/(2 delta_r) (Harris & Kotzalas, eq. 7.41)",
+        ),
+        "residual": _var(
+            float(r["residual"]),
+            (),
+            "N",
+            "largest unbalanced force left (moments over the roller radius)",
+        ),
+        "iterations": _var(float(r["iterations"]), (), "1", "Newton iterations"),
+    }
+    if "stiffness" in r:
+        data["stiffness"] = _var(
+            np.asarray(r["stiffness"]).reshape(5, 5),
+            ("ring_load_dof", "ring_dof"),
+            "N/m, N/rad, N*m/m, N*m/rad",
+            "bearing stiffness: load on the ring per displacement / tilt, rollers in equilibrium",
+        )
+    data.update(
+        _life_variables(cfg, case, slices["inner_slices"], slices["outer_slices"], contamination)
+    )
+    ds = xr.Dataset(
+        data,
+        coords={
+            "roller": np.arange(z),
+            "slice": np.arange(ns),
+            "flange": list(FLANGES),
+            "ring_dof": list(RING_DOF),
+            "ring_load_dof": ["force_x", "force_y", "force_z", "moment_y", "moment_z"],
+        },
+    )
+    ds["radial_load_applied"] = _var(
+        case.radial_load, (), "N", "radial load on the inner ring, along -y"
+    )
+    ds["axial_load_applied"] = _var(
+        case.axial_load, (), "N", "axial load on the inner ring, along +x"
+    )
+    ds["speed_applied"] = _var(case.speed, (), "rad/s", "inner ring speed")
+    ds["misalignment_applied"] = _var(
+        np.nan if case.misalignment is None else case.misalignment,
+        (),
+        "rad",
+        "prescribed tilt about z (NaN: free)",
+    )
+    return ds
+
+
+def _load_zone_angle(cfg: BearingConfig, ring: np.ndarray) -> float:
+    """Harris's load zone half-angle from the ring's radial displacement delta_r and the
+    diametral clearance P_d: cos psi_l = P_d / (2 delta_r); 0 when the ring does not close
+    the clearance, 180 deg with a preload (P_d < 0)."""
+    delta_r = math.hypot(ring[1], ring[2])
+    pd = cfg.geometry.diametral_clearance
+    if delta_r <= 0.0:
+        return 0.0
+    x = pd / (2.0 * delta_r)
+    return float(np.degrees(np.arccos(np.clip(x, -1.0, 1.0))))
+
+
+def _life_variables(
+    cfg: BearingConfig, case: StaticCase, inner: np.ndarray, outer: np.ndarray, contamination: float
+) -> dict:
+    """Rating lives of the case (:mod:`rollerdyn.life`): ISO 281's L_10 with P = F_r (a
+    cylindrical roller bearing's equivalent load ignores the axial load), ISO/TS 16281's
+    L_10r from the slice loads and its modified L_nmr with a_ISO from the lubricant's
+    viscosity ratio kappa at the operating temperature and speed and the contamination
+    factor e_C. Lives in 10^6 revolutions of the inner ring."""
+    g = cfg.geometry
+    d, dpw, length = g.roller_diameter, g.pitch_diameter, g.roller.effective_length
+    z = g.roller_count
+    c_r = life.dynamic_load_rating(z, d, length, dpw)
+    c_0 = life.static_load_rating(z, d, length, dpw)
+    c_u = life.fatigue_load_limit(c_0, dpw)
+    l10 = life.basic_rating_life(c_r, case.radial_load) if case.radial_load > 0 else math.inf
+    l10r = life.reference_rating_life(inner, outer, c_r, d, dpw)
+    rpm = abs(case.speed) * 60.0 / (2.0 * math.pi)
+    model = Model(cfg)
+    nu = model.eta0 / cfg.lubricant.density_at(cfg.operating.temperature)
+    kappa = life.viscosity_ratio(nu, rpm, dpw) if rpm > 0 else math.nan
+    lnmr = math.nan
+    if rpm > 0 and math.isfinite(l10r):
+        lnmr = life.modified_reference_rating_life(
+            inner, outer, c_r, d, dpw, kappa=kappa, contamination=contamination, fatigue_limit=c_u
+        )
+    return {
+        "dynamic_load_rating": _var(
+            c_r, (), "N", "basic dynamic radial load rating C_r (ISO 281:2007, 7.1)"
+        ),
+        "fatigue_load_limit": _var(c_u, (), "N", "fatigue load limit C_u (ISO 281:2007, annex B)"),
+        "l10": _var(l10, (), "1e6 rev", "basic rating life L_10 with P = F_r (ISO 281:2007, 7.3)"),
+        "l10r": _var(
+            l10r,
+            (),
+            "1e6 rev",
+            "basic reference rating life L_10r from the slice loads (ISO/TS 16281:2008)",
+        ),
+        "kappa": _var(
+            float(kappa), (), "1", "viscosity ratio nu/nu_1 (ISO 281:2007, 9.3; NaN at rest)"
+        ),
+        "lnmr": _var(
+            float(lnmr),
+            (),
+            "1e6 rev",
+            f"modified reference rating life L_nmr, e_C = {contamination:g}, "
+            "90 % reliability (ISO/TS 16281:2008, 7)",
+        ),
+    }
