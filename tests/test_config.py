@@ -674,6 +674,27 @@ BAD = [
         "solver.atol_time_scale",
         "must be > 0",
     ),
+    (
+        "friction at its old place",
+        "surfaces.friction",
+        False,
+        "surfaces.friction",
+        "has moved to solver.friction (a numerical setting)",
+    ),
+    (
+        "roller border band at its old place",
+        "surfaces.border_band_roller",
+        "1.5e-4 rad",
+        "surfaces.border_band_roller",
+        "has moved to solver.border_band_roller (a numerical setting)",
+    ),
+    (
+        "flange border band at its old place",
+        "surfaces.border_band_flange",
+        "50 um",
+        "surfaces.border_band_flange",
+        "has moved to solver.border_band_flange (a numerical setting)",
+    ),
 ]
 
 
@@ -777,6 +798,83 @@ def test_invalid_file_names_source(tmp_path: Path) -> None:
     assert info.value.source == str(p)
     assert str(info.value).splitlines()[0] == f"invalid configuration {p} (1 problem):"
     assert info.value.problems[0].path == "geometry.roller.length"
+
+
+def _b1_with_solver_keys_in_surfaces(tmp_path: Path) -> Path:
+    """B1's file as written before border_band_roller, border_band_flange and friction
+    moved from [surfaces] to [solver]."""
+    lines = B1_TEXT.splitlines(keepends=True)
+    moved = [ln for ln in lines if ln.startswith(tuple(MOVED))]
+    assert len(moved) == 3
+    kept = [ln for ln in lines if ln not in moved]
+    at = kept.index("[surfaces]\n") + 1
+    path = tmp_path / "b1_old_layout.toml"
+    path.write_text("".join(kept[:at] + moved + kept[at:]), encoding="utf-8")
+    return path
+
+
+MOVED = ("border_band_roller", "border_band_flange", "friction")
+
+
+def test_every_numerical_setting_is_in_solver(b1: BearingConfig) -> None:
+    """[solver] holds every numerical setting of the model (the core's ModelOptions), with
+    the defaults and rules they had in [surfaces]; [surfaces] none of them."""
+    solver = BearingConfig.model_fields["solver"].annotation
+    surfaces = BearingConfig.model_fields["surfaces"].annotation
+    for key in ("detector", "pruning", "mesh_around", "mesh_along", *MOVED):
+        assert key in solver.model_fields, key  # type: ignore[union-attr]
+        assert key not in surfaces.model_fields, key  # type: ignore[union-attr]
+    s = b1.solver
+    assert (s.border_band_roller, s.border_band_flange, s.friction) == (1.5e-4, 5e-5, True)
+    defaults = parse_config(changed_b1({f"solver.{k}": None for k in MOVED})).solver
+    assert (defaults.border_band_roller, defaults.border_band_flange, defaults.friction) == (
+        1.5e-4,
+        5e-5,
+        True,
+    )
+    for key, value, rule in (
+        ("border_band_roller", "2 deg", "must be >= 0 and <= 1 deg"),
+        ("border_band_flange", "-1 um", "must be >= 0 and <= 1 mm"),
+    ):
+        with pytest.raises(ConfigError) as info:
+            parse_config(changed_b1({f"solver.{key}": value}))
+        (problem,) = info.value.problems
+        assert problem.path == f"solver.{key}" and rule in problem.rule, problem
+
+
+def test_a_setting_at_its_old_place_is_one_clear_line_each(tmp_path: Path) -> None:
+    old = _b1_with_solver_keys_in_surfaces(tmp_path)
+    with pytest.raises(ConfigError) as info:
+        load_config(old)
+    assert str(info.value).splitlines() == [
+        f"invalid configuration {old} (3 problems):",
+        'surfaces.border_band_roller: "1.5e-4 rad" — has moved to solver.border_band_roller '
+        "(a numerical setting)",
+        'surfaces.border_band_flange: "50 um" — has moved to solver.border_band_flange '
+        "(a numerical setting)",
+        "surfaces.friction: true — has moved to solver.friction (a numerical setting)",
+    ]
+    # other problems are still reported with them
+    data = changed_b1({"surfaces.friction": False, "surfaces.damping_ratio": 5.0})
+    with pytest.raises(ConfigError) as info:
+        parse_config(data)
+    assert [p.path for p in info.value.problems] == ["surfaces.damping_ratio", "surfaces.friction"]
+
+
+def test_a_setting_at_its_old_place_is_a_clean_cli_error(tmp_path: Path) -> None:
+    from typer.testing import CliRunner
+
+    from rollerdyn.cli import app
+
+    old = _b1_with_solver_keys_in_surfaces(tmp_path)
+    for args in (
+        ["check", str(old)],
+        ["run", str(old), "-o", str(tmp_path / "r.nc"), "--resume", str(tmp_path / "r.nc")],
+    ):
+        result = CliRunner().invoke(app, args)
+        assert result.exit_code == 2, result.output
+        assert "surfaces.friction: true — has moved to solver.friction" in result.output
+        assert "Traceback" not in result.output
 
 
 # --------------------------------------------------------------------------- b1.toml itself

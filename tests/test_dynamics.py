@@ -146,7 +146,7 @@ def test_c_energy_is_conserved_without_friction_and_damping():
             "operating.axial_load": "0 N",
             "operating.end_time": "2 ms",
             "surfaces.damping_ratio": 0.0,
-            "surfaces.friction": False,
+            "solver.friction": False,
             "surfaces.squeeze_film.enabled": False,  # the squeeze film dissipates too
             "surfaces.race_film.enabled": False,  # so do the race films' squeeze and shear
             "cavity.oil_fraction": 0.0,  # and the drag of the oil-air mixture
@@ -231,8 +231,8 @@ def test_mesh_detector_carries_the_flange_load_with_finite_forces():
         changes = {
             **STATIC,
             "operating.axial_load": "1000 N",
-            "surfaces.border_band_roller": bands[0],
-            "surfaces.border_band_flange": bands[1],
+            "solver.border_band_roller": bands[0],
+            "solver.border_band_flange": bands[1],
             "solver.mesh_around": resolution[0],
             "solver.mesh_along": resolution[1],
         }

@@ -3,6 +3,7 @@ configuration, limits on what drives cost are checked before any work, the Pytho
 validates as the CLI does, the core checks its own inputs, and Ctrl-C inside
 ``simulate`` is a KeyboardInterrupt that keeps what was computed."""
 
+import hashlib
 import json
 import math
 import os
@@ -18,9 +19,10 @@ import rollerdyn
 from rollerdyn import _core
 from rollerdyn.config import ConfigError, load_config
 from rollerdyn.model import Model
-from rollerdyn.provenance import config_hash
+from rollerdyn.provenance import NOT_HASHED, check_same_configuration, config_hash, flatten
 from rollerdyn.simulation import (
     SimulationInterrupted,
+    _resume_point,
     check_cost,
     estimated_cost,
     model_parameters,
@@ -78,6 +80,35 @@ def test_resume_refuses_a_result_without_a_configuration_record(short_run, b1):
     del stripped.attrs["config_sha256"]
     with pytest.raises(ValueError, match="records no configuration"):
         simulate(b1, t_end=0.006, resume=stripped, threads=1)
+
+
+def _recorded_before_the_move(ds):
+    """``ds`` with its configuration record as written before border_band_roller,
+    border_band_flange and friction moved from [surfaces] to [solver] (same values)."""
+    values = json.loads(ds.attrs["config_resolved"])
+    for key in ("border_band_roller", "border_band_flange", "friction"):
+        values["surfaces"][key] = values["solver"].pop(key)
+    hashed = {k: v for k, v in flatten(values).items() if k not in NOT_HASHED}
+    old = ds.copy()
+    old.attrs["config_resolved"] = json.dumps(values, sort_keys=True)
+    old.attrs["config_sha256"] = hashlib.sha256(
+        json.dumps(hashed, sort_keys=True).encode("utf-8")
+    ).hexdigest()
+    return old
+
+
+def test_a_result_recorded_before_settings_moved_resumes_with_them_in_solver(short_run, b1):
+    old = _recorded_before_the_move(short_run)
+    assert old.attrs["config_sha256"] != short_run.attrs["config_sha256"]
+    check_same_configuration(old.attrs, b1)  # the same values, at their new places
+    t0, y, _ = _resume_point(old, b1, "semi-analytical", 0.006)
+    assert (t0, y) == _resume_point(short_run, b1, "semi-analytical", 0.006)[:2]
+    # a real difference is named as now, with no noise from the moved fields
+    other = _changed(b1, "solver", friction=False)
+    with pytest.raises(ValueError, match="another configuration") as err:
+        simulate(other, t_end=0.006, resume=old, threads=1)
+    assert "solver.friction: True -> False" in str(err.value)
+    assert "surfaces." not in str(err.value)
 
 
 # --------------------------------------------------------------------------- limits

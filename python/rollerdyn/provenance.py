@@ -6,10 +6,14 @@ configuration (:func:`check_same_configuration`), naming the first fields that d
 The hash covers the resolved configuration except what may change between the parts of
 a resumed run without changing its physics: the checkpoint interval (``--checkpoint-
 interval``), the end time (a run may be extended) and the free-text description.
+A result recorded before some fields moved to another section
+(:data:`~rollerdyn.config.schema.MOVED_FIELDS`) is compared with its values at their new
+places: a run of B1 made with ``surfaces.friction`` continues with ``solver.friction``.
 """
 
 from __future__ import annotations
 
+import copy
 import functools
 import hashlib
 import json
@@ -19,6 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from .config import BearingConfig
+from .config.schema import MOVED_FIELDS
 
 #: Dotted fields left out of the configuration hash (see the module's doc).
 NOT_HASHED = ("solver.checkpoint_interval", "operating.end_time", "description")
@@ -46,10 +51,34 @@ def _hashed(flat: dict[str, Any]) -> dict[str, Any]:
     return {k: v for k, v in flat.items() if k not in NOT_HASHED}
 
 
+def _hash_of(values: dict) -> str:
+    text = json.dumps(_hashed(flatten(values)), sort_keys=True)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+
+
 def config_hash(config: BearingConfig) -> str:
     """SHA-256 of the resolved configuration without :data:`NOT_HASHED` (hex)."""
-    text = json.dumps(_hashed(flatten(resolved(config))), sort_keys=True)
-    return hashlib.sha256(text.encode("utf-8")).hexdigest()
+    return _hash_of(resolved(config))
+
+
+def current_layout(values: dict) -> dict:
+    """A resolved configuration recorded before some of its fields moved
+    (:data:`~rollerdyn.config.schema.MOVED_FIELDS`), with them at their new places."""
+    out = copy.deepcopy(values)
+    for old, (new, _) in MOVED_FIELDS.items():
+        *parents, key = old.split(".")
+        section: Any = out
+        for part in parents:
+            section = section.get(part) if isinstance(section, dict) else None
+        if not isinstance(section, dict) or key not in section:
+            continue
+        value = section.pop(key)
+        *parents, key = new.split(".")
+        target = out
+        for part in parents:
+            target = target.setdefault(part, {})
+        target.setdefault(key, value)
+    return out
 
 
 @functools.cache
@@ -107,20 +136,28 @@ def differences(earlier: dict, now: dict) -> list[str]:
 
 def check_same_configuration(attrs: dict, config: BearingConfig) -> None:
     """Raises ValueError unless the result with ``attrs`` was made by ``config`` (same
-    hash), naming the first fields that differ (SI values)."""
+    hash, or the same values once moved fields are at their new places), naming the first
+    fields that differ (SI values)."""
     stored = attrs.get("config_sha256")
     if not stored:
         raise ValueError(
             "resume: the earlier result records no configuration (config_sha256): it cannot "
             "be checked to be a run of this configuration; start a new run"
         )
-    if stored == config_hash(config):
+    now = resolved(config)
+    if stored == _hash_of(now):
         return
     try:
         earlier = json.loads(attrs.get("config_resolved", ""))
     except (TypeError, ValueError):
         earlier = {}
-    diff = differences(earlier, resolved(config)) if isinstance(earlier, dict) else []
+    if isinstance(earlier, dict):
+        # a result recorded before fields moved: its values, at their new places
+        moved = current_layout(earlier)
+        if moved != earlier and _hash_of(earlier) == stored and _hash_of(moved) == _hash_of(now):
+            return
+        earlier = moved
+    diff = differences(earlier, now) if isinstance(earlier, dict) else []
     shown = "; ".join(diff[:SHOWN_DIFFERENCES]) or "(the stored values are unreadable)"
     more = f" and {len(diff) - SHOWN_DIFFERENCES} more" if len(diff) > SHOWN_DIFFERENCES else ""
     raise ValueError(

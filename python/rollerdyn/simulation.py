@@ -203,13 +203,10 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
         "smoothing_speed": s.boundary_friction.smoothing_speed,
         "hysteresis_coefficient": s.hysteresis_coefficient,
         "damping_ratio": s.damping_ratio,
-        "border_band_roller": s.border_band_roller,
-        "border_band_flange": s.border_band_flange,
         "squeeze_film": bool(s.squeeze_film.enabled),
         "squeeze_film_half_width": s.squeeze_film.half_width,
         "squeeze_film_floor": s.squeeze_film.floor,
         "squeeze_film_cutoff": s.squeeze_film.cutoff,
-        "friction": bool(s.friction),
         "gravity": list(op.gravity),
         "race_film": bool(s.race_film.enabled),
         "race_film_cutoff": s.race_film.cutoff,
@@ -224,6 +221,9 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
         "mesh_around": int(cfg.solver.mesh_around),
         "mesh_along": int(cfg.solver.mesh_along),
         "pruning": bool(cfg.solver.pruning),
+        "border_band_roller": cfg.solver.border_band_roller,
+        "border_band_flange": cfg.solver.border_band_flange,
+        "friction": bool(cfg.solver.friction),
     }
     for ring, flange, play_key in (
         ("inner", g.inner_flange, "inner_axial_play"),
@@ -242,6 +242,26 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
         params[f"{name}_zh_b"] = pair.zh_b
         params[f"{name}_zh_c"] = pair.zh_c
     return params
+
+
+def run_options(config: BearingConfig, t_end: float) -> dict:
+    """The SI options of the core's run of ``config`` to ``t_end`` (the threads are the
+    model's: :class:`rollerdyn._core.Model` is built with them)."""
+    s = config.solver
+    return {
+        "t_end": t_end,
+        "rtol": s.rtol,
+        "atol": s.atol,
+        "atol_time_scale": s.atol_time_scale,
+        "dt_max": s.dt_max,
+        "output_interval": min(s.output_interval, t_end),
+        "method": s.method,
+        "max_step_growth": s.max_step_growth,
+        "step_gain": s.step_gain,
+        "jacobian_after_newton_failure": s.jacobian_after_newton_failure,
+        "checkpoint_interval": s.checkpoint_interval,
+        "start": s.start,
+    }
 
 
 @dataclass(frozen=True)
@@ -429,22 +449,7 @@ def simulate(
         check_cost(config, end, 0.0 if start is None else start[0])
     model = Model(config)
     params = model_parameters(config, det)
-    s = config.solver
-    options = {
-        "t_end": end,
-        "rtol": s.rtol,
-        "atol": s.atol,
-        "atol_time_scale": s.atol_time_scale,
-        "dt_max": s.dt_max,
-        "output_interval": min(s.output_interval, end),
-        "method": s.method,
-        "max_step_growth": s.max_step_growth,
-        "step_gain": s.step_gain,
-        "jacobian_after_newton_failure": s.jacobian_after_newton_failure,
-        "checkpoint_interval": s.checkpoint_interval,
-        "threads": threads,
-        "start": s.start,
-    }
+    options = run_options(config, end)
 
     def callback(t, t_end_, steps, rhs, jac, step, at_output):
         if progress is None:

@@ -37,13 +37,14 @@ RING_LOAD_UNITS = ("N", "N", "N", "N*m", "N*m")
 STATIC_FIELDS: dict[str, tuple[str, str]] = {
     "operating.radial_load": ("radial_load", "force"),
     "operating.axial_load": ("axial_load", "force"),
-    "operating.inner_ring_speed": ("speed", "angular_velocity"),
+    "operating.inner_ring_speed": ("speed", "angular velocity"),
     "inner_ring.misalignment": ("misalignment", "angle"),
-    "moment_y": ("moment_y", "moment"),
-    "moment_z": ("moment_z", "moment"),
+    "moment_y": ("moment_y", ""),
+    "moment_z": ("moment_z", ""),
 }
 """What a statics sweep can vary: the load case (path -> (case field, unit family)). Other
-configuration values change the model; sweep them with ``rollerdyn sweep``."""
+configuration values change the model; sweep them with ``rollerdyn sweep``. Moments
+(no unit family) are bare numbers in N*m."""
 
 DEFAULT_CONTAMINATION = 0.5
 """ISO 281 contamination factor e_C by default: "normal cleanliness" (ISO 281:2007, table 15,
@@ -179,6 +180,8 @@ def parse_range(path: str, text: str) -> list[float]:
             if not math.isfinite(number):
                 raise StaticsError(f"--set {path}={text}: {item.strip()} is not finite")
             return number
+        if not family:
+            raise StaticsError(f"--set {path}={text}: {item.strip()} is not a number (N*m)")
         try:
             return parse_quantity(item.strip(), family)
         except QuantityError as err:

@@ -1,6 +1,7 @@
 //! The parameter dicts of the Python front end (SI floats, validated by
 //! `rollerdyn.config`) marshalled into the core's `BearingParams` and `RunOptions`.
-//! Missing keys and wrong types become `ValueError`s naming the parameter.
+//! Missing keys, wrong types and keys the core does not read become `ValueError`s naming
+//! the parameter: the dict and the struct cannot disagree silently.
 
 use crate::convert::{choose, core_err};
 use pyo3::exceptions::PyValueError;
@@ -19,47 +20,159 @@ use rollerdyn_core::tribology::hydrodynamic::RigidFilm;
 use rollerdyn_core::tribology::line_contact::LinePowerLaw;
 use rollerdyn_core::tribology::squeeze::SqueezeFilm;
 use rollerdyn_core::tribology::traction::EhlTraction;
+use std::cell::RefCell;
+use std::collections::BTreeSet;
 
-/// The value of `key` in `d`, or ValueError when it is missing or of the wrong type.
-fn get<'py, T: pyo3::conversion::FromPyObjectOwned<'py>>(
-    d: &Bound<'py, PyDict>,
-    key: &str,
-) -> PyResult<T> {
-    match d.get_item(key)? {
-        Some(v) => v
-            .extract::<T>()
-            .map_err(|_| PyValueError::new_err(format!("model parameter {key} = {v}: wrong type"))),
-        None => Err(PyValueError::new_err(format!(
-            "model parameter {key} is missing"
-        ))),
+/// What a dict holds, for messages: the model's parameters or a run's options.
+#[derive(Clone, Copy)]
+enum Kind {
+    Parameter,
+    Option,
+}
+
+impl Kind {
+    /// "model parameter" or "run option", before a key.
+    fn noun(self) -> &'static str {
+        match self {
+            Kind::Parameter => "model parameter",
+            Kind::Option => "run option",
+        }
+    }
+
+    /// "a parameter" or "an option", after "is not".
+    fn short(self) -> &'static str {
+        match self {
+            Kind::Parameter => "a parameter",
+            Kind::Option => "an option",
+        }
+    }
+}
+
+/// A parameter dict and the keys read from it. Every value is taken through it; once the
+/// struct is built, [`Dict::done`] refuses any key that was never read, as [`Dict::get`]
+/// refuses a missing one.
+struct Dict<'py> {
+    dict: Bound<'py, PyDict>,
+    kind: Kind,
+    /// Prefix of the keys in messages: "" at the top, "radial_load." in a nested dict.
+    prefix: String,
+    read: RefCell<BTreeSet<String>>,
+}
+
+impl<'py> Dict<'py> {
+    fn new(dict: &Bound<'py, PyDict>, kind: Kind) -> Self {
+        Dict {
+            dict: dict.clone(),
+            kind,
+            prefix: String::new(),
+            read: RefCell::new(BTreeSet::new()),
+        }
+    }
+
+    /// `key` as messages name it.
+    fn name(&self, key: &str) -> String {
+        format!("{} {}{key}", self.kind.noun(), self.prefix)
+    }
+
+    /// The value under `key` (None when absent), recorded as read.
+    fn item(&self, key: &str) -> PyResult<Option<Bound<'py, PyAny>>> {
+        self.read.borrow_mut().insert(key.to_owned());
+        self.dict.get_item(key)
+    }
+
+    /// `v`, the value of `key`, as a `T`, or ValueError naming the key.
+    fn extract<T: pyo3::conversion::FromPyObjectOwned<'py>>(
+        &self,
+        key: &str,
+        v: Bound<'py, PyAny>,
+    ) -> PyResult<T> {
+        v.extract::<T>()
+            .map_err(|_| PyValueError::new_err(format!("{} = {v}: wrong type", self.name(key))))
+    }
+
+    /// The value of `key`, or ValueError when it is missing or of the wrong type.
+    fn get<T: pyo3::conversion::FromPyObjectOwned<'py>>(&self, key: &str) -> PyResult<T> {
+        match self.item(key)? {
+            Some(v) => self.extract(key, v),
+            None => Err(PyValueError::new_err(format!(
+                "{} is missing",
+                self.name(key)
+            ))),
+        }
+    }
+
+    /// The value of `key`, None when it is None, or ValueError when it is missing or of
+    /// the wrong type.
+    fn nullable<T: pyo3::conversion::FromPyObjectOwned<'py>>(
+        &self,
+        key: &str,
+    ) -> PyResult<Option<T>> {
+        let v: Bound<'py, PyAny> = self.get(key)?;
+        if v.is_none() {
+            Ok(None)
+        } else {
+            self.extract(key, v).map(Some)
+        }
+    }
+
+    /// The dict under `key`, with its own record of the keys read.
+    fn nested(&self, key: &str) -> PyResult<Dict<'py>> {
+        let d: Bound<'py, PyDict> = self.get(key)?;
+        Ok(Dict {
+            prefix: format!("{}{key}.", self.prefix),
+            ..Dict::new(&d, self.kind)
+        })
+    }
+
+    /// Ok when every key of the dict was read; else ValueError naming the first one that
+    /// was not (in the dict's order).
+    fn done(&self) -> PyResult<()> {
+        let read = self.read.borrow();
+        for key in self.dict.keys() {
+            let unread = match key.extract::<String>() {
+                Ok(k) if read.contains(&k) => continue,
+                Ok(k) => k,
+                Err(_) => key.repr()?.to_string(),
+            };
+            return Err(PyValueError::new_err(format!(
+                "{} is not {} of the core",
+                self.name(&unread),
+                self.kind.short()
+            )));
+        }
+        Ok(())
     }
 }
 
 /// The time history (ramp or table) under `key`.
-fn history(d: &Bound<'_, PyDict>, key: &str) -> PyResult<History> {
-    let h: Bound<'_, PyDict> = get(d, key)?;
-    let kind: String = get(&h, "kind")?;
-    match kind.as_str() {
-        "ramp" => Ok(History::Ramp {
-            value: get(&h, "value")?,
-            start: get(&h, "start")?,
-            end: get(&h, "end")?,
-            cosine: get::<String>(&h, "shape")? == "cosine",
-        }),
+fn history(d: &Dict<'_>, key: &str) -> PyResult<History> {
+    let h = d.nested(key)?;
+    let kind: String = h.get("kind")?;
+    let history = match kind.as_str() {
+        "ramp" => History::Ramp {
+            value: h.get("value")?,
+            start: h.get("start")?,
+            end: h.get("end")?,
+            cosine: h.get::<String>("shape")? == "cosine",
+        },
         "table" => {
-            let t: Vec<f64> = get(&h, "times")?;
-            let v: Vec<f64> = get(&h, "values")?;
-            Ok(History::Table(t.into_iter().zip(v).collect()))
+            let t: Vec<f64> = h.get("times")?;
+            let v: Vec<f64> = h.get("values")?;
+            History::Table(t.into_iter().zip(v).collect())
         }
-        other => Err(PyValueError::new_err(format!(
-            "{key}.kind = {other}: must be 'ramp' or 'table'"
-        ))),
-    }
+        other => {
+            return Err(PyValueError::new_err(format!(
+                "{key}.kind = {other}: must be 'ramp' or 'table'"
+            )))
+        }
+    };
+    h.done()?;
+    Ok(history)
 }
 
 /// The flange shape of `ring` ("inner" or "outer").
-fn flange(d: &Bound<'_, PyDict>, ring: &str) -> PyResult<FlangeShape> {
-    let g = |k: &str| get::<f64>(d, &format!("{ring}_flange_{k}"));
+fn flange(d: &Dict<'_>, ring: &str) -> PyResult<FlangeShape> {
+    let g = |k: &str| d.get::<f64>(&format!("{ring}_flange_{k}"));
     FlangeShape::new(
         g("opening_angle")?,
         g("height")?,
@@ -70,149 +183,159 @@ fn flange(d: &Bound<'_, PyDict>, ring: &str) -> PyResult<FlangeShape> {
 }
 
 /// The friction data of the surface pair `name`.
-fn surface(d: &Bound<'_, PyDict>, name: &str) -> PyResult<SurfacePair> {
+fn surface(d: &Dict<'_>, name: &str) -> PyResult<SurfacePair> {
     Ok(SurfacePair {
-        roughness: get(d, &format!("{name}_roughness"))?,
+        roughness: d.get(&format!("{name}_roughness"))?,
         sharing: LoadSharing {
-            b: get(d, &format!("{name}_zh_b"))?,
-            c: get(d, &format!("{name}_zh_c"))?,
+            b: d.get(&format!("{name}_zh_b"))?,
+            c: d.get(&format!("{name}_zh_c"))?,
         },
     })
 }
 
 /// The model parameters of the SI dict `d` (`rollerdyn.simulation.model_parameters`) with the
-/// EHL traction `traction`.
+/// EHL traction `traction`. Every key of `d` must be one the core reads.
 pub(crate) fn bearing_params(
     d: &Bound<'_, PyDict>,
     traction: &EhlTraction,
 ) -> PyResult<BearingParams> {
+    let d = Dict::new(d, Kind::Parameter);
+    let params = build_params(&d, traction)?;
+    d.done()?;
+    Ok(params)
+}
+
+/// The parameters of `d`, read key by key (see [`bearing_params`]).
+fn build_params(d: &Dict<'_>, traction: &EhlTraction) -> PyResult<BearingParams> {
     let roller = RollerShape::new(
-        get(d, "roller_radius")?,
-        get(d, "roller_length")?,
-        get(d, "edge_radius")?,
-        get(d, "end_face_radius")?,
+        d.get("roller_radius")?,
+        d.get("roller_length")?,
+        d.get("edge_radius")?,
+        d.get("end_face_radius")?,
     )
     .map_err(core_err)?;
     let law = |k: &str| -> PyResult<LinePowerLaw> {
         Ok(LinePowerLaw {
-            k1: get(d, &format!("k1_{k}"))?,
-            k2: get(d, &format!("k2_{k}"))?,
+            k1: d.get(&format!("k1_{k}"))?,
+            k2: d.get(&format!("k2_{k}"))?,
         })
     };
     let detector = choose(
-        &get::<String>(d, "detector")?,
+        &d.get::<String>("detector")?,
         &Detector::ALL.map(|detector| (detector.name(), detector)),
         |other| format!("detector = {other}: must be semi-analytical, gradient or mesh"),
     )?;
     Ok(BearingParams {
-        roller_count: get(d, "roller_count")?,
+        roller_count: d.get("roller_count")?,
         roller,
-        slices: get(d, "slices")?,
-        crown_drop: get(d, "crown_drop")?,
-        crown_length: get(d, "crown_length")?,
-        roller_density: get(d, "roller_density")?,
-        inner_raceway_radius: get(d, "inner_raceway_radius")?,
-        outer_raceway_radius: get(d, "outer_raceway_radius")?,
+        slices: d.get("slices")?,
+        crown_drop: d.get("crown_drop")?,
+        crown_length: d.get("crown_length")?,
+        roller_density: d.get("roller_density")?,
+        inner_raceway_radius: d.get("inner_raceway_radius")?,
+        outer_raceway_radius: d.get("outer_raceway_radius")?,
         inner_flange: flange(d, "inner")?,
         outer_flange: flange(d, "outer")?,
-        inner_axial_play: get(d, "inner_axial_play")?,
-        outer_axial_play: get(d, "outer_axial_play")?,
+        inner_axial_play: d.get("inner_axial_play")?,
+        outer_axial_play: d.get("outer_axial_play")?,
         e_prime: [
-            get(d, "e_prime_inner")?,
-            get(d, "e_prime_outer")?,
-            get(d, "e_prime_roller")?,
+            d.get("e_prime_inner")?,
+            d.get("e_prime_outer")?,
+            d.get("e_prime_roller")?,
         ],
         line_laws: [law("inner")?, law("outer")?, law("roller")?],
-        inner_ring_mass: get(d, "inner_ring_mass")?,
-        inner_ring_axial_inertia: get(d, "inner_ring_axial_inertia")?,
-        inner_ring_transverse_inertia: get(d, "inner_ring_transverse_inertia")?,
-        inner_ring_tilt_free: get(d, "inner_ring_tilt_free")?,
-        inner_ring_misalignment: get(d, "inner_ring_misalignment")?,
+        inner_ring_mass: d.get("inner_ring_mass")?,
+        inner_ring_axial_inertia: d.get("inner_ring_axial_inertia")?,
+        inner_ring_transverse_inertia: d.get("inner_ring_transverse_inertia")?,
+        inner_ring_tilt_free: d.get("inner_ring_tilt_free")?,
+        inner_ring_misalignment: d.get("inner_ring_misalignment")?,
         traction: traction.clone(),
-        eta0: get(d, "eta0")?,
-        viscosity_slope: get(d, "viscosity_slope")?,
-        alpha_star: get(d, "alpha_star")?,
-        thermal_conductivity: get(d, "thermal_conductivity")?,
+        eta0: d.get("eta0")?,
+        viscosity_slope: d.get("viscosity_slope")?,
+        alpha_star: d.get("alpha_star")?,
+        thermal_conductivity: d.get("thermal_conductivity")?,
         raceway: surface(d, "raceway")?,
         flange_surface: surface(d, "flange")?,
         roller_roller: surface(d, "roller_roller")?,
         boundary: BoundaryFriction {
-            mu_b0: get(d, "mu_b0")?,
-            s0: get(d, "s0")?,
-            smoothing_speed: get(d, "smoothing_speed")?,
+            mu_b0: d.get("mu_b0")?,
+            s0: d.get("s0")?,
+            smoothing_speed: d.get("smoothing_speed")?,
         },
-        hysteresis_coefficient: get(d, "hysteresis_coefficient")?,
-        damping_ratio: get(d, "damping_ratio")?,
+        hysteresis_coefficient: d.get("hysteresis_coefficient")?,
+        damping_ratio: d.get("damping_ratio")?,
         gravity: {
-            let g: [f64; 3] = get(d, "gravity")?;
+            let g: [f64; 3] = d.get("gravity")?;
             Vec3::new(g[0], g[1], g[2])
         },
         race_film: RigidFilm {
-            enabled: get(d, "race_film")?,
-            cutoff: get(d, "race_film_cutoff")?,
+            enabled: d.get("race_film")?,
+            cutoff: d.get("race_film_cutoff")?,
         },
         mixture: Mixture::new(
-            get(d, "oil_fraction")?,
-            get(d, "oil_density")?,
-            get(d, "eta0")?,
-            get(d, "air_density")?,
-            get(d, "air_viscosity")?,
+            d.get("oil_fraction")?,
+            d.get("oil_density")?,
+            d.get("eta0")?,
+            d.get("air_density")?,
+            d.get("air_viscosity")?,
         ),
         radial_load: history(d, "radial_load")?,
         axial_load: history(d, "axial_load")?,
         inner_ring_speed: history(d, "inner_ring_speed")?,
         squeeze_film: SqueezeFilm {
-            enabled: get(d, "squeeze_film")?,
-            half_width: get(d, "squeeze_film_half_width")?,
-            floor: get(d, "squeeze_film_floor")?,
-            cutoff: get(d, "squeeze_film_cutoff")?,
+            enabled: d.get("squeeze_film")?,
+            half_width: d.get("squeeze_film_half_width")?,
+            floor: d.get("squeeze_film_floor")?,
+            cutoff: d.get("squeeze_film_cutoff")?,
         },
         options: ModelOptions {
             detector,
-            mesh_resolution: (get(d, "mesh_around")?, get(d, "mesh_along")?),
-            pruning: get(d, "pruning")?,
+            mesh_resolution: (d.get("mesh_around")?, d.get("mesh_along")?),
+            pruning: d.get("pruning")?,
             border_bands: BorderBands {
-                roller_angle: get(d, "border_band_roller")?,
-                flange_length: get(d, "border_band_flange")?,
+                roller_angle: d.get("border_band_roller")?,
+                flange_length: d.get("border_band_flange")?,
             },
-            friction: get(d, "friction")?,
+            friction: d.get("friction")?,
         },
     })
 }
 
-/// The run's settings from the SI dict `d` (built by `rollerdyn.simulation.simulate`).
+/// The run's settings from the SI dict `d` (`rollerdyn.simulation.run_options`).
+/// Every key of `d` must be one the core reads; `checkpoint_interval` and `start` may be
+/// None (no checkpoints; from rest). `threads` may be given: `simulate` builds its model
+/// on that many threads (`Model.run` runs on the model's own).
 pub(crate) fn run_options(d: &Bound<'_, PyDict>) -> PyResult<RunOptions> {
+    let d = Dict::new(d, Kind::Option);
+    if let Some(v) = d.item("threads")? {
+        d.extract::<usize>("threads", v)?;
+    }
     let method = choose(
-        &get::<String>(d, "method")?,
+        &d.get::<String>("method")?,
         &[("tr-bdf2", Method::TrBdf2), ("esdirk34", Method::Esdirk34)],
         |other| format!("method = {other}: must be tr-bdf2 or esdirk34"),
     )?;
-    Ok(RunOptions {
-        t_end: get(d, "t_end")?,
-        rtol: get(d, "rtol")?,
-        atol: get(d, "atol")?,
-        atol_time_scale: get(d, "atol_time_scale")?,
-        dt_max: get(d, "dt_max")?,
-        output_interval: get(d, "output_interval")?,
+    let options = RunOptions {
+        t_end: d.get("t_end")?,
+        rtol: d.get("rtol")?,
+        atol: d.get("atol")?,
+        atol_time_scale: d.get("atol_time_scale")?,
+        dt_max: d.get("dt_max")?,
+        output_interval: d.get("output_interval")?,
         method,
         step_control: StepControl {
-            max_growth: get(d, "max_step_growth")?,
-            gain: get(d, "step_gain")?,
-            jacobian_after_newton_failure: get(d, "jacobian_after_newton_failure")?,
+            max_growth: d.get("max_step_growth")?,
+            gain: d.get("step_gain")?,
+            jacobian_after_newton_failure: d.get("jacobian_after_newton_failure")?,
         },
-        checkpoint_interval: match d.get_item("checkpoint_interval")? {
-            Some(v) if !v.is_none() => Some(v.extract().map_err(|_| {
-                PyValueError::new_err(format!("checkpoint_interval = {v}: wrong type"))
-            })?),
-            _ => None,
+        checkpoint_interval: d.nullable("checkpoint_interval")?,
+        start_from_equilibrium: match d.nullable::<String>("start")? {
+            Some(start) => choose(&start, &[("rest", false), ("equilibrium", true)], |other| {
+                format!("start = {other}: must be rest or equilibrium")
+            })?,
+            None => false,
         },
-        start_from_equilibrium: match d.get_item("start")? {
-            Some(v) if !v.is_none() => choose(
-                &v.extract::<String>()?,
-                &[("rest", false), ("equilibrium", true)],
-                |other| format!("start = {other}: must be rest or equilibrium"),
-            )?,
-            _ => false,
-        },
-    })
+    };
+    d.done()?;
+    Ok(options)
 }

@@ -15,7 +15,7 @@ from pydantic.fields import FieldInfo
 
 from ..units import IntegerSpec, NumberSpec, QuantitySpec, VectorSpec
 from .base import Hint, TimeTable
-from .schema import _FLANGE_OVERRIDES, BearingConfig
+from .schema import _FLANGE_OVERRIDES, MOVED_FIELDS, BearingConfig
 
 
 @dataclass(frozen=True)
@@ -202,6 +202,10 @@ def problems_from(exc: ValidationError, data: Any) -> list[Problem]:
                 raw, inherited = _raw_or_inherited(data, full)
                 value = _show(raw) if raw is not _MISSING else (shown or "(see rule)")
                 add(full, value, rule, inherited)
+            continue
+        if typ == "extra_forbidden" and ".".join(map(str, loc)) in MOVED_FIELDS:
+            new_place, why = MOVED_FIELDS[".".join(map(str, loc))]
+            add(loc, _show(err.get("input")), f"has moved to {new_place} ({why})")
             continue
         if typ == "extra_forbidden":
             section, key = loc[:-1], loc[-1]

@@ -21,8 +21,8 @@
 //!   each w a smoothstep of the signed arc length of P₂ past that cone/torus border over
 //!   ±Δσ.
 //!
-//! Δθ and Δσ are model parameters (`surfaces.border_band_roller`,
-//! `surfaces.border_band_flange`). Outside the bands the pairing's own curvature is used
+//! Δθ and Δσ are numerical settings of the model (`solver.border_band_roller`,
+//! `solver.border_band_flange`). Outside the bands the pairing's own curvature is used
 //! unchanged (B1's usual TO-CO contact, 0.11° from the roller axis, is far outside).
 
 use super::{relative_radius, Contact, Pairing};

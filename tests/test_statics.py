@@ -1,0 +1,132 @@
+"""The quasi-static analysis (``rollerdyn.statics``, core ``bearing/quasi_static``) against
+closed forms: Stribeck's load distribution, the stiffness against differences of
+equilibria, the centrifugal force, and its refusals."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from b1 import B1, variant
+from typer.testing import CliRunner
+
+from rollerdyn import life
+from rollerdyn.cli import app
+from rollerdyn.statics import StaticsError, parse_range, statics, statics_sweep
+
+
+def _stribeck_shares(z: int, exponent: float) -> np.ndarray:
+    """Discrete Stribeck distribution for zero clearance (Harris & Kotzalas, Rolling Bearing
+    Analysis, sect. 7.2): with the ring moved by delta_r along the load, roller j at psi_j
+    from the load line is compressed by delta_r cos psi_j, carries K (delta_r cos psi_j)^n,
+    and the loads sum to F_r along the load: Q_j / F_r = cos^n / sum(cos^(n+1))."""
+    psi = 2 * np.pi * np.arange(z) / z - np.pi  # roller 0 at +y, the load along -y
+    c = np.clip(np.cos(psi), 0.0, None)
+    return c**exponent / np.sum(c ** (exponent + 1))
+
+
+def test_zero_clearance_follows_stribeck():
+    """B1 without clearance, gravity and speed: every roller's load is Stribeck's discrete
+    share within 1 % of the heaviest (the inner and outer power laws of eq. 11 differ a
+    little in k2, so their series law is not exactly a power law), and Z Q_max / F_r lies
+    near Stribeck's 4.08 (published-values.md; within the discreteness of Z = 17, whose
+    load line falls between two rollers: the discrete sum gives 3.96)."""
+    cfg = variant(**{"geometry.diametral_clearance": "0 um", "operating.gravity": "0 m/s^2"})
+    ds = statics(cfg, radial_load=5000.0, axial_load=0.0, speed=0.0)
+    q = ds.inner_race_load.values
+    laws = _laws(cfg)
+    k2 = 0.5 * (laws["inner"].k2 + laws["outer"].k2)
+    expected = 5000.0 * _stribeck_shares(17, 1.0 / k2)
+    assert np.max(np.abs(q - expected)) < 0.01 * q.max()
+    ratio = 17 * q.max() / 5000.0
+    assert ratio == pytest.approx(17 * expected.max() / 5000.0, rel=0.01)
+    assert 3.8 < ratio < 4.4
+    assert float(ds.load_zone_angle) == pytest.approx(90.0)
+
+
+def _laws(cfg):
+    from rollerdyn.model import Model
+
+    return Model(cfg).line_contacts
+
+
+def test_radial_stiffness_equals_differences_of_equilibria(b1):
+    """k_yy of the condensed Jacobian against (F_r2 - F_r1) / (y2 - y1) of two equilibria
+    10 N apart (B1 at 5 kN, at rest): within 1 % (the law is smooth there; the difference
+    quotient's own error is 10 N / 5 kN times the curvature, about 0.1 %)."""
+    a = statics(b1, radial_load=5000.0, axial_load=0.0, speed=0.0)
+    b = statics(b1, radial_load=5010.0, axial_load=0.0, speed=0.0)
+    dy = float(b.ring_displacement[1] - a.ring_displacement[1])
+    k_yy = float(a.stiffness.values[1, 1])
+    assert k_yy == pytest.approx(-10.0 / dy, rel=0.01)
+    assert k_yy > 0
+
+
+def test_centrifugal_force_loads_the_outer_race(b1):
+    """At 3000 rpm an unloaded roller at the top presses the outer race with its
+    centrifugal force m omega_c^2 r less its weight (omega_c = Omega (1 - D/d_m)/2)."""
+    omega = 3000 * 2 * math.pi / 60
+    ds = statics(b1, radial_load=5000.0, axial_load=0.0, speed=omega)
+    g = b1.geometry
+    d, dm = g.roller_diameter, g.pitch_diameter
+    omega_c = 0.5 * omega * (1 - d / dm)
+    top = 0  # roller 0 at +y, opposite the load
+    mass = float(np.pi * (d / 2) ** 2 * g.roller.length * b1.materials.roller.density)
+    radius = dm / 2 + float(ds.roller_radial_offset[top])
+    expected = mass * (omega_c**2 * radius - 9.81)
+    assert float(ds.inner_race_load[top]) == 0.0
+    # the roller's mass from the cylinder (its edge radii make it 2 % lighter)
+    assert float(ds.outer_race_load[top]) == pytest.approx(expected, rel=0.03)
+
+
+def test_life_follows_the_slice_loads(b1):
+    """The dataset's L_10r is ISO/TS 16281 of its own slice loads, and ISO 281's L_10 is
+    (C_r / F_r)^(10/3)."""
+    ds = statics(b1, radial_load=5000.0, axial_load=0.0)
+    g = b1.geometry
+    l10r = life.reference_rating_life(
+        ds.inner_slice_load.values,
+        ds.outer_slice_load.values,
+        float(ds.dynamic_load_rating),
+        g.roller_diameter,
+        g.pitch_diameter,
+    )
+    assert float(ds.l10r) == pytest.approx(l10r, rel=1e-12)
+    assert float(ds.l10) == pytest.approx((float(ds.dynamic_load_rating) / 5000.0) ** (10 / 3))
+
+
+def test_sweep_is_monotonic_and_keeps_every_case(b1):
+    """A radial-load sweep: the heaviest roller grows and the life falls with the load."""
+    ds = statics_sweep(
+        b1, {"operating.radial_load": [1000.0, 3000.0, 6000.0], "operating.axial_load": [0.0]}
+    )
+    assert ds.attrs["failed_cases"] == 0
+    assert np.all(np.diff(ds.max_roller_load.values) > 0)
+    assert np.all(np.diff(ds.l10r.values) < 0)
+
+
+def test_bad_cases_are_refused_with_a_message(b1):
+    with pytest.raises(StaticsError, match="must be finite"):
+        statics(b1, radial_load=math.nan)
+    with pytest.raises(StaticsError, match="statics sweeps vary the load case only"):
+        parse_range("geometry.roller_count", "10:20:3")
+    with pytest.raises(StaticsError, match="count"):
+        parse_range("operating.radial_load", "0:10:x")
+    assert parse_range("operating.inner_ring_speed", "0 rpm:3000 rpm:3")[-1] == pytest.approx(
+        100 * math.pi
+    )
+
+
+def test_cli_prints_the_equilibrium_and_refuses_bad_options(tmp_path):
+    runner = CliRunner()
+    out = tmp_path / "s.nc"
+    result = runner.invoke(
+        app, ["statics", str(B1), "--set", "operating.axial_load=0", "-o", str(out)]
+    )
+    assert result.exit_code == 0, result.output
+    assert "heaviest roller" in result.output and out.exists()
+    bad = runner.invoke(app, ["statics", str(B1), "--set", "operating.axial_load=abc"])
+    assert bad.exit_code == 2 and "operating.axial_load" in bad.output
+    again = runner.invoke(app, ["statics", str(B1), "-o", str(out)])
+    assert again.exit_code == 2 and "--overwrite" in again.output
