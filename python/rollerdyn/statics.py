@@ -139,7 +139,7 @@ def statics(
     (result,) = _solve(cfg, [case], stiffness=True)
     if isinstance(result, str):
         raise StaticsError(result)
-    ds = _case_dataset(cfg, case, result, contamination)
+    ds = _case_dataset(cfg, _ratings(cfg), case, result, contamination)
     ds.attrs.update(record_attrs(cfg))
     return ds
 
@@ -160,15 +160,20 @@ def _case_with(case: StaticCase, *, moment=None, **values) -> StaticCase:
     return case
 
 
-def parse_range(path: str, text: str) -> list[float]:
-    """The SI values of a sweep option: ``"a:b:n"`` (n values from a to b) or a comma list,
-    each value a quantity with its unit (``"500 rpm"``) or a bare number in the field's SI
-    unit (N, rad/s, rad, N*m)."""
+def _check_path(path: str) -> None:
+    """Refuses a path a statics sweep cannot vary."""
     if path not in STATIC_FIELDS:
         raise StaticsError(
             f"--set {path}: statics sweeps vary the load case only ({', '.join(STATIC_FIELDS)}); "
             "sweep other values with 'rollerdyn sweep'"
         )
+
+
+def parse_range(path: str, text: str) -> list[float]:
+    """The SI values of a sweep option: ``"a:b:n"`` (n values from a to b) or a comma list,
+    each value a quantity with its unit (``"500 rpm"``) or a bare number in the field's SI
+    unit (N, rad/s, rad, N*m)."""
+    _check_path(path)
     family = STATIC_FIELDS[path][1]
 
     def value(item: str) -> float:
@@ -221,8 +226,7 @@ def statics_sweep(
     ``error``; the others are solved, each from its neighbour's solution."""
     cfg = as_config(config)
     for path in grid:
-        if path not in STATIC_FIELDS:
-            parse_range(path, "0")  # raises the message naming the allowed paths
+        _check_path(path)
     base = config_case(cfg)
     paths = list(grid)
     combos = list(itertools.product(*(grid[p] for p in paths)))
@@ -237,6 +241,7 @@ def statics_sweep(
         cases.append(_case_with(base, moment=moment, **fields))
     results = _solve(cfg, cases, stiffness=stiffness, progress=progress)
     parts, errors = [], []
+    ratings = _ratings(cfg)
     template = next((r for r in results if not isinstance(r, str)), None)
     for case, result in zip(cases, results, strict=True):
         if isinstance(result, str):
@@ -244,7 +249,7 @@ def statics_sweep(
             parts.append(None)
         else:
             errors.append("")
-            parts.append(_case_dataset(cfg, case, result, contamination))
+            parts.append(_case_dataset(cfg, ratings, case, result, contamination))
     if template is None:
         raise StaticsError(f"no case of the sweep has an equilibrium; the first: {errors[0]}")
     blank = xr.full_like(next(p for p in parts if p is not None), np.nan)
@@ -271,7 +276,7 @@ def _var(data, dims, units: str, description: str) -> xr.Variable:
 
 
 def _case_dataset(
-    cfg: BearingConfig, case: StaticCase, r: dict, contamination: float
+    cfg: BearingConfig, ratings: _Ratings, case: StaticCase, r: dict, contamination: float
 ) -> xr.Dataset:
     z, ns = cfg.geometry.roller_count, cfg.geometry.roller.slices
     slices = {
@@ -410,7 +415,9 @@ def _case_dataset(
             "bearing stiffness: load on the ring per displacement / tilt, rollers in equilibrium",
         )
     data.update(
-        _life_variables(cfg, case, slices["inner_slices"], slices["outer_slices"], contamination)
+        _life_variables(
+            cfg, ratings, case, slices["inner_slices"], slices["outer_slices"], contamination
+        )
     )
     ds = xr.Dataset(
         data,
@@ -450,25 +457,45 @@ def _load_zone_angle(cfg: BearingConfig, ring: np.ndarray) -> float:
     return float(np.degrees(np.arccos(np.clip(x, -1.0, 1.0))))
 
 
+@dataclass(frozen=True)
+class _Ratings:
+    """What the lives of every case of a configuration share: C_r [N], C_u [N] and the
+    oil's kinematic viscosity at the operating temperature [m^2/s]."""
+
+    dynamic: float
+    fatigue_limit: float
+    viscosity: float
+
+
+def _ratings(cfg: BearingConfig) -> _Ratings:
+    g = cfg.geometry
+    d, dpw, length = g.roller_diameter, g.pitch_diameter, g.roller.effective_length
+    c_0 = life.static_load_rating(g.roller_count, d, length, dpw)
+    return _Ratings(
+        dynamic=life.dynamic_load_rating(g.roller_count, d, length, dpw),
+        fatigue_limit=life.fatigue_load_limit(c_0, dpw),
+        viscosity=Model(cfg).eta0 / cfg.lubricant.density_at(cfg.operating.temperature),
+    )
+
+
 def _life_variables(
-    cfg: BearingConfig, case: StaticCase, inner: np.ndarray, outer: np.ndarray, contamination: float
+    cfg: BearingConfig,
+    ratings: _Ratings,
+    case: StaticCase,
+    inner: np.ndarray,
+    outer: np.ndarray,
+    contamination: float,
 ) -> dict:
     """Rating lives of the case (:mod:`rollerdyn.life`): ISO 281's L_10 with P = F_r (a
     cylindrical roller bearing's equivalent load ignores the axial load), ISO/TS 16281's
     L_10r from the slice loads and its modified L_nmr with a_ISO from the lubricant's
     viscosity ratio kappa at the operating temperature and speed and the contamination
     factor e_C. Lives in 10^6 revolutions of the inner ring."""
-    g = cfg.geometry
-    d, dpw, length = g.roller_diameter, g.pitch_diameter, g.roller.effective_length
-    z = g.roller_count
-    c_r = life.dynamic_load_rating(z, d, length, dpw)
-    c_0 = life.static_load_rating(z, d, length, dpw)
-    c_u = life.fatigue_load_limit(c_0, dpw)
+    c_r, c_u, nu = ratings.dynamic, ratings.fatigue_limit, ratings.viscosity
+    d, dpw = cfg.geometry.roller_diameter, cfg.geometry.pitch_diameter
     l10 = life.basic_rating_life(c_r, case.radial_load) if case.radial_load > 0 else math.inf
     l10r = life.reference_rating_life(inner, outer, c_r, d, dpw)
     rpm = abs(case.speed) * 60.0 / (2.0 * math.pi)
-    model = Model(cfg)
-    nu = model.eta0 / cfg.lubricant.density_at(cfg.operating.temperature)
     kappa = life.viscosity_ratio(nu, rpm, dpw) if rpm > 0 else math.nan
     lnmr = math.nan
     if rpm > 0 and math.isfinite(l10r):

@@ -11,7 +11,8 @@ from typing import Annotated
 import typer
 from rich.table import Table
 
-from .common import console, error, load, refuse, say
+from ..paths import check_output_file
+from .common import checked, console, error, load, refuse, say
 
 
 def statics_command(
@@ -66,11 +67,16 @@ def statics_command(
 
     if not 0.0 <= contamination <= 1.0:
         raise refuse(f"--contamination = {contamination}: must lie in [0, 1] (ISO 281 e_C)")
-    for path in (output, plot):
-        if path is not None and path.exists() and not overwrite:
-            raise refuse(f"{path}: exists; pass --overwrite to replace it")
-        if path is not None and not path.resolve().parent.is_dir():
-            raise refuse(f"{path}: the folder {path.parent} does not exist")
+    for option, path in (("-o", output), ("--plot", plot)):
+        if path is not None:
+            checked(
+                check_output_file,
+                path,
+                option,
+                inputs=[("the configuration file", config)],
+                overwrite=overwrite,
+                hint="; pass --overwrite to replace it",
+            )
     cfg = load(config)
     grid: dict[str, list[float]] = {}
     for option in sets or []:
