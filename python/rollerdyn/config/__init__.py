@@ -15,6 +15,7 @@ The package's modules:
 
 - :mod:`.schema`: one pydantic model per section, with the rules of its fields and the
   cross-field checks, up to :class:`BearingConfig`;
+- :mod:`.solver`: the ``[solver]`` section, the numerical settings;
 - :mod:`.derived`: the derived quantities (mixins of the section models) and
   :func:`fit_roelands_z`;
 - :mod:`.errors`: :class:`Problem`, :class:`ConfigError` and :func:`problems_from`, the
@@ -48,6 +49,7 @@ from .errors import (
     problems_from,
 )
 from .loading import load_config, parse_config
+from .solver import LineFitConfig, SolverConfig
 from .schema import (
     AlphaStarFitConfig,
     BearingConfig,
@@ -59,7 +61,6 @@ from .schema import (
     GeometryConfig,
     InnerRingConfig,
     LimitingShearStressConfig,
-    LineFitConfig,
     LubricantConfig,
     LubricantDensityConfig,
     MaterialConfig,
@@ -70,7 +71,6 @@ from .schema import (
     ReferenceViscosityConfig,
     RoelandsConfig,
     RollerConfig,
-    SolverConfig,
     SqueezeFilmConfig,
     SurfacePairConfig,
     SurfacesConfig,

@@ -142,8 +142,8 @@ impl Problem<'_> {
         }
         let kin = self.pose(u, i).kinematics(self.pitch);
         let outer = Kinematics::fixed();
-        let inner_depth = self.model.deepest_slice(LineContact::InnerRace, ring, &kin);
-        let outer_depth = self
+        let mut inner_depth = self.model.deepest_slice(LineContact::InnerRace, ring, &kin);
+        let mut outer_depth = self
             .model
             .deepest_slice(LineContact::OuterRace, &outer, &kin);
         if inner_depth > 0.0 || outer_depth > 0.0 {
@@ -161,6 +161,24 @@ impl Problem<'_> {
             .law
             .deflection(per_slice, lines.slice_length);
         let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+        // Nothing holds the tilt of a roller that touches nothing: it lands level with
+        // the race it falls onto, so that its slices meet the race together (a roller
+        // landing on one end would be held there by the slice at that end alone).
+        let pose = self.pose(u, i);
+        let level = match line {
+            LineContact::InnerRace => {
+                ring.axis.dot(&pose.radial_direction()).atan2(ring.axis.x)
+            }
+            _ => 0.0,
+        };
+        if level != pose.tilt {
+            u[s + 2] = level;
+            let kin = self.pose(u, i).kinematics(self.pitch);
+            inner_depth = self.model.deepest_slice(LineContact::InnerRace, ring, &kin);
+            outer_depth = self
+                .model
+                .deepest_slice(LineContact::OuterRace, &outer, &kin);
+        }
         // The inner penetration falls as the roller moves out, the outer one rises.
         u[s] += match line {
             LineContact::InnerRace => inner_depth - depth,

@@ -1,0 +1,72 @@
+"""The ``[solver]`` section: time integration and every numerical setting of the model
+(the core's ``ModelOptions``), apart from the physical sections of :mod:`.schema`."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import Field, model_validator
+
+from ..names import DETECTORS, SEMI_ANALYTICAL
+from ..units import Integer, Number, Quantity, format_si
+from .base import _Cross, _Section
+
+
+class LineFitConfig(_Section):
+    """Range of the fit of eq. 11 to Tripp's line-contact law (load per unit length).
+
+    Without ``load_min``/``load_max`` the ranges follow from the radial load: with the
+    Stribeck/Harris estimate of the heaviest roller, ``q_ref = 4.08 F_r / (Z l)`` (l the
+    straight roller length), race contacts are fitted over ``[0.1, 2] q_ref`` and
+    roller-roller contacts over ``[0.01, 0.2] q_ref`` (see :class:`rollerdyn.model.Model`).
+    Given values apply to all three contact kinds.
+    """
+
+    load_min: Quantity("force per length", positive=True) | None = None
+    load_max: Quantity("force per length", positive=True) | None = None
+    samples: Integer(ge=2, le=10_000) = 64
+
+    @model_validator(mode="after")
+    def _check(self) -> LineFitConfig:
+        cross = _Cross()
+        if (self.load_min is None) != (self.load_max is None):
+            cross.add(
+                "load_max" if self.load_max is None else "load_min",
+                "(missing)",
+                "give both load_min and load_max, or neither (derived from the radial load)",
+            )
+        elif self.load_max is not None and self.load_max <= self.load_min:
+            cross.add(
+                "load_max",
+                format_si(self.load_max, "force per length"),
+                f"must be > load_min ({format_si(self.load_min, 'force per length')})",
+            )
+        cross.raise_if_any()
+        return self
+
+
+class SolverConfig(_Section):
+    """``[solver]``: time integration and every numerical setting of the model (the
+    core's ``ModelOptions``: detector, pruning, mesh resolution, border bands, friction)."""
+
+    rtol: Number(ge=1e-12, lt=1.0) = 1e-5
+    atol: Number(ge=1e-15) = 1e-9
+    atol_time_scale: Quantity("time", positive=True, le="1 s") = "1e-5 s"
+    dt_max: Quantity("time", ge="1 ns") = "1e-4 s"
+    output_interval: Quantity("time", ge="1 ns") = "1e-4 s"
+    checkpoint_interval: Quantity("time", positive=True) = "100 ms"
+    detector: Literal[DETECTORS] = SEMI_ANALYTICAL
+    start: Literal["rest", "equilibrium"] = "rest"
+    method: Literal["tr-bdf2", "esdirk34"] = "tr-bdf2"
+    max_step_growth: Number(gt=1.0, le=10.0) = 1.3
+    step_gain: Number(gt=0.0, le=1.0) = 0.3
+    jacobian_after_newton_failure: bool = False
+    pruning: bool = True
+    mesh_around: Integer(ge=8, le=1024) = 64
+    mesh_along: Integer(ge=2, le=256) = 16
+    border_band_roller: Quantity("angle", ge=0.0, le="1 deg") = "1.5e-4 rad"
+    border_band_flange: Quantity("length", ge=0.0, le="1 mm") = "50 um"
+    friction: bool = True
+    traction_nodes: Integer(ge=1, le=200) = 12
+    traction: Literal["tabulated", "direct"] = "tabulated"
+    line_fit: LineFitConfig = Field(default_factory=LineFitConfig)
