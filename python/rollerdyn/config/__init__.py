@@ -49,7 +49,6 @@ from .errors import (
     problems_from,
 )
 from .loading import load_config, parse_config
-from .solver import LineFitConfig, SolverConfig
 from .schema import (
     AlphaStarFitConfig,
     BearingConfig,
@@ -76,6 +75,7 @@ from .schema import (
     SurfacesConfig,
     VogelConfig,
 )
+from .solver import LineFitConfig, SolverConfig
 
 __all__ = [
     # reading and errors

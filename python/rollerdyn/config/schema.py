@@ -43,7 +43,7 @@ from .derived import (
     VogelDerived,
     _history_peak,
 )
-from .solver import LineFitConfig, SolverConfig
+from .solver import SolverConfig
 
 # --------------------------------------------------------------------------- geometry
 
