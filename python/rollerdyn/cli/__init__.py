@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import typer
 
-from . import bench, plot, report, run, statics, sweep, validate
+from . import bench, plot, report, run, statics, study, sweep, validate
 
 # rich_markup_mode=None: help texts are plain text (a "[s]" or "[arrays]" stays as typed)
 # and click wraps each paragraph once to the terminal's width.
@@ -41,5 +41,6 @@ app.command("plot")(plot.plot)
 app.command("sweep")(sweep.sweep_command)
 app.command("report")(report.report_command)
 app.command("statics")(statics.statics_command)
+app.add_typer(study.app, name="study")
 
 __all__ = ["app"]

@@ -1,0 +1,552 @@
+"""``rollerdyn study``: ``paper`` (the paper's sect. 5 on Dask, its findings checked, one
+report) and ``map`` (operating maps at steady state), with one progress display for the
+whole study and the tables printed at the end (:mod:`rollerdyn.study`)."""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import time
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from rich.table import Table
+from rich.text import Text
+
+from .common import console, load, plain, refuse, say, time_option
+
+app = typer.Typer(
+    help="Studies of many runs on Dask: the paper's sect. 5 (paper) and operating maps (map).",
+    no_args_is_help=True,
+    add_completion=False,
+    rich_markup_mode=None,
+)
+
+_STYLE = {"PASS": "green", "FAIL": "red", "NOT RUN": "yellow"}
+_RUN_STYLE = {"completed": "green", "failed": "red", "steady": "green"}
+
+SchedulerOption = Annotated[
+    str | None,
+    typer.Option(
+        "--scheduler",
+        help="Address of a running Dask scheduler (e.g. tcp://10.0.0.5:8786); its workers "
+        "need rollerdyn installed and must see the output folder. One that cannot be "
+        "reached within 10 s exits with status 2. Default: a local cluster of --workers "
+        "processes.",
+    ),
+]
+WorkersOption = Annotated[
+    int | None,
+    typer.Option(
+        "--workers",
+        min=1,
+        help="Worker processes of the local cluster, one run (one core) each. Default: all "
+        "cores. Ignored with --scheduler.",
+    ),
+]
+MaxWallOption = Annotated[
+    float,
+    typer.Option(
+        "--max-wall",
+        help="Wall-time cap of each run in this invocation [s]. A run that reaches it is "
+        "stopped, reported as 'not finished (reached t = ...)' and continued from its "
+        "last checkpoint by the next invocation.",
+        metavar="SECONDS",
+    ),
+]
+OverwriteOption = Annotated[
+    bool,
+    typer.Option(
+        "--overwrite",
+        help="Start afresh: remove what an earlier study wrote in the folder (its run "
+        "files, tables, figures and report; nothing else).",
+    ),
+]
+
+
+def _numbers(text: str | None, option: str, unit: str) -> list[float] | None:
+    """A comma list of numbers in ``unit`` (None stays None; 'none' is empty)."""
+    if text is None:
+        return None
+    if text.strip().lower() == "none":
+        return []
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        raise refuse(
+            f"{option} = {text!r}: must be comma-separated numbers in {unit} (or none)"
+        ) from None
+    if not values or not all(math.isfinite(v) for v in values):
+        raise refuse(f"{option} = {text!r}: must be comma-separated numbers in {unit}")
+    return values
+
+
+def paper_command(
+    config: Annotated[
+        Path | None,
+        typer.Argument(
+            help="Bearing configuration (TOML). Default: examples/b1.toml of the source tree.",
+            metavar="[CONFIG]",
+        ),
+    ] = None,
+    output: Annotated[
+        Path,
+        typer.Option(
+            "--output",
+            "-o",
+            help="Study folder (created with its parents if missing): study.json, runs/ "
+            "(one netCDF result per run, SI units), runs.csv, findings.csv, findings.json, "
+            "runtime_study.csv, figures/ (PNG, SVG) and report.html. A folder of an earlier "
+            "study of the same configuration is continued: finished runs are reused, "
+            "unfinished ones continue from their last checkpoint; one of another "
+            "configuration is refused (exit status 2) unless --overwrite.",
+        ),
+    ] = Path("results/study"),
+    t_end: Annotated[
+        str | None,
+        typer.Option(
+            "--t-end",
+            help="Simulated end time of every run, with a unit (20 ms, 0.02 s) or a bare "
+            "number of seconds: a short version of the study. Default: the configuration's "
+            "end time (speed ramp end + two roller-set revolutions, about 1.288 s for B1).",
+            metavar="TIME",
+        ),
+    ] = None,
+    max_wall: MaxWallOption = 300.0,
+    loads: Annotated[
+        str,
+        typer.Option(
+            "--loads",
+            help="Axial loads of figs. 10-13 in N, comma-separated; the configuration's own "
+            "axial load is always one of them.",
+            metavar="N,N,...",
+        ),
+    ] = "0,500,1000,2000",
+    dt_max: Annotated[
+        str | None,
+        typer.Option(
+            "--dt-max",
+            help="Δt_max of fig. 14 in s, comma-separated (each run with both detectors), "
+            "or 'none'. Default: 0.2, 0.5 and 1 times solver.dt_max (2e-5, 5e-5, 1e-4 s for "
+            "B1).",
+            metavar="S,S,...",
+        ),
+    ] = None,
+    free_tilt: Annotated[
+        bool,
+        typer.Option(
+            "--free-tilt/--no-free-tilt",
+            help="Run the configuration with inner_ring.tilt = free for figs. 8, 9 (slow: "
+            "it is capped by --max-wall and reported as not finished when it does not "
+            "finish; never replaced by a prescribed misalignment).",
+        ),
+    ] = True,
+    gradient: Annotated[
+        bool,
+        typer.Option(
+            "--gradient/--no-gradient",
+            help="Run the gradient detector too (sect. 5.1 contact points, sect. 5.3 MBS "
+            "runtime, fig. 14).",
+        ),
+    ] = True,
+    scheduler: SchedulerOption = None,
+    workers: WorkersOption = None,
+    overwrite: OverwriteOption = False,
+    run: Annotated[
+        bool,
+        typer.Option(
+            "--run/--no-run",
+            help="--no-run: run nothing; check the findings and write the tables, figures "
+            "and report from what the folder holds.",
+        ),
+    ] = True,
+) -> None:
+    """Run the paper's whole study (sect. 5, figs. 8-14) on Dask, check its findings and
+    write one report.
+
+    The runs: the configuration at axial loads 0, 500, 1000 and 2000 N (figs. 10-13),
+    with the inner ring free to tilt (figs. 8, 9), with the gradient detector (contact
+    points and penetrations, MBS runtime, sect. 5.1 and 5.3) and both detectors at each
+    Δt_max (fig. 14). Each is one Dask task on one core; progress is shown for the whole
+    study. The findings table gives each of the paper's statements PASS, FAIL or NOT RUN
+    (nothing to judge) with the numbers behind it. Units: SI (s, N, N*m, m) unless a
+    column says otherwise.
+
+    Exit status: 0 when the study ran (runs that did not finish and findings that FAIL
+    are results, in the tables); 1 when a run could not be run at all; 2 for bad input
+    (nothing run); 130 after Ctrl-C (finished runs and checkpoints stay on disk).
+    """
+    from ..study import StudyError, paper
+    from ..validation import default_config_path
+
+    end = time_option("--t-end", t_end)
+    load_values = _numbers(loads, "--loads", "N") or []
+    dt_values = _numbers(dt_max, "--dt-max", "s")
+    path = config if config is not None else default_config_path()
+    load(path)  # a bad file: the same message and exit status as rollerdyn run
+    started = time.perf_counter()
+    try:
+        with _progress("study paper", scheduler) as show:
+            result = paper(
+                path,
+                output,
+                t_end=end,
+                loads=load_values,
+                dt_max=dt_values,
+                free_tilt=free_tilt,
+                gradient=gradient,
+                max_wall=max_wall,
+                scheduler=scheduler,
+                workers=workers,
+                overwrite=overwrite,
+                run=run,
+                progress=show,
+            )
+    except StudyError as err:
+        raise refuse(err) from None
+    _print_runs(result.runs, f"{result.plan.config.name}: runs of the study in {output}")
+    _print_findings(result.findings)
+    _print_timing(result.timing, time.perf_counter() - started)
+    say(
+        f"wrote {output / 'report.html'}, {output / 'findings.csv'}, {output / 'runs.csv'} and "
+        f"{len(result.figures)} figure files in {output / 'figures'}"
+    )
+    unrunnable = result.runs[(result.runs["status"] == "failed") & (result.runs["file"] == "")]
+    if len(unrunnable):
+        raise typer.Exit(1)
+
+
+def map_command(
+    config: Annotated[Path, typer.Argument(help="Bearing configuration (TOML).", metavar="CONFIG")],
+    speed: Annotated[
+        str,
+        typer.Option(
+            "--speed",
+            help="Inner ring speeds in rpm: a:b:n (n evenly spaced from a to b, a < b), a "
+            "list v1,v2,... or one value; a value may carry its own unit (3000 rpm, 50 "
+            "rad/s). Above 0.",
+            metavar="A:B:N",
+        ),
+    ],
+    radial_load: Annotated[
+        str | None,
+        typer.Option(
+            "--radial-load",
+            help="Radial loads in N, as --speed (5 kN allowed). Default: the configuration's.",
+            metavar="A:B:N",
+        ),
+    ] = None,
+    axial_load: Annotated[
+        str | None,
+        typer.Option(
+            "--axial-load",
+            help="Axial loads in N, as --speed. Default: the configuration's.",
+            metavar="A:B:N",
+        ),
+    ] = None,
+    output: Annotated[
+        Path,
+        typer.Option(
+            "--output",
+            "-o",
+            help="Map folder (created with its parents if missing): study.json, points/ "
+            "(one netCDF result per grid point), map.csv, map.parquet and figures/. An "
+            "earlier map of the same configuration and criterion is continued; another "
+            "is refused (exit status 2) unless --overwrite.",
+        ),
+    ] = Path("results/map"),
+    start: Annotated[
+        str,
+        typer.Option(
+            "--start",
+            help="How each point starts: short-ramps (loads over 0 ... --ramp, speed over "
+            "--ramp ... 2 --ramp), equilibrium (full load and speed from t = 0, from the "
+            "quasi-static equilibrium) or config (the configuration's own ramps).",
+        ),
+    ] = "short-ramps",
+    ramp: Annotated[
+        str, typer.Option("--ramp", help="Length of each short ramp.", metavar="TIME")
+    ] = "20 ms",
+    window: Annotated[
+        str,
+        typer.Option(
+            "--window",
+            help="Least window W of the steadiness criterion; W is at least two roller "
+            "passing periods (docs/study.md).",
+            metavar="TIME",
+        ),
+    ] = "10 ms",
+    tol: Annotated[
+        float,
+        typer.Option(
+            "--tol",
+            help="Steady when the torque, speed loss and largest flange force averaged over "
+            "the last window changed by at most this share of their value from the window "
+            "before (or by less than 1e-4 N*m, 1e-3, 1 N).",
+        ),
+    ] = 0.02,
+    max_time: Annotated[
+        str,
+        typer.Option(
+            "--max-time",
+            help="Simulated time at which a point that is not steady ends (reported as not "
+            "steady).",
+            metavar="TIME",
+        ),
+    ] = "0.5 s",
+    max_wall: MaxWallOption = 300.0,
+    scheduler: SchedulerOption = None,
+    workers: WorkersOption = None,
+    overwrite: OverwriteOption = False,
+) -> None:
+    """Run a grid of speeds and loads to steady state on Dask and draw operating maps.
+
+    Each grid point runs until its friction torque [N*m], roller-set speed loss (1 - mean
+    roller orbital speed / epicyclic cage speed, skidding) [-] and largest flange normal
+    force [N], averaged over windows of simulated time, stop changing (see --tol,
+    --window; docs/study.md), or until --max-time. The table (one row per point: values,
+    status, time steady, the three outputs over the last window, wall time) is printed and
+    written; the maps go to figures/ (PNG, SVG).
+
+    Exit status: 0 when the map ran; 1 when a point could not be run at all; 2 for bad
+    input (nothing run).
+    """
+    from ..study import StudyError, operating_map
+
+    ramp_s = time_option("--ramp", ramp)
+    window_s = time_option("--window", window)
+    max_time_s = time_option("--max-time", max_time)
+    load(config)
+    started = time.perf_counter()
+    try:
+        with _progress("study map", scheduler) as show:
+            result = operating_map(
+                config,
+                output,
+                speed=speed,
+                radial_load=radial_load,
+                axial_load=axial_load,
+                start=start,
+                ramp=ramp_s,
+                window=window_s,
+                tol=tol,
+                max_time=max_time_s,
+                max_wall=max_wall,
+                scheduler=scheduler,
+                workers=workers,
+                overwrite=overwrite,
+                progress=show,
+            )
+    except StudyError as err:
+        raise refuse(err) from None
+    _print_map(result.points, f"operating map of {config.name} in {output}")
+    _print_timing(result.timing, time.perf_counter() - started)
+    say(
+        f"wrote {output / 'map.csv'}, {output / 'map.parquet'} and "
+        f"{len(result.figures)} figure files in {output / 'figures'}"
+    )
+    frame = result.points
+    if len(frame[(frame["status"] == "failed") & (frame["file"] == "")]):
+        raise typer.Exit(1)
+
+
+app.command(
+    "paper", short_help="The paper's sect. 5 (figs. 8-14) on Dask, findings checked, a report."
+)(paper_command)
+app.command("map", short_help="Operating maps: a grid of speeds and loads at steady state.")(
+    map_command
+)
+
+
+# --------------------------------------------------------------------------- progress
+
+
+class _Lines:
+    """Progress as plain lines (no terminal): the plan, each run's end, and each run's
+    time at most every ``every`` seconds."""
+
+    def __init__(self, title: str, every: float = 10.0):
+        self.title, self.every = title, every
+        self.started = time.perf_counter()
+        self.last: dict[str, float] = {}
+        self.done = self.total = 0
+
+    def __call__(self, event: dict) -> None:
+        wall = time.perf_counter() - self.started
+        kind = event["kind"]
+        if kind == "plan":
+            self.total, self.done = event["total"], len(event["reused"])
+            say(
+                f"{self.title}: {event['total']} runs, {len(event['reused'])} already done, "
+                f"{len(event['pending'])} to run ({wall:.1f} s)"
+            )
+        elif kind == "update":
+            name = event["name"]
+            if wall - self.last.get(name, -math.inf) >= self.every:
+                self.last[name] = wall
+                say(
+                    f"{self.title}: {name} t = {event['t']:.4g} / {event['t_end']:.4g} s, "
+                    f"{event['steps']} steps ({wall:.1f} s)"
+                )
+        elif kind == "done":
+            self.done += 1
+            rec = event["record"]
+            say(
+                f"{self.title}: {event['name']} {rec.get('note') or rec['status']}; "
+                f"{self.done} of {self.total} done ({wall:.1f} s)"
+            )
+
+
+@contextlib.contextmanager
+def _progress(title: str, scheduler: str | None):
+    """The progress callback of a study: live bars on a terminal (the whole study and
+    one per running run), else lines."""
+    if not console.is_terminal:
+        yield _Lines(title)
+        return
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+    )
+
+    columns = (
+        TextColumn("{task.description}", markup=False),
+        BarColumn(),
+        TextColumn("{task.fields[what]}", markup=False),
+        TimeElapsedColumn(),
+    )
+    with Progress(*columns, console=console, transient=False) as bar:
+        where = "local cluster" if scheduler is None else scheduler
+        overall = bar.add_task(plain(f"{title} ({where})"), total=None, what="")
+        tasks: dict[str, Any] = {}
+        ends: dict[str, float] = {}
+
+        def show(event: dict) -> None:
+            kind = event["kind"]
+            if kind == "plan":
+                ends.update(event.get("t_end", {}))
+                done, total = len(event["reused"]), event["total"]
+                bar.update(overall, total=total, completed=done, what=f"{done}/{total} runs")
+                for name in event["pending"]:
+                    tasks[name] = bar.add_task(
+                        plain(f"  {name}"), total=ends.get(name), what="waiting", start=False
+                    )
+            elif kind == "update" and event["name"] in tasks:
+                task = tasks[event["name"]]
+                bar.start_task(task)
+                bar.update(
+                    task,
+                    completed=event["t"],
+                    what=f"t = {event['t']:.4g} / {event['t_end']:.4g} s, {event['steps']} steps",
+                )
+            elif kind == "done":
+                rec = event["record"]
+                task = tasks.get(event["name"])
+                if task is not None:
+                    bar.update(
+                        task,
+                        completed=rec.get("reached [s]", 0.0),
+                        what=plain(rec.get("note") or rec["status"]),
+                    )
+                    bar.stop_task(task)
+                bar.advance(overall)
+                total = bar.tasks[overall].total or 0
+                done = int(bar.tasks[overall].completed)
+                bar.update(overall, what=f"{done}/{total} runs")
+
+        yield show
+
+
+# --------------------------------------------------------------------------- tables
+
+
+def _fmt(value: Any, spec: str = ".4g") -> str:
+    if isinstance(value, float):
+        return "n/a" if math.isnan(value) else format(value, spec)
+    return str(value)
+
+
+def _print_runs(frame, title: str) -> None:
+    table = Table(title=plain(title))
+    cols = (
+        ("name", "run", ""),
+        ("label", "what", ""),
+        ("status", "status", ""),
+        ("reached [s]", "reached [s]", ".4g"),
+        ("t_end [s]", "end [s]", ".4g"),
+        ("wall [s]", "wall [s]", ".1f"),
+        ("steps", "steps", ""),
+        ("action", "this time", ""),
+    )
+    for _, head, _ in cols:
+        table.add_column(head, overflow="fold")
+    for _, row in frame.iterrows():
+        cells = []
+        for col, _, spec in cols:
+            value = row.get(col, "")
+            if col == "status":
+                text = row.get("note") or value
+                cells.append(Text(plain(text), style=_RUN_STYLE.get(value, "yellow")))
+            else:
+                cells.append(Text(plain(_fmt(value, spec or ".4g"))))
+        table.add_row(*cells)
+    console.print(table)
+
+
+def _print_findings(findings) -> None:
+    table = Table(title="the paper's findings, checked on the runs (docs/study.md)")
+    for head in ("finding (paper)", "check", "the numbers behind it"):
+        table.add_column(head, overflow="fold")
+    for f in findings:
+        table.add_row(
+            Text(plain(f.statement)),
+            Text(f.status, style=_STYLE.get(f.status, "")),
+            Text(plain(f.numbers)),
+        )
+    console.print(table)
+
+
+def _print_map(frame, title: str) -> None:
+    table = Table(title=plain(title))
+    cols = (
+        ("point", "point", ""),
+        ("speed [rpm]", "speed [rpm]", ".4g"),
+        ("radial_load [N]", "F_r [N]", ".4g"),
+        ("axial_load [N]", "F_a [N]", ".4g"),
+        ("status", "status", ""),
+        ("steady at [s]", "steady at [s]", ".4g"),
+        ("torque [N*m]", "torque [N*m]", ".4g"),
+        ("speed loss [1]", "speed loss [-]", ".3g"),
+        ("max flange force [N]", "max flange force [N]", ".4g"),
+        ("wall [s]", "wall [s]", ".1f"),
+    )
+    for _, head, _ in cols:
+        table.add_column(head, overflow="fold")
+    for _, row in frame.iterrows():
+        cells = []
+        for col, _, spec in cols:
+            value = row[col]
+            if col == "status":
+                text = value if value in ("steady", "not steady") else row["note"] or value
+                cells.append(Text(plain(text), style=_RUN_STYLE.get(value, "yellow")))
+            else:
+                cells.append(Text(plain(_fmt(value, spec or ".4g"))))
+        table.add_row(*cells)
+    console.print(table)
+
+
+def _print_timing(timing: dict, total: float) -> None:
+    eff = timing.get("parallel efficiency", math.nan)
+    runs = timing.get("runs run", 0)
+    if not runs:
+        say(f"nothing to run: every run was already in the folder ({total:.1f} s in all)")
+        return
+    say(
+        f"runs: {timing['study wall [s]']:.1f} s of wall time for {runs} run(s) whose own "
+        f"times sum to {timing['sum of run walls [s]']:.1f} s on {timing['workers'] or '?'} "
+        f"worker(s): parallel efficiency {_fmt(100 * eff, '.0f')} %; {total:.1f} s in all "
+        "with the figures and the report"
+    )

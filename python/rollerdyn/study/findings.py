@@ -1,0 +1,474 @@
+"""The paper's findings (sect. 5) as checks on the study's runs, each PASS, FAIL or
+NOT RUN with the numbers behind it (``docs/study.md`` gives every definition).
+
+A check uses what the runs hold: a run that did not finish is used where its part is
+meaningful (and the numbers say so), and a check whose runs give nothing to judge (a ring
+that never reached full speed, no flange contact, a run missing) is NOT RUN with the
+reason, never PASS.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from ..config import BearingConfig, TimeTable
+from ..names import GRADIENT, SEMI_ANALYTICAL, flange_indices
+from ..report_figures import pairing_shares
+from ..simulation import carried_axial_force
+from .plan import Plan
+from .runs import COMPLETED
+
+PASS, FAIL, NOT_RUN = "PASS", "FAIL", "NOT RUN"
+
+#: Share of the run, at its end, over which torque and flange friction are averaged.
+LAST_SHARE = 0.2
+#: Outputs at or above this share of the final inner ring speed count as full speed.
+FULL_SPEED = 0.99
+#: A roller is in the load zone where its inner race load exceeds this share of the largest.
+LOAD_ZONE = 0.01
+#: Largest difference of penetration between the methods that counts as equal [m]: ten
+#: times the integrator's absolute tolerance of B1 (``solver.atol`` = 1e-9 m).
+PENETRATION_TOL = 1e-8
+#: Largest distance between the methods' contact points that counts as equal [m].
+LOCATION_TOL = 1e-6
+
+
+@dataclass
+class Finding:
+    """One of the paper's findings checked: its statement (with the place in the paper),
+    PASS / FAIL / NOT RUN and the numbers behind it (as text and as values)."""
+
+    key: str
+    statement: str
+    status: str
+    numbers: str
+    values: dict = field(default_factory=dict)
+
+    def as_row(self) -> dict:
+        out = asdict(self)
+        out["values"] = repr(self.values)
+        return out
+
+
+# --------------------------------------------------------------------------- helpers
+
+
+def _history_end(value, ramp) -> float:
+    if isinstance(value, TimeTable):
+        return value.end
+    return 0.0 if ramp is None else ramp.end
+
+
+def load_end(cfg: BearingConfig) -> float:
+    """Time from which both loads are at their final values [s]."""
+    op = cfg.operating
+    return max(
+        _history_end(op.radial_load, op.load_ramp), _history_end(op.axial_load, op.load_ramp)
+    )
+
+
+def at_full_speed(ds, cfg: BearingConfig) -> np.ndarray:
+    """Outputs in the last :data:`LAST_SHARE` of the run's time at full inner ring speed
+    (at least :data:`FULL_SPEED` of the configuration's final speed); none if the
+    configuration never turns the ring."""
+    t = np.asarray(ds.time.values, dtype=float)
+    final = abs(cfg.operating.final_inner_ring_speed)
+    if final <= 0 or t.size == 0:
+        return np.zeros(t.shape, dtype=bool)
+    last = t >= t[0] + (1.0 - LAST_SHARE) * (t[-1] - t[0])
+    return last & (np.abs(ds.ring_speed.values) >= FULL_SPEED * final)
+
+
+def inner_flange_friction_moment(ds) -> np.ndarray:
+    """Moment of the inner ring's flange friction forces about the ring's axis, per output
+    [N*m], estimated as sum |F_friction| x radius of the contact point from the ring's
+    axis (the friction taken as circumferential)."""
+    idx = flange_indices("inner")
+    friction = np.nan_to_num(np.abs(ds.flange_friction_force.isel(flange=idx).values))
+    loc = ds.flange_location.isel(flange=idx).values  # (time, roller, 2, xyz)
+    centre = ds.ring_position.values[:, None, None, :]
+    r = np.hypot(loc[..., 1] - centre[..., 1], loc[..., 2] - centre[..., 2])
+    return (friction * np.nan_to_num(r)).sum(axis=(1, 2))
+
+
+def _mark(rec: dict | None) -> str:
+    """' (not finished, to t = ... s)' for a run that did not finish."""
+    if rec is None or rec["status"] == COMPLETED:
+        return ""
+    return f" ({rec['status']}, to t = {rec['reached [s]']:.4g} s)"
+
+
+def _pct(x: float) -> str:
+    return "n/a" if not math.isfinite(x) else f"{100 * x:.1f} %"
+
+
+def _active_shares(ds, ring: str) -> dict[str, float] | None:
+    """Share of each pairing among the outputs with contact at ``ring`` (None: none)."""
+    shares = pairing_shares(ds, ring)
+    none = shares.pop("none")
+    if none >= 1.0 - 1e-12:
+        return None
+    return {k: v / (1.0 - none) for k, v in shares.items()}
+
+
+# --------------------------------------------------------------------------- the checks
+
+
+class _Context:
+    """The plan, the runs' datasets and records, for the checks."""
+
+    def __init__(self, plan: Plan, sets: dict, records: dict):
+        self.plan, self.sets, self.records, self.cfg = plan, sets, records, plan.config
+
+    def ds(self, name: str | None):
+        return None if name is None else self.sets.get(name)
+
+    def rec(self, name: str | None) -> dict | None:
+        return None if name is None else self.records.get(name)
+
+    def full_speed_runs(self) -> tuple[list, list[str]]:
+        """(fa, name, mask) of the load runs with outputs at full speed, and why others
+        are left out."""
+        usable, left_out = [], []
+        for fa, name in self.plan.loads.items():
+            ds = self.ds(name)
+            if ds is None:
+                left_out.append(f"{fa:g} N: not run")
+                continue
+            mask = at_full_speed(ds, self.plan.config)
+            if not mask.any():
+                reached = float(ds.attrs["final_time_s"])
+                left_out.append(f"{fa:g} N: not at full speed (reached t = {reached:.4g} s)")
+                continue
+            usable.append((fa, name, mask))
+        return usable, left_out
+
+
+def torque_grows(c: _Context) -> Finding:
+    statement = "The bearing frictional torque grows with the axial load (sect. 5.2, fig. 10)."
+    usable, left_out = c.full_speed_runs()
+    torques = {fa: float(np.mean(c.ds(n).frictional_torque.values[m])) for fa, n, m in usable}
+    parts = [f"{fa:g} N: {torques[fa]:.4g} N·m{_mark(c.rec(n))}" for fa, n, _ in usable]
+    numbers = "; ".join(parts + left_out)
+    values = {"torque [N*m]": torques}
+    if len(usable) < 2:
+        why = "fewer than two loads at full speed"
+        return Finding("torque_grows", statement, NOT_RUN, f"{why}; {numbers}", values)
+    series = [torques[fa] for fa, _, _ in usable]
+    ok = all(b > a for a, b in zip(series, series[1:], strict=False))
+    head = f"mean torque over the last {LAST_SHARE:.0%} at full speed: "
+    return Finding("torque_grows", statement, PASS if ok else FAIL, head + numbers, values)
+
+
+def flange_friction_explains(c: _Context) -> Finding:
+    statement = "The torque grows because the friction at the flanges grows (sect. 5.2, fig. 11)."
+    usable, left_out = c.full_speed_runs()
+    torque, friction, moment = {}, {}, {}
+    for fa, n, m in usable:
+        ds = c.ds(n)
+        torque[fa] = float(np.mean(ds.frictional_torque.values[m]))
+        total = np.nan_to_num(ds.flange_friction_force.values).sum(axis=(1, 2))
+        friction[fa] = float(np.mean(total[m]))
+        moment[fa] = float(np.mean(inner_flange_friction_moment(ds)[m]))
+    values = {"flange friction [N]": friction, "inner flange moment [N*m]": moment}
+    parts = [
+        f"{fa:g} N: flange friction {friction[fa]:.4g} N, inner-flange moment "
+        f"{moment[fa]:.4g} N·m{_mark(c.rec(n))}"
+        for fa, n, _ in usable
+    ]
+    numbers = "; ".join(parts + left_out)
+    if len(usable) < 2:
+        return Finding(
+            "flange_friction_explains",
+            statement,
+            NOT_RUN,
+            f"fewer than two loads at full speed; {numbers}",
+            values,
+        )
+    lo, hi = usable[0][0], usable[-1][0]
+    growth = torque[hi] - torque[lo]
+    if not growth > 0:
+        return Finding(
+            "flange_friction_explains",
+            statement,
+            NOT_RUN,
+            f"the torque does not grow ({lo:g} → {hi:g} N: {growth:+.4g} N·m), nothing to "
+            f"explain; {numbers}",
+            values,
+        )
+    share = (moment[hi] - moment[lo]) / growth
+    series = [friction[fa] for fa, _, _ in usable]
+    rising = all(b > a for a, b in zip(series, series[1:], strict=False))
+    values.update({"torque growth [N*m]": growth, "explained share": share})
+    ok = rising and share >= 0.5
+    numbers = (
+        f"{numbers}; {lo:g} → {hi:g} N: the inner-flange friction moment grows by "
+        f"{moment[hi] - moment[lo]:.4g} N·m, {_pct(share)} of the torque's growth "
+        f"({growth:.4g} N·m); PASS needs flange friction rising with the load and at least 50 %"
+    )
+    return Finding("flange_friction_explains", statement, PASS if ok else FAIL, numbers, values)
+
+
+def axial_force_in_load_zone(c: _Context) -> Finding:
+    statement = (
+        "The major part of the axial force is carried by the rollers in the load zone "
+        "(sect. 5.2, fig. 12)."
+    )
+    t_loaded = load_end(c.cfg)
+    parts, values, verdicts = [], {}, []
+    for fa, name in c.plan.loads.items():
+        if fa <= 0:
+            continue
+        ds = c.ds(name)
+        if ds is None:
+            parts.append(f"{fa:g} N: not run")
+            continue
+        t = ds.time.values
+        keep = t >= t_loaded
+        full = at_full_speed(ds, c.cfg)
+        speed = np.abs(ds.ring_speed.values)
+        final = abs(c.cfg.operating.final_inner_ring_speed)
+        if full.any():  # as fig. 12: the outputs at full speed
+            keep &= speed >= FULL_SPEED * final
+        if not keep.any():
+            reached = float(ds.attrs["final_time_s"])
+            parts.append(f"{fa:g} N: loads not applied yet (reached t = {reached:.4g} s)")
+            continue
+        d = ds.isel(time=np.nonzero(keep)[0])
+        carried = np.abs(np.nan_to_num(carried_axial_force(d).values))
+        load = np.nan_to_num(d.inner_normal_force.values)
+        if carried.sum() <= 0 or load.max() <= 0:
+            parts.append(f"{fa:g} N: no roller carries an axial force here")
+            continue
+        zone = load > LOAD_ZONE * load.max()
+        share = float(carried[zone].sum() / carried.sum())
+        room = float(zone.mean())
+        values[fa] = {"share": share, "zone fraction": room}
+        verdicts.append(share > 0.5)
+        parts.append(
+            f"{fa:g} N: {_pct(share)} of the axial force in the load zone (which holds "
+            f"{_pct(room)} of the roller positions){_mark(c.rec(name))}"
+        )
+    numbers = "; ".join(parts) or "no run with an axial load"
+    if not verdicts:
+        return Finding("axial_in_load_zone", statement, NOT_RUN, numbers, values)
+    status = PASS if all(verdicts) else FAIL
+    return Finding("axial_in_load_zone", statement, status, numbers + "; PASS above 50 %", values)
+
+
+def to_co_dominates(c: _Context) -> Finding:
+    statement = "TO-CO is the predominant pairing at the inner and the outer ring (sect. 5.1)."
+    name = c.plan.reference
+    ds = c.ds(name)
+    if ds is None:
+        return Finding("to_co_dominates", statement, NOT_RUN, f"run {name} not run")
+    parts, values, ok = [], {}, True
+    for ring in ("inner", "outer"):
+        shares = _active_shares(ds, ring)
+        if shares is None:
+            reached = float(ds.attrs["final_time_s"])
+            return Finding(
+                "to_co_dominates",
+                statement,
+                NOT_RUN,
+                f"no flange contact at the {ring} ring up to t = {reached:.4g} s",
+            )
+        values[ring] = shares
+        top = max(shares, key=shares.get)
+        runner = sorted((v, k) for k, v in shares.items() if k != "TO-CO")[-1]
+        ok &= top == "TO-CO"
+        parts.append(
+            f"{ring}: TO-CO {_pct(shares['TO-CO'])} of the contacts (next {runner[1]} "
+            f"{_pct(runner[0])})"
+        )
+    return Finding(
+        "to_co_dominates",
+        statement,
+        PASS if ok else FAIL,
+        "; ".join(parts) + f"; run {name}{_mark(c.rec(name))}",
+        values,
+    )
+
+
+def other_pairings_with_tilt(c: _Context) -> Finding:
+    statement = (
+        "Other pairings than TO-CO occur more often when the inner ring may tilt "
+        "(sect. 5.1, figs. 8, 9)."
+    )
+    free, locked = c.ds(c.plan.free_tilt), c.ds(c.plan.reference)
+    if c.plan.free_tilt is None or free is None or locked is None:
+        return Finding("other_pairings_with_tilt", statement, NOT_RUN, "the free-tilt run not run")
+    t_free = float(free.attrs["final_time_s"])
+    window = locked.sel(time=locked.time <= t_free + 1e-12)
+    parts, values, ok = [], {}, True
+    for ring in ("inner", "outer"):
+        a, b = _active_shares(window, ring), _active_shares(free, ring)
+        if a is None or b is None:
+            which = "locked" if a is None else "free-tilt"
+            return Finding(
+                "other_pairings_with_tilt",
+                statement,
+                NOT_RUN,
+                f"no flange contact at the {ring} ring in the {which} run up to "
+                f"t = {t_free:.4g} s{_mark(c.rec(c.plan.free_tilt))}",
+            )
+        other_locked, other_free = 1.0 - a["TO-CO"], 1.0 - b["TO-CO"]
+        values[ring] = {"locked": other_locked, "free": other_free}
+        ok &= other_free > other_locked
+        parts.append(
+            f"{ring}: other pairings {_pct(other_free)} of the contacts with the tilt free, "
+            f"{_pct(other_locked)} locked"
+        )
+    span = f"both over 0 … {t_free:.4g} s{_mark(c.rec(c.plan.free_tilt))}"
+    return Finding(
+        "other_pairings_with_tilt",
+        statement,
+        PASS if ok else FAIL,
+        "; ".join(parts) + "; " + span,
+        values,
+    )
+
+
+def _saving(c: _Context, semi: str | None, grad: str | None) -> tuple[float, str]:
+    """(1 - wall(semi) / wall(gradient), text), NaN with the reason unless both completed."""
+    rs, rg = c.rec(semi), c.rec(grad)
+    if rs is None or rg is None:
+        return math.nan, "not run"
+    for rec in (rs, rg):
+        if rec["status"] != COMPLETED:
+            return math.nan, f"{rec['name']}: {rec['note'] or rec['status']}"
+    ws, wg = rs["wall [s]"], rg["wall [s]"]
+    saving = 1.0 - ws / wg
+    return saving, f"{SEMI_ANALYTICAL} {ws:.3g} s, {GRADIENT} {wg:.3g} s: {_pct(saving)} less"
+
+
+def semi_analytical_faster(c: _Context) -> Finding:
+    statement = (
+        "The semi-analytical method makes the whole MBS run faster than the gradient method "
+        "(sect. 5.3: 35 % less runtime)."
+    )
+    if c.plan.reference_gradient is None:
+        return Finding("semi_faster", statement, NOT_RUN, "no gradient run in this study")
+    saving, text = _saving(c, c.plan.reference, c.plan.reference_gradient)
+    values = {"saving": saving}
+    rs, rg = c.rec(c.plan.reference), c.rec(c.plan.reference_gradient)
+    if not math.isfinite(saving):
+        return Finding("semi_faster", statement, NOT_RUN, f"runtimes not comparable: {text}")
+    detection = ""
+    if rs and rg and math.isfinite(rs.get("detection [s]", math.nan)):
+        detection = (
+            f"; contact detection {rs['detection [s]']:.3g} s against {rg['detection [s]']:.3g} s"
+        )
+    return Finding(
+        "semi_faster",
+        statement,
+        PASS if saving > 0 else FAIL,
+        f"whole run to t = {c.plan.t_end:.4g} s: {text} (paper: 35 %){detection}; one core "
+        "per run, other runs beside it: wall times vary by about ±15 % on this machine",
+        values,
+    )
+
+
+def advantage_shrinks(c: _Context) -> Finding:
+    statement = (
+        "The semi-analytical method's runtime advantage shrinks at small Δt_max "
+        "(sect. 5.3, fig. 14)."
+    )
+    savings, parts = {}, []
+    for dt, runs in c.plan.runtime.items():
+        saving, text = _saving(c, runs.get(SEMI_ANALYTICAL), runs.get(GRADIENT))
+        parts.append(f"Δt_max = {dt:.3g} s: {text}")
+        if math.isfinite(saving):
+            savings[dt] = saving
+    numbers = "; ".join(parts) or "no fig. 14 runs in this study"
+    values = {"saving": savings}
+    if len(savings) < 2:
+        return Finding(
+            "advantage_shrinks",
+            statement,
+            NOT_RUN,
+            f"fewer than two Δt_max with both runs completed; {numbers}",
+            values,
+        )
+    small, large = min(savings), max(savings)
+    ok = savings[small] < savings[large]
+    return Finding(
+        "advantage_shrinks",
+        statement,
+        PASS if ok else FAIL,
+        f"{numbers}; PASS needs the saving at the smallest Δt_max below the one at the largest",
+        values,
+    )
+
+
+def same_contacts(c: _Context) -> Finding:
+    statement = (
+        "Both methods give the same contact points and penetrations, within numerical "
+        "tolerance (sect. 5.1)."
+    )
+    a, b = c.ds(c.plan.reference), c.ds(c.plan.reference_gradient)
+    if c.plan.reference_gradient is None or a is None or b is None:
+        return Finding("same_contacts", statement, NOT_RUN, "no gradient run to compare with")
+    n = min(a.sizes["time"], b.sizes["time"])
+    ta, tb = a.time.values[:n], b.time.values[:n]
+    same = np.isclose(ta, tb, rtol=0.0, atol=1e-12)
+    if not same.all():  # compared up to the first output time that differs
+        n = int(np.argmin(same))
+    if n == 0:
+        return Finding("same_contacts", statement, NOT_RUN, "the runs share no output times")
+    da, db = a.flange_penetration.values[:n], b.flange_penetration.values[:n]
+    both = np.isfinite(da) & np.isfinite(db) & (da > 0) & (db > 0)
+    span = (
+        f"over 0 … {ta[n - 1]:.4g} s{_mark(c.rec(c.plan.reference))}"
+        f"{_mark(c.rec(c.plan.reference_gradient))}"
+    )
+    if not both.any():
+        return Finding(
+            "same_contacts", statement, NOT_RUN, f"no flange contact in both runs {span}"
+        )
+    d_pen = float(np.max(np.abs(da - db)[both]))
+    pa, pb = a.flange_location.values[:n], b.flange_location.values[:n]
+    d_loc = float(np.max(np.linalg.norm(pa - pb, axis=-1)[both]))
+    same_pair = float(np.mean((a.flange_pairing.values[:n] == b.flange_pairing.values[:n])[both]))
+    values = {
+        "max |d penetration| [m]": d_pen,
+        "max |d location| [m]": d_loc,
+        "same pairing": same_pair,
+        "contacts compared": int(both.sum()),
+        "max penetration [m]": float(np.max(da[both])),
+    }
+    ok = d_pen <= PENETRATION_TOL and d_loc <= LOCATION_TOL
+    return Finding(
+        "same_contacts",
+        statement,
+        PASS if ok else FAIL,
+        f"{int(both.sum())} contacts in both runs {span}: max |Δδ| = {d_pen:.3g} m (largest δ "
+        f"{values['max penetration [m]']:.3g} m), max |ΔP_m| = {d_loc:.3g} m, the same "
+        f"pairing in {_pct(same_pair)}; PASS needs |Δδ| ≤ {PENETRATION_TOL:g} m and "
+        f"|ΔP_m| ≤ {LOCATION_TOL:g} m",
+        values,
+    )
+
+
+#: The checks in the order of the table.
+CHECKS: tuple[Callable[[_Context], Finding], ...] = (
+    torque_grows,
+    flange_friction_explains,
+    axial_force_in_load_zone,
+    to_co_dominates,
+    other_pairings_with_tilt,
+    semi_analytical_faster,
+    advantage_shrinks,
+    same_contacts,
+)
+
+
+def check_findings(plan: Plan, sets: dict, records: dict) -> list[Finding]:
+    """Every check of :data:`CHECKS` on the runs: ``sets`` {name: Dataset} of the runs
+    with a file, ``records`` {name: record} (:func:`rollerdyn.study.runs.record`)."""
+    c = _Context(plan, sets, records)
+    return [check(c) for check in CHECKS]

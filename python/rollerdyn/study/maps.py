@@ -1,0 +1,341 @@
+"""``rollerdyn study map``: operating maps beyond the paper. A grid of inner ring speeds,
+radial and axial loads, each point run on Dask until its outputs are steady
+(:mod:`.steady`), and maps of friction torque, roller-set speed loss (skidding) and
+largest flange force.
+
+The folder (default ``results/map``) holds ``study.json``, ``points/point_XXXX.nc`` (one
+result per grid point, written at every checkpoint), ``map.csv`` and ``map.parquet`` (one
+row per point) and ``figures/`` (the maps, PNG and SVG). Invoked again it runs only what
+is missing, as ``rollerdyn study paper`` does.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from ..provenance import config_hash
+from ..units import QuantityError, parse_quantity
+from .runs import FINISHED, RunSpec, StudyError, inspect_run, lock_folder, open_run, record
+from .steady import SteadyRule, epicyclic_factor, window_length, window_outputs
+
+RPM = 2.0 * math.pi / 60.0
+
+#: How a grid point starts: "short-ramps" (loads over 0 ... --ramp, speed over --ramp ...
+#: 2 --ramp, cosine), "equilibrium" (full load and speed from t = 0, from the
+#: quasi-static equilibrium, solver.start) or "config" (the configuration's own ramps).
+STARTS = ("short-ramps", "equilibrium", "config")
+
+#: Map outputs: column, title, unit.
+OUTPUTS = (
+    ("torque [N*m]", "friction torque", "N·m"),
+    ("speed loss [1]", "roller-set speed loss 1 - cage / epicyclic speed", "-"),
+    ("max flange force [N]", "largest flange normal force", "N"),
+)
+
+
+def parse_range(
+    text: str | Sequence[float] | float,
+    option: str,
+    family: str,
+    unit: str,
+    positive: bool = False,
+) -> list[float]:
+    """The values of a grid option, SI: ``"a:b:n"`` (n evenly spaced values from a to b,
+    a < b, n >= 2; or n = 1 with a = b), a comma list ``"v1,v2"`` or one value. Each value
+    is a number in ``unit`` (rpm, N) or has its own unit (``"5 kN"``). Raises
+    :class:`StudyError` naming ``option`` for an empty, reversed or malformed range."""
+    if isinstance(text, int | float) and not isinstance(text, bool):
+        texts: list[Any] = [text]
+    elif isinstance(text, str):
+        texts = []
+    else:
+        texts = list(text)
+
+    def value(v: Any) -> float:
+        if isinstance(v, int | float) and not isinstance(v, bool):
+            v = f"{v!r} {unit}"
+        v = str(v).strip()
+        try:
+            float(v)
+            v = f"{v} {unit}"
+        except ValueError:
+            pass
+        try:
+            return parse_quantity(v, family)
+        except QuantityError as err:
+            raise StudyError(f"{option} {text!r}: {v!r}: {err}") from None
+
+    if isinstance(text, str):
+        body = text.strip()
+        if not body:
+            raise StudyError(f"{option} {text!r}: empty; give a:b:n, a list v1,v2,... or a value")
+        if ":" in body:
+            parts = body.split(":")
+            if len(parts) != 3 or not all(p.strip() for p in parts):
+                raise StudyError(f"{option} {text!r}: expected a:b:n (from a to b in n points)")
+            try:
+                n = int(parts[2])
+            except ValueError:
+                raise StudyError(
+                    f"{option} {text!r}: n = {parts[2].strip()!r} must be a whole number of points"
+                ) from None
+            a, b = value(parts[0]), value(parts[1])
+            if n < 1:
+                raise StudyError(f"{option} {text!r}: empty range ({n} points); n must be >= 1")
+            if a > b:
+                raise StudyError(
+                    f"{option} {text!r}: reversed range (a = {parts[0].strip()} > b = "
+                    f"{parts[1].strip()}); give it from low to high"
+                )
+            if n == 1 and a != b:
+                raise StudyError(f"{option} {text!r}: one point needs a = b, or n >= 2")
+            if n > 1 and a == b:
+                raise StudyError(f"{option} {text!r}: empty range (a = b) with {n} points")
+            values = [a + (b - a) * i / (n - 1) for i in range(n)] if n > 1 else [a]
+        else:
+            values = [value(v) for v in body.split(",") if v.strip()]
+            if len(values) != len(body.split(",")):
+                raise StudyError(f"{option} {text!r}: an empty value (two commas)")
+    else:
+        values = [value(v) for v in texts]
+        if not values:
+            raise StudyError(f"{option}: no values given")
+    if len(set(values)) != len(values):
+        raise StudyError(f"{option} {text!r}: a value is given twice")
+    for v in values:
+        if not math.isfinite(v) or v < 0 or (positive and v == 0):
+            rule = "above 0" if positive else ">= 0"
+            raise StudyError(f"{option} {text!r}: every value must be {rule}")
+    return sorted(values)
+
+
+@dataclass
+class MapStudy:
+    """What :func:`operating_map` made: one row per grid point (a ``pandas.DataFrame``,
+    see :func:`point_row`), the figures written and the study's folder."""
+
+    outdir: Path
+    points: Any
+    figures: list[Path] = field(default_factory=list)
+    timing: dict = field(default_factory=dict)
+
+
+def point_config(cfg, speed: float, radial: float, axial: float, start: str, ramp: float):
+    """(configuration of a grid point, end of its ramps [s]): ``cfg`` at ``speed``
+    [rad/s] and the loads [N], started as ``start`` says (:data:`STARTS`)."""
+    from ..config import parse_config
+    from ..sweep import _changed
+
+    data = cfg.model_dump()
+    op = data["operating"]
+    op.update(inner_ring_speed=speed, radial_load=radial, axial_load=axial)
+    op.pop("end_time", None)
+    changes: dict[str, Any] = {}
+    if start == "short-ramps":
+        op["load_ramp"] = {"start": 0.0, "end": ramp, "shape": "cosine"}
+        op["speed_ramp"] = {"start": ramp, "end": 2 * ramp, "shape": "cosine"}
+    elif start == "equilibrium":
+        op.pop("load_ramp", None)
+        op.pop("speed_ramp", None)
+        changes["solver.start"] = "equilibrium"
+    variant = parse_config(_changed(data, changes), si_numbers=True)
+    op = variant.operating
+    settle = max(op.speed_history_end, 0.0 if op.load_ramp is None else op.load_ramp.end)
+    return variant, settle
+
+
+def operating_map(
+    config: Any,
+    outdir: str | os.PathLike = "results/map",
+    *,
+    speed: Any,
+    radial_load: Any = None,
+    axial_load: Any = None,
+    start: str = "short-ramps",
+    ramp: float = 0.02,
+    window: float = 0.01,
+    tol: float = 0.02,
+    max_time: float = 0.5,
+    max_wall: float = 300.0,
+    scheduler: Any = None,
+    workers: int | None = None,
+    overwrite: bool = False,
+    progress: Callable[[dict], Any] | None = None,
+) -> MapStudy:
+    """Runs the grid ``speed`` x ``radial_load`` x ``axial_load`` of ``config`` until each
+    point is steady (see :mod:`.steady`) and draws the maps.
+
+    ``speed`` [rpm], ``radial_load`` and ``axial_load`` [N]: ``"a:b:n"``, ``"v1,v2"``, a
+    number or a list (see :func:`parse_range`); loads default to the configuration's.
+    ``start``: one of :data:`STARTS`; ``ramp`` [s]: the short ramps' length. ``window``
+    [s], ``tol`` [1]: the steadiness criterion; ``max_time`` [s]: simulated time at which
+    a point that is not steady ends; ``max_wall`` [s]: wall-time cap per point and
+    invocation. Other arguments as in :func:`rollerdyn.study.paper`."""
+    import pandas as pd
+
+    from ..config import ConfigError
+    from ..simulation import as_config
+    from .folder import prepare_folder
+    from .map_figures import write_maps
+    from .paper import _source_name, default_workers
+    from .schedule import Clock, check_scheduler, run_all, timing
+
+    clock = Clock()
+    cfg = as_config(config)
+    if start not in STARTS:
+        raise StudyError(f"--start = {start!r}: must be {', '.join(STARTS)}")
+    for name, value, ok in (
+        ("--ramp", ramp, start != "short-ramps" or value_ok(ramp)),
+        ("--window", window, value_ok(window)),
+        ("--tol", tol, value_ok(tol) and tol < 1),
+        ("--max-time", max_time, value_ok(max_time)),
+        ("--max-wall", max_wall, value_ok(max_wall)),
+    ):
+        if not ok:
+            below = " below 1" if name == "--tol" else ""
+            raise StudyError(f"{name} = {value!r}: must be a positive number{below}")
+    speeds = parse_range(speed, "--speed", "angular velocity", "rpm", positive=True)
+    own = cfg.operating
+    radial = parse_range(
+        radial_load if radial_load is not None else [_final(own.radial_load)],
+        "--radial-load",
+        "force",
+        "N",
+    )
+    axial = parse_range(
+        axial_load if axial_load is not None else [_final(own.axial_load)],
+        "--axial-load",
+        "force",
+        "N",
+    )
+    workers = default_workers() if workers is None else workers
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise StudyError(f"--workers = {workers!r}: must be a whole number >= 1")
+    g = cfg.geometry
+    factor = epicyclic_factor(g.roller_diameter, g.pitch_diameter)
+    specs, rules, grid = [], {}, []
+    problems = []
+    for i, (w, fr, fa) in enumerate(itertools.product(speeds, radial, axial)):
+        label = f"{w / RPM:g} rpm, F_r = {fr:g} N, F_a = {fa:g} N"
+        try:
+            variant, settle = point_config(cfg, w, fr, fa, start, ramp)
+        except ConfigError as err:
+            problems.append(f"point {i} ({label}): {str(err).splitlines()[-1].strip()}")
+            continue
+        win = window_length(window, w, g.roller_count, factor)
+        if settle + 2 * win > max_time:
+            raise StudyError(
+                f"--max-time = {max_time:g} s: too short for point {i} ({label}): the ramps "
+                f"end at {settle:g} s and two windows of {win:.4g} s must follow"
+            )
+        sol = variant.solver.model_copy(update={"checkpoint_interval": win})
+        variant = variant.model_copy(update={"solver": sol})
+        name = f"point_{i:04d}"
+        meta = {"speed [rpm]": w / RPM, "radial_load [N]": fr, "axial_load [N]": fa}
+        spec = RunSpec(
+            name,
+            label,
+            variant.model_dump(),
+            variant.solver.detector,
+            max_time,
+            config_hash(variant),
+            meta=meta,
+        )
+        specs.append(spec)
+        rules[name] = SteadyRule(settle, win, tol, factor)
+        grid.append((spec, settle, win))
+    if problems:
+        raise StudyError(
+            f"invalid map: {len(problems)} grid point(s) fail validation (no run was started): "
+            + "; ".join(problems)
+        )
+    check_scheduler(scheduler)
+    settings = {"start": start, "ramp": ramp, "window": window, "tol": tol, "max_time": max_time}
+    out = prepare_folder(
+        Path(outdir),
+        "map",
+        cfg,
+        overwrite=overwrite,
+        source=_source_name(config),
+        settings=settings,
+    )
+    points_dir = out / "points"
+    points_dir.mkdir(exist_ok=True)
+    lock = lock_folder(out)
+    try:
+        records = run_all(
+            specs,
+            points_dir,
+            max_wall=float(max_wall),
+            scheduler=scheduler,
+            workers=workers,
+            progress=progress,
+            stop_rules=rules,
+        )
+        rows = []
+        for spec, _settle, _win in grid:
+            ds = open_run(points_dir / spec.file)
+            rows.append(point_row(spec, ds, records[spec.name], rules[spec.name]))
+        frame = pd.DataFrame(rows)
+        frame.to_csv(out / "map.csv", index=False)
+        frame.to_parquet(out / "map.parquet", engine="pyarrow", index=False)
+        figures = write_maps(frame, out / "figures", cfg.name)
+        study_timing = timing(records, clock(), workers if scheduler is None else 0)
+    finally:
+        lock.unlink(missing_ok=True)
+    return MapStudy(out, frame, figures, study_timing)
+
+
+def value_ok(v: Any) -> bool:
+    return isinstance(v, int | float) and not isinstance(v, bool) and math.isfinite(v) and v > 0
+
+
+def _final(value) -> float:
+    from ..config import TimeTable
+
+    return value.final if isinstance(value, TimeTable) else float(value)
+
+
+#: Point statuses of the map table.
+STEADY, NOT_STEADY = "steady", "not steady"
+
+
+def point_row(spec: RunSpec, ds, rec: dict, rule: SteadyRule) -> dict:
+    """One row of the map table: the point's values, its status (steady; not steady at
+    its maximum time; not finished, with the time reached; failed), the time it became
+    steady, its outputs over the last window and its wall time."""
+    row = {
+        "point": spec.name,
+        **spec.meta,
+        "status": rec["status"],
+        "note": rec.get("note", ""),
+        "steady at [s]": math.nan,
+        "window [s]": rule.window,
+        "reached [s]": rec.get("reached [s]", math.nan),
+        "torque [N*m]": math.nan,
+        "speed loss [1]": math.nan,
+        "max flange force [N]": math.nan,
+        "wall [s]": rec.get("wall [s]", math.nan),
+        "file": rec.get("file", ""),
+    }
+    if ds is None:
+        return row
+    _, t_k, _ = rule.verdict(ds)
+    state = inspect_run(spec, dict(ds.attrs))
+    if state == FINISHED and ds.attrs.get("study_done"):
+        row["status"], row["steady at [s]"] = STEADY, t_k
+    elif state == FINISHED:
+        row["status"] = NOT_STEADY
+        row["note"] = f"not steady at the maximum time, t = {spec.t_end:g} s"
+    if t_k - rule.window >= rule.settle - 1e-12:  # a whole window after the ramps
+        row.update(window_outputs(ds, t_k - rule.window, t_k, rule.factor))
+    return row
+
+
+__all__ = ["MapStudy", "operating_map", "parse_range", "point_row", "record"]

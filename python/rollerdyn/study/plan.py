@@ -1,0 +1,191 @@
+"""The runs behind the paper's sect. 5 (figs. 8-14) for a configuration: which runs, what
+each is for (its role), and their names and files.
+
+- figs. 10, 11, 12, 13: one run per axial load (default 0, 500, 1000 and 2000 N; the
+  configuration's own load is always one of them), inner ring tilt locked, the
+  configuration's detector (semi-analytical for B1) and Δt_max;
+- figs. 8, 9: the configuration's own run (tilt locked) and the same with
+  ``inner_ring.tilt = "free"`` (never a prescribed misalignment in its place);
+- sect. 5.1 and 5.3: the configuration's own run with the gradient detector (the same
+  contact points and penetrations? the MBS runtime of both methods);
+- fig. 14: both detectors at each Δt_max (default 0.2, 0.5 and 1 times the
+  configuration's ``solver.dt_max``).
+
+A run needed by several figures is run once: runs are identified by their configuration
+hash and detector (:func:`rollerdyn.provenance.config_hash`), and the first name given to
+a run is its name.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+from ..config import BearingConfig, parse_config
+from ..names import GRADIENT, SEMI_ANALYTICAL
+from ..provenance import config_hash
+from .runs import RunSpec, StudyError
+
+#: Axial loads of figs. 10-13 [N] (paper sect. 5.2).
+DEFAULT_LOADS: tuple[float, ...] = (0.0, 500.0, 1000.0, 2000.0)
+
+#: Δt_max of fig. 14 as multiples of the configuration's solver.dt_max.
+DEFAULT_DT_MAX_FACTORS: tuple[float, ...] = (0.2, 0.5, 1.0)
+
+#: Wall-time cap of one run [s] (per invocation of the study).
+DEFAULT_MAX_WALL = 300.0
+
+
+@dataclass
+class Plan:
+    """The runs of a paper study and what each is for (values are run names)."""
+
+    config: BearingConfig
+    t_end: float
+    specs: list[RunSpec] = field(default_factory=list)
+    loads: dict[float, str] = field(default_factory=dict)  # F_a [N] -> run
+    reference: str = ""  # the configuration as it is (tilt locked, its detector)
+    reference_gradient: str | None = None  # the same with the gradient detector
+    free_tilt: str | None = None  # the same with the inner ring free to tilt
+    runtime: dict[float, dict[str, str]] = field(default_factory=dict)  # dt_max -> detector
+
+    def spec(self, name: str) -> RunSpec:
+        return next(s for s in self.specs if s.name == name)
+
+
+def _variant(cfg: BearingConfig, changes: dict) -> BearingConfig:
+    """``cfg`` with dotted-path changes (SI numbers), validated again."""
+    from ..sweep import _changed
+
+    return parse_config(_changed(cfg.model_dump(), changes), si_numbers=True)
+
+
+def _fmt(value: float) -> str:
+    return f"{value:g}"
+
+
+def build_plan(
+    config: BearingConfig,
+    t_end: float | None = None,
+    loads: Sequence[float] = DEFAULT_LOADS,
+    dt_max: Sequence[float] | None = None,
+    free_tilt: bool = True,
+    gradient: bool = True,
+) -> Plan:
+    """The runs of the paper study of ``config`` to ``t_end`` [s] (default: the
+    configuration's end time); ``loads`` [N], ``dt_max`` [s] (default: 0.2, 0.5 and 1
+    times ``solver.dt_max``; empty: no fig. 14 runs). ``gradient=False``: no run with the
+    gradient detector (so neither fig. 14 nor the comparison of the methods). Raises
+    :class:`StudyError` for values that make no run."""
+    cfg = config
+    end = float(cfg.end_time if t_end is None else t_end)
+    if not (end > 0 and math.isfinite(end)):
+        raise StudyError(f"--t-end = {t_end!r}: must be a positive time")
+    loads = [float(v) for v in loads]
+    if not loads or any(not (math.isfinite(v) and v >= 0.0) for v in loads):
+        raise StudyError(f"--loads = {loads}: must be one or more axial loads >= 0 N")
+    if dt_max is None:
+        dt_max = [cfg.solver.dt_max * f for f in DEFAULT_DT_MAX_FACTORS]
+    dt_max = sorted({float(v) for v in dt_max}) if gradient else []
+    if any(not (math.isfinite(v) and v > 0.0) for v in dt_max):
+        raise StudyError(f"--dt-max = {dt_max}: must be positive times in s")
+    detector = cfg.solver.detector
+    plan = Plan(config=cfg, t_end=end)
+    seen: dict[tuple[str, str], str] = {}
+
+    def add(name: str, variant: BearingConfig, det: str, label: str, meta: dict) -> str:
+        key = (config_hash(variant), det)
+        if key in seen:
+            return seen[key]
+        seen[key] = name
+        plan.specs.append(
+            RunSpec(name, label, variant.model_dump(), det, end, key[0], meta=dict(meta))
+        )
+        return name
+
+    def meta(fa: float | None, tilt: str, dt: float) -> dict:
+        return {
+            "axial_load [N]": math.nan if fa is None else fa,
+            "tilt": tilt,
+            "dt_max [s]": dt,
+        }
+
+    own = cfg.operating.axial_load
+    own_fa = float(own) if isinstance(own, int | float) else None
+    dt0 = cfg.solver.dt_max
+    locked = cfg.inner_ring.tilt == "locked"
+    tilt_text = "tilt locked" if locked else "tilt free"
+    if cfg.inner_ring.misalignment:
+        tilt_text = f"misaligned {math.degrees(cfg.inner_ring.misalignment):g} deg"
+    # The configuration's own run first: most figures and checks need it.
+    ref_name = f"axial-{_fmt(own_fa)}N" if own_fa is not None else "reference"
+    plan.reference = add(
+        ref_name,
+        cfg,
+        detector,
+        f"F_a = {_fmt(own_fa)} N, {tilt_text}" if own_fa is not None else "reference",
+        meta(own_fa, cfg.inner_ring.tilt, dt0),
+    )
+    if gradient and detector != GRADIENT:
+        plan.reference_gradient = add(
+            f"{ref_name}-gradient",
+            cfg,
+            GRADIENT,
+            f"{_label_fa(own_fa)}, {tilt_text}, gradient detector",
+            meta(own_fa, cfg.inner_ring.tilt, dt0),
+        )
+    if free_tilt:
+        if not locked:
+            plan.free_tilt = plan.reference
+        else:
+            tilted = _variant(cfg, {"inner_ring.tilt": "free", "inner_ring.misalignment": 0.0})
+            plan.free_tilt = add(
+                "free-tilt",
+                tilted,
+                detector,
+                f"{_label_fa(own_fa)}, inner ring free to tilt",
+                meta(own_fa, "free", dt0),
+            )
+    # figs. 10-13: the highest load early (it may be the slowest), the rest after fig. 14's.
+    series = sorted(set(loads) | ({own_fa} if own_fa is not None else set()))
+    later = []
+    for fa in sorted(series, reverse=True):
+        if fa == own_fa:
+            plan.loads[fa] = plan.reference
+            continue
+        later.append(fa)
+    if later:
+        top = later.pop(0)
+        plan.loads[top] = add(
+            f"axial-{_fmt(top)}N",
+            _variant(cfg, {"operating.axial_load": top}),
+            detector,
+            f"F_a = {_fmt(top)} N, {tilt_text}",
+            meta(top, cfg.inner_ring.tilt, dt0),
+        )
+    for dt in dt_max:
+        plan.runtime[dt] = {}
+        variant = _variant(cfg, {"solver.dt_max": dt})
+        for det in (SEMI_ANALYTICAL, GRADIENT):
+            plan.runtime[dt][det] = add(
+                f"dt-max-{dt:.3g}s-{det}",
+                variant,
+                det,
+                f"{_label_fa(own_fa)}, Δt_max = {dt:.3g} s, {det}",
+                meta(own_fa, cfg.inner_ring.tilt, dt),
+            )
+    for fa in later:
+        plan.loads[fa] = add(
+            f"axial-{_fmt(fa)}N",
+            _variant(cfg, {"operating.axial_load": fa}),
+            detector,
+            f"F_a = {_fmt(fa)} N, {tilt_text}",
+            meta(fa, cfg.inner_ring.tilt, dt0),
+        )
+    plan.loads = dict(sorted(plan.loads.items()))
+    return plan
+
+
+def _label_fa(fa: float | None) -> str:
+    return "reference" if fa is None else f"F_a = {_fmt(fa)} N"

@@ -1,0 +1,182 @@
+"""The runs of a study on Dask: which of them still need running (their files on disk
+decide, :func:`pending_runs`), the cluster (a ``LocalCluster`` or a running scheduler,
+:func:`rollerdyn.sweep`'s machinery), one task per run (:func:`.runs.execute`) and one
+stream of progress messages for the whole study (the workers send them with
+``log_event``; :func:`run_all` hands them to its ``progress`` callback).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import uuid
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import Any
+
+from .runs import ABSENT, FAILED, FINISHED, RunSpec, StudyError, execute, inspect_run, read_attrs
+
+#: A progress callback: called with one dict per event (see :func:`run_all`).
+ProgressCallback = Callable[[dict], Any]
+
+
+def check_scheduler(scheduler: Any, timeout: float = 10.0) -> None:
+    """Raises :class:`StudyError` (one line naming --scheduler) unless ``scheduler`` is
+    None, a ``distributed.Client`` or the address of a Dask scheduler that answers within
+    ``timeout`` seconds."""
+    from ..sweep import SweepError, _check_reachable
+
+    if scheduler is None or not isinstance(scheduler, str):
+        return
+    try:
+        _check_reachable(scheduler, timeout)
+    except SweepError as err:
+        raise StudyError(_option_message(err)) from None
+
+
+def _option_message(err: Exception) -> str:
+    """sweep's ``scheduler = 'ADDRESS': ...`` as ``--scheduler 'ADDRESS': ...``."""
+    text = str(err)
+    prefix = "scheduler = "
+    return "--scheduler " + text[len(prefix) :] if text.startswith(prefix) else text
+
+
+def pending_runs(specs: Sequence[RunSpec], outdir: Path) -> tuple[list[RunSpec], dict]:
+    """(runs still to run or to continue, {name: attributes} of every run with a file),
+    from the files in ``outdir``; raises :class:`StudyError` for a file of another
+    configuration (see :func:`.runs.inspect_run`)."""
+    pending, found = [], {}
+    for spec in specs:
+        attrs = read_attrs(Path(outdir) / spec.file)
+        state = inspect_run(spec, attrs)
+        if attrs is not None:
+            found[spec.name] = attrs
+        if state not in (FINISHED, FAILED):
+            pending.append(spec)
+    return pending, found
+
+
+def _connect(scheduler: Any, workers: int, timeout: float):
+    from ..sweep import SweepError
+    from ..sweep import _connect as connect
+
+    try:
+        return connect(scheduler, workers, timeout)
+    except SweepError as err:
+        raise StudyError(_option_message(err)) from None
+
+
+def run_all(
+    specs: Sequence[RunSpec],
+    outdir: Path,
+    *,
+    max_wall: float,
+    scheduler: Any = None,
+    workers: int = 2,
+    progress: ProgressCallback | None = None,
+    retries: int = 2,
+    connect_timeout: float = 10.0,
+    stop_rules: dict | None = None,
+) -> dict[str, dict]:
+    """Runs every spec whose file does not already hold it (one Dask task each, in the
+    order given) and returns {name: record} of all of them (:func:`.runs.record`).
+
+    No cluster is started when nothing is left to run. ``scheduler``: None starts a
+    ``LocalCluster`` of ``workers`` processes with one thread each; an address or a
+    ``distributed.Client`` uses that cluster (its workers must see ``outdir``).
+    ``progress(event)`` receives dicts: ``{"kind": "plan", "total", "pending",
+    "reused"}`` once, ``{"kind": "update", "name", "t", "t_end", "steps"}`` from the runs
+    (about once a second each), ``{"kind": "done", "name", "record"}`` as each ends.
+    ``retries``: how many more times Dask runs a task whose worker died. ``stop_rules``:
+    {name: rule} handed to :func:`.runs.execute` (a run ends early when its rule says)."""
+    from distributed import as_completed
+
+    from .runs import record
+
+    outdir = Path(outdir)
+    pending, found = pending_runs(specs, outdir)
+    records: dict[str, dict] = {}
+    waiting = {s.name for s in pending}
+    for spec in specs:
+        if spec.name not in waiting:
+            records[spec.name] = record(spec, found[spec.name], "reused")
+    emit = progress or (lambda event: None)
+    emit(
+        {
+            "kind": "plan",
+            "total": len(specs),
+            "pending": [s.name for s in pending],
+            "reused": [s.name for s in specs if s.name not in waiting],
+            "t_end": {s.name: s.t_end for s in specs},
+        }
+    )
+    if not pending:
+        return {s.name: records[s.name] for s in specs}
+    client, cluster = _connect(scheduler, workers, connect_timeout)
+    topic = f"rollerdyn-study-{uuid.uuid4().hex}"
+    try:
+        client.subscribe_topic(topic, lambda event: emit({"kind": "update", **event[1]}))
+        futures, by_key = [], {}
+        for i, spec in enumerate(pending):
+            fut = client.submit(
+                execute,
+                spec,
+                str(outdir.resolve()),
+                max_wall,
+                topic,
+                (stop_rules or {}).get(spec.name),
+                pure=False,
+                retries=retries,
+                priority=len(pending) - i,  # in the order given
+                key=f"study-{spec.name}-{uuid.uuid4().hex[:8]}",
+            )
+            futures.append(fut)
+            by_key[fut.key] = spec
+        for fut in as_completed(futures):
+            spec = by_key[fut.key]
+            try:
+                rec = fut.result()
+            except Exception as err:  # its workers died more often than retried
+                rec = record(spec, None, "ran")
+                rec.update(status="failed", note=f"{type(err).__name__}: {err}")
+            records[spec.name] = rec
+            emit({"kind": "done", "name": spec.name, "record": rec})
+    finally:
+        try:
+            client.unsubscribe_topic(topic)
+        except Exception:  # the client may be gone already
+            pass
+        if client is not scheduler:
+            client.close()
+        if cluster is not None:
+            cluster.close()
+    return {s.name: records[s.name] for s in specs}
+
+
+def timing(records: dict[str, dict], wall: float, workers: int) -> dict:
+    """The study's wall time, the sum of its runs' wall times in this invocation (runs
+    reused from disk excluded) and the parallel efficiency: sum / (wall x workers)."""
+    ran = [r for r in records.values() if r["action"] in ("ran", "continued")]
+    total = sum(r.get("attempt wall [s]", math.nan) for r in ran)
+    return {
+        "study wall [s]": wall,
+        "runs run": len(ran),
+        "sum of run walls [s]": total,
+        "workers": workers,
+        "parallel efficiency": (
+            total / (wall * workers) if ran and wall > 0 and workers else math.nan
+        ),
+    }
+
+
+class Clock:
+    """Wall time since creation, in s."""
+
+    def __init__(self) -> None:
+        self.start = time.perf_counter()
+
+    def __call__(self) -> float:
+        return time.perf_counter() - self.start
+
+
+__all__ = ["ABSENT", "check_scheduler", "pending_runs", "run_all", "timing", "Clock"]

@@ -1,0 +1,105 @@
+"""When a grid point of ``rollerdyn study map`` is steady, and its outputs there.
+
+The outputs, each averaged over a window of simulated time W:
+
+- friction torque: the mean of ``frictional_torque`` [N*m];
+- roller-set speed loss (skidding): ``1 - cage-equivalent speed / epicyclic speed``, where
+  the cage-equivalent speed is the mean of every roller's ``orbital_speed`` and the
+  epicyclic speed is ``omega_i (1 - D / d_m) / 2`` of the mean inner ring speed
+  ``omega_i`` (outer ring fixed, no slip) [1];
+- largest flange force: the largest ``flange_normal_force`` of any roller and flange [N].
+
+The criterion (:class:`SteadyRule`): from the end of the ramps on, the run is cut into
+windows of length W that end at the checkpoints (``solver.checkpoint_interval`` = W, so
+the check costs nothing between them); at each checkpoint t_k with
+t_k - 2 W >= the ramps' end, every output's mean over [t_k - W, t_k] is compared with its
+mean over [t_k - 2 W, t_k - W]. The point is steady when each changed by at most
+``tol`` of its latest value, or by at most its floor (:data:`FLOORS`) for values near
+zero. W is the larger of ``window`` and two roller passing periods at the epicyclic speed
+(2 * 2 pi / (Z omega_c)), so each window averages over at least two rollers passing a
+point. A point that is not steady at its maximum time ends there and is reported as not
+steady.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+#: Changes below these count as steady whatever ``tol`` says (values near zero):
+#: torque [N*m], speed loss [1], flange force [N].
+FLOORS = {"torque [N*m]": 1e-4, "speed loss [1]": 1e-3, "max flange force [N]": 1.0}
+
+
+def epicyclic_factor(diameter: float, pitch: float) -> float:
+    """omega_c / omega_i of the roller set without slip, outer ring fixed."""
+    return (1.0 - diameter / pitch) / 2.0
+
+
+def window_length(window: float, speed: float, rollers: int, factor: float) -> float:
+    """W [s]: ``window`` or two roller passing periods at ``speed`` [rad/s], the longer."""
+    cage = abs(speed) * factor
+    passing = 2.0 * math.pi / (rollers * cage) if cage > 0 else math.inf
+    return max(window, 2.0 * passing)
+
+
+def window_outputs(ds, t0: float, t1: float, factor: float) -> dict:
+    """The outputs averaged over the outputs with t0 < t <= t1 (see the module's doc)."""
+    t = np.asarray(ds.time.values, dtype=float)
+    sel = (t > t0 + 1e-12) & (t <= t1 + 1e-12)
+    if not sel.any():
+        return {k: math.nan for k in FLOORS}
+    ring = float(np.mean(ds.ring_speed.values[sel]))
+    orbital = float(np.nanmean(ds.orbital_speed.values[sel]))
+    epicyclic = ring * factor
+    loss = 1.0 - orbital / epicyclic if epicyclic != 0 else math.nan
+    flange = np.asarray(ds.flange_normal_force.values[sel], dtype=float)
+    flange = flange[np.isfinite(flange)]
+    return {
+        "torque [N*m]": float(np.mean(ds.frictional_torque.values[sel])),
+        "speed loss [1]": loss,
+        "max flange force [N]": float(flange.max()) if flange.size else 0.0,
+    }
+
+
+def changes(before: dict, after: dict, tol: float) -> dict:
+    """{output: (change, allowed)} between two windows' outputs."""
+    out = {}
+    for key, floor in FLOORS.items():
+        a, b = before[key], after[key]
+        out[key] = (abs(b - a), max(tol * abs(b), floor))
+    return out
+
+
+@dataclass(frozen=True)
+class SteadyRule:
+    """The stop rule of a map point (see the module's doc): called with the run so far at
+    each checkpoint, returns ``"steady at t = ... s"`` once steady, else ''."""
+
+    settle: float  # end of the ramps [s]
+    window: float  # W [s]
+    tol: float
+    factor: float  # epicyclic factor
+
+    def verdict(self, ds) -> tuple[bool, float, dict]:
+        """(steady, t_k, outputs over the last window) at the run's last checkpoint
+        time (its final time if it has no later checkpoint)."""
+        t_end = float(ds.time.values[-1])
+        w = self.window
+        k = math.floor((t_end + 1e-12) / w)
+        t_k = k * w
+        if t_k - 2 * w < self.settle - 1e-12:
+            return False, t_k, window_outputs(ds, t_k - w, t_k, self.factor)
+        before = window_outputs(ds, t_k - 2 * w, t_k - w, self.factor)
+        after = window_outputs(ds, t_k - w, t_k, self.factor)
+        ok = all(
+            math.isfinite(c) and c <= allowed
+            for c, allowed in changes(before, after, self.tol).values()
+        )
+        return ok, t_k, after
+
+    def __call__(self, ds) -> str:
+        ok, t_k, _ = self.verdict(ds)
+        return f"steady at t = {t_k:.6g} s" if ok else ""
