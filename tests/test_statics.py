@@ -16,13 +16,13 @@ from rollerdyn.cli import app
 from rollerdyn.statics import StaticsError, parse_range, statics, statics_sweep
 
 
-def _stribeck_shares(z: int, exponent: float) -> np.ndarray:
+def _stribeck_shares(azimuth_deg: np.ndarray, exponent: float) -> np.ndarray:
     """Discrete Stribeck distribution for zero clearance (Harris & Kotzalas, Rolling Bearing
     Analysis, sect. 7.2): with the ring moved by delta_r along the load, roller j at psi_j
     from the load line is compressed by delta_r cos psi_j, carries K (delta_r cos psi_j)^n,
     and the loads sum to F_r along the load: Q_j / F_r = cos^n / sum(cos^(n+1))."""
-    psi = 2 * np.pi * np.arange(z) / z - np.pi  # roller 0 at +y, the load along -y
-    c = np.clip(np.cos(psi), 0.0, None)
+    # the rollers' azimuths from +y; the load along -y (azimuth 180 deg)
+    c = np.clip(-np.cos(np.radians(azimuth_deg)), 0.0, None)
     return c**exponent / np.sum(c ** (exponent + 1))
 
 
@@ -37,7 +37,7 @@ def test_zero_clearance_follows_stribeck():
     q = ds.inner_race_load.values
     laws = _laws(cfg)
     k2 = 0.5 * (laws["inner"].k2 + laws["outer"].k2)
-    expected = 5000.0 * _stribeck_shares(17, 1.0 / k2)
+    expected = 5000.0 * _stribeck_shares(ds.roller_azimuth.values, 1.0 / k2)
     assert np.max(np.abs(q - expected)) < 0.01 * q.max()
     ratio = 17 * q.max() / 5000.0
     assert ratio == pytest.approx(17 * expected.max() / 5000.0, rel=0.01)
@@ -64,17 +64,19 @@ def test_radial_stiffness_equals_differences_of_equilibria(b1):
 
 
 def test_centrifugal_force_loads_the_outer_race(b1):
-    """At 3000 rpm an unloaded roller at the top presses the outer race with its
+    """At 3000 rpm an unloaded roller near the top presses the outer race with its
     centrifugal force m omega_c^2 r less its weight (omega_c = Omega (1 - D/d_m)/2)."""
     omega = 3000 * 2 * math.pi / 60
     ds = statics(b1, radial_load=5000.0, axial_load=0.0, speed=omega)
     g = b1.geometry
     d, dm = g.roller_diameter, g.pitch_diameter
     omega_c = 0.5 * omega * (1 - d / dm)
-    top = 0  # roller 0 at +y, opposite the load
+    azimuth = np.radians(ds.roller_azimuth.values)
+    top = int(np.argmax(np.cos(azimuth)))  # the roller nearest +y, opposite the load
     mass = float(np.pi * (d / 2) ** 2 * g.roller.length * b1.materials.roller.density)
     radius = dm / 2 + float(ds.roller_radial_offset[top])
-    expected = mass * (omega_c**2 * radius - 9.81)
+    # its weight's outward component is -g cos(azimuth)
+    expected = mass * (omega_c**2 * radius - 9.81 * np.cos(azimuth[top]))
     assert float(ds.inner_race_load[top]) == 0.0
     # the roller's mass from the cylinder (its edge radii make it 2 % lighter)
     assert float(ds.outer_race_load[top]) == pytest.approx(expected, rel=0.03)

@@ -191,14 +191,22 @@ impl BearingModel {
         self.pitch_radius
     }
 
+    /// The rollers' azimuths at the start [rad], from +y towards +z: roller 0 at the
+    /// bottom (ψ = π, the centre of the load zone of the radial load along −y), the others
+    /// evenly spaced.
+    pub fn roller_azimuths(&self) -> Vec<f64> {
+        let z = self.params.roller_count;
+        (0..z)
+            .map(|i| std::f64::consts::PI + 2.0 * std::f64::consts::PI * i as f64 / z as f64)
+            .collect()
+    }
+
     /// The consistent start: rollers on the pitch circle, roller 0 at the bottom (−y, ψ = π, the
     /// centre of the load zone), axes along x, at rest; the inner ring centred. Nothing
     /// overlaps (checked).
     pub fn initial_state(&self) -> Result<Vec<f64>> {
         let mut y = vec![0.0; self.layout.len()];
-        let z = self.params.roller_count;
-        for i in 0..z {
-            let psi = std::f64::consts::PI + 2.0 * std::f64::consts::PI * i as f64 / z as f64;
+        for (i, psi) in self.roller_azimuths().into_iter().enumerate() {
             let s = self.layout.roller(i);
             y[s + 1] = self.pitch_radius * psi.cos();
             y[s + 2] = self.pitch_radius * psi.sin();

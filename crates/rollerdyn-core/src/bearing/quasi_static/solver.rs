@@ -53,16 +53,13 @@ pub(super) struct Problem<'a> {
 impl<'a> Problem<'a> {
     pub(super) fn new(model: &'a BearingModel, case: &StaticCase) -> Self {
         let p = &model.params;
-        let z = model.layout.rollers;
         let pitch = model.pitch_radius();
         let r = p.roller.radius;
         let orbit = 0.5 * case.speed * (1.0 - r / pitch);
         Self {
             model,
             case: *case,
-            azimuths: (0..z)
-                .map(|i| 2.0 * std::f64::consts::PI * i as f64 / z as f64)
-                .collect(),
+            azimuths: model.roller_azimuths(),
             pitch,
             orbit,
             spin: -(case.speed - orbit) * p.inner_raceway_radius / r,
