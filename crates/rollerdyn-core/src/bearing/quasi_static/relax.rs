@@ -60,8 +60,25 @@ impl Problem<'_> {
 
     /// Roller i in its own equilibrium with the ring at `ring` (module doc), to `tolerance`
     /// or 1e-5 of the sum of its contact forces, whichever is larger (a roller pinched
-    /// between two flanges and tilted onto its ends converges slowly below that).
+    /// between two flanges and tilted onto its ends converges slowly below that). A roller
+    /// that does not get there while pinched between two flanges and touching no race
+    /// (at speed, its centrifugal force unbalanced) is set onto its race, at the tilt the
+    /// flanges hold it at, and tried once more.
     fn relax_roller(&mut self, ring: &Kinematics, u: &mut [f64], i: usize, tolerance: f64) -> bool {
+        self.relax_attempt(ring, u, i, tolerance, false)
+            || self.relax_attempt(ring, u, i, tolerance, true)
+    }
+
+    /// One try of [`Self::relax_roller`]; `land_pinched`: set the roller onto its race
+    /// when it touches none, even while two flanges pinch it.
+    fn relax_attempt(
+        &mut self,
+        ring: &Kinematics,
+        u: &mut [f64],
+        i: usize,
+        tolerance: f64,
+        land_pinched: bool,
+    ) -> bool {
         let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
         let (mut f, mut r) = self.roller_at(ring, u, i);
         let mut tol = tolerance;
@@ -71,7 +88,8 @@ impl Problem<'_> {
             if size < tol {
                 return true;
             }
-            if f.flanges.iter().all(|x| x.force == 0.0) && self.set_onto_race(ring, u, i, r[0]) {
+            let pinched = f.flanges.iter().any(|x| x.force > 0.0);
+            if (land_pinched || !pinched) && self.set_onto_race(ring, u, i, r[0], pinched) {
                 (f, r) = self.roller_at(ring, u, i);
                 continue;
             }
@@ -135,8 +153,16 @@ impl Problem<'_> {
     }
 
     /// Sets roller i, if it touches neither race and a radial force `radial` [N] pushes
-    /// it, onto the race it is pushed to (module doc): whether it moved.
-    fn set_onto_race(&mut self, ring: &Kinematics, u: &mut [f64], i: usize, radial: f64) -> bool {
+    /// it, onto the race it is pushed to (module doc): whether it moved. `pinched`: two
+    /// flanges hold it (the flanges give Newton no radial stiffness to go by either).
+    fn set_onto_race(
+        &mut self,
+        ring: &Kinematics,
+        u: &mut [f64],
+        i: usize,
+        radial: f64,
+        pinched: bool,
+    ) -> bool {
         if radial == 0.0 {
             return false;
         }
@@ -163,15 +189,15 @@ impl Problem<'_> {
         let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
         // Nothing holds the tilt of a roller that touches nothing: it lands level with
         // the race it falls onto, so that its slices meet the race together (a roller
-        // landing on one end would be held there by the slice at that end alone).
+        // landing on one end would be held there by the slice at that end alone). A
+        // roller pinched between two flanges keeps the tilt they hold it at (levelled,
+        // it would be pinched harder).
         let pose = self.pose(u, i);
         let level = match line {
-            LineContact::InnerRace => {
-                ring.axis.dot(&pose.radial_direction()).atan2(ring.axis.x)
-            }
+            LineContact::InnerRace => ring.axis.dot(&pose.radial_direction()).atan2(ring.axis.x),
             _ => 0.0,
         };
-        if level != pose.tilt {
+        if !pinched && level != pose.tilt {
             u[s + 2] = level;
             let kin = self.pose(u, i).kinematics(self.pitch);
             inner_depth = self.model.deepest_slice(LineContact::InnerRace, ring, &kin);
