@@ -281,9 +281,9 @@ def map_command(
         float,
         typer.Option(
             "--tol",
-            help="Steady when the torque, speed loss and largest flange force averaged over "
-            "the last window changed by at most this share of their value from the window "
-            "before (or by less than 1e-4 N*m, 1e-3, 1 N).",
+            help="Steady when the torque, speed loss and largest flange force, each over a "
+            "window, changed by at most this share of their value over each of the last two "
+            "windows (or by less than 1e-4 N*m, 1e-3, 1 N).",
         ),
     ] = 0.02,
     max_time: Annotated[

@@ -229,10 +229,10 @@ def operating_map(
             problems.append(f"point {i} ({label}): {str(err).splitlines()[-1].strip()}")
             continue
         win = window_length(window, w, g.roller_count, factor)
-        if settle + 2 * win > max_time:
+        if settle + 3 * win > max_time:
             raise StudyError(
                 f"--max-time = {max_time:g} s: too short for point {i} ({label}): the ramps "
-                f"end at {settle:g} s and two windows of {win:.4g} s must follow"
+                f"end at {settle:g} s and three windows of {win:.4g} s must follow"
             )
         sol = variant.solver.model_copy(update={"checkpoint_interval": win})
         variant = variant.model_copy(update={"solver": sol})

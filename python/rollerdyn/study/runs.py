@@ -278,6 +278,8 @@ def execute(
             ds.attrs["study_stopped"] = f"stopped after {max_wall:g} s of wall time"
         write(ds, path)
         rec = record(spec, dict(ds.attrs), action)
+        if stop_rule is not None and not done and rec["status"] == COMPLETED:
+            rec["note"] = f"not done by its stop rule at its end time, t = {spec.t_end:.6g} s"
         rec["attempt wall [s]"] = time.monotonic() - started
         return rec
     except StudyError as err:

@@ -12,13 +12,15 @@ The outputs, each averaged over a window of simulated time W:
 The criterion (:class:`SteadyRule`): from the end of the ramps on, the run is cut into
 windows of length W that end at the checkpoints (``solver.checkpoint_interval`` = W, so
 the check costs nothing between them); at each checkpoint t_k with
-t_k - 2 W >= the ramps' end, every output's mean over [t_k - W, t_k] is compared with its
-mean over [t_k - 2 W, t_k - W]. The point is steady when each changed by at most
-``tol`` of its latest value, or by at most its floor (:data:`FLOORS`) for values near
-zero. W is the larger of ``window`` and two roller passing periods at the epicyclic speed
-(2 * 2 pi / (Z omega_c)), so each window averages over at least two rollers passing a
-point. A point that is not steady at its maximum time ends there and is reported as not
-steady.
+t_k - 3 W >= the ramps' end, the outputs over the last three windows [t_k - 3 W,
+t_k - 2 W], [t_k - 2 W, t_k - W] and [t_k - W, t_k] are compared, each window with the
+one before. The point is steady when in both comparisons every output changed by at most
+``tol`` of its later value, or by at most its floor (:data:`FLOORS`) for values near
+zero (two comparisons, so that one chance agreement of two windows does not end a run
+that still drifts or swings). W is the larger of ``window`` and two roller passing
+periods at the epicyclic speed (2 * 2 pi / (Z omega_c)), so each window averages over at
+least two rollers passing a point. A point that is not steady at its maximum time ends
+there and is reported as not steady, with its outputs over its last window.
 """
 
 from __future__ import annotations
@@ -84,21 +86,23 @@ class SteadyRule:
     factor: float  # epicyclic factor
 
     def verdict(self, ds) -> tuple[bool, float, dict]:
-        """(steady, t_k, outputs over the last window) at the run's last checkpoint
-        time (its final time if it has no later checkpoint)."""
+        """(steady, t_k, outputs over the last window) at the last multiple t_k of W
+        that the run ``ds`` reached."""
         t_end = float(ds.time.values[-1])
         w = self.window
         k = math.floor((t_end + 1e-12) / w)
         t_k = k * w
-        if t_k - 2 * w < self.settle - 1e-12:
-            return False, t_k, window_outputs(ds, t_k - w, t_k, self.factor)
-        before = window_outputs(ds, t_k - 2 * w, t_k - w, self.factor)
-        after = window_outputs(ds, t_k - w, t_k, self.factor)
+        last = window_outputs(ds, t_k - w, t_k, self.factor)
+        if t_k - 3 * w < self.settle - 1e-12:
+            return False, t_k, last
+        windows = [window_outputs(ds, t_k - j * w, t_k - (j - 1) * w, self.factor) for j in (3, 2)]
+        windows.append(last)
         ok = all(
             math.isfinite(c) and c <= allowed
+            for before, after in zip(windows, windows[1:], strict=False)
             for c, allowed in changes(before, after, self.tol).values()
         )
-        return ok, t_k, after
+        return ok, t_k, last
 
     def __call__(self, ds) -> str:
         ok, t_k, _ = self.verdict(ds)
