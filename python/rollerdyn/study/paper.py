@@ -74,6 +74,7 @@ def paper(
     overwrite: bool = False,
     run: bool = True,
     report: bool = True,
+    figures: bool = True,
     progress: Callable[[dict], Any] | None = None,
 ) -> PaperStudy:
     """The paper's study of ``config`` (a TOML path or a ``BearingConfig``) in ``outdir``.
@@ -87,7 +88,8 @@ def paper(
     it is reported as not finished and continued at the next invocation. ``scheduler``:
     None (a ``LocalCluster`` of ``workers`` processes, default all cores), an address or a
     ``distributed.Client``. ``overwrite``: start afresh (removes the study's own files).
-    ``run=False``: run nothing, analyse what the folder holds. ``progress(event)``: see
+    ``run=False``: run nothing, analyse what the folder holds. ``report``/``figures``:
+    write the HTML report and the PNG/SVG figures. ``progress(event)``: see
     :func:`rollerdyn.study.schedule.run_all`.
 
     Raises :class:`StudyError` (a ``ValueError``, one line naming the option) before any
@@ -140,16 +142,20 @@ def paper(
                 attrs = None if ds is None else dict(ds.attrs)
                 records[spec.name] = record(spec, attrs, "reused" if ds is not None else "skipped")
         findings = check_findings(plan, sets, records)
-        figures, page = _write_outputs(out, plan, sets, records, findings, study_timing, report)
+        written, page = _write_outputs(
+            out, plan, sets, records, findings, study_timing, report, figures
+        )
     finally:
         lock.unlink(missing_ok=True)
     import pandas as pd
 
     frame = pd.DataFrame([records[s.name] for s in plan.specs])
-    return PaperStudy(out, plan, frame, findings, study_timing, page, figures)
+    return PaperStudy(out, plan, frame, findings, study_timing, page, written)
 
 
-def _write_outputs(out: Path, plan: Plan, sets, records, findings, study_timing, report: bool):
+def _write_outputs(
+    out: Path, plan: Plan, sets, records, findings, study_timing, report: bool, figures: bool
+):
     """runs.csv, findings.csv/.json, runtime_study.csv, the figures and the report."""
     import pandas as pd
 
@@ -174,13 +180,13 @@ def _write_outputs(out: Path, plan: Plan, sets, records, findings, study_timing,
         encoding="utf-8",
     )
     runtime_frame(plan, records).to_csv(out / "runtime_study.csv", index=False)
-    figures = write_figures(plan, records, out)
+    written = write_figures(plan, records, out) if figures else []
     page = None
     if report:
         title = f"rollerdyn study: the paper's sect. 5 for {plan.config.name}"
         html = build_page(plan, sets, records, findings, study_timing, title)
         page = write_page(out / "report.html", html)
-    return figures, page
+    return written, page
 
 
 def _jsonable(value):

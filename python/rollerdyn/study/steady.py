@@ -87,8 +87,11 @@ class SteadyRule:
 
     def verdict(self, ds) -> tuple[bool, float, dict]:
         """(steady, t_k, outputs over the last window) at the last multiple t_k of W
-        that the run ``ds`` reached."""
+        that the run ``ds`` reached: its last checkpoint (``checkpoint_time``; the windows
+        end at the checkpoints, which need not fall on output times) or its last output."""
         t_end = float(ds.time.values[-1])
+        if "checkpoint_time" in ds:
+            t_end = max(t_end, float(ds["checkpoint_time"]))
         w = self.window
         k = math.floor((t_end + 1e-12) / w)
         t_k = k * w

@@ -1,0 +1,540 @@
+"""Studies (issue 19): ``rollerdyn study paper`` and ``rollerdyn study map``.
+
+The paper study runs B1 to t = 2 ms (loads barely applied, nothing rolls yet), so its
+runs take about a second each on a shared two-worker cluster; the checks that need
+rolling or flange contact are tested on copies of those runs with the values they judge
+set by hand, and must then PASS or FAIL as their definitions say. The map runs one point
+at 3000 rpm from equilibrium for about 20 ms.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+from b1 import B1, b1_file_with, load_b1, variant
+from typer.testing import CliRunner
+
+from rollerdyn.cli import app
+from rollerdyn.names import GRADIENT, PAIRINGS, SEMI_ANALYTICAL
+from rollerdyn.simulation import simulate, write
+from rollerdyn.study import FAIL, NOT_RUN, PASS, StudyError, operating_map, paper, parse_range
+from rollerdyn.study.findings import _Context, check_findings
+from rollerdyn.study.plan import build_plan
+from rollerdyn.study.runs import (
+    NOT_FINISHED,
+    PARTIAL,
+    RunSpec,
+    execute,
+    inspect_run,
+    read_attrs,
+)
+from rollerdyn.study.steady import SteadyRule, window_outputs
+
+RUNNER = CliRunner()
+T_END = 0.002  # s: the paper study's short version in these tests
+
+
+@pytest.fixture(scope="module")
+def client():
+    from distributed import Client, LocalCluster
+
+    with (
+        LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+        ) as cluster,
+        Client(cluster) as c,
+    ):
+        yield c
+
+
+@pytest.fixture(scope="module")
+def study(tmp_path_factory, client):
+    out = tmp_path_factory.mktemp("study") / "paper"
+    events: list[dict] = []
+    result = paper(
+        B1,
+        out,
+        t_end=T_END,
+        loads=(0.0,),
+        dt_max=(5e-5, 1e-4),
+        scheduler=client,
+        max_wall=120.0,
+        progress=events.append,
+        figures=False,  # matplotlib's files: the command line's test writes them
+    )
+    return out, result, events
+
+
+def _attrs(out: Path, name: str) -> dict:
+    attrs = read_attrs(out / "runs" / f"{name}.nc")
+    assert attrs is not None, name
+    return attrs
+
+
+# --------------------------------------------------------------------------- the plan
+
+
+def test_plan_holds_each_run_once_with_its_role():
+    plan = build_plan(load_b1(), 0.01)
+    names = [s.name for s in plan.specs]
+    assert len(names) == len(set(names)) == 10
+    assert plan.reference == "axial-1000N" and plan.loads[1000.0] == "axial-1000N"
+    assert sorted(plan.loads) == [0.0, 500.0, 1000.0, 2000.0]
+    assert plan.reference_gradient == "axial-1000N-gradient"
+    assert plan.free_tilt == "free-tilt"
+    # fig. 14 at B1's own dt_max is the reference pair, run once
+    assert sorted(plan.runtime) == pytest.approx([2e-5, 5e-5, 1e-4])
+    assert plan.runtime[1e-4] == {SEMI_ANALYTICAL: "axial-1000N", GRADIENT: "axial-1000N-gradient"}
+    tilt = plan.spec("free-tilt").data["inner_ring"]
+    assert tilt["tilt"] == "free" and tilt["misalignment"] == 0.0
+    assert plan.spec("axial-2000N").data["operating"]["axial_load"] == 2000.0
+    assert {s.t_end for s in plan.specs} == {0.01}
+    none = build_plan(load_b1(), 0.01, loads=(0.0,), free_tilt=False, gradient=False)
+    assert [s.name for s in none.specs] == ["axial-1000N", "axial-0N"]
+    assert none.free_tilt is None and none.runtime == {}
+    with pytest.raises(StudyError, match="--loads"):
+        build_plan(load_b1(), 0.01, loads=(-5.0,))
+
+
+# --------------------------------------------------------------------------- the paper study
+
+
+def test_every_run_completes_and_equals_the_same_run_in_series(study):
+    out, result, events = study
+    runs = result.runs
+    assert list(runs["name"]) == [s.name for s in result.plan.specs]
+    assert len(runs) == 6 and set(runs["status"]) == {"completed"}
+    assert set(runs["action"]) == {"ran"}
+    assert list(runs["reached [s]"]) == pytest.approx([T_END] * 6)
+    plan = events[0]
+    assert plan["kind"] == "plan" and plan["reused"] == [] and len(plan["pending"]) == 6
+    assert sorted(e["name"] for e in events if e["kind"] == "done") == sorted(runs["name"])
+    # the 0 N run is B1 with the axial load changed, bit for bit
+    ref = simulate(variant(**{"operating.axial_load": "0 N"}), t_end=T_END, threads=1)
+    with xr.open_dataset(out / "runs" / "axial-0N.nc", engine="h5netcdf") as opened:
+        got = opened.load()
+    for name in ("time", "frictional_torque", "position", "final_state"):
+        np.testing.assert_array_equal(got[name].values, ref[name].values, err_msg=name)
+    assert _attrs(out, "axial-1000N-gradient")["detector"] == GRADIENT
+    assert _attrs(out, "dt-max-5e-05s-gradient")["dt_max_s"] == 5e-5
+    assert '"tilt": "free"' in _attrs(out, "free-tilt")["config_resolved"]
+    # every file written, the tables among them
+    for name in ("report.html", "runs.csv", "findings.csv", "findings.json", "study.json"):
+        assert (out / name).is_file(), name
+
+
+def test_findings_carry_the_numbers_of_the_runs(study):
+    out, result, _ = study
+    found = {f.key: f for f in result.findings}
+    assert len(found) == 8
+    wall = {n: _attrs(out, n)["stats_total_seconds"] for n in result.runs["name"]}
+    saving = 1.0 - wall["axial-1000N"] / wall["axial-1000N-gradient"]
+    semi = found["semi_faster"]
+    assert semi.values["saving"] == pytest.approx(saving, rel=1e-12)
+    assert semi.status == (PASS if saving > 0 else FAIL)
+    shrink = found["advantage_shrinks"]
+    small = 1.0 - wall["dt-max-5e-05s-semi-analytical"] / wall["dt-max-5e-05s-gradient"]
+    assert shrink.values["saving"][5e-5] == pytest.approx(small, rel=1e-12)
+    assert shrink.values["saving"][1e-4] == pytest.approx(saving, rel=1e-12)
+    assert shrink.status == (PASS if small < saving else FAIL)
+    # at 2 ms the ring stands still and no roller touches a flange: nothing to judge
+    assert found["torque_grows"].status == NOT_RUN
+    assert "0 N: not at full speed (reached t = 0.002 s)" in found["torque_grows"].numbers
+    for key in ("to_co_dominates", "other_pairings_with_tilt", "same_contacts"):
+        assert found[key].status == NOT_RUN, key
+        assert "no flange contact" in found[key].numbers
+    text = (out / "findings.csv").read_text(encoding="utf-8")
+    assert f"{saving * 100:.1f} %" in text
+
+
+def test_a_second_invocation_runs_nothing(study, monkeypatch):
+    out, result, _ = study
+    before = {p.name: p.stat().st_mtime_ns for p in (out / "runs").iterdir()}
+
+    def no_cluster(*args, **kwargs):
+        raise AssertionError("a cluster was started although every run was done")
+
+    monkeypatch.setattr("rollerdyn.study.schedule._connect", no_cluster)
+    events: list[dict] = []
+    again = paper(
+        B1,
+        out,
+        t_end=T_END,
+        loads=(0.0,),
+        dt_max=(5e-5, 1e-4),
+        progress=events.append,
+        figures=False,
+        report=False,
+    )
+    assert [e["kind"] for e in events] == ["plan"] and events[0]["pending"] == []
+    assert set(again.runs["action"]) == {"reused"}
+    assert list(again.runs["wall [s]"]) == list(result.runs["wall [s]"])
+    assert [f.status for f in again.findings] == [f.status for f in result.findings]
+    assert {p.name: p.stat().st_mtime_ns for p in (out / "runs").iterdir()} == before
+
+
+def test_the_report_shows_findings_runs_and_figures(study):
+    out, result, _ = study
+    page = (out / "report.html").read_text(encoding="utf-8")
+    for f in result.findings:
+        assert f.statement.replace("'", "&#x27;") in page
+    for name in result.runs["name"]:
+        assert f"runs/{name}.nc" in page
+    for key in ("fig10", "fig11", "fig12", "fig13", "fig8", "fig9", "fig14_wall"):
+        assert f'id="plot-{key}"' in page, key
+    assert "document.body.setAttribute('data-plots'" in page
+    assert page.count("<td class='PASS'>") == sum(f.status == PASS for f in result.findings)
+
+
+# --------------------------------------------------------------------------- one run
+
+
+def _spec(t_end: float, **changes) -> RunSpec:
+    from rollerdyn.provenance import config_hash
+
+    cfg = variant(**{"solver.checkpoint_interval": "1 ms", **changes})
+    return RunSpec("run", "test run", cfg.model_dump(), SEMI_ANALYTICAL, t_end, config_hash(cfg))
+
+
+def test_a_partial_run_continues_from_its_checkpoint_bit_for_bit(tmp_path):
+    spec = _spec(0.003)
+    cfg = variant(**{"solver.checkpoint_interval": "1 ms"})
+    partial = simulate(cfg, t_end=0.0015, threads=1)  # as if stopped at 1.5 ms
+    write(partial, tmp_path / spec.file)
+    assert inspect_run(spec, read_attrs(tmp_path / spec.file)) == PARTIAL
+    rec = execute(spec, str(tmp_path), max_wall=120.0)
+    assert rec["action"] == "continued" and rec["status"] == "completed", rec
+    whole = simulate(cfg, t_end=0.003, threads=1)
+    with xr.open_dataset(tmp_path / spec.file, engine="h5netcdf") as opened:
+        got = opened.load()
+    assert got.attrs["resumed_at_s"] == pytest.approx(0.001)
+    for name in ("time", "frictional_torque", "position", "final_state"):
+        np.testing.assert_array_equal(got[name].values, whole[name].values, err_msg=name)
+    assert execute(spec, str(tmp_path), max_wall=120.0)["action"] == "reused"
+
+
+def test_the_wall_time_cap_stops_a_run_and_says_so(tmp_path):
+    spec = _spec(0.003)
+    rec = execute(spec, str(tmp_path), max_wall=1e-9)
+    assert rec["status"] == NOT_FINISHED and rec["reached [s]"] < 0.003
+    assert "not finished (reached t = " in rec["note"] and "wall time" in rec["note"]
+    attrs = read_attrs(tmp_path / spec.file)
+    assert attrs["study_stopped"] == "stopped after 1e-09 s of wall time"
+    assert inspect_run(spec, attrs) == PARTIAL  # the next invocation continues it
+    other = _spec(0.003, **{"operating.axial_load": "0 N"})
+    with pytest.raises(StudyError, match="another configuration"):
+        inspect_run(other, attrs)
+
+
+# --------------------------------------------------------------------------- the checks
+
+
+@pytest.fixture(scope="module")
+def judged(study):
+    """The study's plan with copies of its runs in which the ring turns at full speed."""
+    out, result, _ = study
+    plan = result.plan
+    sets = {}
+    for name in result.runs["name"]:
+        with xr.open_dataset(out / "runs" / f"{name}.nc", engine="h5netcdf") as opened:
+            ds = opened.load()
+        ds["ring_speed"][:] = plan.config.operating.final_inner_ring_speed
+        sets[name] = ds
+    return plan, sets, result.records
+
+
+def _check(judged, key: str, change) -> object:
+    plan, sets, records = judged
+    copies = {k: v.copy(deep=True) for k, v in sets.items()}
+    change(copies)
+    return next(f for f in check_findings(plan, copies, records) if f.key == key)
+
+
+def test_torque_and_flange_friction_checks_pass_and_fail_as_defined(judged):
+    def loads(torque: dict, friction: dict):
+        def change(sets):
+            for name, value in torque.items():
+                sets[name]["frictional_torque"][:] = value
+                sets[name]["flange_friction_force"][:] = friction[name] / (17 * 4)
+
+        return change
+
+    grows = loads({"axial-0N": 0.01, "axial-1000N": 0.3}, {"axial-0N": 0.0, "axial-1000N": 200.0})
+    found = _check(judged, "torque_grows", grows)
+    assert found.status == PASS and found.values["torque [N*m]"] == pytest.approx(
+        {0.0: 0.01, 1000.0: 0.3}
+    )
+    found = _check(judged, "flange_friction_explains", grows)
+    assert found.status == PASS
+    assert found.values["lever arm [m]"]["0-1000 N"] == pytest.approx(0.29 / 200.0)
+    falls = loads({"axial-0N": 0.3, "axial-1000N": 0.01}, {"axial-0N": 0.0, "axial-1000N": 0.0})
+    assert _check(judged, "torque_grows", falls).status == FAIL
+    no_friction = loads(
+        {"axial-0N": 0.01, "axial-1000N": 0.3}, {"axial-0N": 5.0, "axial-1000N": 5.0}
+    )
+    assert _check(judged, "flange_friction_explains", no_friction).status == FAIL
+
+
+def test_pairing_checks_pass_and_fail_as_defined(judged):
+    to_co, sp_co = PAIRINGS.index("TO-CO"), PAIRINGS.index("SP-CO")
+
+    def pairings(locked: int, free: int):
+        def change(sets):
+            sets["axial-1000N"]["flange_pairing"][:] = locked
+            sets["free-tilt"]["flange_pairing"][:] = free
+            sets["free-tilt"]["flange_pairing"][:, :3] = to_co
+
+        return change
+
+    found = _check(judged, "to_co_dominates", pairings(to_co, sp_co))
+    assert found.status == PASS and found.values["inner"]["TO-CO"] == 1.0
+    assert _check(judged, "to_co_dominates", pairings(sp_co, sp_co)).status == FAIL
+    found = _check(judged, "other_pairings_with_tilt", pairings(to_co, sp_co))
+    assert found.status == PASS
+    assert found.values["inner"] == pytest.approx({"locked": 0.0, "free": 14 / 17})
+    assert _check(judged, "other_pairings_with_tilt", pairings(sp_co, to_co)).status == FAIL
+
+
+def test_contact_comparison_passes_for_equal_contacts_and_fails_for_others(judged):
+    def contacts(offset: float):
+        def change(sets):
+            for name in ("axial-1000N", "axial-1000N-gradient"):
+                sets[name]["flange_penetration"][:] = 1e-6
+            sets["axial-1000N-gradient"]["flange_penetration"][:] += offset
+
+        return change
+
+    same = _check(judged, "same_contacts", contacts(0.0))
+    assert same.status == PASS and same.values["max |d penetration| loaded [m]"] == 0.0
+    differ = _check(judged, "same_contacts", contacts(2e-8))  # 2 % of the penetration
+    assert differ.status == FAIL
+    assert differ.values["max |d penetration| loaded [m]"] == pytest.approx(2e-8)
+
+
+def test_axial_force_check_uses_the_load_zone(judged):
+    plan, sets, records = judged
+    c = _Context(plan, sets, records)
+    assert plan.config.operating.load_ramp.end == 0.5  # B1: at 2 ms the loads are not up
+    from rollerdyn.study.findings import axial_force_in_load_zone
+
+    assert axial_force_in_load_zone(c).status == NOT_RUN
+
+
+# --------------------------------------------------------------------------- steadiness
+
+
+def _series(torque) -> xr.Dataset:
+    t = np.arange(0, 101) * 1e-3
+    n = t.size
+    return xr.Dataset(
+        {
+            "frictional_torque": ("time", np.broadcast_to(torque(t), (n,)).copy()),
+            "ring_speed": ("time", np.full(n, 100.0)),
+            "orbital_speed": (("time", "roller"), np.full((n, 3), 40.0)),
+            "flange_normal_force": (("time", "roller", "flange"), np.full((n, 3, 4), 50.0)),
+        },
+        coords={"time": t},
+    )
+
+
+def test_steady_rule_needs_three_calm_windows_after_the_ramps():
+    rule = SteadyRule(settle=0.02, window=0.01, tol=0.02, factor=0.5)
+    calm = _series(lambda t: 0.3 + 0 * t)
+    assert rule(calm.sel(time=slice(0, 0.049))) == ""  # only two windows after the ramps
+    assert rule(calm.sel(time=slice(0, 0.05))) == "steady at t = 0.05 s"
+    out = window_outputs(calm, 0.04, 0.05, 0.5)
+    assert out == pytest.approx(
+        {"torque [N*m]": 0.3, "speed loss [1]": 0.2, "max flange force [N]": 50.0}
+    )
+    drifting = _series(lambda t: 0.3 + 1.2 * t)  # 3 % per window at t = 0.1 s
+    steady, _, last = rule.verdict(drifting)
+    assert not steady and last["torque [N*m]"] == pytest.approx(0.3 + 1.2 * 0.0955)
+    assert rule.verdict(_series(lambda t: 0.3 + 0.6 * t))[0]  # 1.5 % per window: steady
+
+
+def test_ranges_are_read_and_refused_by_option():
+    assert parse_range("0:1000:3", "--axial-load", "force", "N") == [0.0, 500.0, 1000.0]
+    assert parse_range("1 kN,2 kN", "--radial-load", "force", "N") == [1000.0, 2000.0]
+    assert parse_range("100:100:1", "--axial-load", "force", "N") == [100.0]
+    speeds = parse_range("500:1500:2", "--speed", "angular velocity", "rpm", positive=True)
+    assert speeds == pytest.approx([500 * math.pi / 30, 1500 * math.pi / 30])
+    for text, reason in (
+        ("500:100:0", "empty range"),
+        ("500:100:3", "reversed range"),
+        ("100:500:1", "one point needs a = b"),
+        ("100,,200", "an empty value"),
+        ("0", "every value must be above 0"),
+        ("5 mm", "expected an angular velocity"),
+    ):
+        with pytest.raises(StudyError, match=reason) as err:
+            parse_range(text, "--speed", "angular velocity", "rpm", positive=True)
+        assert str(err.value).startswith("--speed ")
+
+
+def test_map_point_stops_when_steady(tmp_path, client):
+    result = operating_map(
+        B1,
+        tmp_path / "map",
+        speed="3000",
+        axial_load="0",
+        start="equilibrium",
+        window=0.001,
+        tol=0.5,
+        max_time=0.03,
+        scheduler=client,
+    )
+    row = result.points.iloc[0]
+    assert row["speed [rpm]"] == pytest.approx(3000.0) and row["axial_load [N]"] == 0.0
+    window = row["window [s]"]
+    assert window == pytest.approx(2 * 60 / (17 * 3000 * (1 - 4.495 / 24.5) / 2))
+    with xr.open_dataset(tmp_path / "map" / "points" / "point_0000.nc", engine="h5netcdf") as f:
+        ds = f.load()
+    # steady at the first multiple of the window at which the rule says so, not before
+    steady_at = row["steady at [s]"]
+    k = round(steady_at / window)
+    assert row["status"] == "steady" and k >= 3 and steady_at == pytest.approx(k * window)
+    assert ds.attrs["study_done"] == f"steady at t = {steady_at:.6g} s"
+    rule = SteadyRule(0.0, window, 0.5, (1 - 4.495 / 24.5) / 2)
+    for j in range(3, k):  # the run as the rule saw it at each earlier checkpoint
+        seen = ds.sel(time=slice(0, j * window + 1e-9)).drop_vars("checkpoint_time")
+        assert rule(seen.assign(checkpoint_time=j * window)) == "", j
+    assert rule(ds) == ds.attrs["study_done"]
+    assert float(ds.time[-1]) < steady_at + 2e-3  # stopped at the next output, not at 0.03 s
+    t = ds.time.values
+    last = (t > steady_at - window + 1e-12) & (t <= steady_at + 1e-12)
+    assert row["torque [N*m]"] == pytest.approx(float(ds.frictional_torque.values[last].mean()))
+    loss = 1 - ds.orbital_speed.values[last].mean() / (
+        ds.ring_speed.values[last].mean() * (1 - 4.495 / 24.5) / 2
+    )
+    assert row["speed loss [1]"] == pytest.approx(loss, rel=1e-9)
+    assert row["max flange force [N]"] == pytest.approx(
+        float(np.nanmax(ds.flange_normal_force.values[last]))
+    )
+    assert (tmp_path / "map" / "map.csv").is_file()
+    assert {p.name for p in (tmp_path / "map" / "figures").iterdir()} >= {"map_torque.png"}
+
+
+# --------------------------------------------------------------------------- command line
+
+
+def _refused(args: list[str], *needles: str) -> str:
+    result = RUNNER.invoke(app, args)
+    assert result.exit_code == 2, result.output
+    assert "Traceback" not in result.output
+    for needle in needles:
+        assert needle in result.output, (needle, result.output)
+    return result.output
+
+
+def test_cli_refuses_bad_input_naming_the_option(tmp_path, study):
+    out, _, _ = study
+    _refused(
+        ["study", "map", str(B1), "--speed", "500:100:0", "-o", str(tmp_path / "m")],
+        "--speed '500:100:0': empty range",
+    )
+    _refused(
+        ["study", "map", str(B1), "--speed", "500:100:3", "-o", str(tmp_path / "m")],
+        "--speed '500:100:3': reversed range",
+    )
+    _refused(
+        [
+            "study",
+            "map",
+            str(B1),
+            "--speed",
+            "500",
+            "--axial-load",
+            "-5",
+            "-o",
+            str(tmp_path / "m"),
+        ],
+        "--axial-load",
+    )
+    assert not (tmp_path / "m").exists()
+    _refused(["study", "paper", str(B1), "--t-end", "-1", "-o", str(tmp_path / "p")], "--t-end")
+    _refused(["study", "paper", str(B1), "--loads", "a,b", "-o", str(tmp_path / "p")], "--loads")
+    _refused(
+        [
+            "study",
+            "paper",
+            str(B1),
+            "--t-end",
+            "1 ms",
+            "--scheduler",
+            "tcp://127.0.0.1:1",
+            "-o",
+            str(tmp_path / "p"),
+        ],
+        "--scheduler 'tcp://127.0.0.1:1': cannot connect",
+    )
+    assert not (tmp_path / "p").exists()
+    # the study folder holds runs of B1; another configuration is refused, nothing touched
+    other = b1_file_with(tmp_path, 'radial_load = "5000 N"', 'radial_load = "4000 N"')
+    before = sorted((p.name, p.stat().st_mtime_ns) for p in out.rglob("*"))
+    text = _refused(
+        ["study", "paper", str(other), "--t-end", "2 ms", "-o", str(out)],
+        f"-o {out}: holds runs of another configuration",
+        "operating.radial_load: 5000.0 -> 4000.0",
+    )
+    assert len(text.strip().splitlines()) == 1
+    assert sorted((p.name, p.stat().st_mtime_ns) for p in out.rglob("*")) == before
+
+
+def test_cli_study_paper_short_version_and_its_rerun(tmp_path, client):
+    address = client.scheduler_info()["address"]
+    args = [
+        "study",
+        "paper",
+        str(B1),
+        "-o",
+        str(tmp_path / "s"),
+        "--t-end",
+        "1 ms",
+        "--loads",
+        "1000",
+        "--dt-max",
+        "none",
+        "--no-free-tilt",
+        "--no-gradient",
+        "--scheduler",
+        address,
+    ]
+    first = RUNNER.invoke(app, args)
+    assert first.exit_code == 0, first.output
+    assert "study paper: 1 run, 0 already done, 1 to run" in first.output
+    assert "axial-1000N completed; 1 of 1 done" in first.output
+    assert "NOT RUN" in first.output and "report.html" in first.output
+    second = RUNNER.invoke(app, args)
+    assert second.exit_code == 0, second.output
+    assert "nothing to run: every run was already in the folder" in second.output
+
+
+def test_cli_help_explains_units_and_defaults():
+    paper_help = RUNNER.invoke(app, ["study", "paper", "--help"]).output
+    for text in (
+        "--t-end",
+        "--max-wall",
+        "[s]",
+        "in N",
+        "default: results/study",
+        "1.288 s",
+        "0,500,1000,2000",
+        "--scheduler",
+        "Exit status",
+    ):
+        assert text in paper_help, text
+    map_help = RUNNER.invoke(app, ["study", "map", "--help"]).output
+    for text in ("rpm", "in N", "--tol", "N*m", "default: results/map", "0.02", "a:b:n"):
+        assert text in map_help, text
+
+
+def test_no_study_file_is_over_700_lines():
+    root = Path(__file__).resolve().parents[1] / "python" / "rollerdyn"
+    for path in [*(root / "study").glob("*.py"), root / "cli" / "study.py"]:
+        assert len(path.read_text(encoding="utf-8").splitlines()) <= 700, path
+    assert os.path.basename(B1) == "b1.toml"
