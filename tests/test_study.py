@@ -191,6 +191,29 @@ def test_the_report_shows_findings_runs_and_figures(study):
     assert page.count("<td class='PASS'>") == sum(f.status == PASS for f in result.findings)
 
 
+def test_the_report_renders_in_headless_chromium_without_errors(study, tmp_path):
+    import json
+    import re
+
+    from test_report import ERROR_HOOK, console_lines, run_chromium
+
+    out, _, _ = study
+    checked = tmp_path / "checked.html"
+    text = (out / "report.html").read_text(encoding="utf-8")
+    checked.write_text(text.replace("<head>", "<head>" + ERROR_HOOK, 1), encoding="utf-8")
+    done = run_chromium(["--dump-dom", checked.as_uri()], tmp_path / "profile")
+    assert done.returncode == 0, done.stderr[-3000:]
+    dom = done.stdout
+    # figs. 10, 11, 12, 13, the roller loads, 8, 9 and fig. 14's two: nine plots drawn
+    assert len(re.findall(r'class="plot-container', dom)) == 9
+    assert 'data-plots="9"' in dom
+    errors = re.search(r'data-errors="([^"]*)"', dom)
+    assert errors is not None, "the error hook did not run"
+    assert json.loads(errors.group(1).replace("&quot;", '"')) == []
+    bad = [line for line in console_lines(done.stderr) if "rror" in line or "Uncaught" in line]
+    assert bad == []
+
+
 # --------------------------------------------------------------------------- one run
 
 
@@ -301,10 +324,11 @@ def test_pairing_checks_pass_and_fail_as_defined(judged):
 
 
 def test_contact_comparison_passes_for_equal_contacts_and_fails_for_others(judged):
-    def contacts(offset: float):
+    def contacts(offset: float, force: float = 10.0):
         def change(sets):
             for name in ("axial-1000N", "axial-1000N-gradient"):
                 sets[name]["flange_penetration"][:] = 1e-6
+                sets[name]["flange_normal_force"][:] = force
             sets["axial-1000N-gradient"]["flange_penetration"][:] += offset
 
         return change
@@ -314,6 +338,9 @@ def test_contact_comparison_passes_for_equal_contacts_and_fails_for_others(judge
     differ = _check(judged, "same_contacts", contacts(2e-8))  # 2 % of the penetration
     assert differ.status == FAIL
     assert differ.values["max |d penetration| loaded [m]"] == pytest.approx(2e-8)
+    grazing = _check(judged, "same_contacts", contacts(2e-8, force=0.5))  # below 1 N
+    assert grazing.status == NOT_RUN and "no contact carries load" in grazing.numbers
+    assert grazing.values["max |d penetration| touching [m]"] == pytest.approx(2e-8)
 
 
 def test_axial_force_check_uses_the_load_zone(judged):

@@ -34,9 +34,11 @@ LOAD_ZONE = 0.01
 #: this effective lever arm over the load steps for the growth to be the flanges'.
 ARM_SPREAD = 0.25
 #: Contacts compared between the methods: penetration at least this share of the largest
-#: (the contacts that carry load; where a contact barely touches, its point is
-#: ill-conditioned and carries no force).
+#: and normal force at least :data:`LOADED_FORCE` in both runs (the contacts that carry
+#: load; where a contact barely touches, its point is ill-conditioned and carries no force).
 LOADED = 0.05
+#: Least normal force of a loaded contact [N] (B1 at 1000 N: up to about 150 N per contact).
+LOADED_FORCE = 1.0
 #: Largest difference of penetration between the methods, as a share of the largest
 #: penetration, that counts as equal.
 PENETRATION_TOL = 0.01
@@ -431,21 +433,44 @@ def same_contacts(c: _Context) -> Finding:
             "same_contacts", statement, NOT_RUN, f"no flange contact in both runs {span}"
         )
     d_max = float(np.max(np.maximum(da, db)[touching]))
-    loaded = touching & (np.minimum(da, db) >= LOADED * d_max)
+    force = np.minimum(
+        np.nan_to_num(a.flange_normal_force.values[:n]),
+        np.nan_to_num(b.flange_normal_force.values[:n]),
+    )
+    loaded = touching & (np.minimum(da, db) >= LOADED * d_max) & (force >= LOADED_FORCE)
     d_pen = np.abs(da - db)
     d_loc = np.linalg.norm(a.flange_location.values[:n] - b.flange_location.values[:n], axis=-1)
     same = a.flange_pairing.values[:n] == b.flange_pairing.values[:n]
     values = {
         "largest penetration [m]": d_max,
-        "loaded contacts": int(loaded.sum()),
-        "max |d penetration| loaded [m]": float(np.max(d_pen[loaded])),
-        "max |d location| loaded [m]": float(np.max(d_loc[loaded])),
-        "same pairing loaded": float(np.mean(same[loaded])),
         "touching contacts": int(touching.sum()),
         "max |d penetration| touching [m]": float(np.max(d_pen[touching])),
         "max |d location| touching [m]": float(np.max(d_loc[touching])),
         "same pairing touching": float(np.mean(same[touching])),
+        "loaded contacts": int(loaded.sum()),
     }
+    touching_text = (
+        f"all {values['touching contacts']} touching contacts: max |Δδ| = "
+        f"{values['max |d penetration| touching [m]']:.3g} m, max |ΔP_m| = "
+        f"{values['max |d location| touching [m]']:.3g} m, the same pairing in "
+        f"{_pct(values['same pairing touching'])}"
+    )
+    if not loaded.any():
+        return Finding(
+            "same_contacts",
+            statement,
+            NOT_RUN,
+            f"{span}: no contact carries load in both runs (δ ≥ {LOADED:.0%} of δ_max = "
+            f"{d_max:.3g} m and ≥ {LOADED_FORCE:g} N); {touching_text}",
+            values,
+        )
+    values.update(
+        {
+            "max |d penetration| loaded [m]": float(np.max(d_pen[loaded])),
+            "max |d location| loaded [m]": float(np.max(d_loc[loaded])),
+            "same pairing loaded": float(np.mean(same[loaded])),
+        }
+    )
     ok = (
         values["max |d penetration| loaded [m]"] <= PENETRATION_TOL * d_max
         and values["max |d location| loaded [m]"] <= LOCATION_TOL
@@ -456,13 +481,11 @@ def same_contacts(c: _Context) -> Finding:
         statement,
         PASS if ok else FAIL,
         f"{span}, largest penetration δ_max = {d_max:.3g} m; {values['loaded contacts']} loaded "
-        f"contacts (δ ≥ {LOADED:.0%} of δ_max in both runs): max |Δδ| = "
+        f"contacts (δ ≥ {LOADED:.0%} of δ_max and ≥ {LOADED_FORCE:g} N in both runs): max |Δδ| = "
         f"{values['max |d penetration| loaded [m]']:.3g} m, max |ΔP_m| = "
         f"{values['max |d location| loaded [m]']:.3g} m, the same pairing in "
-        f"{_pct(values['same pairing loaded'])}; all {values['touching contacts']} touching "
-        f"contacts: max |Δδ| = {values['max |d penetration| touching [m]']:.3g} m, max |ΔP_m| = "
-        f"{values['max |d location| touching [m]']:.3g} m, the same pairing in "
-        f"{_pct(values['same pairing touching'])}; PASS needs, on the loaded contacts, "
+        f"{_pct(values['same pairing loaded'])}; {touching_text}; PASS needs, on the loaded "
+        "contacts, "
         f"|Δδ| ≤ {PENETRATION_TOL:.0%} of δ_max, |ΔP_m| ≤ {LOCATION_TOL:g} m and the same "
         "pairing",
         values,
