@@ -14,6 +14,7 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
+from ..study.plan import DEFAULT_MAX_WALL
 from .common import console, load, plain, refuse, say, time_option
 
 app = typer.Typer(
@@ -113,7 +114,7 @@ def paper_command(
             metavar="TIME",
         ),
     ] = None,
-    max_wall: MaxWallOption = 300.0,
+    max_wall: MaxWallOption = DEFAULT_MAX_WALL,
     loads: Annotated[
         str,
         typer.Option(
@@ -377,9 +378,10 @@ class _Lines:
         kind = event["kind"]
         if kind == "plan":
             self.total, self.done = event["total"], len(event["reused"])
+            n = event["total"]
             say(
-                f"{self.title}: {event['total']} runs, {len(event['reused'])} already done, "
-                f"{len(event['pending'])} to run ({wall:.1f} s)"
+                f"{self.title}: {n} run{'s' if n != 1 else ''}, {len(event['reused'])} already "
+                f"done, {len(event['pending'])} to run ({wall:.1f} s)"
             )
         elif kind == "update":
             name = event["name"]

@@ -11,24 +11,40 @@ Both are resumable: a run whose file holds it to its end is not run again, one s
 (wall-time cap, killed worker, Ctrl-C) continues from its last checkpoint. Bad input
 raises :class:`StudyError` (a ``ValueError``) naming the option, before any run. See
 ``docs/study.md``.
+
+The modules: :mod:`.plan` (which runs), :mod:`.runs` (one run as a Dask task, its file's
+state), :mod:`.schedule` (the runs on Dask, progress), :mod:`.folder` (the study folder),
+:mod:`.findings` (the checks), :mod:`.figures` and :mod:`.report_page` (figures, report),
+:mod:`.paper`, :mod:`.maps`, :mod:`.steady` and :mod:`.map_figures`. The names below are
+imported when first used, so that the command line starts before the heavy libraries load.
 """
 
 from __future__ import annotations
 
-from .findings import FAIL, NOT_RUN, PASS, Finding
-from .maps import MapStudy, operating_map, parse_range
-from .paper import PaperStudy, paper
-from .runs import StudyError
+import importlib
+from typing import Any
 
-__all__ = [
-    "FAIL",
-    "NOT_RUN",
-    "PASS",
-    "Finding",
-    "MapStudy",
-    "PaperStudy",
-    "StudyError",
-    "operating_map",
-    "paper",
-    "parse_range",
-]
+#: Public name -> module that defines it.
+_LAZY = {
+    "FAIL": ".findings",
+    "NOT_RUN": ".findings",
+    "PASS": ".findings",
+    "Finding": ".findings",
+    "MapStudy": ".maps",
+    "operating_map": ".maps",
+    "parse_range": ".maps",
+    "PaperStudy": ".paper",
+    "paper": ".paper",
+    "StudyError": ".runs",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        value = getattr(importlib.import_module(_LAZY[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'rollerdyn.study' has no attribute {name!r}")
+
+
+__all__ = sorted(_LAZY)

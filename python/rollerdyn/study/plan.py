@@ -34,7 +34,7 @@ DEFAULT_LOADS: tuple[float, ...] = (0.0, 500.0, 1000.0, 2000.0)
 DEFAULT_DT_MAX_FACTORS: tuple[float, ...] = (0.2, 0.5, 1.0)
 
 #: Wall-time cap of one run [s] (per invocation of the study).
-DEFAULT_MAX_WALL = 300.0
+DEFAULT_MAX_WALL = 600.0
 
 
 @dataclass
