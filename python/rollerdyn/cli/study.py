@@ -18,7 +18,7 @@ from ..study.plan import DEFAULT_MAX_WALL
 from .common import console, load, plain, refuse, say, time_option
 
 app = typer.Typer(
-    help="Studies of many runs on Dask: the paper's sect. 5 (paper) and operating maps (map).",
+    help="Studies of many runs on Dask: the paper's section 5 (paper) and operating maps (map).",
     no_args_is_help=True,
     add_completion=False,
     rich_markup_mode=None,
@@ -284,7 +284,7 @@ def map_command(
             "--tol",
             help="Steady when the torque, speed loss and largest flange force, each over a "
             "window, changed by at most this share of their value over each of the last two "
-            "windows (or by less than 1e-4 N*m, 1e-3, 1 N).",
+            "windows (or by less than 1e-4 N*m, 0.005, 1 N).",
         ),
     ] = 0.02,
     max_time: Annotated[

@@ -332,7 +332,7 @@ def point_row(spec: RunSpec, ds, rec: dict, rule: SteadyRule) -> dict:
         row["status"], row["steady at [s]"] = STEADY, t_k
     elif state == FINISHED:
         row["status"] = NOT_STEADY
-        row["note"] = f"not steady at the maximum time, t = {spec.t_end:g} s"
+        row["note"] = rule.unmet(spec.t_end)
     if t_k - rule.window >= rule.settle - 1e-12:  # a whole window after the ramps
         row.update(window_outputs(ds, t_k - rule.window, t_k, rule.factor))
     return row

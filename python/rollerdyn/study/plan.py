@@ -24,7 +24,7 @@ from dataclasses import dataclass, field
 
 from ..config import BearingConfig, parse_config
 from ..names import GRADIENT, SEMI_ANALYTICAL
-from ..provenance import config_hash
+from ..provenance import config_hash, differences, resolved
 from .runs import RunSpec, StudyError
 
 #: Axial loads of figs. 10-13 [N] (paper sect. 5.2).
@@ -94,11 +94,17 @@ def build_plan(
     plan = Plan(config=cfg, t_end=end)
     seen: dict[tuple[str, str], str] = {}
 
+    base = resolved(cfg)
+
     def add(name: str, variant: BearingConfig, det: str, label: str, meta: dict) -> str:
         key = (config_hash(variant), det)
         if key in seen:
             return seen[key]
         seen[key] = name
+        changed = [d.replace("'", "") for d in differences(base, resolved(variant))]
+        if det != detector:
+            changed.append(f"detector: {detector} -> {det}")
+        meta = {**meta, "changes": "; ".join(changed) or "none"}
         plan.specs.append(
             RunSpec(name, label, variant.model_dump(), det, end, key[0], meta=dict(meta))
         )

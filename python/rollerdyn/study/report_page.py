@@ -55,6 +55,7 @@ def _runs_table(plan: Plan, records: dict) -> str:
     header = [
         "run",
         "what",
+        "changes from the configuration (SI)",
         "detector",
         "status",
         "reached [s]",
@@ -71,6 +72,7 @@ def _runs_table(plan: Plan, records: dict) -> str:
             [
                 spec.name,
                 spec.label,
+                spec.meta.get("changes", ""),
                 spec.detector,
                 rec.get("note") or rec.get("status", "not run"),
                 _num(rec.get("reached [s]", math.nan)),
@@ -81,7 +83,7 @@ def _runs_table(plan: Plan, records: dict) -> str:
                 f"runs/{spec.file}" if rec.get("file") else "",
             ]
         )
-    return _table(header, rows, numeric_from=4)
+    return _table(header, rows, numeric_from=5)
 
 
 def _configuration(plan: Plan) -> str:

@@ -279,7 +279,12 @@ def execute(
         write(ds, path)
         rec = record(spec, dict(ds.attrs), action)
         if stop_rule is not None and not done and rec["status"] == COMPLETED:
-            rec["note"] = f"not done by its stop rule at its end time, t = {spec.t_end:.6g} s"
+            unmet = getattr(stop_rule, "unmet", None)
+            rec["note"] = (
+                unmet(spec.t_end)
+                if unmet
+                else f"not done by its stop rule at its end time, t = {spec.t_end:.6g} s"
+            )
         rec["attempt wall [s]"] = time.monotonic() - started
         return rec
     except StudyError as err:
