@@ -99,6 +99,8 @@ def test_plan_holds_each_run_once_with_its_role():
     assert none.free_tilt is None and none.runtime == {}
     with pytest.raises(StudyError, match="--loads"):
         build_plan(load_b1(), 0.01, loads=(-5.0,))
+    assert list(build_plan(load_b1(), 0.01, loads=()).loads) == [1000.0]  # its own load
+    assert list(build_plan(load_b1(), 0.01, loads=()).loads) == [1000.0]  # its own load
 
 
 # --------------------------------------------------------------------------- the paper study
@@ -481,6 +483,12 @@ def test_cli_refuses_bad_input_naming_the_option(tmp_path, study):
             str(tmp_path / "m"),
         ],
         "--axial-load",
+    )
+    _refused(
+        ["study", "map", str(B1), "--speed", "500", "--radial-load", "200 kN"]
+        + ["-o", str(tmp_path / "m")],
+        "operating.radial_load: 200000.0",
+        "(--radial-load)",
     )
     assert not (tmp_path / "m").exists()
     _refused(["study", "paper", str(B1), "--t-end", "-1", "-o", str(tmp_path / "p")], "--t-end")

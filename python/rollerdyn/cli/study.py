@@ -119,8 +119,8 @@ def paper_command(
         str,
         typer.Option(
             "--loads",
-            help="Axial loads of figs. 10-13 in N, comma-separated; the configuration's own "
-            "axial load is always one of them.",
+            help="Axial loads of figs. 10-13 in N, comma-separated, or 'none'; the "
+            "configuration's own axial load is always one of them.",
             metavar="N,N,...",
         ),
     ] = "0,500,1000,2000",
@@ -206,6 +206,8 @@ def paper_command(
             )
     except StudyError as err:
         raise refuse(err) from None
+    except OSError as err:
+        raise refuse(f"-o {output}: {err}", 1) from None
     _print_runs(result.runs, f"{result.plan.config.name}: runs of the study in {output}")
     _print_findings(result.findings)
     _print_timing(result.timing, time.perf_counter() - started)
@@ -341,6 +343,8 @@ def map_command(
             )
     except StudyError as err:
         raise refuse(err) from None
+    except OSError as err:
+        raise refuse(f"-o {output}: {err}", 1) from None
     _print_map(result.points, f"operating map of {config.name} in {output}")
     _print_timing(result.timing, time.perf_counter() - started)
     say(

@@ -31,6 +31,13 @@ RPM = 2.0 * math.pi / 60.0
 #: quasi-static equilibrium, solver.start) or "config" (the configuration's own ramps).
 STARTS = ("short-ramps", "equilibrium", "config")
 
+#: The configuration paths the grid sets, and their options.
+OPTIONS = {
+    "operating.inner_ring_speed": "--speed",
+    "operating.radial_load": "--radial-load",
+    "operating.axial_load": "--axial-load",
+}
+
 #: Map outputs: column, title, unit.
 OUTPUTS = (
     ("torque [N*m]", "friction torque", "N·m"),
@@ -226,7 +233,11 @@ def operating_map(
         try:
             variant, settle = point_config(cfg, w, fr, fa, start, ramp)
         except ConfigError as err:
-            problems.append(f"point {i} ({label}): {str(err).splitlines()[-1].strip()}")
+            for prob in err.problems or ():
+                option = OPTIONS.get(prob.path)
+                problems.append(f"point {i} ({label}): {prob}" + (f" ({option})" if option else ""))
+            if not err.problems:
+                problems.append(f"point {i} ({label}): {str(err).splitlines()[-1].strip()}")
             continue
         win = window_length(window, w, g.roller_count, factor)
         if settle + 3 * win > max_time:

@@ -83,8 +83,8 @@ def build_plan(
     if not (end > 0 and math.isfinite(end)):
         raise StudyError(f"--t-end = {t_end!r}: must be a positive time")
     loads = [float(v) for v in loads]
-    if not loads or any(not (math.isfinite(v) and v >= 0.0) for v in loads):
-        raise StudyError(f"--loads = {loads}: must be one or more axial loads >= 0 N")
+    if any(not (math.isfinite(v) and v >= 0.0) for v in loads):
+        raise StudyError(f"--loads = {loads}: every axial load must be >= 0 N")
     if dt_max is None:
         dt_max = [cfg.solver.dt_max * f for f in DEFAULT_DT_MAX_FACTORS]
     dt_max = sorted({float(v) for v in dt_max}) if gradient else []
