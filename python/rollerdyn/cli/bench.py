@@ -16,6 +16,7 @@ from .bench_targets import (
     bench_contact,
     bench_mbs,
     bench_model,
+    bench_statics,
     bench_traction,
     runtime_study,
 )
@@ -29,8 +30,8 @@ def bench(
             help="What to time: 'traction' (EHL traction integral), 'contact' (roller "
             f"end/flange detection: {SEMI_ANALYTICAL}, pruned, {GRADIENT}), 'model' (one "
             "right-hand side and one Jacobian of the bearing model at a state), 'mbs' "
-            f"(whole runs with the {SEMI_ANALYTICAL} and the {GRADIENT} detector) or 'all' "
-            "(traction and contact)."
+            f"(whole runs with the {SEMI_ANALYTICAL} and the {GRADIENT} detector), 'statics' "
+            "(one quasi-static equilibrium and a load sweep) or 'all' (traction and contact)."
         ),
     ] = "all",
     repetitions: Annotated[
@@ -107,6 +108,16 @@ def bench(
             "state, where nothing is loaded yet).",
         ),
     ] = None,
+    statics_cases: Annotated[
+        int,
+        typer.Option(
+            "--statics-cases",
+            min=2,
+            max=100_000,
+            help="statics: radial loads in the sweep, from half to twice the "
+            "configuration's (its axial load kept).",
+        ),
+    ] = 1000,
     config: ConfigOption = None,
 ) -> None:
     """Time the hot paths and print tables (times in ns per evaluation unless a column
@@ -131,11 +142,14 @@ def bench(
     and Jacobians alike), the time inside Jacobians, and the rest (linear algebra and the
     solver's own work). With --sweep-dt-max: the runtime study of the paper's fig. 14;
     with --cases: whole runs of operating points.
+
+    statics: one quasi-static equilibrium of the configuration's load case (ms, median of
+    20) and a sweep of --statics-cases radial loads (s), in the core and with datasets.
     """
     from ..validation import default_config_path
 
-    if target not in ("traction", "contact", "model", "mbs", "all"):
-        raise refuse(f"target = {target!r}: must be traction, contact, model, mbs or all")
+    if target not in ("traction", "contact", "model", "mbs", "statics", "all"):
+        raise refuse(f"target = {target!r}: must be traction, contact, model, mbs, statics or all")
     end = time_option("--t-end", t_end)
     dt_max_values = None if sweep_dt_max is None else _dt_max_values(sweep_dt_max)
     thread_counts = _thread_counts(threads)
@@ -148,6 +162,8 @@ def bench(
         bench_contact(cfg, steps)
     if target == "model":
         bench_model(cfg, state)
+    if target == "statics":
+        bench_statics(cfg, statics_cases)
     if target == "mbs" and cases is not None:
         bench_cases(cfg, cases, thread_counts, max_wall, output)
     elif target == "mbs" and dt_max_values is not None:

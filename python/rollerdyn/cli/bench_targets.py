@@ -349,3 +349,63 @@ def bench_contact(cfg, steps: int) -> None:
     for around, along, ns, error, samples in r.get("mesh", []):
         mesh.add_row(f"{around} x {along}", f"{ns / 1e6:.2f}", f"{error:.2e}", str(samples))
     console.print(mesh)
+
+
+def bench_statics(cfg, cases: int) -> None:
+    """The quasi-static analysis on one core: one equilibrium of the configuration's load
+    case from the cold start (median of 20, with its stiffness), and a sweep of ``cases``
+    radial loads from half to twice the configuration's (its axial load kept), each from its
+    neighbour, in the core and through :func:`rollerdyn.statics.statics_sweep` (datasets,
+    lives)."""
+    import statistics
+    import time
+
+    import numpy as np
+
+    from .. import _core
+    from ..statics import StaticsError, _case_with, _core_model, config_case, statics_sweep
+
+    model = _core_model(cfg)
+    base = config_case(cfg)
+
+    def timed(case_list: list, chain: bool) -> tuple[float, list]:
+        started = time.perf_counter()
+        out = _core.statics(model, [c.core() for c in case_list], chain=chain, stiffness=True)
+        return time.perf_counter() - started, out
+
+    _, (first,) = timed([base], False)
+    if isinstance(first, str):
+        raise refuse(f"statics: {first}")
+    single = statistics.median(timed([base], False)[0] for _ in range(20))
+    radial = max(base.radial_load, 1.0)
+    loads = np.linspace(0.5 * radial, 2.0 * radial, cases)
+    sweep_cases = [_case_with(base, radial_load=float(f)) for f in loads]
+    core_seconds, results = timed(sweep_cases, True)
+    failed = sum(1 for r in results if isinstance(r, str))
+    started = time.perf_counter()
+    try:
+        statics_sweep(cfg, {"operating.radial_load": loads.tolist()})
+    except StaticsError as err:
+        raise refuse(f"statics: {err}") from None
+    datasets_seconds = time.perf_counter() - started
+    table = Table(title=f"{cfg.name}: quasi-static analysis, one core")
+    for col in ("what", "time", "note"):
+        table.add_column(col)
+    table.add_row(
+        "one equilibrium",
+        f"{single * 1e3:.2f} ms",
+        f"radial {base.radial_load:g} N, axial {base.axial_load:g} N, cold start, "
+        "with the 5x5 stiffness; median of 20",
+    )
+    table.add_row(
+        f"{cases}-case radial sweep, core",
+        f"{core_seconds:.2f} s",
+        f"{loads[0]:g} ... {loads[-1]:g} N, each case from its neighbour; "
+        f"{failed} without equilibrium",
+    )
+    table.add_row(
+        f"{cases}-case radial sweep, statics_sweep",
+        f"{datasets_seconds:.2f} s",
+        "the same with one dataset per case (slice loads, lives)",
+    )
+    console.print(table)
