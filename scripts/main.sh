@@ -1,18 +1,24 @@
 #!/usr/bin/env bash
-# The main job: set up, check every model against published values, run the B1
-# simulation (paper sect. 4) and draw its figures.
-#   results/b1.nc      the run (netCDF, xarray; SI units in every variable's attributes)
-#   results/plots/     figs. 8-13 of the paper and the roller loads (PNG and SVG)
-#   results/report.html  one self-contained page: summary, interactive figures, animation
-# Extra arguments go to `rollerdyn run` (e.g. `--t-end 0.55` for a short run). Without
-# any, the whole job takes about 1.5 minutes on this 2-core machine (86 s measured; README).
+# The main job: set up, check every model against published values, run the paper's whole
+# study of bearing B1 (sect. 5, figs. 8-14: axial loads 0, 500, 1000, 2000 N, the inner ring
+# locked and free to tilt, both contact detectors, the runtime over dt_max) on all cores,
+# check the paper's findings, and draw B1's own figures and report.
+#   results/study/report.html     the study: every figure, the findings table, each run
+#   results/study/runs/*.nc       one netCDF result per run (xarray; SI units in attributes)
+#   results/study/figures/        figs. 8-14 (PNG and SVG); findings.csv, runs.csv
+#   results/plots/, results/report.html   figs. 8-13 and the report of the B1 run itself
+# Extra arguments go to `rollerdyn study paper` (e.g. `--t-end 0.55` for a short study,
+# `--max-wall 300` for a tighter cap per run). A second invocation reuses finished runs and
+# continues unfinished ones from their checkpoints. Time: see README.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 .venv/bin/rollerdyn validate
-mkdir -p results
 status=0
-.venv/bin/rollerdyn run examples/b1.toml -o results/b1.nc --overwrite "$@" || status=$?
-.venv/bin/rollerdyn plot results/b1.nc -o results/plots
-.venv/bin/rollerdyn report results/b1.nc -o results/report.html
+.venv/bin/rollerdyn study paper examples/b1.toml -o results/study "$@" || status=$?
+b1=results/study/runs/axial-1000N.nc
+if [ -f "$b1" ]; then
+  .venv/bin/rollerdyn plot "$b1" -o results/plots
+  .venv/bin/rollerdyn report "$b1" -o results/report.html
+fi
 exit "$status"

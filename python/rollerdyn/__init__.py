@@ -6,7 +6,9 @@ configuration (:mod:`rollerdyn.config`), the force laws on numpy arrays
 the validation cases (:mod:`rollerdyn.validation`), runs of the dynamic model
 (:mod:`rollerdyn.simulation`), the names it shares with the core (:mod:`rollerdyn.names`),
 figures (:mod:`rollerdyn.plots`), the HTML report (:mod:`rollerdyn.report`), parameter
-sweeps (:mod:`rollerdyn.sweep`) and the command line (:mod:`rollerdyn.cli`).
+sweeps (:mod:`rollerdyn.sweep`), the quasi-static analysis (:mod:`rollerdyn.statics`), the
+paper's study and operating maps (:mod:`rollerdyn.study`) and the command line
+(:mod:`rollerdyn.cli`).
 
 The names below are imported when first used, so that the command line starts (and can
 be interrupted) before the heavy libraries load.
@@ -30,7 +32,14 @@ _LAZY = {
 }
 
 
+#: Subpackages reached as attributes of the package (``rollerdyn.study.paper(...)``)
+#: without an import of their own.
+_SUBPACKAGES = ("study",)
+
+
 def __getattr__(name: str) -> Any:
+    if name in _SUBPACKAGES:
+        return importlib.import_module(f".{name}", __name__)
     if name in _LAZY:
         value = getattr(importlib.import_module(_LAZY[name], __name__), name)
         globals()[name] = value
@@ -91,6 +100,7 @@ __all__ = [
     "parse_config",
     "report",
     "simulate",
+    "study",
     "sweep",
     "__version__",
 ]

@@ -16,6 +16,7 @@ import math
 import os
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
+from typing import Any, NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -242,18 +243,17 @@ def statics_sweep(
     results = _solve(cfg, cases, stiffness=stiffness, progress=progress)
     parts, errors = [], []
     ratings = _ratings(cfg)
-    template = next((r for r in results if not isinstance(r, str)), None)
     for case, result in zip(cases, results, strict=True):
         if isinstance(result, str):
             errors.append(result)
             parts.append(None)
         else:
             errors.append("")
-            parts.append(_case_dataset(cfg, ratings, case, result, contamination))
+            parts.append(_case_variables(cfg, ratings, case, result, contamination))
+    template = next((p for p in parts if p is not None), None)
     if template is None:
         raise StaticsError(f"no case of the sweep has an equilibrium; the first: {errors[0]}")
-    blank = xr.full_like(next(p for p in parts if p is not None), np.nan)
-    ds = xr.concat([p if p is not None else blank for p in parts], dim="case")
+    ds = _dataset(cfg, _stacked(template, parts), case_dim=True)
     ds = ds.assign_coords(case=np.arange(len(cases)))
     for path in paths:
         name = STATIC_FIELDS[path][0]
@@ -271,13 +271,57 @@ def statics_sweep(
 # --------------------------------------------------------------------------- the dataset
 
 
-def _var(data, dims, units: str, description: str) -> xr.Variable:
-    return xr.Variable(dims, data, attrs={"units": units, "description": description})
+class _Var(NamedTuple):
+    """One variable of a case: its dims, data, unit and description."""
+
+    dims: tuple
+    data: Any
+    units: str
+    description: str
+
+
+def _var(data, dims, units: str, description: str) -> _Var:
+    return _Var(tuple(dims), data, units, description)
+
+
+#: The coordinates of a case's dimensions, but for roller and slice (from the configuration).
+_COORDS = {
+    "flange": list(FLANGES),
+    "ring_dof": list(RING_DOF),
+    "ring_load_dof": ["force_x", "force_y", "force_z", "moment_y", "moment_z"],
+}
+
+
+def _dataset(cfg: BearingConfig, variables: dict[str, _Var], case_dim: bool = False) -> xr.Dataset:
+    """The dataset of ``variables``; with ``case_dim``, each one's data has a leading case
+    axis."""
+    prefix = ("case",) if case_dim else ()
+    return xr.Dataset(
+        {
+            name: xr.Variable(
+                prefix + v.dims, v.data, attrs={"units": v.units, "description": v.description}
+            )
+            for name, v in variables.items()
+        },
+        coords={
+            "roller": np.arange(cfg.geometry.roller_count),
+            "slice": np.arange(cfg.geometry.roller.slices),
+            **_COORDS,
+        },
+    )
 
 
 def _case_dataset(
     cfg: BearingConfig, ratings: _Ratings, case: StaticCase, r: dict, contamination: float
 ) -> xr.Dataset:
+    """The dataset of one solved case (result ``r`` of the core)."""
+    return _dataset(cfg, _case_variables(cfg, ratings, case, r, contamination))
+
+
+def _case_variables(
+    cfg: BearingConfig, ratings: _Ratings, case: StaticCase, r: dict, contamination: float
+) -> dict[str, _Var]:
+    """The variables of one solved case (result ``r`` of the core)."""
     z, ns = cfg.geometry.roller_count, cfg.geometry.roller.slices
     slices = {
         k: np.asarray(r[k]).reshape(z, ns)
@@ -419,30 +463,32 @@ def _case_dataset(
             cfg, ratings, case, slices["inner_slices"], slices["outer_slices"], contamination
         )
     )
-    ds = xr.Dataset(
-        data,
-        coords={
-            "roller": np.arange(z),
-            "slice": np.arange(ns),
-            "flange": list(FLANGES),
-            "ring_dof": list(RING_DOF),
-            "ring_load_dof": ["force_x", "force_y", "force_z", "moment_y", "moment_z"],
-        },
-    )
-    ds["radial_load_applied"] = _var(
+    data["radial_load_applied"] = _var(
         case.radial_load, (), "N", "radial load on the inner ring, along -y"
     )
-    ds["axial_load_applied"] = _var(
+    data["axial_load_applied"] = _var(
         case.axial_load, (), "N", "axial load on the inner ring, along +x"
     )
-    ds["speed_applied"] = _var(case.speed, (), "rad/s", "inner ring speed")
-    ds["misalignment_applied"] = _var(
+    data["speed_applied"] = _var(case.speed, (), "rad/s", "inner ring speed")
+    data["misalignment_applied"] = _var(
         np.nan if case.misalignment is None else case.misalignment,
         (),
         "rad",
         "prescribed tilt about z (NaN: free)",
     )
-    return ds
+    return data
+
+
+def _stacked(template: dict[str, _Var], parts: list[dict[str, _Var] | None]) -> dict[str, _Var]:
+    """The variables of every case along a leading case axis; a case without equilibrium
+    (None) is NaN, or an empty text."""
+    out = {}
+    for name, v in template.items():
+        sample = np.asarray(v.data)
+        blank = np.full(sample.shape, "" if sample.dtype.kind in "OUS" else np.nan)
+        rows = [blank if p is None else np.asarray(p[name].data) for p in parts]
+        out[name] = v._replace(data=np.stack(rows))
+    return out
 
 
 def _load_zone_angle(cfg: BearingConfig, ring: np.ndarray) -> float:
