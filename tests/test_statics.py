@@ -45,6 +45,59 @@ def test_zero_clearance_follows_stribeck():
     assert float(ds.load_zone_angle) == pytest.approx(90.0)
 
 
+def _sjovall_jr(epsilon: float, n: float) -> float:
+    """Sjövall's radial integral J_r(eps) = 1/(2 pi) int_{-psi_l}^{psi_l}
+    [1 - (1 - cos psi)/(2 eps)]^n cos psi dpsi, cos psi_l = 1 - 2 eps (Harris & Kotzalas,
+    Rolling Bearing Analysis, 5th ed., eq. 7.40; tabulated there for line contact, n = 1.1),
+    by the trapezoidal rule on 20 001 points (the integrand is smooth and vanishes at the
+    limits; error below 1e-7)."""
+    limit = math.acos(1.0 - 2.0 * epsilon)
+    psi = np.linspace(-limit, limit, 20_001)
+    integrand = np.clip(1.0 - (1.0 - np.cos(psi)) / (2.0 * epsilon), 0.0, None) ** n * np.cos(psi)
+    value = float(np.trapezoid(integrand, psi))
+    return value / (2.0 * math.pi)
+
+
+def test_clearance_follows_the_per_roller_solution_and_sjovall():
+    """B1 with its 10 um clearance, no gravity, at rest, 5 kN radially: every roller's load
+    equals the per-roller solution of Harris & Kotzalas sect. 7.2 with the same contact law
+    (inner and outer eq. 11 in series, each roller squeezed by delta_r cos psi less the
+    clearance; tests/test_dynamics.py) within 1 % of the heaviest, as the zero-clearance
+    case does. The load zone's extent eps = (1 - P_d/(2 delta_r))/2 gives Sjövall's
+    F_r = Z Q_max J_r(eps): with Z = 17 the discrete sum differs from the integral by its
+    discreteness, 3 % at eps = 0.5 (3.96 against Stribeck's 4.08, the test above), so 5 %
+    here."""
+    from test_dynamics import quasi_static_loads
+
+    cfg = variant(**{"operating.gravity": "0 m/s^2", "operating.axial_load": "0 N"})
+    ds = statics(cfg, radial_load=5000.0, axial_load=0.0, speed=0.0)
+    q = ds.inner_race_load.values
+    expected, delta_r = quasi_static_loads(cfg)
+    assert np.max(np.abs(q - expected)) < 0.01 * q.max(), (q, expected)
+    assert float(-ds.ring_displacement[1]) == pytest.approx(delta_r, rel=0.01)
+    clearance = cfg.geometry.diametral_clearance
+    epsilon = 0.5 * (1.0 - clearance / (2.0 * delta_r))
+    assert 0.3 < epsilon < 0.5  # a clearance that narrows the load zone
+    # the quadrature against Harris & Kotzalas' table 7.1 (line contact, eps = 0.5)
+    assert _sjovall_jr(0.5, 1.1) == pytest.approx(0.2453, abs=1e-4)
+    laws = _laws(cfg)
+    n = 1.0 / (0.5 * (laws["inner"].k2 + laws["outer"].k2))
+    assert 5000.0 / (17 * q.max()) == pytest.approx(_sjovall_jr(epsilon, n), rel=0.05)
+
+
+def test_radial_stiffness_of_zero_clearance_is_n_fr_over_delta():
+    """Closed form for zero clearance: with Q_j = K (delta_r cos psi_j)^n every roller's load
+    scales as delta_r^n, so F_r = sum Q_j cos psi_j does too and k_yy = dF_r/d delta_r =
+    n F_r / delta_r (Harris & Kotzalas sect. 7.2); n = 1/k2 of eq. 11 (inner and outer k2
+    differ by about 1 %, hence 2 %)."""
+    cfg = variant(**{"geometry.diametral_clearance": "0 um", "operating.gravity": "0 m/s^2"})
+    ds = statics(cfg, radial_load=5000.0, axial_load=0.0, speed=0.0)
+    laws = _laws(cfg)
+    n = 1.0 / (0.5 * (laws["inner"].k2 + laws["outer"].k2))
+    delta_r = float(-ds.ring_displacement[1])
+    assert float(ds.stiffness.values[1, 1]) == pytest.approx(n * 5000.0 / delta_r, rel=0.02)
+
+
 def _laws(cfg):
     from rollerdyn.model import Model
 
