@@ -111,6 +111,26 @@ def console_lines(stderr: str) -> list[str]:
     return [line for line in stderr.splitlines() if "CONSOLE" in line or "Uncaught" in line]
 
 
+def rendered_dom(page: Path, tmp_path: Path, plots: int) -> str:
+    """The DOM of ``page`` after headless Chromium ran its scripts, checked: ``plots``
+    plot containers built and counted by the page's last script, no error, no uncaught
+    exception, no console error (also used by the study's report test)."""
+    checked = tmp_path / "checked.html"
+    text = page.read_text(encoding="utf-8")
+    checked.write_text(text.replace("<head>", "<head>" + ERROR_HOOK, 1), encoding="utf-8")
+    done = run_chromium(["--dump-dom", checked.as_uri()], tmp_path / "profile")
+    assert done.returncode == 0, done.stderr[-3000:]
+    dom = done.stdout
+    assert len(re.findall(r'class="plot-container', dom)) == plots
+    assert f'data-plots="{plots}"' in dom
+    errors = re.search(r'data-errors="([^"]*)"', dom)
+    assert errors is not None, "the error hook did not run"
+    assert json.loads(errors.group(1).replace("&quot;", '"')) == []
+    bad = [line for line in console_lines(done.stderr) if "rror" in line or "Uncaught" in line]
+    assert bad == []
+    return dom
+
+
 def test_page_is_self_contained_and_holds_every_part(page, result):
     text = page.read_text(encoding="utf-8")
     # No external script, style or image: everything inline.
@@ -150,24 +170,12 @@ def test_page_is_self_contained_and_holds_every_part(page, result):
 
 
 def test_page_renders_in_headless_chromium_without_errors(page, tmp_path):
-    checked = tmp_path / "checked.html"
-    text = page.read_text(encoding="utf-8")
-    checked.write_text(text.replace("<head>", "<head>" + ERROR_HOOK, 1), encoding="utf-8")
-    done = run_chromium(["--dump-dom", checked.as_uri()], tmp_path / "profile")
-    assert done.returncode == 0, done.stderr[-3000:]
-    dom = done.stdout
     # The scripts ran: plotly built a plot container in each of the 10 figures (inputs,
     # figs. 10, 11, 8, 9, 12, 13, loads over azimuth, one animation per result) and the
     # page's last script counted them.
-    assert len(re.findall(r'class="plot-container', dom)) == 10
-    assert 'data-plots="10"' in dom
+    dom = rendered_dom(page, tmp_path, plots=10)
     assert len(re.findall(r"class=\"slider-container", dom)) == 2  # one per animation
     assert "updatemenu-button" in dom  # play / pause
-    errors = re.search(r'data-errors="([^"]*)"', dom)
-    assert errors is not None, "the error hook did not run"
-    assert json.loads(errors.group(1).replace("&quot;", '"')) == []
-    bad = [line for line in console_lines(done.stderr) if "rror" in line or "Uncaught" in line]
-    assert bad == []
 
 
 def test_screenshot_of_the_page_is_not_blank(page, tmp_path):

@@ -9,6 +9,7 @@ at 3000 rpm from equilibrium for about 20 ms.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 from pathlib import Path
@@ -24,13 +25,17 @@ from rollerdyn.names import GRADIENT, PAIRINGS, SEMI_ANALYTICAL
 from rollerdyn.simulation import simulate, write
 from rollerdyn.study import FAIL, NOT_RUN, PASS, StudyError, operating_map, paper, parse_range
 from rollerdyn.study.findings import _Context, check_findings
+from rollerdyn.study.folder import prepare_folder
 from rollerdyn.study.plan import build_plan
+from rollerdyn.study.report_page import build_page
 from rollerdyn.study.runs import (
     NOT_FINISHED,
     PARTIAL,
     RunSpec,
     execute,
     inspect_run,
+    lock_folder,
+    lost_record,
     read_attrs,
 )
 from rollerdyn.study.steady import SteadyRule, window_outputs
@@ -56,18 +61,24 @@ def client():
 def study(tmp_path_factory, client):
     out = tmp_path_factory.mktemp("study") / "paper"
     events: list[dict] = []
-    result = paper(
+    result = _short_paper(out, events, scheduler=client, max_wall=120.0)
+    return out, result, events
+
+
+def _short_paper(out: Path, events: list, **options):
+    """The tests' short paper study in ``out``: B1 to :data:`T_END`, axial loads 0 N and
+    B1's own, fig. 14 at two Δt_max, no figure files (matplotlib's: the command line's
+    test writes them); its progress events go to ``events``."""
+    return paper(
         B1,
         out,
         t_end=T_END,
         loads=(0.0,),
         dt_max=(5e-5, 1e-4),
-        scheduler=client,
-        max_wall=120.0,
         progress=events.append,
-        figures=False,  # matplotlib's files: the command line's test writes them
+        figures=False,
+        **options,
     )
-    return out, result, events
 
 
 def _attrs(out: Path, name: str) -> dict:
@@ -163,16 +174,7 @@ def test_a_second_invocation_runs_nothing(study, monkeypatch):
 
     monkeypatch.setattr("rollerdyn.study.schedule._connect", no_cluster)
     events: list[dict] = []
-    again = paper(
-        B1,
-        out,
-        t_end=T_END,
-        loads=(0.0,),
-        dt_max=(5e-5, 1e-4),
-        progress=events.append,
-        figures=False,
-        report=False,
-    )
+    again = _short_paper(out, events, report=False)
     assert [e["kind"] for e in events] == ["plan"] and events[0]["pending"] == []
     assert set(again.runs["action"]) == {"reused"}
     assert list(again.runs["wall [s]"]) == list(result.runs["wall [s]"])
@@ -194,26 +196,11 @@ def test_the_report_shows_findings_runs_and_figures(study):
 
 
 def test_the_report_renders_in_headless_chromium_without_errors(study, tmp_path):
-    import json
-    import re
-
-    from test_report import ERROR_HOOK, console_lines, run_chromium
+    from test_report import rendered_dom
 
     out, _, _ = study
-    checked = tmp_path / "checked.html"
-    text = (out / "report.html").read_text(encoding="utf-8")
-    checked.write_text(text.replace("<head>", "<head>" + ERROR_HOOK, 1), encoding="utf-8")
-    done = run_chromium(["--dump-dom", checked.as_uri()], tmp_path / "profile")
-    assert done.returncode == 0, done.stderr[-3000:]
-    dom = done.stdout
     # figs. 10, 11, 12, 13, the roller loads, 8, 9 and fig. 14's two: nine plots drawn
-    assert len(re.findall(r'class="plot-container', dom)) == 9
-    assert 'data-plots="9"' in dom
-    errors = re.search(r'data-errors="([^"]*)"', dom)
-    assert errors is not None, "the error hook did not run"
-    assert json.loads(errors.group(1).replace("&quot;", '"')) == []
-    bad = [line for line in console_lines(done.stderr) if "rror" in line or "Uncaught" in line]
-    assert bad == []
+    rendered_dom(out / "report.html", tmp_path, plots=9)
 
 
 # --------------------------------------------------------------------------- one run
@@ -254,6 +241,54 @@ def test_the_wall_time_cap_stops_a_run_and_says_so(tmp_path):
     other = _spec(0.003, **{"operating.axial_load": "0 N"})
     with pytest.raises(StudyError, match="another configuration"):
         inspect_run(other, attrs)
+
+
+def test_a_run_whose_worker_was_lost_keeps_what_its_file_holds(tmp_path):
+    spec = _spec(0.003)
+    lost = RuntimeError("worker lost")
+    rec = lost_record(spec, tmp_path, lost)  # no file: it could not be run at all
+    assert (
+        rec["status"] == "failed"
+        and rec["file"] == ""
+        and rec["note"] == "RuntimeError: worker lost"
+    )
+    # killed after a checkpoint: its file holds a run the next invocation continues
+    cfg = variant(**{"solver.checkpoint_interval": "1 ms"})
+    partial = simulate(cfg, t_end=0.0015, threads=1)
+    partial.attrs["completed"] = 0
+    write(partial, tmp_path / spec.file)
+    rec = lost_record(spec, tmp_path, lost)
+    assert rec["status"] == NOT_FINISHED and rec["file"] == spec.file
+    assert rec["reached [s]"] == pytest.approx(0.0015)
+    assert "stopped (killed or interrupted)" in rec["note"] and "worker lost" in rec["note"]
+
+
+def test_no_study_touches_a_folder_another_study_is_running_in(tmp_path):
+    import subprocess
+    import sys
+
+    out = prepare_folder(tmp_path / "s", "paper", load_b1())
+    (out / "runs").mkdir()
+    run_file = out / "runs" / "axial-1000N.nc"
+    run_file.write_bytes(b"a run being written")
+    other = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
+    try:
+        (out / ".study.lock").write_text(str(other.pid))
+        for overwrite in (True, False):
+            with pytest.raises(StudyError, match=f"another study \\(process {other.pid}\\)"):
+                prepare_folder(out, "paper", load_b1(), overwrite=overwrite)
+        with pytest.raises(StudyError, match="another study"):
+            lock_folder(out)
+    finally:
+        other.kill()
+        other.wait()
+    assert run_file.read_bytes() == b"a run being written"
+    # a lock whose process is gone is taken over, even one beyond the range of process ids
+    for stale in (str(other.pid), "99999999999999999999"):
+        (out / ".study.lock").write_text(stale)
+        lock = lock_folder(out)
+        assert lock.read_text() == str(os.getpid())
+    lock.unlink()
 
 
 # --------------------------------------------------------------------------- the checks
@@ -323,6 +358,24 @@ def test_pairing_checks_pass_and_fail_as_defined(judged):
     assert found.status == PASS
     assert found.values["inner"] == pytest.approx({"locked": 0.0, "free": 14 / 17})
     assert _check(judged, "other_pairings_with_tilt", pairings(sp_co, to_co)).status == FAIL
+
+
+def test_a_configuration_free_to_tilt_is_not_compared_with_itself(judged):
+    plan, sets, records = judged
+    own = build_plan(variant(**{"inner_ring.tilt": "free"}), 0.01)
+    assert own.free_tilt == own.reference  # its own run is the free-tilt run
+    free = dataclasses.replace(plan, free_tilt=plan.reference)
+    other = PAIRINGS.index("SP-CO")
+    sets = {k: v.copy(deep=True) for k, v in sets.items()}
+    sets[plan.reference]["flange_pairing"][:] = other  # contact everywhere
+    found = next(
+        f for f in check_findings(free, sets, records) if f.key == "other_pairings_with_tilt"
+    )
+    assert found.status == NOT_RUN and "free to tilt" in found.numbers
+    page = build_page(free, sets, records, [], {}, "free")
+    fig8 = page[page.index('id="plot-fig8"') : page.index('id="plot-fig9"')]
+    label = plan.spec(plan.reference).label
+    assert fig8.count(f'"name":"{label}"') == 1  # one run, not the same run twice
 
 
 def test_contact_comparison_passes_for_equal_contacts_and_fails_for_others(judged):

@@ -17,6 +17,7 @@ __all__ = [
     "check_output_dir",
     "check_output_file",
     "is_result_file",
+    "process_alive",
     "remove_stale_temporaries",
     "same_file",
 ]
@@ -122,8 +123,9 @@ def check_output_dir(
     return path
 
 
-def _alive(pid: int) -> bool:
-    """True if process ``pid`` exists (possibly another user's)."""
+def process_alive(pid: int) -> bool:
+    """True if process ``pid`` exists (possibly another user's); False for a number that
+    is no process id. Also asked by the study folder's lock (:mod:`rollerdyn.study.runs`)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
@@ -151,7 +153,7 @@ def remove_stale_temporaries(path: Path) -> list[tuple[Path, int]]:
         if not digits.isdigit() or int(digits) <= 0 or not tmp.is_file():
             continue
         pid = int(digits)
-        if pid == os.getpid() or _alive(pid):
+        if pid == os.getpid() or process_alive(pid):
             continue
         try:
             tmp.unlink()

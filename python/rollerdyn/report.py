@@ -40,13 +40,17 @@ __all__ = [
     "SUMMARY_ROWS",
     "ReportError",
     "animation_figure",
+    "CSS",
+    "FigureEmbedder",
     "build_html",
     "check_report_output",
+    "html_page",
     "max_abs_srr_inner",
     "open_result",
     "pairing_shares",
     "report",
     "summary",
+    "table",
 ]
 
 LAST_SHARE = 0.2
@@ -192,8 +196,11 @@ def _fmt(key: str, value) -> str:
 
 
 # --------------------------------------------------------------------------- page
+# The page's parts (style, tables, figures, the document around them) are shared with the
+# study's report (rollerdyn.study.report_page).
 
-_CSS = """
+#: The pages' style sheet.
+CSS = """
 body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; margin: 0;
        color: #222; background: #fafafa; }
 main { max-width: 1200px; margin: 0 auto; padding: 1em 2em 4em; }
@@ -209,7 +216,9 @@ nav a { margin-right: 1em; }
 """
 
 
-def _table(header: list[str], rows: list[list[str]], numeric_from: int = 1) -> str:
+def table(header: list[str], rows: list[list[str]], numeric_from: int = 1) -> str:
+    """An HTML table of ``rows`` (cells escaped), columns from ``numeric_from`` on set
+    right-aligned as numbers."""
     out = ["<table><thead><tr>"]
     out += [f"<th>{html.escape(h)}</th>" for h in header]
     out.append("</tr></thead><tbody>")
@@ -223,6 +232,48 @@ def _table(header: list[str], rows: list[list[str]], numeric_from: int = 1) -> s
     return "".join(out)
 
 
+class FigureEmbedder:
+    """Turns plotly figures into ``<div class="figure">`` snippets of a page, with
+    plotly.js inline in the first one only (the page opens without network access)."""
+
+    def __init__(self) -> None:
+        self.js_included = False
+
+    def __call__(self, fig, key: str) -> str:
+        import plotly.io as pio
+
+        snippet = pio.to_html(
+            fig,
+            config={"displaylogo": False, "responsive": True},
+            auto_play=False,
+            include_plotlyjs=not self.js_included,
+            full_html=False,
+            div_id=f"plot-{key}",
+        )
+        self.js_included = True
+        return f'<div class="figure">{snippet}</div>'
+
+
+def html_page(title: str, body: list[str], css: str = "") -> str:
+    """The whole page: ``title`` (text, escaped here), :data:`CSS` and ``css``, ``body``
+    (HTML parts) followed by a note of the plotly version and the script that marks the
+    page with its number of plots once every figure's script has run (used by the tests)."""
+    import plotly
+
+    footer = [
+        f'<p class="note">Made by rollerdyn with plotly {plotly.__version__} (plotly.js '
+        "inline: the page needs no network access).</p>",
+        "<script>document.body.setAttribute('data-plots', "
+        "String(document.querySelectorAll('.js-plotly-plot').length));</script>",
+    ]
+    return (
+        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
+        '<meta name="viewport" content="width=device-width, initial-scale=1">'
+        f"<title>{html.escape(title)}</title><style>{CSS}{css}</style></head>"
+        f"<body><main>{''.join([*body, *footer])}</main></body></html>\n"
+    )
+
+
 def _attr_text(value) -> str:
     if isinstance(value, np.ndarray):
         return json.dumps(value.tolist())
@@ -233,30 +284,12 @@ def _attr_text(value) -> str:
 
 def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
     """The report page for the results in ``paths`` (see :func:`report`)."""
-    import plotly
-    import plotly.io as pio
-
     paths = [Path(p) for p in paths]
     if not paths:
         raise ReportError("no result files given")
     sets = [open_result(p) for p in paths]
     labels = _labels(paths, sets)
-    config = {"displaylogo": False, "responsive": True}
-    js_included = False
-
-    def embed(fig, div_id: str) -> str:
-        nonlocal js_included
-        snippet = pio.to_html(
-            fig,
-            config=config,
-            auto_play=False,
-            include_plotlyjs=not js_included,
-            full_html=False,
-            div_id=f"plot-{div_id}",
-        )
-        js_included = True
-        return f'<div class="figure">{snippet}</div>'
-
+    embed = FigureEmbedder()
     body = []
     names = ", ".join(html.escape(str(p)) for p in paths)
     body.append(f"<h1>rollerdyn report</h1><p>Results: {names}</p>")
@@ -271,7 +304,7 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
     rows = []
     for key, text, unit in SUMMARY_ROWS:
         rows.append([text, unit] + [_fmt(key, v[key]) for v in values])
-    body.append(_table(["quantity", "unit", *labels], rows, numeric_from=2))
+    body.append(table(["quantity", "unit", *labels], rows, numeric_from=2))
     body.append(
         f'<p class="note">Mean torque over the last {LAST_SHARE:.0%} of each run\'s simulated '
         "time; maxima over every output, roller and contact. Slide-to-roll ratio: eq. 49 of "
@@ -294,10 +327,10 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
             if not k.startswith("stats_") and k not in _CONFIG_TEXTS
         ]
         stats = [[k[6:], _attr_text(v)] for k, v in ds.attrs.items() if k.startswith("stats_")]
-        body.append(_table(["attribute", "value"], plain, numeric_from=9))
+        body.append(table(["attribute", "value"], plain, numeric_from=9))
         if stats:
             body.append("<details><summary>solver statistics</summary>")
-            body.append(_table(["statistic", "value"], stats, numeric_from=1))
+            body.append(table(["statistic", "value"], stats, numeric_from=1))
             body.append("</details>")
         text = next(
             (ds.attrs[k] for k in ("config_toml", "config") if isinstance(ds.attrs.get(k), str)),
@@ -348,22 +381,7 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
         fig, n = animation_figure(ds, max_frames)
         body.append(f"<h3>{html.escape(label)} ({n} frames of {ds.sizes['time']} outputs)</h3>")
         body.append(embed(fig, f"animation{j}"))
-
-    body.append(
-        f'<p class="note">Made by rollerdyn with plotly {plotly.__version__} (plotly.js '
-        "inline: the page needs no network access).</p>"
-    )
-    # Marks the page once every figure's script has run (used by the tests).
-    body.append(
-        "<script>document.body.setAttribute('data-plots', "
-        "String(document.querySelectorAll('.js-plotly-plot').length));</script>"
-    )
-    return (
-        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
-        '<meta name="viewport" content="width=device-width, initial-scale=1">'
-        f"<title>rollerdyn report: {names}</title><style>{_CSS}</style></head>"
-        f"<body><main>{''.join(body)}</main></body></html>\n"
-    )
+    return html_page("rollerdyn report: " + ", ".join(str(p) for p in paths), body)
 
 
 def report(paths, out, max_frames: int = MAX_FRAMES) -> Path:

@@ -38,7 +38,8 @@ def nanmax(a) -> float:
     return float(a.max()) if a.size else float("nan")
 
 
-_LAYOUT = dict(
+#: The figures' layout (shared with the study's fig. 14, rollerdyn.study.figures).
+LAYOUT = dict(
     template="plotly_white",
     height=420,
     margin=dict(l=70, r=30, t=60, b=60),
@@ -66,7 +67,7 @@ def time_figures(labels, sets) -> list:
         title="fig. 10: bearing frictional torque",
         xaxis_title="time t [s]",
         yaxis_title="bearing frictional torque [N·m]",
-        **_LAYOUT,
+        **LAYOUT,
     )
     figs.append(("fig10", fig))
     fig = go.Figure()
@@ -77,7 +78,7 @@ def time_figures(labels, sets) -> list:
         title="fig. 11: flange friction force of roller 0 (sum over its four flange contacts)",
         xaxis_title="time t [s]",
         yaxis_title="flange friction force, roller 0 [N]",
-        **_LAYOUT,
+        **LAYOUT,
     )
     figs.append(("fig11", fig))
     return figs
@@ -125,7 +126,7 @@ def azimuth_figures(labels, sets) -> list:
             title=title,
             xaxis_title="roller azimuth ψ [deg] (load zone centre at 180 deg)",
             yaxis_title=ylabel,
-            **_LAYOUT,
+            **LAYOUT,
         )
         fig.update_xaxes(range=[0, 360], dtick=45)
         figs.append((key, fig))
@@ -160,7 +161,7 @@ def pairing_figures(labels, sets) -> list:
             xaxis_title="pairing (roller end - flange; 'none': no contact)",
             yaxis_title="share of time, all rollers and both flanges [-]",
             barmode="group",
-            **_LAYOUT,
+            **LAYOUT,
         )
         figs.append((key, fig))
     return figs
@@ -190,7 +191,7 @@ def inputs_figure(labels, sets):
     fig.update_yaxes(title_text="axial load [N]", row=2, col=1)
     fig.update_yaxes(title_text="inner ring speed [rad/s]", row=3, col=1)
     fig.update_xaxes(title_text="time t [s]", row=3, col=1)
-    fig.update_layout(title="loads and speed over time (from the data)", **_LAYOUT)
+    fig.update_layout(title="loads and speed over time (from the data)", **LAYOUT)
     fig.update_layout(height=620)
     return fig
 

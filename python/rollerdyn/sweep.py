@@ -38,6 +38,9 @@ __all__ = [
     "GridPoint",
     "SweepError",
     "build_grid",
+    "changed",
+    "check_reachable",
+    "connect",
     "parse_set",
     "run_one",
     "summarize",
@@ -160,8 +163,10 @@ class GridPoint:
         return ", ".join(f"{p}={_show(v)}" for p, v in self.values.items())
 
 
-def _changed(data: Mapping, changes: Mapping[str, Any]) -> dict:
-    """A deep copy of ``data`` with dotted-path changes."""
+def changed(data: Mapping, changes: Mapping[str, Any]) -> dict:
+    """A deep copy of ``data`` with dotted-path changes (``{"operating.axial_load": 0.0}``);
+    :class:`SweepError` naming the path where a parent is not a table. Shared with the
+    studies (:mod:`rollerdyn.study`) and the benchmark cases."""
     import copy
 
     out = copy.deepcopy(dict(data))
@@ -239,10 +244,10 @@ def build_grid(
     points, failures = [], []
     for run, combo in enumerate(itertools.product(*(parameters[p] for p in paths))):
         values = dict(zip(paths, combo, strict=True))
-        changed = _changed(data, values)
+        point_data = changed(data, values)
         label = ", ".join(f"{p}={_show(v)}" for p, v in values.items())
         try:
-            cfg = parse_config(changed, source=source, si_numbers=si_numbers)
+            cfg = parse_config(point_data, source=source, si_numbers=si_numbers)
         except ConfigError as err:
             lines = []
             for prob in err.problems or ():
@@ -251,7 +256,7 @@ def build_grid(
             failures.append(f"run {run} ({label}):\n" + ("\n".join(lines) or f"  {err}"))
             continue
         si = {p: _si_value(cfg, p) for p in paths}
-        points.append(GridPoint(run, values, si, changed, si_numbers))
+        points.append(GridPoint(run, values, si, point_data, si_numbers))
     if failures:
         total = len(points) + len(failures)
         head = (
@@ -417,7 +422,7 @@ def sweep(
         raise SweepError(f"retries = {retries}: must be 0 or more")
     points = build_grid(config, parameters)
     out = Path(outdir).resolve()
-    client, cluster = _connect(scheduler, workers, connect_timeout)
+    client, cluster = connect(scheduler, workers, connect_timeout)
     rows: dict[int, dict] = {}
     try:
         out.mkdir(parents=True, exist_ok=True)
@@ -469,12 +474,12 @@ def sweep(
     return frame
 
 
-def _check_reachable(address: str, timeout: float) -> None:
+def check_reachable(address: str, timeout: float) -> None:
     """Raises :class:`SweepError` (one line) unless a Dask scheduler answers at ``address``
     within ``timeout`` seconds: a refused connection or an unknown host fails at once, and
     a server that accepts the connection but never answers (where Dask's own handshake
     waits forever) after ``timeout``. Addresses of other schemes than tcp are left to
-    Dask."""
+    Dask. Shared with the studies (:mod:`rollerdyn.study.schedule`)."""
     import socket
 
     from distributed.comm import parse_address, parse_host_port
@@ -507,19 +512,21 @@ def _handshake(address: str, timeout: float) -> None:
     import asyncio
     from concurrent.futures import ThreadPoolExecutor
 
-    from distributed.comm import connect
+    from distributed.comm import connect as dask_connect
 
     async def probe() -> None:
-        comm = await asyncio.wait_for(connect(address, timeout=timeout), timeout)
+        comm = await asyncio.wait_for(dask_connect(address, timeout=timeout), timeout)
         await comm.close()
 
     with ThreadPoolExecutor(1) as pool:
         pool.submit(asyncio.run, probe()).result()
 
 
-def _connect(scheduler: Any, workers: int, timeout: float):
-    """(client, cluster or None): a new local cluster, the given Client, or a Client of the
-    scheduler at an address; :class:`SweepError` if that cannot be reached."""
+def connect(scheduler: Any, workers: int, timeout: float):
+    """(client, cluster or None): a new local cluster of ``workers`` processes (one thread
+    each), the given Client, or a Client of the scheduler at an address;
+    :class:`SweepError` if that cannot be reached. Shared with the studies
+    (:mod:`rollerdyn.study.schedule`); the caller closes what it gets."""
     from distributed import Client, LocalCluster
 
     if scheduler is None:
@@ -529,9 +536,15 @@ def _connect(scheduler: Any, workers: int, timeout: float):
         return Client(cluster), cluster
     if isinstance(scheduler, Client):
         return scheduler, None
-    _check_reachable(str(scheduler), timeout)
+    check_reachable(str(scheduler), timeout)
     try:
         return Client(scheduler, timeout=timeout), None
     except Exception as err:  # Dask raises OSError, TimeoutError, ValueError, ...
         reason = " ".join(str(err).split()) or type(err).__name__
         raise SweepError(f"scheduler = {scheduler!r}: cannot connect ({reason})") from None
+
+
+# Their names before they were shared, kept for the callers that still use them
+# (rollerdyn.bench_cases, tests/test_reliability_cli.py).
+_changed = changed
+_check_reachable = check_reachable

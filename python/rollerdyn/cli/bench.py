@@ -20,7 +20,7 @@ from .bench_targets import (
     bench_traction,
     runtime_study,
 )
-from .common import ConfigOption, checked, load, refuse, time_option
+from .common import ConfigOption, checked, load, output_option, refuse, time_option
 
 
 def bench(
@@ -62,9 +62,7 @@ def bench(
     ] = None,
     output: Annotated[
         Path,
-        typer.Option(
-            "--output",
-            "-o",
+        output_option(
             help="mbs --sweep-dt-max: directory for table and plot; mbs --cases: directory "
             "for bench_cases.csv.",
         ),

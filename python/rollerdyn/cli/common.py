@@ -1,6 +1,6 @@
 """What every command of the command line shares: the console, printing text as it is,
-refusing bad input with exit status 2, the ``--config`` and ``--detector`` options, time
-options and loading a configuration.
+refusing bad input with exit status 2, the ``--config``, ``--detector`` and ``--output``
+options, time options and loading a configuration.
 
 Every message is printed as plain text (:func:`say`, :func:`error`): text from files and
 options is never read as rich markup.
@@ -8,8 +8,9 @@ options is never read as rich markup.
 
 from __future__ import annotations
 
+import contextlib
 from pathlib import Path
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 from rich.console import Console
@@ -68,6 +69,24 @@ def refuse(text: object, code: int = 2) -> typer.Exit:
     """Prints ``text`` as an error and returns the exit to raise (status 2: bad input)."""
     error(text)
     return typer.Exit(code)
+
+
+@contextlib.contextmanager
+def refusing(bad_input: type[Exception] | tuple[type[Exception], ...], output: Path):
+    """Runs the block of a command that writes to the folder ``output`` (``-o``):
+    ``bad_input`` (e.g. :class:`rollerdyn.sweep.SweepError`) exits with status 2 and its
+    message, an ``OSError`` (a folder that cannot be written) with status 1 naming -o."""
+    try:
+        yield
+    except bad_input as err:
+        raise refuse(err) from None
+    except OSError as err:
+        raise refuse(f"-o {output}: {err}", 1) from None
+
+
+def output_option(help: str) -> Any:
+    """The ``-o``/``--output`` option of a command, with its ``help``."""
+    return typer.Option("--output", "-o", help=help)
 
 
 def checked(check, *args, **kwargs):

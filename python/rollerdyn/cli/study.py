@@ -15,7 +15,7 @@ from rich.table import Table
 from rich.text import Text
 
 from ..study.plan import DEFAULT_MAX_WALL
-from .common import console, load, plain, refuse, say, time_option
+from .common import console, load, output_option, plain, refuse, refusing, say, time_option
 
 app = typer.Typer(
     help="Studies of many runs on Dask: the paper's section 5 (paper) and operating maps (map).",
@@ -93,9 +93,7 @@ def paper_command(
     ] = None,
     output: Annotated[
         Path,
-        typer.Option(
-            "--output",
-            "-o",
+        output_option(
             help="Study folder (created with its parents if missing): study.json, runs/ "
             "(one netCDF result per run, SI units), runs.csv, findings.csv, findings.json, "
             "runtime_study.csv, figures/ (PNG, SVG) and report.html. A folder of an earlier "
@@ -178,7 +176,7 @@ def paper_command(
     are results, in the tables); 1 when a run could not be run at all; 2 for bad input
     (nothing run); 130 after Ctrl-C (finished runs and checkpoints stay on disk).
     """
-    from ..study import StudyError, paper
+    from ..study import paper
     from ..validation import default_config_path
 
     end = time_option("--t-end", t_end)
@@ -187,37 +185,26 @@ def paper_command(
     path = config if config is not None else default_config_path()
     load(path)  # a bad file: the same message and exit status as rollerdyn run
     started = time.perf_counter()
-    try:
-        with _progress("study paper", scheduler) as show:
-            result = paper(
-                path,
-                output,
-                t_end=end,
-                loads=load_values,
-                dt_max=dt_values,
-                free_tilt=free_tilt,
-                gradient=gradient,
-                max_wall=max_wall,
-                scheduler=scheduler,
-                workers=workers,
-                overwrite=overwrite,
-                run=run,
-                progress=show,
-            )
-    except StudyError as err:
-        raise refuse(err) from None
-    except OSError as err:
-        raise refuse(f"-o {output}: {err}", 1) from None
+    result = _run_study(
+        "study paper",
+        paper,
+        path,
+        output,
+        t_end=end,
+        loads=load_values,
+        dt_max=dt_values,
+        free_tilt=free_tilt,
+        gradient=gradient,
+        max_wall=max_wall,
+        scheduler=scheduler,
+        workers=workers,
+        overwrite=overwrite,
+        run=run,
+    )
     _print_runs(result.runs, f"{result.plan.config.name}: runs of the study in {output}")
     _print_findings(result.findings)
-    _print_timing(result.timing, time.perf_counter() - started)
-    say(
-        f"wrote {output / 'report.html'}, {output / 'findings.csv'}, {output / 'runs.csv'} and "
-        f"{len(result.figures)} figure files in {output / 'figures'}"
-    )
-    unrunnable = result.runs[(result.runs["status"] == "failed") & (result.runs["file"] == "")]
-    if len(unrunnable):
-        raise typer.Exit(1)
+    files = ("report.html", "findings.csv", "runs.csv")
+    _finish(output, files, result.runs, result.figures, result.timing, started)
 
 
 def map_command(
@@ -250,9 +237,7 @@ def map_command(
     ] = None,
     output: Annotated[
         Path,
-        typer.Option(
-            "--output",
-            "-o",
+        output_option(
             help="Map folder (created with its parents if missing): study.json, points/ "
             "(one netCDF result per grid point), map.csv, map.parquet and figures/. An "
             "earlier map of the same configuration and criterion is continued; another "
@@ -315,43 +300,51 @@ def map_command(
     Exit status: 0 when the map ran; 1 when a point could not be run at all; 2 for bad
     input (nothing run).
     """
-    from ..study import StudyError, operating_map
+    from ..study import operating_map
 
     ramp_s = time_option("--ramp", ramp)
     window_s = time_option("--window", window)
     max_time_s = time_option("--max-time", max_time)
     load(config)
     started = time.perf_counter()
-    try:
-        with _progress("study map", scheduler) as show:
-            result = operating_map(
-                config,
-                output,
-                speed=speed,
-                radial_load=radial_load,
-                axial_load=axial_load,
-                start=start,
-                ramp=ramp_s,
-                window=window_s,
-                tol=tol,
-                max_time=max_time_s,
-                max_wall=max_wall,
-                scheduler=scheduler,
-                workers=workers,
-                overwrite=overwrite,
-                progress=show,
-            )
-    except StudyError as err:
-        raise refuse(err) from None
-    except OSError as err:
-        raise refuse(f"-o {output}: {err}", 1) from None
-    _print_map(result.points, f"operating map of {config.name} in {output}")
-    _print_timing(result.timing, time.perf_counter() - started)
-    say(
-        f"wrote {output / 'map.csv'}, {output / 'map.parquet'} and "
-        f"{len(result.figures)} figure files in {output / 'figures'}"
+    result = _run_study(
+        "study map",
+        operating_map,
+        config,
+        output,
+        speed=speed,
+        radial_load=radial_load,
+        axial_load=axial_load,
+        start=start,
+        ramp=ramp_s,
+        window=window_s,
+        tol=tol,
+        max_time=max_time_s,
+        max_wall=max_wall,
+        scheduler=scheduler,
+        workers=workers,
+        overwrite=overwrite,
     )
-    frame = result.points
+    _print_map(result.points, f"operating map of {config.name} in {output}")
+    files = ("map.csv", "map.parquet")
+    _finish(output, files, result.points, result.figures, result.timing, started)
+
+
+def _run_study(title: str, study, config: Path, output: Path, **options):
+    """``study(config, output, **options)`` with the progress display of the whole study;
+    bad input exits with status 2, a folder that cannot be written with 1."""
+    from ..study import StudyError
+
+    with refusing(StudyError, output), _progress(title, options.get("scheduler")) as show:
+        return study(config, output, progress=show, **options)
+
+
+def _finish(output: Path, files, frame, figures: list, timing: dict, started: float) -> None:
+    """The end of a study's command: its timing, the ``files`` it wrote in ``output``, and
+    exit status 1 if a run (a row of ``frame``) could not be run at all (no file)."""
+    _print_timing(timing, time.perf_counter() - started)
+    wrote = ", ".join(str(output / name) for name in files)
+    say(f"wrote {wrote} and {len(figures)} figure files in {output / 'figures'}")
     if len(frame[(frame["status"] == "failed") & (frame["file"] == "")]):
         raise typer.Exit(1)
 
@@ -475,31 +468,63 @@ def _fmt(value: Any, spec: str = ".4g") -> str:
     return str(value)
 
 
-def _print_runs(frame, title: str) -> None:
+#: The columns of the runs' table: column of the frame, heading, number format.
+_RUN_COLUMNS = (
+    ("name", "run", ""),
+    ("label", "what", ""),
+    ("status", "status", ""),
+    ("reached [s]", "reached [s]", ".4g"),
+    ("t_end [s]", "end [s]", ".4g"),
+    ("wall [s]", "wall [s]", ".1f"),
+    ("steps", "steps", ""),
+    ("action", "this time", ""),
+)
+
+#: The columns of the map's table, as :data:`_RUN_COLUMNS`.
+_MAP_COLUMNS = (
+    ("point", "point", ""),
+    ("speed [rpm]", "speed [rpm]", ".4g"),
+    ("radial_load [N]", "F_r [N]", ".4g"),
+    ("axial_load [N]", "F_a [N]", ".4g"),
+    ("status", "status", ""),
+    ("steady at [s]", "steady at [s]", ".4g"),
+    ("torque [N*m]", "torque [N*m]", ".4g"),
+    ("speed loss [1]", "speed loss [-]", ".3g"),
+    ("max flange force [N]", "max flange force [N]", ".4g"),
+    ("wall [s]", "wall [s]", ".1f"),
+)
+
+
+def _print_frame(frame, title: str, columns, status_text) -> None:
+    """One row per row of ``frame``: ``columns`` (column, heading, format), the status
+    coloured and shown as ``status_text(row)`` says."""
     table = Table(title=plain(title))
-    cols = (
-        ("name", "run", ""),
-        ("label", "what", ""),
-        ("status", "status", ""),
-        ("reached [s]", "reached [s]", ".4g"),
-        ("t_end [s]", "end [s]", ".4g"),
-        ("wall [s]", "wall [s]", ".1f"),
-        ("steps", "steps", ""),
-        ("action", "this time", ""),
-    )
-    for _, head, _ in cols:
+    for _, head, _ in columns:
         table.add_column(head, overflow="fold")
     for _, row in frame.iterrows():
         cells = []
-        for col, _, spec in cols:
+        for col, _, spec in columns:
             value = row.get(col, "")
             if col == "status":
-                text = row.get("note") or value
-                cells.append(Text(plain(text), style=_RUN_STYLE.get(value, "yellow")))
+                style = _RUN_STYLE.get(value, "yellow")
+                cells.append(Text(plain(status_text(row)), style=style))
             else:
                 cells.append(Text(plain(_fmt(value, spec or ".4g"))))
         table.add_row(*cells)
     console.print(table)
+
+
+def _print_runs(frame, title: str) -> None:
+    _print_frame(frame, title, _RUN_COLUMNS, lambda row: row.get("note") or row["status"])
+
+
+def _print_map(frame, title: str) -> None:
+    def status(row) -> str:
+        if row["status"] in ("steady", "not steady"):
+            return row["status"]
+        return row["note"] or row["status"]
+
+    _print_frame(frame, title, _MAP_COLUMNS, status)
 
 
 def _print_findings(findings) -> None:
@@ -512,35 +537,6 @@ def _print_findings(findings) -> None:
             Text(f.status, style=_STYLE.get(f.status, "")),
             Text(plain(f.numbers)),
         )
-    console.print(table)
-
-
-def _print_map(frame, title: str) -> None:
-    table = Table(title=plain(title))
-    cols = (
-        ("point", "point", ""),
-        ("speed [rpm]", "speed [rpm]", ".4g"),
-        ("radial_load [N]", "F_r [N]", ".4g"),
-        ("axial_load [N]", "F_a [N]", ".4g"),
-        ("status", "status", ""),
-        ("steady at [s]", "steady at [s]", ".4g"),
-        ("torque [N*m]", "torque [N*m]", ".4g"),
-        ("speed loss [1]", "speed loss [-]", ".3g"),
-        ("max flange force [N]", "max flange force [N]", ".4g"),
-        ("wall [s]", "wall [s]", ".1f"),
-    )
-    for _, head, _ in cols:
-        table.add_column(head, overflow="fold")
-    for _, row in frame.iterrows():
-        cells = []
-        for col, _, spec in cols:
-            value = row[col]
-            if col == "status":
-                text = value if value in ("steady", "not steady") else row["note"] or value
-                cells.append(Text(plain(text), style=_RUN_STYLE.get(value, "yellow")))
-            else:
-                cells.append(Text(plain(_fmt(value, spec or ".4g"))))
-        table.add_row(*cells)
     console.print(table)
 
 

@@ -23,8 +23,10 @@ from .common import (
     detector_help,
     error,
     load,
+    output_option,
     plain,
     refuse,
+    refusing,
     say,
     time_option,
 )
@@ -58,9 +60,7 @@ def sweep_command(
     ],
     output: Annotated[
         Path,
-        typer.Option(
-            "--output",
-            "-o",
+        output_option(
             help="Output folder: run_0000.nc, run_0001.nc, ... (netCDF, SI units, as "
             "written by rollerdyn run) and summary.parquet. Created if missing (its parent "
             "must exist); a folder that holds an earlier sweep's results is refused unless "
@@ -135,7 +135,7 @@ def sweep_command(
         overwrite=overwrite,
         hint="; pass --overwrite to replace them, or choose another folder",
     )
-    try:
+    with refusing(SweepError, output):
         build_grid(config, parameters)  # validate every grid point before the cluster starts
         with _sweep_progress(console, scheduler) as progress:
             frame = sweep(
@@ -148,10 +148,6 @@ def sweep_command(
                 detector=detector,
                 progress=progress,
             )
-    except SweepError as err:
-        raise refuse(err) from None
-    except OSError as err:
-        raise refuse(f"-o {output}: {err}", 1) from None
     failed = _print_summary(frame, config, output, list(parameters))
     say(
         f"wrote {output / SUMMARY_FILE} and {int((frame['file'] != '').sum())} result files; "

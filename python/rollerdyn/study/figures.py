@@ -56,7 +56,7 @@ def write_figures(plan: Plan, records: dict, outdir: Path) -> list[Path]:
     loads = existing(plan.loads.values())
     if loads:
         written += plot_results(loads, figures / "axial-loads")
-    tilt = existing([plan.reference, plan.free_tilt])
+    tilt = existing(dict.fromkeys([plan.reference, plan.free_tilt]))  # a free ring: one run
     if plan.free_tilt is not None and len(tilt) == 2:
         written += plot_results(tilt, figures / "tilt")
     frame = runtime_frame(plan, records)
@@ -73,7 +73,7 @@ def runtime_figures(plan: Plan, records: dict) -> list:
     semi-analytical method's saving over Δt_max (only Δt_max with both runs completed)."""
     import plotly.graph_objects as go
 
-    from ..report_figures import _LAYOUT
+    from ..report_figures import LAYOUT
 
     frame = runtime_frame(plan, records)
     if frame.empty:
@@ -96,7 +96,7 @@ def runtime_figures(plan: Plan, records: dict) -> list:
         title="fig. 14 (runtime): wall time of the whole run over Δt_max, one core per run",
         xaxis_title="maximum step size Δt_max [s]",
         yaxis_title="wall time of the run [s]",
-        **_LAYOUT,
+        **LAYOUT,
     )
     fig.update_xaxes(type="log")
     figs = [("fig14_wall", fig)]
@@ -114,7 +114,7 @@ def runtime_figures(plan: Plan, records: dict) -> list:
             "(dashed: the paper's 35 % at its Δt_max)",
             xaxis_title="maximum step size Δt_max [s]",
             yaxis_title="1 - wall(semi-analytical) / wall(gradient) [%]",
-            **_LAYOUT,
+            **LAYOUT,
         )
         fig.update_xaxes(type="log")
         figs.append(("fig14_saving", fig))

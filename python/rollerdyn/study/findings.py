@@ -103,6 +103,11 @@ def _pct(x: float) -> str:
     return "n/a" if not math.isfinite(x) else f"{100 * x:.1f} %"
 
 
+def _verdict(key: str, statement: str, ok: bool, numbers: str, values: dict) -> Finding:
+    """The finding ``key`` judged: PASS if ``ok``, else FAIL."""
+    return Finding(key, statement, PASS if ok else FAIL, numbers, values)
+
+
 def _active_shares(ds, ring: str) -> dict[str, float] | None:
     """Share of each pairing among the outputs with contact at ``ring`` (None: none)."""
     shares = pairing_shares(ds, ring)
@@ -158,7 +163,7 @@ def torque_grows(c: _Context) -> Finding:
     series = [torques[fa] for fa, _, _ in usable]
     ok = all(b > a for a, b in zip(series, series[1:], strict=False))
     head = f"mean torque over the last {LAST_SHARE:.0%} at full speed: "
-    return Finding("torque_grows", statement, PASS if ok else FAIL, head + numbers, values)
+    return _verdict("torque_grows", statement, ok, head + numbers, values)
 
 
 def flange_friction_explains(c: _Context) -> Finding:
@@ -212,7 +217,7 @@ def flange_friction_explains(c: _Context) -> Finding:
         + f"; PASS needs the flange friction rising with the load and, over two or more "
         f"load steps, lever arms within {ARM_SPREAD:.0%} of their mean"
     )
-    return Finding("flange_friction_explains", statement, PASS if ok else FAIL, numbers, values)
+    return _verdict("flange_friction_explains", statement, ok, numbers, values)
 
 
 def axial_force_in_load_zone(c: _Context) -> Finding:
@@ -258,8 +263,9 @@ def axial_force_in_load_zone(c: _Context) -> Finding:
     numbers = "; ".join(parts) or "no run with an axial load"
     if not verdicts:
         return Finding("axial_in_load_zone", statement, NOT_RUN, numbers, values)
-    status = PASS if all(verdicts) else FAIL
-    return Finding("axial_in_load_zone", statement, status, numbers + "; PASS above 50 %", values)
+    return _verdict(
+        "axial_in_load_zone", statement, all(verdicts), numbers + "; PASS above 50 %", values
+    )
 
 
 def to_co_dominates(c: _Context) -> Finding:
@@ -287,10 +293,10 @@ def to_co_dominates(c: _Context) -> Finding:
             f"{ring}: TO-CO {_pct(shares['TO-CO'])} of the contacts (next {runner[1]} "
             f"{_pct(runner[0])})"
         )
-    return Finding(
+    return _verdict(
         "to_co_dominates",
         statement,
-        PASS if ok else FAIL,
+        ok,
         "; ".join(parts) + f"; run {name}{_mark(c.rec(name))}",
         values,
     )
@@ -301,6 +307,9 @@ def other_pairings_with_tilt(c: _Context) -> Finding:
         "Other pairings than TO-CO occur more often when the inner ring may tilt "
         "(sect. 5.1, figs. 8, 9)."
     )
+    if c.plan.free_tilt is not None and c.plan.free_tilt == c.plan.reference:
+        why = "the configuration's own inner ring is free to tilt: no run with it locked"
+        return Finding("other_pairings_with_tilt", statement, NOT_RUN, why)
     free, locked = c.ds(c.plan.free_tilt), c.ds(c.plan.reference)
     if c.plan.free_tilt is None or free is None or locked is None:
         return Finding("other_pairings_with_tilt", statement, NOT_RUN, "the free-tilt run not run")
@@ -326,12 +335,8 @@ def other_pairings_with_tilt(c: _Context) -> Finding:
             f"{_pct(other_locked)} locked"
         )
     span = f"both over 0 … {t_free:.4g} s{_mark(c.rec(c.plan.free_tilt), 'the free-tilt run ')}"
-    return Finding(
-        "other_pairings_with_tilt",
-        statement,
-        PASS if ok else FAIL,
-        "; ".join(parts) + "; " + span,
-        values,
+    return _verdict(
+        "other_pairings_with_tilt", statement, ok, "; ".join(parts) + "; " + span, values
     )
 
 
@@ -365,10 +370,10 @@ def semi_analytical_faster(c: _Context) -> Finding:
         detection = (
             f"; contact detection {rs['detection [s]']:.3g} s against {rg['detection [s]']:.3g} s"
         )
-    return Finding(
+    return _verdict(
         "semi_faster",
         statement,
-        PASS if saving > 0 else FAIL,
+        saving > 0,
         f"whole run to t = {c.plan.t_end:.4g} s: {text} (paper: 35 %){detection}; one core "
         "per run, other runs beside it: wall times vary by about ±15 % on this machine",
         values,
@@ -398,10 +403,10 @@ def advantage_shrinks(c: _Context) -> Finding:
         )
     small, large = min(savings), max(savings)
     ok = savings[small] < savings[large]
-    return Finding(
+    return _verdict(
         "advantage_shrinks",
         statement,
-        PASS if ok else FAIL,
+        ok,
         f"{numbers}; PASS needs the saving at the smallest Δt_max below the one at the largest",
         values,
     )
@@ -476,10 +481,10 @@ def same_contacts(c: _Context) -> Finding:
         and values["max |d location| loaded [m]"] <= LOCATION_TOL
         and values["same pairing loaded"] == 1.0
     )
-    return Finding(
+    return _verdict(
         "same_contacts",
         statement,
-        PASS if ok else FAIL,
+        ok,
         f"{span}, largest penetration δ_max = {d_max:.3g} m; {values['loaded contacts']} loaded "
         f"contacts (δ ≥ {LOADED:.0%} of δ_max and ≥ {LOADED_FORCE:g} N in both runs): max |Δδ| = "
         f"{values['max |d penetration| loaded [m]']:.3g} m, max |ΔP_m| = "

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from ..config import BearingConfig
 from ..provenance import config_hash, differences, resolved
-from .runs import StudyError
+from .runs import StudyError, check_unlocked
 
 MANIFEST = "study.json"
 
@@ -57,12 +57,16 @@ def prepare_folder(
     Refused with :class:`StudyError` (one line naming -o or CONFIG): a file in its place,
     a folder of another kind of study, of another configuration (the first fields that
     differ are named, SI values) or with other ``settings`` (e.g. the map's steadiness
-    criterion), and result files without a manifest. ``overwrite`` first removes what
-    a study writes (:data:`WRITTEN`, the run files and figures) and nothing else."""
+    criterion), result files without a manifest, and a folder in which another study is
+    running (its lock; checked before anything is removed or written). ``overwrite`` first
+    removes what a study writes (:data:`WRITTEN`, the run files and figures) and nothing
+    else."""
     out = Path(outdir)
     if out.exists() and not out.is_dir():
         raise StudyError(f"-o {out}: is a file, not a folder")
     manifest = out / MANIFEST
+    if out.is_dir():  # never remove or rewrite the files of a study running in it
+        check_unlocked(out)
     if overwrite and out.is_dir():
         _remove_written(out)
     now = resolved(cfg)

@@ -137,7 +137,7 @@ def point_config(cfg, speed: float, radial: float, axial: float, start: str, ram
     """(configuration of a grid point, end of its ramps [s]): ``cfg`` at ``speed``
     [rad/s] and the loads [N], started as ``start`` says (:data:`STARTS`)."""
     from ..config import parse_config
-    from ..sweep import _changed
+    from ..sweep import changed
 
     data = cfg.model_dump()
     op = data["operating"]
@@ -151,7 +151,7 @@ def point_config(cfg, speed: float, radial: float, axial: float, start: str, ram
         op.pop("load_ramp", None)
         op.pop("speed_ramp", None)
         changes["solver.start"] = "equilibrium"
-    variant = parse_config(_changed(data, changes), si_numbers=True)
+    variant = parse_config(changed(data, changes), si_numbers=True)
     op = variant.operating
     settle = max(op.speed_history_end, 0.0 if op.load_ramp is None else op.load_ramp.end)
     return variant, settle

@@ -56,9 +56,9 @@ class Plan:
 
 def _variant(cfg: BearingConfig, changes: dict) -> BearingConfig:
     """``cfg`` with dotted-path changes (SI numbers), validated again."""
-    from ..sweep import _changed
+    from ..sweep import changed
 
-    return parse_config(_changed(cfg.model_dump(), changes), si_numbers=True)
+    return parse_config(changed(cfg.model_dump(), changes), si_numbers=True)
 
 
 def _fmt(value: float) -> str:
@@ -117,6 +117,15 @@ def build_plan(
             "dt_max [s]": dt,
         }
 
+    def add_load(fa: float) -> str:  # figs. 10-13: the configuration at another axial load
+        return add(
+            f"axial-{_fmt(fa)}N",
+            _variant(cfg, {"operating.axial_load": fa}),
+            detector,
+            f"F_a = {_fmt(fa)} N, {tilt_text}",
+            meta(fa, cfg.inner_ring.tilt, dt0),
+        )
+
     own = cfg.operating.axial_load
     own_fa = float(own) if isinstance(own, int | float) else None
     dt0 = cfg.solver.dt_max
@@ -163,13 +172,7 @@ def build_plan(
         later.append(fa)
     if later:
         top = later.pop(0)
-        plan.loads[top] = add(
-            f"axial-{_fmt(top)}N",
-            _variant(cfg, {"operating.axial_load": top}),
-            detector,
-            f"F_a = {_fmt(top)} N, {tilt_text}",
-            meta(top, cfg.inner_ring.tilt, dt0),
-        )
+        plan.loads[top] = add_load(top)
     for dt in dt_max:
         plan.runtime[dt] = {}
         variant = _variant(cfg, {"solver.dt_max": dt})
@@ -182,13 +185,7 @@ def build_plan(
                 meta(own_fa, cfg.inner_ring.tilt, dt),
             )
     for fa in later:
-        plan.loads[fa] = add(
-            f"axial-{_fmt(fa)}N",
-            _variant(cfg, {"operating.axial_load": fa}),
-            detector,
-            f"F_a = {_fmt(fa)} N, {tilt_text}",
-            meta(fa, cfg.inner_ring.tilt, dt0),
-        )
+        plan.loads[fa] = add_load(fa)
     plan.loads = dict(sorted(plan.loads.items()))
     return plan
 

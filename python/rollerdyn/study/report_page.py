@@ -11,7 +11,7 @@ import json
 import math
 from pathlib import Path
 
-from ..report import _CSS, _table
+from ..report import FigureEmbedder, html_page, table
 from ..report_figures import azimuth_figures, pairing_figures, time_figures
 from .figures import runtime_figures
 from .findings import FAIL, PASS, Finding
@@ -83,7 +83,7 @@ def _runs_table(plan: Plan, records: dict) -> str:
                 f"runs/{spec.file}" if rec.get("file") else "",
             ]
         )
-    return _table(header, rows, numeric_from=5)
+    return table(header, rows, numeric_from=5)
 
 
 def _configuration(plan: Plan) -> str:
@@ -112,22 +112,7 @@ def build_page(
     title: str,
 ) -> str:
     """The study's page (see the module's doc)."""
-    import plotly
-    import plotly.io as pio
-
-    js = {"included": False}
-
-    def embed(fig, key: str) -> str:
-        snippet = pio.to_html(
-            fig,
-            config={"displaylogo": False, "responsive": True},
-            include_plotlyjs=not js["included"],
-            full_html=False,
-            div_id=f"plot-{key}",
-        )
-        js["included"] = True
-        return f'<div class="figure">{snippet}</div>'
-
+    embed = FigureEmbedder()
     body = [f"<h1>{html.escape(title)}</h1>"]
     body.append(
         '<nav><a href="#findings">findings</a><a href="#runs">runs</a>'
@@ -175,12 +160,14 @@ def build_page(
     else:
         body.append("<p class='warn'>No run of the axial-load series has a result.</p>")
     body.append("<h3>Inner ring tilt locked and free: figs. 8, 9</h3>")
-    pair = [n for n in (plan.reference, plan.free_tilt) if n and sets.get(n) is not None]
+    # (a configuration whose inner ring is free to tilt is its own free-tilt run)
+    pair = dict.fromkeys((plan.reference, plan.free_tilt))
+    pair = [n for n in pair if n and sets.get(n) is not None]
     if plan.free_tilt is None:
         body.append("<p class='warn'>The free-tilt run is not part of this study.</p>")
     labels = [_label(plan, n, records) for n in pair]
     data = [sets[n] for n in pair]
-    free = sets.get(plan.free_tilt) if plan.free_tilt else None
+    free = sets.get(plan.free_tilt) if plan.free_tilt != plan.reference else None
     if free is not None and records.get(plan.free_tilt, {}).get("status") != COMPLETED:
         t_free = float(free.attrs["final_time_s"])
         locked = sets[plan.reference]
@@ -201,20 +188,7 @@ def build_page(
         body.append("<p class='warn'>No fig. 14 runs in this study.</p>")
     body.append('<h2 id="configuration">Configuration</h2>')
     body.append(_configuration(plan))
-    body.append(
-        f'<p class="note">Made by rollerdyn with plotly {plotly.__version__} (plotly.js '
-        "inline: the page needs no network access).</p>"
-    )
-    body.append(
-        "<script>document.body.setAttribute('data-plots', "
-        "String(document.querySelectorAll('.js-plotly-plot').length));</script>"
-    )
-    return (
-        '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
-        '<meta name="viewport" content="width=device-width, initial-scale=1">'
-        f"<title>{html.escape(title)}</title><style>{_CSS}{_STATUS_CSS}</style></head>"
-        f"<body><main>{''.join(body)}</main></body></html>\n"
-    )
+    return html_page(title, body, _STATUS_CSS)
 
 
 def write_page(path: Path, page: str) -> Path:

@@ -24,6 +24,9 @@ from typing import Any
 #: Run states (see :func:`inspect_run`).
 ABSENT, FINISHED, FAILED, PARTIAL = "absent", "finished", "failed", "partial"
 
+#: The study folder's lock file (the id of the process running a study in it).
+LOCK = ".study.lock"
+
 #: Statuses of a run record (the findings table and the report say these).
 COMPLETED, NOT_FINISHED, RUN_FAILED, NOT_RUN = "completed", "not finished", "failed", "not run"
 
@@ -196,6 +199,24 @@ def record(spec: RunSpec, attrs: dict | None, action: str) -> dict:
     return rec
 
 
+def lost_record(spec: RunSpec, outdir: Path, err: BaseException) -> dict:
+    """The record of a run whose task never returned (its workers died more often than
+    Dask retried it): what its file holds, if it has one (a run killed after a checkpoint
+    is not finished, and the next invocation continues it), else RUN_FAILED."""
+    why = f"{type(err).__name__}: {err}"
+    try:
+        attrs = read_attrs(Path(outdir) / spec.file)
+    except StudyError:
+        attrs = None
+    if attrs is None:
+        rec = record(spec, None, "ran")
+        rec.update(status=RUN_FAILED, note=why)
+        return rec
+    rec = record(spec, attrs, "ran")
+    rec["note"] = f"{rec['note']}; {why}" if rec["note"] else why
+    return rec
+
+
 def _post(topic: str | None, message: dict) -> None:
     """Sends a progress message to the client that runs the study (nothing outside a
     Dask worker, or without a topic)."""
@@ -299,36 +320,38 @@ def execute(
         return rec
 
 
+def lock_holder(outdir: Path) -> int | None:
+    """The id of another living process that holds the study folder's lock
+    (``.study.lock``), else None."""
+    from ..paths import process_alive
+
+    try:
+        pid = int((Path(outdir) / LOCK).read_text().strip() or "0")
+    except (OSError, ValueError):
+        return None
+    return pid if pid > 0 and pid != os.getpid() and process_alive(pid) else None
+
+
+def check_unlocked(outdir: Path) -> None:
+    """Raises :class:`StudyError` if another living process holds the folder's lock."""
+    pid = lock_holder(outdir)
+    if pid is not None:
+        raise StudyError(
+            f"-o {outdir}: another study (process {pid}) is running in this folder; "
+            "wait for it or choose another folder"
+        )
+
+
 def lock_folder(outdir: Path) -> Path:
     """Takes the study folder's lock file (``.study.lock`` with this process's id);
     raises :class:`StudyError` if another living process holds it."""
-    lock = Path(outdir) / ".study.lock"
+    lock = Path(outdir) / LOCK
     try:
         fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
     except FileExistsError:
-        try:
-            pid = int(lock.read_text().strip() or "0")
-        except (OSError, ValueError):
-            pid = 0
-        if pid > 0 and pid != os.getpid() and _alive(pid):
-            raise StudyError(
-                f"-o {outdir}: another study (process {pid}) is running in this folder; "
-                "wait for it or choose another folder"
-            ) from None
-        lock.unlink(missing_ok=True)
+        check_unlocked(outdir)
+        lock.unlink(missing_ok=True)  # a stale lock (its process is gone) or our own
         fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
     with os.fdopen(fd, "w") as f:
         f.write(str(os.getpid()))
     return lock
-
-
-def _alive(pid: int) -> bool:
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:
-        return True
-    except OSError:
-        return False
-    return True

@@ -7,6 +7,7 @@ stream of progress messages for the whole study (the workers send them with
 
 from __future__ import annotations
 
+import contextlib
 import math
 import time
 import uuid
@@ -14,7 +15,17 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-from .runs import ABSENT, FAILED, FINISHED, RunSpec, StudyError, execute, inspect_run, read_attrs
+from .runs import (
+    ABSENT,
+    FAILED,
+    FINISHED,
+    RunSpec,
+    StudyError,
+    execute,
+    inspect_run,
+    lost_record,
+    read_attrs,
+)
 
 #: A progress callback: called with one dict per event (see :func:`run_all`).
 ProgressCallback = Callable[[dict], Any]
@@ -24,21 +35,26 @@ def check_scheduler(scheduler: Any, timeout: float = 10.0) -> None:
     """Raises :class:`StudyError` (one line naming --scheduler) unless ``scheduler`` is
     None, a ``distributed.Client`` or the address of a Dask scheduler that answers within
     ``timeout`` seconds."""
-    from ..sweep import SweepError, _check_reachable
+    from ..sweep import check_reachable
 
     if scheduler is None or not isinstance(scheduler, str):
         return
+    with _scheduler_errors():
+        check_reachable(scheduler, timeout)
+
+
+@contextlib.contextmanager
+def _scheduler_errors():
+    """sweep's :class:`~rollerdyn.sweep.SweepError` ``scheduler = 'ADDRESS': ...`` raised
+    as :class:`StudyError` ``--scheduler 'ADDRESS': ...``."""
+    from ..sweep import SweepError
+
     try:
-        _check_reachable(scheduler, timeout)
+        yield
     except SweepError as err:
-        raise StudyError(_option_message(err)) from None
-
-
-def _option_message(err: Exception) -> str:
-    """sweep's ``scheduler = 'ADDRESS': ...`` as ``--scheduler 'ADDRESS': ...``."""
-    text = str(err)
-    prefix = "scheduler = "
-    return "--scheduler " + text[len(prefix) :] if text.startswith(prefix) else text
+        text, prefix = str(err), "scheduler = "
+        text = "--scheduler " + text[len(prefix) :] if text.startswith(prefix) else text
+        raise StudyError(text) from None
 
 
 def pending_runs(specs: Sequence[RunSpec], outdir: Path) -> tuple[list[RunSpec], dict]:
@@ -57,13 +73,11 @@ def pending_runs(specs: Sequence[RunSpec], outdir: Path) -> tuple[list[RunSpec],
 
 
 def _connect(scheduler: Any, workers: int, timeout: float):
-    from ..sweep import SweepError
-    from ..sweep import _connect as connect
+    """:func:`rollerdyn.sweep.connect`, its refusal naming --scheduler."""
+    from ..sweep import connect
 
-    try:
+    with _scheduler_errors():
         return connect(scheduler, workers, timeout)
-    except SweepError as err:
-        raise StudyError(_option_message(err)) from None
 
 
 def run_all(
@@ -137,8 +151,7 @@ def run_all(
             try:
                 rec = fut.result()
             except Exception as err:  # its workers died more often than retried
-                rec = record(spec, None, "ran")
-                rec.update(status="failed", note=f"{type(err).__name__}: {err}")
+                rec = lost_record(spec, outdir, err)
             records[spec.name] = rec
             emit({"kind": "done", "name": spec.name, "record": rec})
     finally:
