@@ -103,7 +103,17 @@ impl Problem<'_> {
                 }
                 let (trial_f, trial) = self.roller_at(ring, u, i);
                 let trial_merit = self.scaled(i, &trial).norm_squared();
-                if trial_merit < (1.0 - 1e-4 * alpha) * merit || attempt + 1 == ROLLER_LINE_SEARCH {
+                // The work of the unbalanced forces over the step (trapezoid): the fall of
+                // the roller's potential energy, positive along a direction in which the
+                // residual stays flat (a roller tilting about the one slice it rests on).
+                let moved = Vector3::from_fn(|a, _| alpha * step[a] * self.weight(s + a));
+                let slope = self.scaled(i, &r).dot(&moved);
+                let work = 0.5 * (self.scaled(i, &r) + self.scaled(i, &trial)).dot(&moved);
+                let descends = slope > 0.0 && work > 1e-4 * slope;
+                if trial_merit < (1.0 - 1e-4 * alpha) * merit
+                    || descends
+                    || attempt + 1 == ROLLER_LINE_SEARCH
+                {
                     (f, r) = (trial_f, trial);
                     break;
                 }
@@ -142,7 +152,15 @@ impl Problem<'_> {
             }
         }
         let rhs = -self.scaled(i, r);
-        let scaled_step = jac.lu().solve(&rhs).unwrap_or_else(|| -rhs / floor);
+        let stiffness = -(jac + jac.transpose()) * 0.5;
+        let eigen = stiffness.symmetric_eigen();
+        let scaled_step = if eigen.eigenvalues.min() >= floor {
+            jac.lu().solve(&rhs).unwrap_or_else(|| -rhs / floor)
+        } else {
+            let v = eigen.eigenvectors;
+            let d = eigen.eigenvalues.map(|l| 1.0 / l.abs().max(floor));
+            v * Matrix3::from_diagonal(&d) * v.transpose() * (-rhs)
+        };
         let largest = scaled_step.amax();
         let scaled_step = if largest > MAX_ROLLER_MOVE {
             scaled_step * (MAX_ROLLER_MOVE / largest)

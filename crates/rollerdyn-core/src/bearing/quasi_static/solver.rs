@@ -20,6 +20,11 @@ const MAX_ITERATIONS: usize = 30;
 const LINE_SEARCH_STEPS: usize = 6;
 /// Halvings of the load step before the continuation gives up.
 const MAX_BISECTIONS: usize = 4;
+/// Newton iterations of a whole solve, over every load level, before it gives up: a load
+/// the bearing can carry takes 5–12 from the cold start (B1 up to 2 kN axially), while a
+/// load it cannot (rollers tipped onto the flange rims, 30 kN axially on B1) would creep
+/// on through ever smaller load steps for seconds.
+const MAX_TOTAL_ITERATIONS: usize = 60;
 /// The largest move of a position (or arc: angle times the roller radius) in one
 /// iteration [m]: a fifth of B1's axial play, well inside the region where the contacts'
 /// linearisation holds.
@@ -494,11 +499,14 @@ impl<'a> Problem<'a> {
                 if reached >= 1.0 {
                     return Ok((u, r, iterations));
                 }
+                if iterations > MAX_TOTAL_ITERATIONS {
+                    return Err(self.failure(reached, &r));
+                }
                 step *= 2.0;
                 continue;
             }
             halvings += 1;
-            if halvings > MAX_BISECTIONS {
+            if halvings > MAX_BISECTIONS || iterations > MAX_TOTAL_ITERATIONS {
                 return Err(self.failure(reached, &r));
             }
             step *= 0.5;
