@@ -1,11 +1,15 @@
 //! Each roller's own equilibrium with the inner ring held: the inner loop of the
 //! quasi-static solver. A roller touches only the rings, so its three unknowns are solved
-//! alone: Newton with a 3×3 Jacobian by forward differences and a backtracking line search
-//! on its own residual; a roller that touches no race is first set onto the race its
-//! radial force pushes it to, at the penetration of that force spread evenly over its
-//! slices (eq. 11 inverted), because from an open gap the power law gives Newton no
-//! stiffness to go by.
-
+//! alone, as the minimum of its potential energy (the contact forces are conservative, the
+//! unbalanced force is minus the energy's gradient): Newton with a 3×3 Jacobian by forward
+//! differences where the roller's stiffness (the symmetric part of −J) is positive
+//! definite, else a step from its eigenvalues floored (saddle-free Newton: along a
+//! direction nothing holds, a roller resting on one end slice or pinched between two
+//! flanges, it follows the unbalanced force); a backtracking line search that accepts a
+//! step on which the residual falls or the unbalanced forces do work. A roller that
+//! touches no race is first set onto the race its radial force pushes it to, level with
+//! it, at the penetration of that force spread evenly over its slices (eq. 11 inverted),
+//! because from an open gap the power law gives Newton no stiffness to go by.
 use super::roller::{RollerForces, ROLLER_UNKNOWNS};
 use super::solver::{Problem, RING_UNKNOWNS};
 use crate::bearing::model::LineContact;
