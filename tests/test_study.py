@@ -626,3 +626,20 @@ def test_no_study_file_is_over_700_lines():
     for path in [*(root / "study").glob("*.py"), root / "cli" / "study.py"]:
         assert len(path.read_text(encoding="utf-8").splitlines()) <= 700, path
     assert os.path.basename(B1) == "b1.toml"
+
+
+def test_a_run_the_study_stopped_is_marked_in_the_figures_legends():
+    """plots' legend entry of a run capped by the study says how far it got (docs/study.md:
+    runs that did not finish are marked in every legend)."""
+    from rollerdyn.plots import _label
+
+    ds = xr.Dataset(
+        {
+            "axial_load": ("time", np.array([0.0, 2000.0])),
+            "ring_tilt": (("time", "axis"), np.zeros((2, 2))),
+        },
+        attrs={"final_time_s": 0.503},
+    )
+    assert _label(ds, Path("axial-2000N.nc")) == "axial-2000N (F_a = 2000 N)"
+    ds.attrs["study_stopped"] = "stopped after 600 s of wall time"
+    assert _label(ds, Path("axial-2000N.nc")).endswith("[not finished, to t = 0.503 s]")

@@ -12,11 +12,16 @@ from .simulation import carried_axial_force, full_speed
 
 
 def _label(ds: xr.Dataset, path: Path) -> str:
+    """The legend entry of a run: its file's name, axial load and tilt, and where a study
+    stopped it (its attribute ``study_stopped``), how far it got."""
     label = f"{path.stem} (F_a = {float(ds.axial_load[-1]):.0f} N"
     tilt = np.degrees(float(np.abs(ds.ring_tilt.isel(time=-1)).max()))
     if tilt > 0:
         label += f", IR tilt {tilt:.3g} deg"
-    return label + ")"
+    label += ")"
+    if "study_stopped" in ds.attrs:
+        label += f" [not finished, to t = {float(ds.attrs['final_time_s']):.3g} s]"
+    return label
 
 
 def plot_results(paths: list[Path], out: Path) -> list[Path]:
