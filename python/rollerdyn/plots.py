@@ -24,6 +24,20 @@ def _label(ds: xr.Dataset, path: Path) -> str:
     return label
 
 
+def save_figure(fig, out: Path, name: str) -> list[Path]:
+    """Writes ``fig`` as ``out/name.png`` and ``out/name.svg`` and closes it; returns the
+    files."""
+    import matplotlib.pyplot as plt
+
+    written = []
+    for ext in ("png", "svg"):
+        f = Path(out) / f"{name}.{ext}"
+        fig.savefig(f, dpi=120, bbox_inches="tight")
+        written.append(f)
+    plt.close(fig)
+    return written
+
+
 def plot_results(paths: list[Path], out: Path) -> list[Path]:
     """Writes every figure for the given results into ``out``; returns the files. Every
     file is read first: :class:`rollerdyn.report.ReportError` (naming the file and what
@@ -42,11 +56,7 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
     written: list[Path] = []
 
     def save(fig, name: str) -> None:
-        for ext in ("png", "svg"):
-            f = out / f"{name}.{ext}"
-            fig.savefig(f, dpi=120, bbox_inches="tight")
-            written.append(f)
-        plt.close(fig)
+        written.extend(save_figure(fig, out, name))
 
     fig, ax = plt.subplots(figsize=(7, 4))
     for p, ds in sets:
@@ -137,10 +147,4 @@ def plot_runtime_study(frame, out: Path, title: str = "runtime over Δt_max") ->
         title=f"fig. 14: {title}",
     )
     ax.legend()
-    written = []
-    for ext in ("png", "svg"):
-        f = out / f"fig14_runtime_over_dt_max.{ext}"
-        fig.savefig(f, dpi=120, bbox_inches="tight")
-        written.append(f)
-    plt.close(fig)
-    return written
+    return save_figure(fig, out, "fig14_runtime_over_dt_max")

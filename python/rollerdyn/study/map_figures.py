@@ -26,6 +26,7 @@ def write_maps(frame, out: Path, name: str) -> list[Path]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    from ..plots import save_figure
     from .maps import OUTPUTS, STEADY
 
     out = Path(out)
@@ -73,9 +74,5 @@ def write_maps(frame, out: Path, name: str) -> list[Path]:
                 ax.plot(bad[x], bad[column], "rx", ms=10, mew=2, label="not steady")
             ax.set(xlabel=labels[x], ylabel=f"{title} [{unit}]", title=f"{name}: {title}")
             ax.legend()
-        for ext in ("png", "svg"):
-            f = out / f"map_{short}.{ext}"
-            fig.savefig(f, dpi=120, bbox_inches="tight")
-            written.append(f)
-        plt.close(fig)
+        written += save_figure(fig, out, f"map_{short}")
     return written
