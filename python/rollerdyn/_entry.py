@@ -5,7 +5,20 @@ interrupted later writes what it computed first and says so (``rollerdyn run``).
 
 from __future__ import annotations
 
+import signal
 import sys
+
+#: Set by a Ctrl-C during the imports. CPython drops a KeyboardInterrupt raised inside
+#: some of its own callbacks (an import lock's weakref callback prints "Exception
+#: ignored" and the command ran on to its end; seen at 50 ms after the start), so the
+#: signal is also recorded here and checked once the imports are done.
+_ctrl_c_seen = False
+
+
+def _record_ctrl_c(signum: int, frame: object) -> None:
+    global _ctrl_c_seen
+    _ctrl_c_seen = True
+    raise KeyboardInterrupt
 
 
 def _from_ctrl_c(exit_: SystemExit) -> bool:
@@ -18,9 +31,13 @@ def _from_ctrl_c(exit_: SystemExit) -> bool:
 def main() -> None:
     """Runs the command line; Ctrl-C outside the commands' own handlers exits 130 with one
     line."""
+    signal.signal(signal.SIGINT, _record_ctrl_c)
     try:
         from .cli import app
 
+        if _ctrl_c_seen:
+            raise KeyboardInterrupt
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         app()
     except KeyboardInterrupt:
         print("rollerdyn: interrupted", file=sys.stderr)
