@@ -248,22 +248,26 @@ def test_overlapping_start_is_refused_with_the_rule_named():
     cfg = variant(**STATIC)
     params = model_parameters(cfg)
     traction = Model(cfg).traction
-    wide = dict(params, roller_radius=params["roller_radius"] + 3e-6)  # gaps are 2.5 um
+    radius = params["geometry"]["roller"]["radius"]
+    wide = changed_b1({"geometry.roller.radius": radius + 3e-6}, params)  # gaps are 2.5 um
     with pytest.raises(ValueError) as err:
         _core.initial_state(wide, traction)
     assert "roller diameter" in str(err.value) and "must fit" in str(err.value)
-    crowded = dict(params, roller_count=18)  # 18 rollers do not fit on the pitch circle
+    # 18 rollers do not fit on the pitch circle
+    crowded = changed_b1({"geometry.roller_count": 18}, params)
     with pytest.raises(ValueError) as err:
         _core.initial_state(crowded, traction)
     assert "roller_count = 18" in str(err.value) and "overlap" in str(err.value)
     # Flanges that overlap across the annulus (docs/robustness.md, finding 3): the bindings'
     # parameters are checked in Rust too, not only by the Python configuration.
-    tall = dict(params, inner_flange_height=2.4e-3, outer_flange_height=2.4e-3)
+    tall = changed_b1(
+        {"geometry.inner_flange.height": 2.4e-3, "geometry.outer_flange.height": 2.4e-3}, params
+    )
     with pytest.raises(ValueError) as err:
         _core.initial_state(tall, traction)
     assert "inner_flange.height + outer_flange.height" in str(err.value), str(err.value)
     assert "annulus" in str(err.value)
-    taller = dict(params, inner_flange_height=4.6e-3)
+    taller = changed_b1({"geometry.inner_flange.height": 4.6e-3}, params)
     with pytest.raises(ValueError) as err:
         _core.initial_state(taller, traction)
     assert "inner_flange.height = 0.0046" in str(err.value) and "diameter" in str(err.value)

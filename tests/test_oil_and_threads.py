@@ -21,7 +21,7 @@ def test_gravity_is_on_by_default_and_takes_a_vector() -> None:
     assert parse_config(data).operating.gravity == (0.0, -9.81, 0.0)
     cfg = variant(**{"operating.gravity": ["1 m/s^2", "0 m/s^2", "-2 m/s^2"]})
     assert cfg.operating.gravity == (1.0, 0.0, -2.0)
-    assert model_parameters(cfg)["gravity"] == [1.0, 0.0, -2.0]
+    assert model_parameters(cfg)["operating"]["gravity"] == [1.0, 0.0, -2.0]
 
 
 @pytest.mark.parametrize(
@@ -65,7 +65,7 @@ def test_an_unloaded_roller_is_held_by_the_film_and_gravity_pulls_it_down() -> N
     moving[ring + 6] = -1e-3
     dy_moving, _ = _core.model_rhs(params, traction, 0.0, moving)
     assert dy_moving[ring + 6] > 0.0, dy_moving[ring + 6]
-    off = {**params, "race_film": False}
+    off = changed_b1({"surfaces.race_film.enabled": False}, params)
     dy_off, _ = _core.model_rhs(off, traction, 0.0, moving)
     assert dy_off[ring + 6] == pytest.approx(-9.81, rel=1e-3)
 

@@ -153,100 +153,120 @@ def _history(value: float | TimeTable, ramp: RampConfig | None) -> dict:
 
 
 def model_parameters(config: BearingConfig, detector: str | None = None) -> dict:
-    """The flat SI parameter set of the Rust model, derived from ``config``."""
+    """The SI parameters of the Rust model, derived from ``config``: a dict of sections
+    (``geometry``, ``materials``, ``inner_ring``, ``lubricant``, ``surfaces``,
+    ``operating``, ``cavity``: physical; ``solver``: numerical), each a dict of values or
+    of nested sections. The core reads it into typed structs of the same shape
+    (``crates/rollerdyn-py/src/params/schema.rs``) and refuses a missing or unknown key,
+    naming its path (``tests/test_params_agree.py``)."""
     cfg, model = config, Model(config)
     g, m, s, op = cfg.geometry, cfg.materials, cfg.surfaces, cfg.operating
     laws = model.line_contacts
-    rr = s.roller_roller_pair
     roller = g.roller
-    params = {
-        "roller_count": int(g.roller_count),
-        "roller_radius": g.roller_diameter / 2.0,
-        "roller_length": roller.length,
-        "edge_radius": roller.edge_radius,
-        "end_face_radius": roller.end_face_radius,
-        "slices": int(roller.slices),
-        "crown_drop": roller.crown_drop if roller.profile == "crowned" else 0.0,
-        "crown_length": (roller.crown_length or 0.0) if roller.profile == "crowned" else 0.0,
-        "roller_density": m.roller.density,
-        "inner_raceway_radius": g.inner_raceway_diameter / 2.0,
-        "outer_raceway_radius": g.outer_raceway_diameter / 2.0,
-        "e_prime_inner": effective_modulus(
-            m.roller.youngs_modulus,
-            m.roller.poisson_ratio,
-            m.inner_ring.youngs_modulus,
-            m.inner_ring.poisson_ratio,
-        ),
-        "e_prime_outer": effective_modulus(
-            m.roller.youngs_modulus,
-            m.roller.poisson_ratio,
-            m.outer_ring.youngs_modulus,
-            m.outer_ring.poisson_ratio,
-        ),
-        "e_prime_roller": effective_modulus(
-            m.roller.youngs_modulus,
-            m.roller.poisson_ratio,
-            m.roller.youngs_modulus,
-            m.roller.poisson_ratio,
-        ),
-        "inner_ring_mass": cfg.inner_ring.mass,
-        "inner_ring_axial_inertia": cfg.inner_ring_axial_inertia,
-        "inner_ring_transverse_inertia": cfg.inner_ring_transverse_inertia,
-        "inner_ring_tilt_free": cfg.inner_ring.tilt == "free",
-        "inner_ring_misalignment": cfg.inner_ring.misalignment,
-        "eta0": model.eta0,
-        "viscosity_slope": model.viscosity_slope,
-        "alpha_star": model.alpha_star,
-        "thermal_conductivity": cfg.lubricant.thermal_conductivity,
-        "mu_b0": s.boundary_friction.mu_b0,
-        "s0": s.boundary_friction.s0,
-        "smoothing_speed": s.boundary_friction.smoothing_speed,
-        "hysteresis_coefficient": s.hysteresis_coefficient,
-        "damping_ratio": s.damping_ratio,
-        "squeeze_film": bool(s.squeeze_film.enabled),
-        "squeeze_film_half_width": s.squeeze_film.half_width,
-        "squeeze_film_floor": s.squeeze_film.floor,
-        "squeeze_film_cutoff": s.squeeze_film.cutoff,
-        "gravity": list(op.gravity),
-        "race_film": bool(s.race_film.enabled),
-        "race_film_cutoff": s.race_film.cutoff,
-        "oil_fraction": cfg.cavity.oil_fraction,
-        "oil_density": cfg.lubricant.density_at(op.temperature),
-        "air_density": cfg.cavity.air_density,
-        "air_viscosity": cfg.cavity.air_viscosity,
-        "radial_load": _history(op.radial_load, op.load_ramp),
-        "axial_load": _history(op.axial_load, op.load_ramp),
-        "inner_ring_speed": _history(op.inner_ring_speed, op.speed_ramp),
-        "detector": detector or cfg.solver.detector,
-        "mesh_around": int(cfg.solver.mesh_around),
-        "mesh_along": int(cfg.solver.mesh_along),
-        "pruning": bool(cfg.solver.pruning),
-        "border_band_roller": cfg.solver.border_band_roller,
-        "border_band_flange": cfg.solver.border_band_flange,
-        "friction": bool(cfg.solver.friction),
+    crowned = roller.profile == "crowned"
+
+    def flange(f) -> dict:
+        return {
+            "opening_angle": f.opening_angle,
+            "height": f.height,
+            "root_radius": f.root_radius,
+            "rim_radius": f.rim_radius,
+            "axial_play": f.axial_play,
+        }
+
+    def line_contact(ring, law: str) -> dict:
+        e_prime = effective_modulus(
+            m.roller.youngs_modulus, m.roller.poisson_ratio, ring.youngs_modulus, ring.poisson_ratio
+        )
+        return {"e_prime": e_prime, "k1": laws[law].k1, "k2": laws[law].k2}
+
+    def pair(p) -> dict:
+        return {"roughness": p.roughness, "zh_b": p.zh_b, "zh_c": p.zh_c}
+
+    sq, solver = s.squeeze_film, cfg.solver
+    return {
+        "geometry": {
+            "roller_count": int(g.roller_count),
+            "roller": {
+                "radius": g.roller_diameter / 2.0,
+                "length": roller.length,
+                "edge_radius": roller.edge_radius,
+                "end_face_radius": roller.end_face_radius,
+                "slices": int(roller.slices),
+                "crown_drop": roller.crown_drop if crowned else 0.0,
+                "crown_length": (roller.crown_length or 0.0) if crowned else 0.0,
+            },
+            "inner_raceway_radius": g.inner_raceway_diameter / 2.0,
+            "outer_raceway_radius": g.outer_raceway_diameter / 2.0,
+            "inner_flange": flange(g.inner_flange),
+            "outer_flange": flange(g.outer_flange),
+        },
+        "materials": {
+            "roller_density": m.roller.density,
+            "inner_race": line_contact(m.inner_ring, "inner"),
+            "outer_race": line_contact(m.outer_ring, "outer"),
+            "roller_roller": line_contact(m.roller, "roller"),
+        },
+        "inner_ring": {
+            "mass": cfg.inner_ring.mass,
+            "axial_inertia": cfg.inner_ring_axial_inertia,
+            "transverse_inertia": cfg.inner_ring_transverse_inertia,
+            "tilt_free": cfg.inner_ring.tilt == "free",
+            "misalignment": cfg.inner_ring.misalignment,
+        },
+        "lubricant": {
+            "eta0": model.eta0,
+            "viscosity_slope": model.viscosity_slope,
+            "alpha_star": model.alpha_star,
+            "thermal_conductivity": cfg.lubricant.thermal_conductivity,
+            "density": cfg.lubricant.density_at(op.temperature),
+        },
+        "surfaces": {
+            "raceway": pair(s.raceway),
+            "flange": pair(s.flange),
+            "roller_roller": pair(s.roller_roller_pair),
+            "boundary_friction": {
+                "mu_b0": s.boundary_friction.mu_b0,
+                "s0": s.boundary_friction.s0,
+                "smoothing_speed": s.boundary_friction.smoothing_speed,
+            },
+            "hysteresis_coefficient": s.hysteresis_coefficient,
+            "damping_ratio": s.damping_ratio,
+            "squeeze_film": {
+                "enabled": bool(sq.enabled),
+                "half_width": sq.half_width,
+                "floor": sq.floor,
+                "cutoff": sq.cutoff,
+            },
+            "race_film": {"enabled": bool(s.race_film.enabled), "cutoff": s.race_film.cutoff},
+        },
+        "operating": {
+            "radial_load": _history(op.radial_load, op.load_ramp),
+            "axial_load": _history(op.axial_load, op.load_ramp),
+            "inner_ring_speed": _history(op.inner_ring_speed, op.speed_ramp),
+            "gravity": list(op.gravity),
+        },
+        "cavity": {
+            "oil_fraction": cfg.cavity.oil_fraction,
+            "air_density": cfg.cavity.air_density,
+            "air_viscosity": cfg.cavity.air_viscosity,
+        },
+        "solver": {
+            "detector": detector or solver.detector,
+            "mesh_around": int(solver.mesh_around),
+            "mesh_along": int(solver.mesh_along),
+            "pruning": bool(solver.pruning),
+            "border_band_roller": solver.border_band_roller,
+            "border_band_flange": solver.border_band_flange,
+            "friction": bool(solver.friction),
+        },
     }
-    for ring, flange, play_key in (
-        ("inner", g.inner_flange, "inner_axial_play"),
-        ("outer", g.outer_flange, "outer_axial_play"),
-    ):
-        params[f"{ring}_flange_opening_angle"] = flange.opening_angle
-        params[f"{ring}_flange_height"] = flange.height
-        params[f"{ring}_flange_root_radius"] = flange.root_radius
-        params[f"{ring}_flange_rim_radius"] = flange.rim_radius
-        params[play_key] = flange.axial_play
-    for key, law in (("inner", "inner"), ("outer", "outer"), ("roller", "roller")):
-        params[f"k1_{key}"] = laws[law].k1
-        params[f"k2_{key}"] = laws[law].k2
-    for name, pair in (("raceway", s.raceway), ("flange", s.flange), ("roller_roller", rr)):
-        params[f"{name}_roughness"] = pair.roughness
-        params[f"{name}_zh_b"] = pair.zh_b
-        params[f"{name}_zh_c"] = pair.zh_c
-    return params
 
 
 def run_options(config: BearingConfig, t_end: float) -> dict:
-    """The SI options of the core's run of ``config`` to ``t_end`` (the threads are the
-    model's: :class:`rollerdyn._core.Model` is built with them)."""
+    """The SI options of the core's run of ``config`` to ``t_end``, one flat section (the
+    threads are the model's: :class:`rollerdyn._core.Model` is built with them; the core's
+    ``RunSettings`` in ``crates/rollerdyn-py/src/params/schema.rs``)."""
     s = config.solver
     return {
         "t_end": t_end,

@@ -12,7 +12,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rollerdyn_core::bearing::profile::Profile;
-use rollerdyn_core::bearing::run::{run, Progress, Record, RunCheckpoint, RunOutput};
+use rollerdyn_core::bearing::run::{run, Progress, Record, RunCheckpoint, RunOptions, RunOutput};
 use rollerdyn_core::bearing::BearingModel;
 use rollerdyn_core::dynamics::integrate::{OdeSystem, Start, Stats};
 use std::ops::ControlFlow;
@@ -171,26 +171,22 @@ fn simulate<'py>(
     start: Option<(f64, Vec<f64>, Option<f64>)>,
     checkpoint: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let threads: usize = match options.get_item("threads")? {
-        Some(v) if !v.is_none() => v.extract()?,
-        _ => 1,
-    };
+    let (opts, threads) = run_options(options)?;
     let model = BearingModel::new(bearing_params(params, &traction.inner)?)
-        .and_then(|m| m.with_threads(threads))
+        .and_then(|m| m.with_threads(threads.unwrap_or(1)))
         .map_err(core_err)?;
-    run_model(py, &model, options, progress, start, checkpoint)
+    run_model(py, &model, &opts, progress, start, checkpoint)
 }
 
 /// [`simulate`] with a built model (its threads as built; `options["threads"]` unused).
 fn run_model<'py>(
     py: Python<'py>,
     model: &BearingModel,
-    options: &Bound<'py, PyDict>,
+    opts: &RunOptions,
     progress: Option<Bound<'py, PyAny>>,
     start: Option<(f64, Vec<f64>, Option<f64>)>,
     checkpoint: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let opts = run_options(options)?;
     let start = start.map(|(time, state, step)| Start { time, state, step });
     let z = model.layout.rollers;
     let callback_error = std::cell::RefCell::new(None::<PyErr>);
@@ -205,7 +201,7 @@ fn run_model<'py>(
     let output = run(
         model,
         start,
-        &opts,
+        opts,
         |p: &Progress| {
             if let Err(e) = py.check_signals() {
                 *callback_error.borrow_mut() = Some(e);
@@ -502,7 +498,8 @@ impl PyModel {
         start: Option<(f64, Vec<f64>, Option<f64>)>,
         checkpoint: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        run_model(py, &self.model, options, progress, start, checkpoint)
+        let (opts, _threads) = run_options(options)?;
+        run_model(py, &self.model, &opts, progress, start, checkpoint)
     }
 }
 
