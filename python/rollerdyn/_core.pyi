@@ -13,8 +13,12 @@ import numpy as np
 import numpy.typing as npt
 
 _Array = npt.NDArray[np.float64]
-#: The model's parameters: ``rollerdyn.simulation.model_parameters(config)`` (SI).
+#: The model's parameters: ``rollerdyn.simulation.model_parameters(config)``, a dict of
+#: sections (SI), read into the typed structs of ``crates/rollerdyn-py/src/params/schema.rs``
+#: (their one description: a missing, unknown or mistyped key is a ValueError naming its path).
 _Params = dict[str, Any]
+#: A run's options: ``rollerdyn.simulation.run_options(config, t_end)`` (SI, one section).
+_Options = dict[str, Any]
 
 __all__ = [
     "__version__",
@@ -259,7 +263,7 @@ class Model:
     ) -> dict[str, Any]: ...
     def run(
         self,
-        options: dict[str, Any],
+        options: _Options,
         progress: Callable[[float, float, int, int, int, float, bool], object] | None = None,
         start: tuple[float, Sequence[float], float | None] | None = None,
         checkpoint: Callable[[dict[str, Any]], object] | None = None,
@@ -294,7 +298,7 @@ def model_timing(
 def simulate(
     params: _Params,
     traction: EhlTraction,
-    options: dict[str, Any],
+    options: _Options,
     progress: Callable[[float, float, int, int, int, float, bool], object] | None = None,
     start: tuple[float, Sequence[float], float | None] | None = None,
     checkpoint: Callable[[dict[str, Any]], object] | None = None,

@@ -8,9 +8,10 @@
 //!
 //! By domain: `tribology` (the force laws) and `traction` (the `EhlTraction` class),
 //! `contact` (detection benchmark, circle–circle distance), `geometry` (roller mass
-//! properties), `params` (the parameter dicts marshalled into the core's types),
-//! `simulation` (runs and the model at one state), `statics` (quasi-static equilibria),
-//! `constants` (`PAIRINGS`, `FLANGES`, `DETECTORS`); `convert` holds what they share.
+//! properties), `params` (the parameter dicts read into typed, nested structs, then into
+//! the core's types), `simulation` (runs and the model at one state), `statics`
+//! (quasi-static equilibria), `constants` (`PAIRINGS`, `FLANGES`, `DETECTORS`); `convert`
+//! holds what they share.
 
 use pyo3::prelude::*;
 
