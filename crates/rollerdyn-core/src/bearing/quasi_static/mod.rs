@@ -18,17 +18,24 @@
 //! friction are left out (they act along the circumference, which nothing here resolves),
 //! as in ISO/TS 16281. Solved by Newton's method with a Jacobian by forward differences
 //! whose roller columns are grouped (the rollers touch only the rings, so one evaluation
-//! perturbs the same unknown of every roller), a backtracking line search, a step limit
-//! and, where Newton stalls, continuation in the load. The bearing's 5×5 stiffness is the
-//! Schur complement of the rollers in the Jacobian at the equilibrium ([`stiffness`]).
+//! perturbs the same unknown of every roller): coupled steps of the ring and the rollers
+//! with the rollers condensed out, a chord (kept) Jacobian while the residual falls fast,
+//! each roller's own search where its predicted move fails, a step limit and, where
+//! Newton stalls, continuation in the load; where that fast path fails, a careful one
+//! that searches every roller's equilibrium at every trial ([`solver`]). A case symmetric
+//! about the load plane is solved on half the rollers ([`mirror`]). An equilibrium whose
+//! flange contacts exceed 4 GPa is refused ([`FLANGE_PRESSURE_LIMIT`]). The bearing's 5×5
+//! stiffness is the Schur complement of the rollers in the Jacobian at the equilibrium
+//! ([`stiffness`]).
 
+mod mirror;
 mod relax;
 mod roller;
 mod solver;
 mod stiffness;
 
 pub use roller::{FlangeLoad, RollerForces, RollerPose, ROLLER_UNKNOWNS};
-pub use solver::RING_UNKNOWNS;
+pub use solver::{FLANGE_PRESSURE_LIMIT, RING_UNKNOWNS};
 
 use super::contacts::Wrench;
 use super::params::BearingParams;

@@ -14,8 +14,11 @@ use super::roller::{RollerForces, ROLLER_UNKNOWNS};
 use super::solver::{Problem, RING_UNKNOWNS};
 use crate::bearing::model::LineContact;
 use crate::bearing::state::Kinematics;
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{DVector, Matrix3, Vector3};
 
+/// The largest fall of a roller's residual per chord step (the Jacobian kept from an
+/// earlier step) for which the Jacobian is kept for the next step.
+const CHORD_CONTRACTION: f64 = 0.1;
 /// Newton iterations of one roller before it counts as not in equilibrium.
 const MAX_ROLLER_ITERATIONS: usize = 30;
 /// Trials of the roller's line search (each halving its step).
@@ -31,19 +34,38 @@ fn contact_sum(f: &RollerForces) -> f64 {
 
 impl Problem<'_> {
     /// Every roller in its own equilibrium with the ring at `u`'s pose (the rollers'
-    /// unknowns in `u` updated): whether all of them reached it.
+    /// unknowns in `u` updated; a mirrored roller set from its partner): whether all of
+    /// them reached it.
     pub(super) fn relax(&mut self, u: &mut [f64], tolerance: f64) -> bool {
         let ring = self.ring(u);
         let mut all = true;
         for i in 0..self.azimuths.len() {
-            all &= self.relax_roller(&ring, u, i, tolerance);
+            if self.computed(i) {
+                all &= self.relax_roller(&ring, u, i, tolerance);
+            }
         }
+        self.symmetrize(u);
         all
+    }
+
+    /// Whether every roller is in its own equilibrium by the rule of [`Self::relax`]: its
+    /// residual in `r` below `tolerance` or 1e-5 of the sum of its contact forces `forces`.
+    pub(super) fn rollers_balanced(
+        &self,
+        forces: &[RollerForces],
+        r: &DVector<f64>,
+        tolerance: f64,
+    ) -> bool {
+        forces.iter().enumerate().all(|(i, f)| {
+            let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+            let own = Vector3::new(r[s], r[s + 1], r[s + 2]);
+            self.scaled(i, &own).amax() < tolerance.max(1e-5 * contact_sum(f))
+        })
     }
 
     /// Roller i's forces and residual (radial, axial force, tilting moment) at `u` with the
     /// ring at `ring`.
-    fn roller_at(
+    pub(super) fn roller_at(
         &mut self,
         ring: &Kinematics,
         u: &[f64],
@@ -57,7 +79,7 @@ impl Problem<'_> {
     }
 
     /// Roller i's residual over the weights (moments over the roller radius) [N].
-    fn scaled(&self, i: usize, r: &Vector3<f64>) -> Vector3<f64> {
+    pub(super) fn scaled(&self, i: usize, r: &Vector3<f64>) -> Vector3<f64> {
         let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
         Vector3::from_fn(|a, _| r[a] / self.weight(s + a))
     }
@@ -68,7 +90,13 @@ impl Problem<'_> {
     /// that does not get there while pinched between two flanges and touching no race
     /// (at speed, its centrifugal force unbalanced) is set onto its race, at the tilt the
     /// flanges hold it at, and tried once more.
-    fn relax_roller(&mut self, ring: &Kinematics, u: &mut [f64], i: usize, tolerance: f64) -> bool {
+    pub(super) fn relax_roller(
+        &mut self,
+        ring: &Kinematics,
+        u: &mut [f64],
+        i: usize,
+        tolerance: f64,
+    ) -> bool {
         self.relax_attempt(ring, u, i, tolerance, false)
             || self.relax_attempt(ring, u, i, tolerance, true)
     }
@@ -86,6 +114,7 @@ impl Problem<'_> {
         let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
         let (mut f, mut r) = self.roller_at(ring, u, i);
         let mut tol = tolerance;
+        let mut refresh = false;
         for _ in 0..MAX_ROLLER_ITERATIONS {
             tol = tolerance.max(1e-5 * contact_sum(&f));
             let size = self.scaled(i, &r).amax();
@@ -97,45 +126,80 @@ impl Problem<'_> {
                 (f, r) = self.roller_at(ring, u, i);
                 continue;
             }
-            let step = self.roller_step(ring, u, i, &r);
-            let merit = self.scaled(i, &r).norm_squared();
+            // A step from the roller's last Jacobian (chord Newton: one evaluation when
+            // the full step is taken), refreshed when the chord step did not lower the
+            // residual (the step is taken again) or lowered it slowly (the next one).
+            let chord = !refresh && !self.careful && self.roller_jacobians[i].is_some();
             let start: [f64; ROLLER_UNKNOWNS] = std::array::from_fn(|a| u[s + a]);
-            let mut alpha = 1.0;
-            for attempt in 0..ROLLER_LINE_SEARCH {
-                for a in 0..ROLLER_UNKNOWNS {
-                    u[s + a] = start[a] + alpha * step[a];
-                }
-                let (trial_f, trial) = self.roller_at(ring, u, i);
-                let trial_merit = self.scaled(i, &trial).norm_squared();
-                // The work of the unbalanced forces over the step (trapezoid): the fall of
-                // the roller's potential energy, positive along a direction in which the
-                // residual stays flat (a roller tilting about the one slice it rests on).
-                let moved = Vector3::from_fn(|a, _| alpha * step[a] * self.weight(s + a));
-                let slope = self.scaled(i, &r).dot(&moved);
-                let work = 0.5 * (self.scaled(i, &r) + self.scaled(i, &trial)).dot(&moved);
-                let descends = slope > 0.0 && work > 1e-4 * slope;
-                if trial_merit < (1.0 - 1e-4 * alpha) * merit
-                    || descends
-                    || attempt + 1 == ROLLER_LINE_SEARCH
-                {
-                    (f, r) = (trial_f, trial);
-                    break;
-                }
-                alpha *= 0.5;
+            let (mut trial_f, mut trial, full) =
+                self.roller_search(ring, u, i, &r, refresh || self.careful);
+            refresh = false;
+            if chord && !full {
+                u[s..s + ROLLER_UNKNOWNS].copy_from_slice(&start);
+                (trial_f, trial, _) = self.roller_search(ring, u, i, &r, true);
+            } else if chord {
+                refresh = self.scaled(i, &trial).amax() > CHORD_CONTRACTION * size;
             }
+            (f, r) = (trial_f, trial);
         }
         self.scaled(i, &r).amax() < tol
     }
 
-    /// Roller i's Newton step (3×3 Jacobian by forward differences, scaled to arcs and
-    /// forces, the stiffness floor on free directions, limited to [`MAX_ROLLER_MOVE`]).
-    fn roller_step(
+    /// A backtracking line search of roller i from `u` (its residual `r`) along its Newton
+    /// step ([`Self::roller_step`], from a `fresh` Jacobian or its last one): accepts a step
+    /// on which the residual falls or the unbalanced forces do work, the last trial
+    /// otherwise (with the last Jacobian, the full step is the only trial). Leaves the
+    /// roller's unknowns in `u` at the step taken and returns its forces, its residual and
+    /// whether the full step was taken with a fall of the residual.
+    fn roller_search(
         &mut self,
         ring: &Kinematics,
         u: &mut [f64],
         i: usize,
         r: &Vector3<f64>,
-    ) -> Vector3<f64> {
+        fresh: bool,
+    ) -> (RollerForces, Vector3<f64>, bool) {
+        let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+        let attempts = if fresh || self.roller_jacobians[i].is_none() {
+            ROLLER_LINE_SEARCH
+        } else {
+            1
+        };
+        let step = self.roller_step(ring, u, i, r, fresh);
+        let merit = self.scaled(i, r).norm_squared();
+        let start: [f64; ROLLER_UNKNOWNS] = std::array::from_fn(|a| u[s + a]);
+        let mut alpha = 1.0;
+        for attempt in 0..attempts {
+            for a in 0..ROLLER_UNKNOWNS {
+                u[s + a] = start[a] + alpha * step[a];
+            }
+            let (trial_f, trial) = self.roller_at(ring, u, i);
+            let trial_merit = self.scaled(i, &trial).norm_squared();
+            // The work of the unbalanced forces over the step (trapezoid): the fall of
+            // the roller's potential energy, positive along a direction in which the
+            // residual stays flat (a roller tilting about the one slice it rests on).
+            let moved = Vector3::from_fn(|a, _| alpha * step[a] * self.weight(s + a));
+            let slope = self.scaled(i, r).dot(&moved);
+            let work = 0.5 * (self.scaled(i, r) + self.scaled(i, &trial)).dot(&moved);
+            let descends = slope > 0.0 && work > 1e-4 * slope;
+            let falls = trial_merit < (1.0 - 1e-4 * alpha) * merit;
+            if falls || descends || attempt + 1 == attempts {
+                return (trial_f, trial, attempt == 0 && falls);
+            }
+            alpha *= 0.5;
+        }
+        unreachable!("the last trial is always taken")
+    }
+
+    /// Roller i's stiffness in arcs and forces, −∂r/∂q scaled by the weights, by forward
+    /// differences at `u` (its residual `r`), kept for the next step of the roller.
+    fn roller_jacobian(
+        &mut self,
+        ring: &Kinematics,
+        u: &mut [f64],
+        i: usize,
+        r: &Vector3<f64>,
+    ) -> Matrix3<f64> {
         let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
         let w: [f64; ROLLER_UNKNOWNS] = std::array::from_fn(|a| self.weight(s + a));
         let mut jac = Matrix3::zeros();
@@ -149,6 +213,28 @@ impl Problem<'_> {
                 jac[(a, c)] = (moved[a] - r[a]) / h / (w[a] * w[c]);
             }
         }
+        self.roller_jacobians[i] = Some(jac);
+        jac
+    }
+
+    /// Roller i's Newton step from its scaled Jacobian (a `fresh` one by forward
+    /// differences, else the last one kept, from its own search or the whole problem's
+    /// Jacobian), with the stiffness floor on free directions, limited to
+    /// [`MAX_ROLLER_MOVE`].
+    fn roller_step(
+        &mut self,
+        ring: &Kinematics,
+        u: &mut [f64],
+        i: usize,
+        r: &Vector3<f64>,
+        fresh: bool,
+    ) -> Vector3<f64> {
+        let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+        let w: [f64; ROLLER_UNKNOWNS] = std::array::from_fn(|a| self.weight(s + a));
+        let mut jac = match self.roller_jacobians[i] {
+            Some(jac) if !fresh => jac,
+            _ => self.roller_jacobian(ring, u, i, r),
+        };
         let floor = self.floor();
         for a in 0..ROLLER_UNKNOWNS {
             if jac[(a, a)].abs() < floor {

@@ -2,6 +2,7 @@
 //! residual forces of the unknowns, their Jacobian by grouped forward differences, and the
 //! iteration with its line search, step limit and load continuation.
 
+use super::mirror::Mirror;
 use super::roller::{RollerForces, RollerPose, ROLLER_UNKNOWNS};
 use super::{RingTilt, StaticCase, StaticSolution};
 use crate::bearing::contacts::Wrench;
@@ -10,7 +11,7 @@ use crate::bearing::state::Kinematics;
 use crate::dynamics::rigid::axis_from_angles;
 use crate::error::{Error, Result};
 use crate::geometry::primitives::Vec3;
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3};
 
 /// Unknowns of the inner ring: centre (x, y, z) and tilt (θ_y, θ_z).
 pub const RING_UNKNOWNS: usize = 5;
@@ -29,6 +30,12 @@ const MAX_TOTAL_ITERATIONS: usize = 60;
 /// iteration [m]: a fifth of B1's axial play, well inside the region where the contacts'
 /// linearisation holds.
 const MAX_MOVE: f64 = 4e-6;
+/// The rollers' own equilibrium is sought to this share of the ring's unbalanced force
+/// while the ring is far from its own (inexact Newton).
+const FORCING: f64 = 0.01;
+/// The largest fall of the ring's residual per step for which the Jacobian is kept for
+/// the next step.
+const CHORD_CONTRACTION: f64 = 0.3;
 /// Forward-difference steps: positions [m] and angles [rad] (an arc of 0.2 nm on B1).
 const POSITION_STEP: f64 = 1e-10;
 const ANGLE_STEP: f64 = 1e-7;
@@ -53,6 +60,14 @@ pub(super) struct Problem<'a> {
     /// A whole roller's stiffness against the inner race at 1 µm [N/m]: the scale of the
     /// stiffness floor.
     reference_stiffness: f64,
+    /// Each roller's last Jacobian of its own residual, scaled to arcs and forces (the
+    /// chord of its search in [`Self::relax`]).
+    pub(super) roller_jacobians: Vec<Option<Matrix3<f64>>>,
+    /// The case's mirror symmetry, when it has one and it is used ([`Mirror`]).
+    pub(super) mirror: Option<Mirror>,
+    /// The careful path: every roller searched at every trial, no kept Jacobians
+    /// ([`Self::newton`]).
+    pub(super) careful: bool,
 }
 
 impl<'a> Problem<'a> {
@@ -71,6 +86,9 @@ impl<'a> Problem<'a> {
             load_factor: 1.0,
             scale: r,
             evaluations: 0,
+            roller_jacobians: vec![None; model.layout.rollers],
+            mirror: Mirror::of(model, case, &model.roller_azimuths()),
+            careful: false,
             reference_stiffness: {
                 let lines = &model.lines;
                 let law = lines.kind(LineContact::InnerRace).law;
@@ -104,12 +122,27 @@ impl<'a> Problem<'a> {
         }
     }
 
-    /// The unknowns Newton moves: the ring's centre, its tilt when free, every roller's.
-    fn active(&self) -> Vec<usize> {
+    /// The unknowns Newton moves: the ring's centre, its tilt when free, every roller's;
+    /// with a mirror symmetry, not the ring's move along z nor its tilt about y.
+    pub(super) fn active(&self) -> Vec<usize> {
         let free_tilt = self.case.tilt == RingTilt::Free;
+        let mirrored = self.mirror.is_some();
         (0..self.len())
             .filter(|&k| !(3..RING_UNKNOWNS).contains(&k) || free_tilt)
+            .filter(|&k| !(mirrored && (k == 2 || k == 3)))
             .collect()
+    }
+
+    /// Whether roller i is computed rather than mirrored from its partner.
+    pub(super) fn computed(&self, i: usize) -> bool {
+        self.mirror.as_ref().is_none_or(|m| m.computed(i))
+    }
+
+    /// Sets each mirrored roller's unknowns in `u` from its partner's.
+    pub(super) fn symmetrize(&self, u: &mut [f64]) {
+        if let Some(m) = &self.mirror {
+            m.copy_unknowns(u, RING_UNKNOWNS, ROLLER_UNKNOWNS);
+        }
     }
 
     /// The inner ring at rest at the unknowns `u`.
@@ -130,14 +163,24 @@ impl<'a> Problem<'a> {
 
     /// The contact forces of every roller at the unknowns `u`.
     pub(super) fn evaluate(&mut self, u: &[f64], details: bool) -> Vec<RollerForces> {
-        self.evaluations += self.azimuths.len();
         let ring = self.ring(u);
-        (0..self.azimuths.len())
+        let mut forces: Vec<RollerForces> = (0..self.azimuths.len())
             .map(|i| {
+                if !self.computed(i) {
+                    return RollerForces::default();
+                }
                 let kin = self.pose(u, i).kinematics(self.pitch);
                 self.model.quasi_static_roller(&ring, &kin, details)
             })
-            .collect()
+            .collect();
+        match &self.mirror {
+            Some(m) => {
+                m.copy_forces(&mut forces);
+                self.evaluations += m.computed_count();
+            }
+            None => self.evaluations += self.azimuths.len(),
+        }
+        forces
     }
 
     /// Roller i's unbalanced radial force, axial force and tilting moment [N, N, N·m]:
@@ -240,6 +283,12 @@ impl<'a> Problem<'a> {
                 v[k] = u[k];
             }
         }
+        for i in 0..self.azimuths.len() {
+            let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+            let w: [f64; ROLLER_UNKNOWNS] = std::array::from_fn(|a| self.weight(s + a));
+            self.roller_jacobians[i] =
+                Some(Matrix3::from_fn(|a, c| jac[(s + a, s + c)] / (w[a] * w[c])));
+        }
         jac
     }
 
@@ -284,8 +333,13 @@ impl<'a> Problem<'a> {
         (1e-7 * (external + body)).max(1e-6)
     }
 
-    /// Newton's method on the ring's unknowns from `u` at the current load factor, the
-    /// rollers held in their own equilibrium ([`Self::relax`]) at every iterate: the
+    /// Newton's method from `u` at the current load factor: the rollers first set into
+    /// their own equilibrium ([`Self::relax`]), then coupled Newton steps of the ring and
+    /// the rollers together ([`Self::coupled_trial`]), taken when they lower the ring's
+    /// residual, with the Jacobian kept while the residual falls fast and a roller searched
+    /// alone only to a share ([`FORCING`]) of the ring's residual; where a coupled step
+    /// does not help, and on the careful path ([`Self::careful`]) always, the ring's step
+    /// is searched with every roller in its own equilibrium at each trial. Returns the
     /// unknowns reached, their residual, whether it converged and the iterations taken.
     fn newton(&mut self, mut u: Vec<f64>) -> (Vec<f64>, DVector<f64>, bool, usize) {
         let all = self.active();
@@ -294,23 +348,59 @@ impl<'a> Problem<'a> {
         let mut rollers_held = self.relax(&mut u, tolerance);
         let mut forces = self.evaluate(&u, false);
         let mut r = self.residual(&u, &forces);
+        let mut jac: Option<DMatrix<f64>> = None;
+        let mut contraction = 1.0;
         for iteration in 0..MAX_ITERATIONS {
-            if rollers_held && self.largest(&r, &ring) < tolerance {
-                return (u, r, true, iteration);
+            if self.largest(&r, &ring) < tolerance {
+                if rollers_held {
+                    return (u, r, true, iteration);
+                }
+                // The ring is balanced and some roller is not: its own search sets it.
+                rollers_held = self.relax(&mut u, tolerance);
+                forces = self.evaluate(&u, false);
+                r = self.residual(&u, &forces);
+                if rollers_held && self.largest(&r, &ring) < tolerance {
+                    return (u, r, true, iteration);
+                }
             }
-            let jac = self.jacobian(&u, &forces, &ring);
-            let step = self.condensed_step(&jac, &r, &ring);
+            // The Jacobian is kept for the next iteration while the residual falls fast
+            // (chord Newton: a Jacobian costs six evaluations of every roller).
+            if jac.is_none() || contraction > CHORD_CONTRACTION || self.careful {
+                jac = Some(self.jacobian(&u, &forces, &ring));
+            }
+            let Some(jac) = jac.as_ref() else {
+                unreachable!("set just above")
+            };
+            let step = self.condensed_step(jac, &r, &ring);
             let merit = self.merit(&r, &ring);
+            // Inexact Newton: a roller searched alone is balanced to a tenth of the
+            // ring's unbalanced force.
+            let loose = if self.careful {
+                tolerance
+            } else {
+                tolerance.max(FORCING * self.largest(&r, &ring))
+            };
+            if !self.careful {
+                let (trial, trial_forces, trial_r, held) = self.coupled_trial(&u, &r, &step, loose);
+                if self.merit(&trial_r, &ring) < (1.0 - 1e-4) * merit {
+                    contraction = (self.merit(&trial_r, &ring) / merit).sqrt();
+                    (u, forces, r) = (trial, trial_forces, trial_r);
+                    rollers_held = held && self.rollers_balanced(&forces, &r, tolerance);
+                    continue;
+                }
+            }
             let mut alpha = 1.0;
             for attempt in 0..LINE_SEARCH_STEPS {
                 let mut trial: Vec<f64> = u.iter().zip(&step).map(|(a, d)| a + alpha * d).collect();
-                let held = self.relax(&mut trial, tolerance);
+                let held = self.relax(&mut trial, loose);
                 let trial_forces = self.evaluate(&trial, false);
                 let trial_r = self.residual(&trial, &trial_forces);
                 let trial_merit = self.merit(&trial_r, &ring);
                 let last = attempt + 1 == LINE_SEARCH_STEPS;
                 if (trial_merit.is_finite() && trial_merit < (1.0 - 1e-4 * alpha) * merit) || last {
-                    (u, forces, r, rollers_held) = (trial, trial_forces, trial_r, held);
+                    (u, forces, r) = (trial, trial_forces, trial_r);
+                    rollers_held = held && self.rollers_balanced(&forces, &r, tolerance);
+                    contraction = 1.0;
                     break;
                 }
                 alpha *= 0.5;
@@ -318,6 +408,44 @@ impl<'a> Problem<'a> {
         }
         let converged = rollers_held && self.largest(&r, &ring) < tolerance;
         (u, r, converged, MAX_ITERATIONS)
+    }
+
+    /// The coupled Newton step `step` from `u` (residual `r`): the ring's move and each
+    /// roller's predicted move whole, except for a roller whose own residual the
+    /// prediction leaves larger than it was (one that a contact holds only weakly, or
+    /// that a contact meets or leaves within the step): that one is searched alone from
+    /// there ([`Self::relax_roller`], to `loose`). The unknowns, forces and residual
+    /// reached, and whether every roller searched alone reached its equilibrium.
+    fn coupled_trial(
+        &mut self,
+        u: &[f64],
+        r: &DVector<f64>,
+        step: &[f64],
+        loose: f64,
+    ) -> (Vec<f64>, Vec<RollerForces>, DVector<f64>, bool) {
+        let mut trial: Vec<f64> = u.iter().zip(step).map(|(a, d)| a + d).collect();
+        let mut trial_forces = self.evaluate(&trial, false);
+        let ring = self.ring(&trial);
+        let mut held = true;
+        for (i, forces) in trial_forces.iter_mut().enumerate() {
+            if !self.computed(i) {
+                continue;
+            }
+            let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+            let own = |r: &[f64]| Vector3::new(r[s], r[s + 1], r[s + 2]);
+            let before = self.scaled(i, &own(r.as_slice())).amax();
+            let after = self.roller_residual(&trial, i, forces);
+            if self.scaled(i, &Vector3::from(after)).amax() > before.max(loose) {
+                held &= self.relax_roller(&ring, &mut trial, i, loose);
+                *forces = self.roller_at(&ring, &trial, i).0;
+            }
+        }
+        self.symmetrize(&mut trial);
+        if let Some(m) = &self.mirror {
+            m.copy_forces(&mut trial_forces);
+        }
+        let trial_r = self.residual(&trial, &trial_forces);
+        (trial, trial_forces, trial_r, held)
     }
 
     /// Σ (r_k / w_k)² over the unknowns `which`.
@@ -476,13 +604,29 @@ impl<'a> Problem<'a> {
         u
     }
 
-    /// The equilibrium from `start` (or from [`Self::guess`]): Newton at the full load,
-    /// and where it fails, continuation from the last load level reached in steps halved
-    /// up to [`MAX_BISECTIONS`] times.
+    /// The equilibrium from `start` (or from [`Self::guess`]): by the fast path
+    /// ([`Self::newton`]), and where that fails, by the careful one.
     pub(super) fn solve(
         &mut self,
         start: Option<Vec<f64>>,
     ) -> Result<(Vec<f64>, DVector<f64>, usize)> {
+        match self.continuation(start.clone()) {
+            Ok(found) => Ok(found),
+            Err(_) => {
+                // The fast path's shortcuts (coupled steps, loose rollers, kept Jacobians)
+                // can stall where a roller's contacts jump (a roller end lying flat on a
+                // flange); the careful path searches every roller at every trial.
+                self.careful = true;
+                self.roller_jacobians.iter_mut().for_each(|j| *j = None);
+                self.continuation(start)
+            }
+        }
+    }
+
+    /// [`Self::solve`] by the current path: Newton at the full load, and where it fails,
+    /// continuation from the last load level reached in steps halved up to
+    /// [`MAX_BISECTIONS`] times.
+    fn continuation(&mut self, start: Option<Vec<f64>>) -> Result<(Vec<f64>, DVector<f64>, usize)> {
         let mut u = start.unwrap_or_else(|| {
             self.load_factor = 1.0;
             self.guess()
@@ -582,6 +726,7 @@ impl BearingModel {
         let from = start.map(|s| unknowns_of(s, &problem));
         let (u, r, iterations) = problem.solve(from)?;
         let forces = problem.evaluate(&u, true);
+        check_flange_pressures(case, &forces)?;
         let mut ring_load = Wrench::default();
         for f in &forces {
             ring_load.add(&f.on_ring);
@@ -599,6 +744,43 @@ impl BearingModel {
             iterations,
             evaluations: problem.evaluations,
         })
+    }
+}
+
+/// The largest Hertz pressure at a roller end–flange contact that a solution may have
+/// [Pa]: ISO 76's limit of the static load rating of roller bearings (4 000 MPa at the
+/// centre of the most heavily loaded contact). Beyond it the axial load is more than the
+/// flanges carry: B1 reaches it between 3 and 30 kN axially, where the rollers tip by
+/// 20 mrad and press their ends 50 µm deep into the flange rims, an elastic "equilibrium"
+/// of a bearing that has failed.
+pub const FLANGE_PRESSURE_LIMIT: f64 = 4.0e9;
+
+/// Refuses an equilibrium whose flange contacts exceed [`FLANGE_PRESSURE_LIMIT`].
+fn check_flange_pressures(case: &StaticCase, forces: &[RollerForces]) -> Result<()> {
+    const FLANGES: [&str; 4] = ["inner −x", "inner +x", "outer −x", "outer +x"];
+    let worst = forces
+        .iter()
+        .enumerate()
+        .flat_map(|(i, f)| {
+            f.flanges
+                .iter()
+                .enumerate()
+                .map(move |(k, x)| (i, k, x.pressure))
+        })
+        .max_by(|a, b| a.2.total_cmp(&b.2));
+    match worst {
+        Some((i, k, pressure)) if pressure > FLANGE_PRESSURE_LIMIT => Err(Error::invalid(
+            "load",
+            format!("radial {} N, axial {} N", case.radial_load, case.axial_load),
+            format!(
+                "the flanges cannot carry it: at equilibrium roller {i} presses the {} flange \
+                 at {:.1} GPa, above the {:.0} GPa of ISO 76's static limit",
+                FLANGES[k],
+                pressure / 1e9,
+                FLANGE_PRESSURE_LIMIT / 1e9
+            ),
+        )),
+        _ => Ok(()),
     }
 }
 

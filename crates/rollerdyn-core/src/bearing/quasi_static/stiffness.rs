@@ -18,6 +18,8 @@ impl BearingModel {
     /// contact) is taken as held, as friction would hold it ([`Problem::roller_block`]).
     pub fn stiffness(&self, solution: &StaticSolution) -> [[f64; RING_UNKNOWNS]; RING_UNKNOWNS] {
         let mut problem = Problem::new(self, &solution.case);
+        // Every column is perturbed, z and the tilt about y too: no mirror.
+        problem.mirror = None;
         let u = unknowns_of(solution, &problem);
         let base = problem.evaluate(&u, false);
         let columns: Vec<usize> = (0..RING_UNKNOWNS).collect();
