@@ -173,6 +173,21 @@ def test_bad_cases_are_refused_with_a_message(b1):
     )
 
 
+def test_loads_the_bearing_cannot_carry_are_refused_with_the_level_reached(b1):
+    """Issue 18's bad input: a load past what B1 carries gives one message with the load
+    level reached and the residual (no equilibrium: 3 kN axially, past the flat position
+    of the roller ends), or the flange pressure against ISO 76's 4 GPa limit (10 kN
+    axially, where the elastic model finds rollers tipped into the flange rims at ~16 GPa);
+    never a hang or NaN. B1 at 2 kN axially is still carried (flange p0 about 2 GPa)."""
+    with pytest.raises(StaticsError, match=r"reached \d+ % of the load.*residual is"):
+        statics(b1, axial_load=3000.0)
+    with pytest.raises(StaticsError, match=r"flanges cannot carry it.*GPa, above the 4 GPa"):
+        statics(b1, axial_load=10000.0)
+    carried = statics(b1, axial_load=2000.0)
+    assert float(carried.flange_pressure.max()) < 4e9
+    assert np.isfinite(carried.ring_displacement.values).all()
+
+
 def test_cli_prints_the_equilibrium_and_refuses_bad_options(tmp_path):
     runner = CliRunner()
     out = tmp_path / "s.nc"
