@@ -25,6 +25,7 @@ __all__ = [
     "PAIRINGS",
     "FLANGES",
     "DETECTORS",
+    "ARRAY_ARGUMENTS",
     "EhlTraction",
     "Model",
     "simulate",
@@ -37,6 +38,7 @@ __all__ = [
     "roller_mass_properties",
     "contact_benchmark",
     "circle_circle_distance",
+    "effective_modulus",
     "elliptic_integrals",
     "ellipticity",
     "hertz_point",
@@ -66,6 +68,8 @@ __version__: str
 PAIRINGS: tuple[str, ...]
 FLANGES: tuple[str, ...]
 DETECTORS: tuple[str, ...]
+#: The elementwise functions below: how many of their leading arguments are arrays.
+ARRAY_ARGUMENTS: dict[str, int]
 
 @final
 class EhlTraction:
@@ -139,6 +143,7 @@ def chittenden_film(
 def dicke_viscosity(
     pressure: _Array, temperature: _Array, eta0: _Array, a1: float, a2: float, b1: float, b2: float
 ) -> _Array: ...
+def effective_modulus(e1: float, nu1: float, e2: float, nu2: float) -> float: ...
 def ehl_rolling_force(
     r_eff: _Array, length: _Array, u0: _Array, normal_force: _Array, e_prime: float, eta0: float
 ) -> _Array: ...

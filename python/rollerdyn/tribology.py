@@ -90,10 +90,12 @@ def _check(name: str, value: Any) -> None:
         raise ValueError(f"{name} = {first!r}: {rule}")
 
 
-def _vectorize(core: Callable[..., Any], n_arrays: int) -> Callable[..., Any]:
-    """Wrap a core function whose first ``n_arrays`` arguments are equal-length 1-D arrays:
-    the arguments are checked (:data:`_RULES`, by name), broadcast, and the result takes
-    the broadcast shape. The wrapper has the core function's signature and docstring."""
+def _vectorize(core: Callable[..., Any]) -> Callable[..., Any]:
+    """Wrap an elementwise core function, whose first arguments (as many as the core's
+    ``ARRAY_ARGUMENTS`` says) are equal-length 1-D arrays: the arguments are checked
+    (:data:`_RULES`, by name), broadcast, and the result takes the broadcast shape. The
+    wrapper has the core function's signature and docstring."""
+    n_arrays = _core.ARRAY_ARGUMENTS[core.__name__]
     signature = inspect.signature(core)
     names = list(signature.parameters)
 
@@ -128,24 +130,24 @@ def _vectorize(core: Callable[..., Any], n_arrays: int) -> Callable[..., Any]:
 
 def effective_modulus(e1: float, nu1: float, e2: float, nu2: float) -> float:
     """E' = 2/((1 - nu1^2)/E1 + (1 - nu2^2)/E2) (paper, nomenclature), Pa."""
-    return 2.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2)
+    return _core.effective_modulus(e1, nu1, e2, nu2)
 
 
-elliptic_integrals = _vectorize(_core.elliptic_integrals, 1)
-ellipticity = _vectorize(_core.ellipticity, 1)
-hertz_point = _vectorize(_core.hertz_point, 4)
-hertz_point_force = _vectorize(_core.hertz_point_force, 4)
-hertz_line = _vectorize(_core.hertz_line, 4)
-tripp_deflection = _vectorize(_core.tripp_deflection, 1)
-line_power_law_force = _vectorize(_core.line_power_law_force, 2)
-vogel_viscosity = _vectorize(_core.vogel_viscosity, 1)
-roelands_viscosity = _vectorize(_core.roelands_viscosity, 2)
-dicke_viscosity = _vectorize(_core.dicke_viscosity, 3)
-carreau_shear_stress = _vectorize(_core.carreau_shear_stress, 2)
-line_films = _vectorize(_core.line_films, 4)
-chittenden_film = _vectorize(_core.chittenden_film, 5)
-thermal_correction = _vectorize(_core.thermal_correction, 2)
-boundary_friction_coefficient = _vectorize(_core.boundary_friction_coefficient, 2)
-boundary_share = _vectorize(_core.boundary_share, 1)
-hysteresis_moment = _vectorize(_core.hysteresis_moment, 2)
-ehl_rolling_force = _vectorize(_core.ehl_rolling_force, 4)
+elliptic_integrals = _vectorize(_core.elliptic_integrals)
+ellipticity = _vectorize(_core.ellipticity)
+hertz_point = _vectorize(_core.hertz_point)
+hertz_point_force = _vectorize(_core.hertz_point_force)
+hertz_line = _vectorize(_core.hertz_line)
+tripp_deflection = _vectorize(_core.tripp_deflection)
+line_power_law_force = _vectorize(_core.line_power_law_force)
+vogel_viscosity = _vectorize(_core.vogel_viscosity)
+roelands_viscosity = _vectorize(_core.roelands_viscosity)
+dicke_viscosity = _vectorize(_core.dicke_viscosity)
+carreau_shear_stress = _vectorize(_core.carreau_shear_stress)
+line_films = _vectorize(_core.line_films)
+chittenden_film = _vectorize(_core.chittenden_film)
+thermal_correction = _vectorize(_core.thermal_correction)
+boundary_friction_coefficient = _vectorize(_core.boundary_friction_coefficient)
+boundary_share = _vectorize(_core.boundary_share)
+hysteresis_moment = _vectorize(_core.hysteresis_moment)
+ehl_rolling_force = _vectorize(_core.ehl_rolling_force)

@@ -1,10 +1,12 @@
 //! What every binding shares: arrays in and out (elementwise maps over equally long
-//! one-dimensional float64 arrays), core errors as `ValueError`, named choices and dicts
-//! filled from a struct's fields.
+//! one-dimensional float64 arrays, and `elementwise!`, which writes such bindings from a
+//! one-line description), core errors as `ValueError`, named choices, dicts filled from a
+//! struct's fields and the registration of a module's functions.
 
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 /// A float64 array returned to Python.
 pub(crate) type Array<'py> = Bound<'py, PyArray1<f64>>;
@@ -79,3 +81,116 @@ macro_rules! set_fields {
     };
 }
 pub(crate) use set_fields;
+
+/// A dict of the arrays `columns` under the keys `names`, in order.
+pub(crate) fn dict_of<'py, const K: usize>(
+    py: Python<'py>,
+    names: [&str; K],
+    columns: [Array<'py>; K],
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    for (name, column) in names.into_iter().zip(columns) {
+        d.set_item(name, column)?;
+    }
+    Ok(d)
+}
+
+/// Adds the `#[pyfunction]`s named to the module `m` (`?` on failure).
+macro_rules! add_functions {
+    ($m:expr; $($f:ident),+ $(,)?) => {
+        $( $m.add_function(pyo3::wrap_pyfunction!($f, $m)?)?; )+
+    };
+}
+pub(crate) use add_functions;
+
+/// Elementwise bindings, one per definition:
+///
+/// ```text
+/// /// Docstring.
+/// #[pyfunction]
+/// fn name(x, y; scalar: f64, choice: &str) -> OUT where law = setup(scalar)? => body;
+/// ```
+///
+/// becomes `fn name<'py>(py, x: In<'py>, y: In<'py>, scalar: f64, choice: &str)` (a method
+/// when the list starts with `&self,`): the array arguments come first, the scalars after
+/// `;`, so that Python sees the same names in the same order. The `where` bindings are
+/// evaluated once (`?` allowed); then `body` is evaluated at each element, with each array
+/// argument standing for its element there ([`map_many`], whose errors name the
+/// arguments). `OUT` says what Python gets: `Array` (body gives an `f64`: one array),
+/// `(a, b)` (body gives `[f64; 2]`: a tuple of arrays; the names are for the reader) or
+/// `{a, b}` (body gives `[f64; 2]`: a dict of arrays under those keys). The attributes
+/// before `fn` (docstring, `#[pyfunction]`) are kept.
+///
+/// Functions also get a table `ARRAY_ARGUMENTS` of their names and numbers of array
+/// arguments (so one such `elementwise!` per module). For methods, the `#[pymethods]` block is written first and its own items are kept as
+/// they are (PyO3 wants one block per class): `elementwise! { #[pymethods] impl Class {
+/// ... } fn method(&self, x) -> Array => self.f(x); }`. Code inside the macro's braces is
+/// not reformatted by rustfmt.
+macro_rules! elementwise {
+    (
+        $(#[$class_attr:meta])* impl $class:ident { $($class_items:tt)* }
+        $(
+            $(#[$attr:meta])*
+            fn $name:ident(&$s:ident, $($x:ident),+ $(; $($p:ident: $t:ty),+)?) -> $out:tt
+            $(where $($v:ident = $init:expr),+)? => $body:expr;
+        )+
+    ) => {
+        $(#[$class_attr])*
+        impl $class {
+            $($class_items)*
+            $(
+                $(#[$attr])*
+                #[allow(clippy::too_many_arguments)]
+                fn $name<'py>(
+                    &$s, py: Python<'py>, $($x: $crate::convert::In<'py>,)+ $($($p: $t),+)?
+                ) -> PyResult<Bound<'py, PyAny>> {
+                    $crate::convert::elementwise!(
+                        @body py, $out, [$($x),+], [$($($v = $init),+)?], $body
+                    )
+                }
+            )+
+        }
+    };
+    (
+        $(
+            $(#[$attr:meta])*
+            fn $name:ident($($x:ident),+ $(; $($p:ident: $t:ty),+)?) -> $out:tt
+            $(where $($v:ident = $init:expr),+)? => $body:expr;
+        )+
+    ) => {
+        /// How many leading arguments of each function are arrays (`_core.ARRAY_ARGUMENTS`,
+        /// for the Python wrappers that broadcast them).
+        pub(crate) const ARRAY_ARGUMENTS: &[(&str, usize)] =
+            &[$((stringify!($name), [$(stringify!($x)),+].len())),+];
+        $(
+            $(#[$attr])*
+            #[allow(clippy::too_many_arguments)]
+            fn $name<'py>(
+                py: Python<'py>, $($x: $crate::convert::In<'py>,)+ $($($p: $t),+)?
+            ) -> PyResult<Bound<'py, PyAny>> {
+                $crate::convert::elementwise!(
+                    @body py, $out, [$($x),+], [$($($v = $init),+)?], $body
+                )
+            }
+        )+
+    };
+    (@body $py:ident, $out:tt, [$($x:ident),+], [$($v:ident = $init:expr),*], $body:expr) => {{
+        $(let $v = $init;)*
+        let names = [$(stringify!($x)),+];
+        let inputs = [$(&$x),+];
+        $crate::convert::elementwise!(@out $py, $out, names, inputs, |[$($x),+]| $body)
+    }};
+    (@out $py:ident, Array, $names:ident, $inputs:ident, $f:expr) => {
+        $crate::convert::map($py, $names, $inputs, $f).map(Bound::into_any)
+    };
+    (@out $py:ident, ($($o:ident),+), $names:ident, $inputs:ident, $f:expr) => {
+        $crate::convert::map_many($py, $names, $inputs, $f)
+            .and_then(|columns| Ok(pyo3::types::PyTuple::new($py, columns)?.into_any()))
+    };
+    (@out $py:ident, {$($k:ident),+}, $names:ident, $inputs:ident, $f:expr) => {
+        $crate::convert::map_many($py, $names, $inputs, $f)
+            .and_then(|columns| $crate::convert::dict_of($py, [$(stringify!($k)),+], columns))
+            .map(Bound::into_any)
+    };
+}
+pub(crate) use elementwise;

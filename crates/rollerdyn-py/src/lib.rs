@@ -6,12 +6,14 @@
 //! become `ValueError`s carrying the core's message (quantity, value, rule); nothing here
 //! panics across the boundary.
 //!
-//! By domain: `tribology` (the force laws) and `traction` (the `EhlTraction` class),
+//! By domain: `tribology` (the force laws, and `ARRAY_ARGUMENTS`: how many leading
+//! arguments of each are arrays) and `traction` (the `EhlTraction` class),
 //! `contact` (detection benchmark, circle–circle distance), `geometry` (roller mass
 //! properties), `params` (the parameter dicts read into typed, nested structs, then into
 //! the core's types), `simulation` (runs and the model at one state), `statics`
 //! (quasi-static equilibria), `constants` (`PAIRINGS`, `FLANGES`, `DETECTORS`); `convert`
-//! holds what they share.
+//! holds what they share, among it `elementwise!`, which writes the bindings that map a
+//! force law over arrays from one line each.
 
 use pyo3::prelude::*;
 
