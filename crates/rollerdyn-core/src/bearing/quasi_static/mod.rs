@@ -33,6 +33,8 @@ mod relax;
 mod roller;
 mod solver;
 mod stiffness;
+#[cfg(test)]
+mod tests;
 
 pub use roller::{FlangeLoad, RollerForces, RollerPose, ROLLER_UNKNOWNS};
 pub use solver::{FLANGE_PRESSURE_LIMIT, RING_UNKNOWNS};
