@@ -26,8 +26,10 @@ const ROLLER_LINE_SEARCH: usize = 10;
 /// The largest move of a roller in one iteration [m] (arcs for its tilt).
 const MAX_ROLLER_MOVE: f64 = 2e-6;
 
-/// The sum of the magnitudes of a roller's contact forces [N]: its race loads (half the
-/// sum of the two races' forces on it) and its flange forces.
+/// The scale of a roller's own tolerance [N]: the sum of its flange forces and of the
+/// magnitude of the net contact force on it (near equilibrium about its weight and
+/// centrifugal force, not its race loads: a roller's tolerance grows with the flange
+/// forces that pinch it, whose tilting couples converge slowly, not with its race load).
 fn contact_sum(f: &RollerForces) -> f64 {
     f.flanges.iter().map(|x| x.force).sum::<f64>() + f.on_roller.force.norm()
 }
