@@ -1,24 +1,60 @@
-"""The ``rollerdyn`` command's entry point: imports the command line (and with it the
-heavy libraries) inside the handler of Ctrl-C, so that an interruption at any phase,
-even while Python starts, ends with one line and status 130, never a traceback. A run
-interrupted later writes what it computed first and says so (``rollerdyn run``)."""
+"""The ``rollerdyn`` command's entry point: Ctrl-C at any moment of the start ends the
+command with one line, "rollerdyn: interrupted", and status 130, never a traceback. A run
+interrupted later writes what it computed first and says so (``rollerdyn run``).
+
+Ctrl-C in three phases:
+
+1. From the start of :func:`main` until the command line is imported (with it the heavy
+   libraries, about a second), nothing has been done that would need undoing: the
+   handler writes the line and ends the process at once (:func:`_exit_interrupted`). It
+   raises nothing, because a KeyboardInterrupt raised at an arbitrary point of the imports
+   can land in one of CPython's own callbacks (an import lock's weakref callback), where
+   CPython prints it as "Exception ignored in ..." with a traceback and drops it (seen at
+   50 ms after the start).
+2. From then on, while a command has no handler of its own (reading the configuration,
+   building the model), Ctrl-C is Python's KeyboardInterrupt: typer ends with status 130
+   and :func:`main` prints the line. One that CPython drops in such a callback is not
+   printed but raised again once the callback has returned (:func:`_redeliver`).
+3. A command's own handling takes over where it has one (``rollerdyn run`` writes what
+   the run computed).
+
+Before :func:`main` runs (Python's own start and ``import rollerdyn``, about 20 ms), a
+Ctrl-C is Python's: a traceback, or none at all in its first milliseconds.
+"""
 
 from __future__ import annotations
 
+import os
 import signal
 import sys
 
-#: Set by a Ctrl-C during the imports. CPython drops a KeyboardInterrupt raised inside
-#: some of its own callbacks (an import lock's weakref callback prints "Exception
-#: ignored" and the command ran on to its end; seen at 50 ms after the start), so the
-#: signal is also recorded here and checked once the imports are done.
-_ctrl_c_seen = False
+#: The hook that reports exceptions CPython cannot raise, as it was before :func:`main`.
+_usual_unraisablehook = sys.unraisablehook
 
 
-def _record_ctrl_c(signum: int, frame: object) -> None:
-    global _ctrl_c_seen
-    _ctrl_c_seen = True
-    raise KeyboardInterrupt
+def _exit_interrupted(signum: int, frame: object) -> None:
+    """Ctrl-C during the imports: the line, and the process ends (nothing to undo yet)."""
+    os.write(2, b"rollerdyn: interrupted\n")
+    os._exit(130)
+
+
+def _redeliver(unraisable: sys.UnraisableHookArgs) -> None:
+    """``sys.unraisablehook`` while a command runs: a KeyboardInterrupt that CPython could
+    not raise (it came in a weakref callback or a ``__del__``) is raised again in the main
+    thread a moment later, once the callback has returned; anything else is reported as
+    usual."""
+    if not isinstance(unraisable.exc_value, KeyboardInterrupt):
+        _usual_unraisablehook(unraisable)
+        return
+    import _thread
+    import threading
+    import time
+
+    def interrupt_soon() -> None:
+        time.sleep(0.005)
+        _thread.interrupt_main()  # as a Ctrl-C: the main thread raises KeyboardInterrupt
+
+    threading.Thread(target=interrupt_soon, daemon=True).start()
 
 
 def _from_ctrl_c(exit_: SystemExit) -> bool:
@@ -31,13 +67,12 @@ def _from_ctrl_c(exit_: SystemExit) -> bool:
 def main() -> None:
     """Runs the command line; Ctrl-C outside the commands' own handlers exits 130 with one
     line."""
-    signal.signal(signal.SIGINT, _record_ctrl_c)
-    try:
-        from .cli import app
+    signal.signal(signal.SIGINT, _exit_interrupted)
+    from .cli import app
 
-        if _ctrl_c_seen:
-            raise KeyboardInterrupt
-        signal.signal(signal.SIGINT, signal.default_int_handler)
+    sys.unraisablehook = _redeliver
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
         app()
     except KeyboardInterrupt:
         print("rollerdyn: interrupted", file=sys.stderr)
