@@ -380,8 +380,8 @@ impl<'a> Problem<'a> {
             };
             let step = self.condensed_step(jac, &r, &ring);
             let merit = self.merit(&r, &ring);
-            // Inexact Newton: a roller searched alone is balanced to a tenth of the
-            // ring's unbalanced force.
+            // Inexact Newton: a roller searched alone is balanced to a share (FORCING) of
+            // the ring's unbalanced force.
             let loose = if self.careful {
                 tolerance
             } else {
@@ -758,9 +758,9 @@ impl BearingModel {
 /// The largest Hertz pressure at a roller end–flange contact that a solution may have
 /// [Pa]: ISO 76's limit of the static load rating of roller bearings (4 000 MPa at the
 /// centre of the most heavily loaded contact). Beyond it the axial load is more than the
-/// flanges carry: B1 reaches it between 3 and 30 kN axially, where the rollers tip by
-/// 20 mrad and press their ends 50 µm deep into the flange rims, an elastic "equilibrium"
-/// of a bearing that has failed.
+/// flanges carry: B1 at 10 and 20 kN axially has elastic "equilibria" at 16 and 19 GPa,
+/// with the rollers tipped by about 20 mrad and their ends tens of µm deep in the flange
+/// rims, states of a bearing that has failed.
 pub const FLANGE_PRESSURE_LIMIT: f64 = 4.0e9;
 
 /// Refuses an equilibrium whose flange contacts exceed [`FLANGE_PRESSURE_LIMIT`].
