@@ -28,6 +28,7 @@
 //! stiffness is the Schur complement of the rollers in the Jacobian at the equilibrium
 //! ([`stiffness`]).
 
+mod condense;
 mod mirror;
 mod relax;
 mod roller;
