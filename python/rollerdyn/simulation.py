@@ -514,11 +514,6 @@ def default_threads() -> int:
         return max(1, os.cpu_count() or 1)
 
 
-def _slack(t: float) -> float:
-    """Times this close count as equal (the core's rule for output and checkpoint times)."""
-    return 1e-12 * max(abs(t), 1.0)
-
-
 def _resume_point(previous: xr.Dataset, config: BearingConfig, detector: str, end: float):
     """(t, y, h) to continue ``previous`` from, after checking that it fits ``config``: its
     last checkpoint (h None if that is the run's fresh start), else its final state."""
@@ -562,8 +557,8 @@ def _join(previous: xr.Dataset, continued: xr.Dataset) -> xr.Dataset:
     the continued run's plus the earlier run's at its last checkpoint (older results
     without checkpoint: at their end)."""
     t0, _, _ = resume_state(previous)
-    earlier = previous.sel(time=previous.time <= t0 + _slack(t0))
-    later = continued.sel(time=continued.time > t0 + _slack(t0))
+    earlier = previous.sel(time=previous.time <= t0 + _core.time_slack(t0))
+    later = continued.sel(time=continued.time > t0 + _core.time_slack(t0))
     joined = xr.concat(
         [
             earlier.drop_vars(_STATE_VARS, errors="ignore"),

@@ -11,7 +11,8 @@
 //! `contact` (detection benchmark, circle–circle distance), `geometry` (roller mass
 //! properties), `params` (the parameter dicts read into typed, nested structs, then into
 //! the core's types), `simulation` (runs and the model at one state), `statics`
-//! (quasi-static equilibria), `constants` (`PAIRINGS`, `FLANGES`, `DETECTORS`); `convert`
+//! (quasi-static equilibria), `time` (the ramp and the time slack the front end applies
+//! too), `constants` (`PAIRINGS`, `FLANGES`, `DETECTORS`); `convert`
 //! holds what they share, among it `elementwise!`, which writes the bindings that map a
 //! force law over arrays from one line each.
 
@@ -24,6 +25,7 @@ mod geometry;
 mod params;
 mod simulation;
 mod statics;
+mod time;
 mod traction;
 mod tribology;
 
@@ -37,6 +39,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     statics::register(m)?;
     geometry::register(m)?;
     contact::register(m)?;
+    time::register(m)?;
     tribology::register(m)?;
     Ok(())
 }

@@ -14,6 +14,7 @@ import math
 from functools import cached_property
 from typing import TYPE_CHECKING
 
+from .. import _core
 from ..tribology import effective_modulus
 from .base import MAX_HERTZ_PRESSURE, T0_CELSIUS, T_DENSITY_REF, TimeTable
 
@@ -204,11 +205,6 @@ class SurfacesDerived:
 # --------------------------------------------------------------------------- operating
 
 
-def _ramp_factor(shape: str, x: float) -> float:
-    x = min(1.0, max(0.0, x))
-    return x if shape == "linear" else 0.5 * (1.0 - math.cos(math.pi * x))
-
-
 class RampDerived:
     """A ramp evaluated."""
 
@@ -216,7 +212,7 @@ class RampDerived:
 
     def factor(self, t: float) -> float:
         """0 before ``start``, 1 after ``end``; linear or ``(1 - cos(pi*x))/2`` in between."""
-        return _ramp_factor(self.shape, (t - self.start) / (self.end - self.start))
+        return _core.ramp_factor(self.shape, (t - self.start) / (self.end - self.start))
 
 
 def _history_peak(value: float | TimeTable) -> float:

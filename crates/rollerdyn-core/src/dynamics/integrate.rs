@@ -258,7 +258,7 @@ pub enum Event<'a> {
 
 /// Times closer than this count as equal when output and checkpoint times are compared
 /// with the solver's time [s] (relative 1e-12, absolute below 1 s).
-fn slack(t: f64) -> f64 {
+pub fn slack(t: f64) -> f64 {
     1e-12 * t.abs().max(1.0)
 }
 

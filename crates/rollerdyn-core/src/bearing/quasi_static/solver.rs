@@ -9,6 +9,7 @@ use super::{RingTilt, StaticCase, StaticSolution};
 use crate::bearing::contacts::Wrench;
 use crate::bearing::model::{BearingModel, LineContact};
 use crate::bearing::state::Kinematics;
+use crate::bearing::topology::FLANGE_NAMES;
 use crate::dynamics::rigid::axis_from_angles;
 use crate::error::{Error, Result};
 use crate::geometry::primitives::Vec3;
@@ -601,7 +602,6 @@ pub const FLANGE_PRESSURE_LIMIT: f64 = 4.0e9;
 
 /// Refuses an equilibrium whose flange contacts exceed [`FLANGE_PRESSURE_LIMIT`].
 fn check_flange_pressures(case: &StaticCase, forces: &[RollerForces]) -> Result<()> {
-    const FLANGES: [&str; 4] = ["inner −x", "inner +x", "outer −x", "outer +x"];
     let worst = forces
         .iter()
         .enumerate()
@@ -619,7 +619,7 @@ fn check_flange_pressures(case: &StaticCase, forces: &[RollerForces]) -> Result<
             format!(
                 "the flanges cannot carry it: at equilibrium roller {i} presses the {} flange \
                  at {:.1} GPa, above the {:.0} GPa of ISO 76's static limit",
-                FLANGES[k],
+                FLANGE_NAMES[k],
                 pressure / 1e9,
                 FLANGE_PRESSURE_LIMIT / 1e9
             ),
