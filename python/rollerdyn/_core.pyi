@@ -35,6 +35,8 @@ __all__ = [
     "model_rhs",
     "model_timing",
     "model_energy",
+    "ramp_factor",
+    "time_slack",
     "roller_mass_properties",
     "contact_benchmark",
     "circle_circle_distance",
