@@ -80,8 +80,8 @@ impl StepControl {
 }
 
 impl Default for StepControl {
-    /// rollerdyn's settings, chosen by measurement on the whole B1 run (docs/dynamics.md,
-    /// "Step-size control"): 74 s against 152 s with [`StepControl::DIFFSOL`], the Newton
+    /// rollerdyn's settings, chosen by measurement on the whole B1 run before the oil film
+    /// (docs/performance-log.md, "Step-size control: the tuning"): 74 s against 152 s with [`StepControl::DIFFSOL`], the Newton
     /// failures 15 671 against 41 513, the Jacobians 7 464 against 24 092.
     fn default() -> Self {
         StepControl {

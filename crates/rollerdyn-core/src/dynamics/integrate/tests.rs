@@ -347,7 +347,8 @@ impl OdeSystem for Jump {
 
 /// Both Jacobian policies after a Newton failure end on the solution, and the setting
 /// reaches the solver (the runs differ). That keeping the Jacobian saves Jacobians is
-/// measured on B1 (docs/dynamics.md: 8 524 against 9 955 Jacobians in the whole run).
+/// measured on B1 (docs/performance-log.md, "Step-size control: the tuning": 8 524
+/// against 9 955 Jacobians in the whole run).
 #[test]
 fn both_jacobian_policies_after_a_newton_failure_end_on_the_solution() {
     let run = |renew: bool| {
