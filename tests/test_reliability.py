@@ -193,7 +193,13 @@ def test_a_bad_end_time_is_refused(b1, t_end):
 
 @pytest.mark.parametrize(
     ("option", "value"),
-    [("rtol", float("nan")), ("dt_max", -1e-4), ("output_interval", 0.0), ("atol", math.inf)],
+    [
+        ("rtol", float("nan")),
+        ("dt_max", -1e-4),
+        ("output_interval", 0.0),
+        ("atol", math.inf),
+        ("min_mean_step", -1e-9),
+    ],
 )
 def test_the_core_checks_its_own_run_options(b1, option, value):
     # the core never runs on a NaN tolerance, even when called past the front end
@@ -211,6 +217,7 @@ def test_the_core_checks_its_own_run_options(b1, option, value):
         "checkpoint_interval": 0.1,
         "threads": 1,
         "start": "rest",
+        "min_mean_step": 2e-8,
         option: value,
     }
     with pytest.raises(ValueError, match=option):

@@ -281,6 +281,7 @@ def run_options(config: BearingConfig, t_end: float) -> dict:
         "jacobian_after_newton_failure": s.jacobian_after_newton_failure,
         "checkpoint_interval": s.checkpoint_interval,
         "start": s.start,
+        "min_mean_step": s.min_mean_step,
     }
 
 

@@ -47,7 +47,10 @@ class LineFitConfig(_Section):
 
 class SolverConfig(_Section):
     """``[solver]``: time integration and every numerical setting of the model (the
-    core's ``ModelOptions``: detector, pruning, mesh resolution, border bands, friction)."""
+    core's ``ModelOptions``: detector, pruning, mesh resolution, border bands, friction).
+    ``min_mean_step``: a run stops with an error (its result so far kept) when 10 000
+    steps in a row advance the time by less than this mean step: steps that have collapsed
+    to nanoseconds (B1 at 2000 N axially, docs/dynamics.md) would take days; 0 s: never."""
 
     rtol: Number(ge=1e-12, lt=1.0) = 1e-5
     atol: Number(ge=1e-15) = 1e-9
@@ -58,6 +61,7 @@ class SolverConfig(_Section):
     detector: Literal[DETECTORS] = SEMI_ANALYTICAL
     start: Literal["rest", "equilibrium"] = "rest"
     method: Literal["tr-bdf2", "esdirk34"] = "tr-bdf2"
+    min_mean_step: Quantity("time", ge=0.0, le="1 ms") = "20 ns"
     max_step_growth: Number(gt=1.0, le=10.0) = 1.3
     step_gain: Number(gt=0.0, le=1.0) = 0.3
     jacobian_after_newton_failure: bool = False
@@ -70,3 +74,16 @@ class SolverConfig(_Section):
     traction_nodes: Integer(ge=1, le=200) = 12
     traction: Literal["tabulated", "direct"] = "tabulated"
     line_fit: LineFitConfig = Field(default_factory=LineFitConfig)
+
+    @model_validator(mode="after")
+    def _check(self) -> SolverConfig:
+        cross = _Cross()
+        if self.min_mean_step >= self.dt_max:
+            cross.add(
+                "min_mean_step",
+                format_si(self.min_mean_step, "time"),
+                f"must be below dt_max ({format_si(self.dt_max, 'time')}); 0 s turns the "
+                "stall check off",
+            )
+        cross.raise_if_any()
+        return self

@@ -41,6 +41,9 @@ pub struct RunOptions {
     /// Start (without a checkpoint) from the quasi-static equilibrium of the loads and speed
     /// at t = 0 ([`BearingModel::equilibrium_state`]) instead of at rest on the pitch circle.
     pub start_from_equilibrium: bool,
+    /// The least mean step over [`crate::dynamics::integrate::STALL_WINDOW`] steps [s]
+    /// before the run fails as stalled (0: never; see the integrator's `Options`).
+    pub min_mean_step: f64,
 }
 
 /// Largest memory the records of one run may take [bytes]: a run that would record more
@@ -80,6 +83,13 @@ impl RunOptions {
         }
         if let Some(c) = self.checkpoint_interval {
             positive("checkpoint_interval", c)?;
+        }
+        if !(self.min_mean_step >= 0.0 && self.min_mean_step < self.dt_max) {
+            return Err(crate::Error::invalid(
+                "min_mean_step",
+                self.min_mean_step,
+                "must be >= 0 and below dt_max",
+            ));
         }
         let control = &self.step_control;
         if !(control.max_growth > 1.0 && control.max_growth.is_finite()) {
@@ -288,6 +298,7 @@ pub fn run(
         origin: 0.0,
         checkpoint_interval: options.checkpoint_interval,
         step_control: options.step_control,
+        min_mean_step: options.min_mean_step,
     };
     let mut records = Vec::new();
     let mut last = (t0, y0.clone());
@@ -519,6 +530,7 @@ mod tests {
             checkpoint_interval: Some(0.1),
             step_control: StepControl::default(),
             start_from_equilibrium: false,
+            min_mean_step: 2e-8,
         }
     }
 

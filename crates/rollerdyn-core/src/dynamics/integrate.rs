@@ -114,7 +114,14 @@ pub struct Options {
     pub checkpoint_interval: Option<f64>,
     /// Step-size control and Jacobian renewal.
     pub step_control: StepControl,
+    /// The run fails when [`STALL_WINDOW`] steps in a row advance the time by less than
+    /// this mean step [s] (0: never): a run whose steps have collapsed to nanoseconds
+    /// would otherwise go on for days.
+    pub min_mean_step: f64,
 }
+
+/// Steps over which the mean step is compared with [`Options::min_mean_step`].
+pub const STALL_WINDOW: usize = 10_000;
 
 /// What the solver did.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -338,6 +345,8 @@ pub fn integrate<S: OdeSystem>(
     let next_output = |k: usize| (origin + k as f64 * options.output_interval).min(t_end);
     let mut k = first_after(origin, options.output_interval, t);
     let mut ended = t >= t_end;
+    // The start of the current window of STALL_WINDOW steps: (steps taken, time).
+    let mut window = (0usize, t);
     loop {
         // One segment: from (t, y, h) with a fresh solver to the next checkpoint or t_end.
         let checkpoint = options
@@ -427,6 +436,22 @@ pub fn integrate<S: OdeSystem>(
                     y,
                     &counters,
                 ));
+            }
+            let taken = counters.borrow().stats.steps;
+            if taken >= window.0 + STALL_WINDOW {
+                let mean = (t - window.1) / (taken - window.0) as f64;
+                if mean < options.min_mean_step {
+                    let y = on!(&solver, s => s.state().y.clone_as_vec());
+                    let message = format!(
+                        "the steps collapsed: the last {} steps advanced the time by {:.3e} s \
+                         (a mean step of {mean:.3e} s, below the least mean step of {:.3e} s)",
+                        taken - window.0,
+                        t - window.1,
+                        options.min_mean_step
+                    );
+                    return Err(fail(t, message, y, &counters));
+                }
+                window = (taken, t);
             }
             let stats = report(&counters, t, step);
             if events(Event::Step {

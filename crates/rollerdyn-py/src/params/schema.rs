@@ -203,6 +203,8 @@ section! {
         checkpoint_interval: Option<f64>,
         /// None: from rest.
         start: Option<Start>,
+        /// The least mean step over 10 000 steps [s] (0: never stop a run as stalled).
+        min_mean_step: f64,
         /// `simulate` builds its model on that many threads (`Model.run`: the model's own).
         threads: Omittable<usize>,
     }

@@ -45,6 +45,7 @@ fn options(method: Method, checkpoint_interval: Option<f64>) -> Options {
         origin: 0.0,
         checkpoint_interval,
         step_control: StepControl::default(),
+        min_mean_step: 0.0,
     }
 }
 
@@ -411,4 +412,64 @@ fn stiff_oscillator_matches_closed_form_at_every_output_time() {
         );
         assert!(stats.jacobian_evaluations >= 1);
     }
+}
+
+/// y' = cos(Ωt) with Ω = 1e8 rad/s: the tolerance holds the steps to a small fraction of
+/// the period 2π/Ω ≈ 63 ns, the way a bearing run's steps collapse where a contact
+/// chatters.
+struct Chattering;
+const CHATTER: f64 = 1e8;
+impl OdeSystem for Chattering {
+    fn len(&self) -> usize {
+        1
+    }
+    fn rhs(&self, t: f64, _y: &[f64], dy: &mut [f64]) {
+        dy[0] = (CHATTER * t).cos();
+    }
+    fn jacobian(&self, _t: f64, _y: &[f64], jac: &mut DMatrix<f64>) {
+        jac.fill(0.0);
+    }
+}
+
+/// A run whose mean step over `STALL_WINDOW` steps falls below `min_mean_step` fails at
+/// the end of that window with a message saying so and its state there; with the check
+/// off (0) the same run goes on past the window.
+#[test]
+fn a_run_whose_steps_collapse_fails_after_one_window() {
+    let mut opts = options(Method::TrBdf2, None);
+    opts.rtol = 1e-8;
+    opts.atol = vec![1e-16];
+    opts.dt_max = 1e-6;
+    opts.output_interval = 1e-6;
+    opts.min_mean_step = 1e-7;
+    let start = Start {
+        time: 0.0,
+        state: vec![0.0],
+        step: None,
+    };
+    let continue_ = |_: Event| ControlFlow::Continue(());
+    let err = integrate(&Chattering, &start, 1.0, &opts, continue_).unwrap_err();
+    assert!(
+        err.message.contains("the steps collapsed"),
+        "{}",
+        err.message
+    );
+    assert_eq!(err.stats.steps, STALL_WINDOW);
+    assert!(
+        err.time < STALL_WINDOW as f64 * opts.min_mean_step,
+        "{}",
+        err.time
+    );
+    assert_eq!(err.state.len(), 1);
+    // y = sin(Ωt)/Ω where it stopped, to the tolerance's order.
+    let exact = (CHATTER * err.time).sin() / CHATTER;
+    assert!(
+        (err.state[0] - exact).abs() < 1e-12,
+        "{} vs {exact}",
+        err.state[0]
+    );
+    opts.min_mean_step = 0.0;
+    let t_end = 1.5 * err.time;
+    let stats = integrate(&Chattering, &start, t_end, &opts, continue_).unwrap();
+    assert!(stats.steps > STALL_WINDOW, "{}", stats.steps);
 }
