@@ -444,7 +444,8 @@ pub fn integrate<S: OdeSystem>(
                     let y = on!(&solver, s => s.state().y.clone_as_vec());
                     let message = format!(
                         "the steps collapsed: the last {} steps advanced the time by {:.3e} s \
-                         (a mean step of {mean:.3e} s, below the least mean step of {:.3e} s)",
+                         (a mean step of {mean:.3e} s, below min_mean_step = {:.3e} s; 0 turns \
+                         this stop off)",
                         taken - window.0,
                         t - window.1,
                         options.min_mean_step
