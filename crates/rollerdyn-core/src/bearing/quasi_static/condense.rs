@@ -57,7 +57,7 @@ impl Problem<'_> {
         }
         for i in 0..self.azimuths.len() {
             let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
-            let w: [f64; ROLLER_UNKNOWNS] = std::array::from_fn(|a| self.weight(s + a));
+            let w = self.roller_weights();
             self.roller_jacobians[i] =
                 Some(Matrix3::from_fn(|a, c| jac[(s + a, s + c)] / (w[a] * w[c])));
         }

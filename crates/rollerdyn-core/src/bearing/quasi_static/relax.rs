@@ -59,9 +59,7 @@ impl Problem<'_> {
         tolerance: f64,
     ) -> bool {
         forces.iter().enumerate().all(|(i, f)| {
-            let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
-            let own = Vector3::new(r[s], r[s + 1], r[s + 2]);
-            self.scaled(i, &own).amax() < tolerance.max(1e-5 * contact_sum(f))
+            self.scaled(i, &self.own_residual(r, i)).amax() < tolerance.max(1e-5 * contact_sum(f))
         })
     }
 
@@ -203,7 +201,7 @@ impl Problem<'_> {
         r: &Vector3<f64>,
     ) -> Matrix3<f64> {
         let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
-        let w: [f64; ROLLER_UNKNOWNS] = std::array::from_fn(|a| self.weight(s + a));
+        let w = self.roller_weights();
         let mut jac = Matrix3::zeros();
         for c in 0..ROLLER_UNKNOWNS {
             let h = self.step(s + c);
@@ -231,8 +229,7 @@ impl Problem<'_> {
         r: &Vector3<f64>,
         fresh: bool,
     ) -> Vector3<f64> {
-        let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
-        let w: [f64; ROLLER_UNKNOWNS] = std::array::from_fn(|a| self.weight(s + a));
+        let w = self.roller_weights();
         let mut jac = match self.roller_jacobians[i] {
             Some(jac) if !fresh => jac,
             _ => self.roller_jacobian(ring, u, i, r),

@@ -82,10 +82,12 @@ impl<'a> Problem<'a> {
         let pitch = model.pitch_radius();
         let r = p.roller.radius;
         let orbit = 0.5 * case.speed * (1.0 - r / pitch);
+        let azimuths = model.roller_azimuths();
         Self {
             model,
             case: *case,
-            azimuths: model.roller_azimuths(),
+            mirror: Mirror::of(model, case, &azimuths),
+            azimuths,
             pitch,
             orbit,
             spin: -(case.speed - orbit) * p.inner_raceway_radius / r,
@@ -93,7 +95,6 @@ impl<'a> Problem<'a> {
             scale: r,
             evaluations: 0,
             roller_jacobians: vec![None; model.layout.rollers],
-            mirror: Mirror::of(model, case, &model.roller_azimuths()),
             careful: false,
             reference_stiffness: {
                 let lines = &model.lines;
@@ -126,6 +127,18 @@ impl<'a> Problem<'a> {
         } else {
             1.0
         }
+    }
+
+    /// The weights of one roller's three unknowns ([`Self::weight`]), the same for every
+    /// roller.
+    pub(super) fn roller_weights(&self) -> [f64; ROLLER_UNKNOWNS] {
+        std::array::from_fn(|a| self.weight(RING_UNKNOWNS + a))
+    }
+
+    /// Roller i's three rows of the residual `r`.
+    pub(super) fn own_residual(&self, r: &DVector<f64>, i: usize) -> Vector3<f64> {
+        let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
+        Vector3::new(r[s], r[s + 1], r[s + 2])
     }
 
     /// The unknowns Newton moves: the ring's centre, its tilt when free, every roller's;
@@ -298,7 +311,7 @@ impl<'a> Problem<'a> {
         let mut rollers_held = self.relax(&mut u, tolerance);
         let mut forces = self.evaluate(&u, false);
         let mut r = self.residual(&u, &forces);
-        let mut jac: Option<DMatrix<f64>> = None;
+        let mut kept: Option<DMatrix<f64>> = None;
         let mut contraction = 1.0;
         for iteration in 0..MAX_ITERATIONS {
             if !self.careful && self.evaluations > FAST_PATH_EVALUATIONS {
@@ -318,12 +331,10 @@ impl<'a> Problem<'a> {
             }
             // The Jacobian is kept for the next iteration while the residual falls fast
             // (chord Newton: a Jacobian costs six evaluations of every roller).
-            if jac.is_none() || contraction > CHORD_CONTRACTION || self.careful {
-                jac = Some(self.jacobian(&u, &forces, &ring));
+            if contraction > CHORD_CONTRACTION || self.careful {
+                kept = None;
             }
-            let Some(jac) = jac.as_ref() else {
-                unreachable!("set just above")
-            };
+            let jac = kept.get_or_insert_with(|| self.jacobian(&u, &forces, &ring));
             let step = self.condensed_step(jac, &r, &ring);
             let merit = self.merit(&r, &ring);
             // Inexact Newton: a roller searched alone is balanced to a share (FORCING) of
@@ -384,9 +395,7 @@ impl<'a> Problem<'a> {
             if !self.computed(i) {
                 continue;
             }
-            let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
-            let own = |r: &[f64]| Vector3::new(r[s], r[s + 1], r[s + 2]);
-            let before = self.scaled(i, &own(r.as_slice())).amax();
+            let before = self.scaled(i, &self.own_residual(r, i)).amax();
             let after = self.roller_residual(&trial, i, forces);
             if self.scaled(i, &Vector3::from(after)).amax() > before.max(loose) {
                 held &= self.relax_roller(&ring, &mut trial, i, loose);
