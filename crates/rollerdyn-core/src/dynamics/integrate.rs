@@ -81,8 +81,9 @@ impl StepControl {
 
 impl Default for StepControl {
     /// rollerdyn's settings, chosen by measurement on the whole B1 run before the oil film
-    /// (docs/performance-log.md, "Step-size control: the tuning"): 74 s against 152 s with [`StepControl::DIFFSOL`], the Newton
-    /// failures 15 671 against 41 513, the Jacobians 7 464 against 24 092.
+    /// (docs/performance-log.md, "Step-size control: the tuning"): 74 s against 152 s
+    /// with [`StepControl::DIFFSOL`], the Newton failures 15 671 against 41 513, the
+    /// Jacobians 7 464 against 24 092.
     fn default() -> Self {
         StepControl {
             max_growth: 1.3,
@@ -345,8 +346,9 @@ pub fn integrate<S: OdeSystem>(
     let next_output = |k: usize| (origin + k as f64 * options.output_interval).min(t_end);
     let mut k = first_after(origin, options.output_interval, t);
     let mut ended = t >= t_end;
-    // The start of the current window of STALL_WINDOW steps: (steps taken, time).
-    let mut window = (0usize, t);
+    // The start of the current window of STALL_WINDOW steps: (steps taken, time). A run
+    // resumed from a checkpoint starts a window there.
+    let mut window = (counters.borrow().stats.steps, t);
     loop {
         // One segment: from (t, y, h) with a fresh solver to the next checkpoint or t_end.
         let checkpoint = options
