@@ -53,6 +53,15 @@ CASES: dict[str, tuple[str, dict[str, Any]]] = {
     "axial-3000N": ("the whole run with 3000 N axial load", {"operating.axial_load": "3000 N"}),
 }
 
+#: The distributed roller end-flange law (surfaces.flange_law) for each of the whole runs.
+_DISTRIBUTED = {"surfaces.flange_law": "distributed"}
+for _name in ("whole", "free-tilt", "axial-0N", "axial-500N", "axial-2000N", "axial-3000N"):
+    _text, _changes = CASES[_name]
+    CASES[f"distributed-{_name}"] = (
+        f"{_text}, distributed flange law",
+        {**_changes, **_DISTRIBUTED},
+    )
+
 #: The cases run when none are named.
 DEFAULT_CASES = ("whole", "full-speed-500rpm", "full-speed-3000rpm", "free-tilt", "axial-0N")
 

@@ -224,6 +224,7 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
         "surfaces": {
             "raceway": pair(s.raceway),
             "flange": pair(s.flange),
+            "flange_law": s.flange_law,
             "roller_roller": pair(s.roller_roller_pair),
             "boundary_friction": {
                 "mu_b0": s.boundary_friction.mu_b0,

@@ -442,10 +442,14 @@ class RaceFilmConfig(_Section):
 
 
 class SurfacesConfig(SurfacesDerived, _Section):
-    """``[surfaces]``."""
+    """``[surfaces]``. ``flange_law``: how a roller end-flange contact carries its load:
+    ``"point"`` (the paper's Hertz at the deepest point of the detected pairing) or
+    ``"distributed"`` (not in the paper: the whole overlap over the roller end as a flat
+    punch, for ends that lie nearly flat on the flange; docs/dynamics.md)."""
 
     raceway: SurfacePairConfig
     flange: SurfacePairConfig
+    flange_law: Literal["point", "distributed"] = "point"
     roller_roller: SurfacePairConfig | None = None
     boundary_friction: BoundaryFrictionConfig
     hysteresis_coefficient: Number(ge=0.0)

@@ -11,12 +11,12 @@
 //! Every force acts at its own contact location; the moment on each body is (P_m − c) × F
 //! (docs/dynamics.md, "Contacts").
 
+use super::detection::EndGeometry;
 use super::forces::ContactForces;
 use super::line_contacts::LineGeometry;
 use super::model::BearingModel;
 use super::state::{BearingKinematics, Kinematics};
 use super::topology::Element;
-use crate::contact::Contact;
 use crate::geometry::primitives::Vec3;
 
 /// A force and a moment about the body's centre.
@@ -101,8 +101,9 @@ pub(super) enum Geometry {
     /// A line contact whose bodies are apart: the (negative) bound of its penetration,
     /// [`BearingModel::penetration_bound`]; no slice computed.
     Apart(f64),
-    /// The detected roller end–flange contact (None: no valid pairing).
-    End(Option<Contact>),
+    /// The detected roller end–flange contact, with its distributed overlap when the
+    /// flange law is [`super::params::FlangeLaw::Distributed`].
+    End(EndGeometry),
 }
 
 impl BearingModel {
@@ -144,7 +145,7 @@ impl BearingModel {
                 unreachable!("an element is a line contact or a roller end")
             };
             let end = self.roller_end(k, b);
-            return Geometry::End(self.end_contact(&end, &self.flange(k, a), i, k));
+            return Geometry::End(self.end_geometry(&end, &self.flange(k, a), i, k));
         };
         let start = self.profiler.stopwatch();
         let bound = self.penetration_bound(line, a, b);
@@ -170,7 +171,7 @@ impl BearingModel {
         match (element.line(), geometry) {
             (Some(line), Geometry::Line(sections)) => self.line_forces(line, a, b, sections),
             (Some(_), Geometry::Apart(bound)) => Self::apart(*bound),
-            (None, Geometry::End(c)) => self.flange_element_at(a, b, c.as_ref()),
+            (None, Geometry::End(g)) => self.flange_element_at(a, b, g),
             _ => unreachable!("geometry of another kind of element"),
         }
     }

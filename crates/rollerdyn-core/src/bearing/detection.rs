@@ -13,9 +13,10 @@
 //! that the force is continuous in the pose.
 
 use super::model::BearingModel;
-use super::params::{BearingParams, Detector};
+use super::params::{BearingParams, Detector, FlangeLaw};
 use super::state::Kinematics;
 use super::topology::{end_slot, flange_side};
+use crate::contact::distributed::{self, DistributedOverlap};
 use crate::contact::gradient::{self, Unknowns};
 use crate::contact::mesh::{MeshDetector, MeshResolution};
 use crate::contact::pruning;
@@ -49,6 +50,17 @@ impl WarmStarts {
     }
 }
 
+/// The position-dependent part of a roller end–flange contact ([`BearingModel::end_geometry`]).
+#[derive(Debug, Clone, Copy)]
+pub struct EndGeometry {
+    /// The detected contact (None: no valid pairing).
+    pub contact: Option<Contact>,
+    /// The whole overlap (distributed flange law, overlapping contacts only).
+    pub overlap: Option<DistributedOverlap>,
+    /// The flange's Winkler modulus for the overlap [Pa/m].
+    pub foundation_modulus: f64,
+}
+
 impl BearingModel {
     /// The end of `roller` that faces flange k.
     pub(super) fn roller_end(&self, k: usize, roller: &Kinematics) -> RollerEnd {
@@ -76,6 +88,33 @@ impl BearingModel {
     ) -> Option<Contact> {
         self.detect(end, flange, roller, k)
             .map(|c| border::blend(&c, end, flange, &self.params.options.border_bands))
+    }
+
+    /// The position-dependent part of roller i's end against flange k: the detected contact
+    /// ([`Self::end_contact`]) and, with the distributed flange law, its whole overlap
+    /// ([`distributed::integrate`]) when the detected contact overlaps.
+    pub(super) fn end_geometry(
+        &self,
+        end: &RollerEnd,
+        flange: &Flange,
+        roller: usize,
+        k: usize,
+    ) -> EndGeometry {
+        let contact = self.end_contact(end, flange, roller, k);
+        let overlap = match (self.params.flange_law, &contact) {
+            (FlangeLaw::Distributed, Some(c)) if c.penetration > 0.0 => {
+                let start = self.profiler.stopwatch();
+                let overlap = distributed::integrate(end, flange, &c.p1);
+                self.profiler.spend_time(start, |pr, t| pr.detection += t);
+                overlap
+            }
+            _ => None,
+        };
+        EndGeometry {
+            contact,
+            overlap,
+            foundation_modulus: self.foundation_modulus[usize::from(k >= 2)],
+        }
     }
 
     /// The composite contact of roller i's end against flange k by the configured detector.

@@ -6,7 +6,9 @@
 //! energy, for conservation checks.
 
 use super::contacts::{ElementResult, Geometry, Wrench};
+use super::detection::EndGeometry;
 use super::model::BearingModel;
+use super::params::FlangeLaw;
 use super::state::ROLLER_STATES;
 use super::state::{ring_kinematics, roller_kinematics, BearingKinematics, Kinematics};
 use super::topology::Body;
@@ -15,6 +17,7 @@ use crate::dynamics::rigid::{
 };
 use crate::geometry::primitives::Vec3;
 use crate::tribology::drag::roller_drag;
+use crate::tribology::foundation;
 use crate::tribology::hertz::{EllipticalContact, EllipticalMethod};
 
 /// The contacts' wrenches summed per body.
@@ -155,12 +158,22 @@ impl BearingModel {
     }
 
     /// Elastic energy stored in all contacts [J]: ∫F dδ of eq. 11 per slice,
-    /// (l/k₁)·δ^(1/k₂+1)/(1/k₂+1), and 2/5·F·δ for a Hertz contact (F ∝ δ^1.5).
+    /// (l/k₁)·δ^(1/k₂+1)/(1/k₂+1), 2/5·F·δ for a Hertz contact (F ∝ δ^1.5), and
+    /// K ∫ g²/2 dA for the distributed flange law's Winkler foundation.
     pub fn contact_energy(&self, kin: &BearingKinematics) -> f64 {
         let mut energy = 0.0;
         for element in &self.topology.elements {
             match (self.geometry(element, kin), element.line()) {
-                (Geometry::End(Some(c)), _) if c.penetration > 0.0 => {
+                (Geometry::End(g), _) if g.overlap.is_some() => {
+                    let o = g.overlap.as_ref().expect("checked");
+                    energy += foundation::foundation_energy(g.foundation_modulus, o.square_volume);
+                }
+                (
+                    Geometry::End(EndGeometry {
+                        contact: Some(c), ..
+                    }),
+                    _,
+                ) if c.penetration > 0.0 && self.params.flange_law == FlangeLaw::Point => {
                     let hertz = EllipticalContact::new(
                         c.rx,
                         c.ry,

@@ -1,14 +1,20 @@
 //! The forces of a roller end against a flange, from the contact detected
 //! ([`super::detection`], paper sect. 2): Hertz's point contact by the Brewe–Hamrock fits
-//! (eqs. 5–8) at the contact location P_m (eq. 1), Chittenden's film and the traction of
-//! sect. 3.2 ([`end_flange`]); beyond the paper, the squeeze film of the oil in the gap
-//! and over the contact ([`crate::tribology::squeeze`]).
+//! (eqs. 5–8) at the contact location P_m (eq. 1), or, with the distributed flange law (not
+//! in the paper), the whole overlap on a Winkler foundation ([`foundation`]) at its centre;
+//! Chittenden's film and the traction of sect. 3.2 ([`flange_friction`]); beyond the
+//! paper, the squeeze film of the oil in the gap and over the contact
+//! ([`crate::tribology::squeeze`]).
 
 use super::contacts::ElementResult;
-use super::forces::{end_flange, penetration_rate, ContactForces};
+use super::detection::EndGeometry;
+use super::forces::{end_flange, flange_friction, penetration_rate, ContactForces, FlangeLoad};
 use super::model::BearingModel;
 use super::state::Kinematics;
-use crate::contact::{Contact, Pairing};
+use crate::contact::distributed::DistributedOverlap;
+use crate::contact::{relative_radius, Contact, Pairing};
+use crate::tribology::foundation;
+use std::f64::consts::PI;
 
 impl BearingModel {
     /// Evaluates the contact of roller i's end (`roller`) against flange k of `ring`.
@@ -20,20 +26,20 @@ impl BearingModel {
         roller: &Kinematics,
     ) -> ElementResult {
         let end = self.roller_end(k, roller);
-        let contact = self.end_contact(&end, &self.flange(k, ring), i, k);
-        self.flange_element_at(ring, roller, contact.as_ref())
+        let geometry = self.end_geometry(&end, &self.flange(k, ring), i, k);
+        self.flange_element_at(ring, roller, &geometry)
     }
 
-    /// [`Self::flange_element`] with the contact given (`contact`, detected at the same
+    /// [`Self::flange_element`] with the contact's `geometry` given (detected at the same
     /// positions): for Jacobian columns of velocities, which leave it unchanged.
     pub(super) fn flange_element_at(
         &self,
         ring: &Kinematics,
         roller: &Kinematics,
-        contact: Option<&Contact>,
+        geometry: &EndGeometry,
     ) -> ElementResult {
         let mut out = ElementResult::untouched();
-        let Some(c) = contact else {
+        let Some(c) = geometry.contact.as_ref() else {
             return out;
         };
         out.penetration = c.penetration;
@@ -46,7 +52,6 @@ impl BearingModel {
         }
         let start = self.profiler.stopwatch();
         let p = c.location();
-        let frame = roller.frame_velocity(&p);
         let squeeze_force = squeeze.damping(self.tribology.eta0, c.rx, c.ry, c.penetration)
             * penetration_rate(ring, roller, &p, &c.normal);
         if c.penetration <= 0.0 {
@@ -60,9 +65,35 @@ impl BearingModel {
                 .spend_time(start, |pr, t| pr.flange_forces += t);
             return out;
         }
-        out.location = p;
         out.pairing = Pairing::ALL.iter().position(|q| *q == c.pairing);
-        let mut f = end_flange(
+        let (mut f, normal, location) = match &geometry.overlap {
+            Some(overlap) => (
+                self.distributed_forces(ring, roller, c, overlap, geometry.foundation_modulus),
+                overlap.normal,
+                overlap.centre,
+            ),
+            None if geometry.overlap.is_none() && self.distributed() => {
+                // The overlap's integral found no support (a vanishing overlap).
+                (ContactForces::default(), c.normal, p)
+            }
+            None => (self.point_forces(ring, roller, c), c.normal, p),
+        };
+        out.location = location;
+        f.normal += squeeze_force;
+        out.add_forces(&f, &normal, &location, ring, roller);
+        self.profiler
+            .spend_time(start, |pr, t| pr.flange_forces += t);
+        out
+    }
+
+    fn distributed(&self) -> bool {
+        self.params.flange_law == super::params::FlangeLaw::Distributed
+    }
+
+    /// The paper's point contact: Hertz at P_m with the detected (blended) radii.
+    fn point_forces(&self, ring: &Kinematics, roller: &Kinematics, c: &Contact) -> ContactForces {
+        let p = c.location();
+        end_flange(
             &self.tribology,
             &self.ellipse,
             ring,
@@ -72,12 +103,48 @@ impl BearingModel {
             c.penetration,
             (c.rx, c.ry),
             &c.major_axis,
+            &roller.frame_velocity(&p),
+        )
+    }
+
+    /// The distributed overlap on its Winkler foundation of modulus `modulus`
+    /// ([`foundation::foundation_force`]), at its centre, with the film and the traction of
+    /// the ellipse of equal second moments (semi-axes a, b): p₀ = 1.5 F/(π a b), relative
+    /// radii a²/δ and b²/δ (Hertz's a² = R δ), δ the deepest overlap; stiffness 1.5 F/δ
+    /// (Hertz's) for the damping.
+    fn distributed_forces(
+        &self,
+        ring: &Kinematics,
+        roller: &Kinematics,
+        c: &Contact,
+        overlap: &DistributedOverlap,
+        modulus: f64,
+    ) -> ContactForces {
+        let elastic = foundation::foundation_force(modulus, overlap.volume);
+        let depth = overlap.max_depth.max(c.penetration);
+        if !(elastic > 0.0 && depth > 0.0) {
+            return ContactForces::default();
+        }
+        let (a, b) = overlap.semi_axes;
+        let radius = |s: f64| relative_radius(depth / (s * s));
+        let (r_major, r_minor) = (radius(a), radius(b));
+        let load = FlangeLoad {
+            elastic,
+            stiffness: 1.5 * elastic / depth,
+            radii: (r_minor.min(r_major), r_major.max(r_minor)),
+            major_axis: overlap.major_axis,
+        };
+        let frame = roller.frame_velocity(&overlap.centre);
+        flange_friction(
+            &self.tribology,
+            &self.ellipse,
+            ring,
+            roller,
+            &overlap.normal,
+            &overlap.centre,
+            &load,
             &frame,
-        );
-        f.normal += squeeze_force;
-        out.add_forces(&f, &c.normal, &p, ring, roller);
-        self.profiler
-            .spend_time(start, |pr, t| pr.flange_forces += t);
-        out
+            |f| (1.5 * f / (PI * a.max(1e-12) * b.max(1e-12)), a, b),
+        )
     }
 }

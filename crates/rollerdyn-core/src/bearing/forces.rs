@@ -403,36 +403,89 @@ pub fn end_flange(
         EllipticalMethod::BreweHamrock,
     );
     let elastic = hertz.force(penetration);
-    let stiffness = 1.5 * elastic / penetration;
+    let load = FlangeLoad {
+        elastic,
+        stiffness: 1.5 * elastic / penetration,
+        radii: (hertz.rx, hertz.ry),
+        major_axis: *major_axis,
+    };
+    flange_friction(
+        tri,
+        kind,
+        ring,
+        roller,
+        normal,
+        location,
+        &load,
+        frame,
+        |f| {
+            let e = hertz.at_force(f);
+            (e.max_pressure, e.semi_major, e.semi_minor)
+        },
+    )
+}
+
+/// The elastic load of a roller end–flange contact and the shape its film and traction
+/// see: relative radii R_x ≤ R_y and the direction of the major axis (along R_y).
+#[derive(Debug, Clone, Copy)]
+pub struct FlangeLoad {
+    /// Elastic normal force [N].
+    pub elastic: f64,
+    /// dF/dδ for the damping [N/m].
+    pub stiffness: f64,
+    /// (R_x, R_y) [m].
+    pub radii: (f64, f64),
+    /// Unit major axis.
+    pub major_axis: Vec3,
+}
+
+/// A roller end–flange contact of the given elastic `load` (Hertz's, [`end_flange`], or
+/// the distributed overlap's, [`crate::tribology::foundation`]): damping, Chittenden's
+/// film (eqs. 45, 46), EHL traction over the ellipse `ellipse(F_N)` = (p₀, a, b),
+/// boundary and mixed friction (sect. 3.2).
+#[allow(clippy::too_many_arguments)]
+pub fn flange_friction(
+    tri: &Tribology,
+    kind: &EllipseKind,
+    ring: &Kinematics,
+    roller: &Kinematics,
+    normal: &Vec3,
+    location: &Vec3,
+    load: &FlangeLoad,
+    frame: &Vec3,
+    ellipse: impl Fn(f64) -> (f64, f64, f64),
+) -> ContactForces {
     let (ua, ub, rate) = tangential_speeds(ring, roller, location, normal, frame);
-    let f_n = damped_normal_force(elastic, stiffness, kind.mass, tri.damping_ratio, rate);
+    let f_n = damped_normal_force(
+        load.elastic,
+        load.stiffness,
+        kind.mass,
+        tri.damping_ratio,
+        rate,
+    );
     if !tri.friction {
         return ContactForces {
             normal: f_n,
             ..Default::default()
         };
     }
-    let ellipse = hertz.at_force(f_n);
+    let (max_pressure, semi_major, semi_minor) = ellipse(f_n);
     let slip = ub - ua;
     let slip_norm = (slip.norm_squared() + SLIP_FLOOR * SLIP_FLOOR).sqrt();
     let entrainment = 0.5 * (ua + ub);
     let u0 = tri.regularised(entrainment.norm());
     // ξ from the major axis; only cos²ξ = (u₀·m)²/u₀² enters eq. 45, smooth in u₀ (u₀ is
     // regularised, so never below |u₀·m|).
-    let along = entrainment.dot(major_axis);
+    let along = entrainment.dot(&load.major_axis);
     let cos2_xi = (along * along / (u0 * u0)).min(1.0);
     let film = tri.film(kind.e_prime);
     let phi_th = tri.thermal(u0, slip_norm);
-    let h = film.chittenden_at(hertz.rx, hertz.ry, cos2_xi, u0, f_n) * phi_th;
+    let h = film.chittenden_at(load.radii.0, load.radii.1, cos2_xi, u0, f_n) * phi_th;
     let (rate, scale) = tri.creep(slip_norm);
     let fluid = scale
-        * tri.traction.ellipse_force(
-            ellipse.max_pressure,
-            ellipse.semi_major,
-            ellipse.semi_minor,
-            rate,
-            h + FILM_FLOOR,
-        );
+        * tri
+            .traction
+            .ellipse_force(max_pressure, semi_major, semi_minor, rate, h + FILM_FLOOR);
     let boundary = tri.boundary.force(f_n, slip_norm, u0);
     let f_t = kind.sharing.mix(h / kind.roughness, boundary, fluid);
     ContactForces {

@@ -29,6 +29,8 @@
 //! the model's threads if it has any ([`BearingModel::with_threads`]), and summed in a fixed
 //! order: the numbers do not depend on the thread count.
 
+use crate::geometry::end_flange::face_contact_area;
+use crate::tribology::foundation::foundation_modulus;
 use super::detection::{flange_of, WarmStarts};
 use super::forces::{EllipseKind, Tribology};
 use super::line_contacts::LineContacts;
@@ -70,6 +72,9 @@ pub struct BearingModel {
     /// The line contacts' data and the stations along the roller.
     pub(super) lines: LineContacts,
     pub(super) ellipse: EllipseKind,
+    /// The Winkler modulus of the distributed flange law, inner and outer ring's flanges
+    /// ([`crate::tribology::foundation::foundation_modulus`]) [Pa/m].
+    pub(super) foundation_modulus: [f64; 2],
     /// Where the drag acts along the roller: (s, weight as a length) [m].
     pub(super) drag_stations: Vec<(f64, f64)>,
     pitch_radius: f64,
@@ -106,6 +111,8 @@ impl BearingModel {
             sharing: params.flange_surface.sharing,
             mass: roller_mass.mass,
         };
+        let foundation_modulus = [&params.inner_flange, &params.outer_flange]
+            .map(|f| foundation_modulus(ellipse.e_prime, face_contact_area(&params.roller, f)));
         let tribology = Tribology {
             traction: params.traction.clone(),
             boundary: params.boundary,
@@ -129,6 +136,7 @@ impl BearingModel {
             tribology,
             lines,
             ellipse,
+            foundation_modulus,
             drag_stations,
             pitch_radius,
             topology: Topology::new(z),

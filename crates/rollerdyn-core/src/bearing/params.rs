@@ -205,6 +205,8 @@ pub struct BearingParams {
     pub raceway: SurfacePair,
     /// Roller end / flange surfaces.
     pub flange_surface: SurfacePair,
+    /// The normal force law of the roller end–flange contacts ([`FlangeLaw`]).
+    pub flange_law: FlangeLaw,
     /// Roller–roller surfaces.
     pub roller_roller: SurfacePair,
     /// Boundary friction (eqs. 51, 52).
@@ -232,6 +234,32 @@ pub struct BearingParams {
     pub squeeze_film: SqueezeFilm,
     /// The numerical settings ([`ModelOptions`]).
     pub options: ModelOptions,
+}
+
+/// How a roller end–flange contact carries its load.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FlangeLaw {
+    /// The paper's (sect. 2, 3.1.2): Hertz (Brewe–Hamrock) at the deepest point of the
+    /// detected pairing.
+    #[default]
+    Point,
+    /// Not in the paper: the whole overlap over the roller end
+    /// ([`crate::contact::distributed`]) on a Winkler foundation
+    /// ([`crate::tribology::foundation`]), for ends that lie nearly flat on the flange.
+    Distributed,
+}
+
+impl FlangeLaw {
+    /// Both, in the order the configuration lists them.
+    pub const ALL: [FlangeLaw; 2] = [FlangeLaw::Point, FlangeLaw::Distributed];
+
+    /// The law's name in the configuration (`surfaces.flange_law`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            FlangeLaw::Point => "point",
+            FlangeLaw::Distributed => "distributed",
+        }
+    }
 }
 
 /// The model's numerical settings, apart from the physical parameters: how the roller

@@ -16,6 +16,7 @@
 
 pub mod benchmark;
 pub mod border;
+pub mod distributed;
 pub mod gradient;
 pub mod mesh;
 pub mod pruning;

@@ -176,6 +176,24 @@ impl Flange {
     }
 }
 
+/// The area of a roller's end face that lies on a flange's face (cone) when the end lies
+/// flat on it, the roller on its raceway: the band of heights above the raceway from the
+/// cone's foot to its top (the root and rim tori's tangent points), cut from the end
+/// face's disc (radius ρ_j, where the end sphere meets the edge torus, centred one roller
+/// radius above the raceway) [m²]. B1: 0.400 mm².
+pub fn face_contact_area(roller: &RollerShape, flange: &FlangeShape) -> f64 {
+    let st = flange.opening_angle.sin();
+    let foot = flange.root_radius * (1.0 + st);
+    let top = flange.height - flange.rim_radius * (1.0 - st);
+    let rho = roller.end_face_radius * roller.edge_tangent_angle().cos();
+    // The disc's area below the height h (measured from its centre, h = u ρ).
+    let below = |h: f64| {
+        let u = ((h - roller.radius) / rho).clamp(-1.0, 1.0);
+        rho * rho * (std::f64::consts::PI - u.acos() + u * (1.0 - u * u).sqrt())
+    };
+    below(top) - below(foot)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -225,6 +243,23 @@ mod tests {
         assert!(high > low);
         let (ns, _) = fl.cone.meridian_normal();
         assert!(ns < 0.0);
+    }
+
+    #[test]
+    fn b1_face_contact_area_is_a_circular_segment() {
+        // B1: the face disc (ρ_j = R_s (R − r_e)/(R_s − r_e) = 1.7477 mm, centre R =
+        // 2.2475 mm above the race) below the cone's top, h − r_rim (1 − sin θ) = 0.8006 mm
+        // above the race: a segment of chord distance d = R − top from the centre,
+        // ρ² acos(d/ρ) − d √(ρ² − d²) = 0.400 mm².
+        let roller = RollerShape::new(4.495e-3 / 2.0, 5e-3, 0.5e-3, 5.0).unwrap();
+        let theta = 0.11f64.to_radians();
+        let flange = FlangeShape::new(theta, 1.1e-3, 0.2e-3, 0.3e-3).unwrap();
+        let rho = 5.0 * (2.2475e-3 - 0.5e-3) / (5.0 - 0.5e-3);
+        let d = 2.2475e-3 - (1.1e-3 - 0.3e-3 * (1.0 - theta.sin()));
+        let segment = rho * rho * (d / rho).acos() - d * (rho * rho - d * d).sqrt();
+        let area = face_contact_area(&roller, &flange);
+        assert!((area / segment - 1.0).abs() < 1e-9, "{area} vs {segment}");
+        assert!((area - 0.400e-6).abs() < 1e-9);
     }
 
     #[test]

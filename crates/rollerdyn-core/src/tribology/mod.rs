@@ -19,6 +19,7 @@
 
 pub mod drag;
 pub mod film;
+pub mod foundation;
 pub mod friction;
 pub mod hertz;
 pub mod hydrodynamic;

@@ -135,6 +135,7 @@ fn to_core(p: ModelParameters, traction: &EhlTraction) -> PyResult<BearingParams
         thermal_conductivity: lub.thermal_conductivity,
         raceway: surface(&s.raceway),
         flange_surface: surface(&s.flange),
+        flange_law: s.flange_law,
         roller_roller: surface(&s.roller_roller),
         boundary: BoundaryFriction {
             mu_b0: s.boundary_friction.mu_b0,

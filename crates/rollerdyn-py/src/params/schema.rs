@@ -8,7 +8,7 @@
 
 use super::read::{choice, nested_with, section, Fields, Omittable, Param, Section};
 use pyo3::prelude::*;
-use rollerdyn_core::bearing::Detector;
+use rollerdyn_core::bearing::{Detector, FlangeLaw};
 use rollerdyn_core::dynamics::integrate::Method;
 
 section! {
@@ -105,6 +105,8 @@ section! {
     struct Surfaces {
         raceway: SurfacePair,
         flange: SurfacePair,
+        /// How the roller end–flange contacts carry their load.
+        flange_law: FlangeLaw,
         roller_roller: SurfacePair,
         boundary_friction: BoundaryFriction,
         /// α_v (eq. 55).
@@ -243,6 +245,7 @@ macro_rules! named {
 
 named! {
     Detector => Detector::ALL.map(|d| (d.name(), d));
+    FlangeLaw => FlangeLaw::ALL.map(|l| (l.name(), l));
     Method => [("tr-bdf2", Method::TrBdf2), ("esdirk34", Method::Esdirk34)];
     Shape => [("linear", Shape::Linear), ("cosine", Shape::Cosine)];
     Start => [("rest", Start::Rest), ("equilibrium", Start::Equilibrium)];

@@ -4,7 +4,9 @@
 
 use super::solver::{Problem, RING_UNKNOWNS};
 use super::{RingTilt, StaticCase, FLANGE_PRESSURE_LIMIT, ROLLER_UNKNOWNS};
-use crate::bearing::{BearingModel, BearingParams, Detector, History, ModelOptions, SurfacePair};
+use crate::bearing::{
+    BearingModel, BearingParams, Detector, FlangeLaw, History, ModelOptions, SurfacePair,
+};
 use crate::contact::border::BorderBands;
 use crate::geometry::end_flange::FlangeShape;
 use crate::geometry::primitives::Vec3;
@@ -126,6 +128,7 @@ fn params(b: &Bearing) -> BearingParams {
         thermal_conductivity: 0.134,
         raceway: surface(0.16e-6, 2.32, 0.97),
         flange_surface: surface(0.24e-6, 1.90, 0.99),
+        flange_law: FlangeLaw::Point,
         roller_roller: surface(0.16e-6, 2.32, 0.97),
         boundary: BoundaryFriction {
             mu_b0: 0.1,

@@ -1,0 +1,519 @@
+//! The roller end–flange overlap as a field over the roller end (not in the paper).
+//!
+//! The paper's detectors (sect. 2) reduce the end–flange contact to the deepest point of
+//! one pairing of figures. Where the nearly flat end face (B1: a 5 m sphere) lies almost
+//! parallel to the nearly flat flange face (0.11° opening), that point jumps between the
+//! edge torus, the face and the rim within microradians of tilt while the overlap spreads
+//! over the whole face (`docs/dynamics.md`, "Why the steps collapse at 2000 N"). This
+//! module measures the whole overlap instead, as a field g over the end:
+//!
+//! * the end surface is written as a graph over its end plane, h(ρ) along the roller axis
+//!   (end sphere for ρ ≤ ρ_j, edge torus out to the roller radius), exactly;
+//! * g at a point of the end surface is its depth inside the flange, from the flange's
+//!   meridian profile (root torus, cone, rim torus), exactly;
+//! * the support {g > 0} is convex (both solids are, and g is their intersection's chord
+//!   length to first order), so it is star-shaped about any interior point. Its centre c is
+//!   the midpoint of two chords through the detected deepest point; from c, rays in fixed
+//!   directions of the end's frame find the boundary (one bracketed root each), and Gauss
+//!   points along each ray integrate g, its moments and the flange normal.
+//!
+//! The integration nodes move with the support's boundary, so every integral is a smooth
+//! function of the pose as the overlap moves from the edge across the face to the rim; the
+//! integrand vanishes at the boundary, so the roots' tolerance enters only at second order.
+
+use crate::geometry::end_flange::{Flange, RollerEnd};
+use crate::geometry::primitives::Vec3;
+use std::f64::consts::TAU;
+
+/// Rays from the support's centre (uniform in angle: the periodic trapezoidal rule).
+const RAYS: usize = 16;
+/// Rays that find the support's centroid and principal axes first.
+const COARSE_RAYS: usize = 12;
+/// Gauss–Legendre nodes and weights on [0, 1], five points (exact to degree 9).
+const GAUSS_NODES: [f64; 5] = [
+    0.046_910_077_030_668_,
+    0.230_765_344_947_158_5,
+    0.5,
+    0.769_234_655_052_841_5,
+    0.953_089_922_969_332,
+];
+const GAUSS_WEIGHTS: [f64; 5] = [
+    0.118_463_442_528_094_5,
+    0.239_314_335_249_683_2,
+    0.284_444_444_444_444_4,
+    0.239_314_335_249_683_2,
+    0.118_463_442_528_094_5,
+];
+/// Slope of the end surface continued past the roller radius (a steep fall, so that the
+/// support's boundary lies on the end; any value ≫ 1 does).
+const PAST_THE_EDGE_SLOPE: f64 = 10.0;
+/// A boundary root is accepted when |g| falls below this fraction of the overlap at the
+/// ray's start: far below the changes of the finite-difference Jacobian's perturbations.
+const ROOT_FTOL: f64 = 1e-9;
+
+/// The roller end as a graph over its end plane: the height h(ρ) along the outward axis
+/// of the surface point at distance ρ from the axis, measured from the edge torus's centre.
+#[derive(Debug, Clone, Copy)]
+struct EndGraph {
+    origin: Vec3,
+    axis: Vec3,
+    sphere_offset: f64,
+    sphere_radius: f64,
+    junction: f64,
+    tube_center: f64,
+    tube_radius: f64,
+}
+
+impl EndGraph {
+    fn new(end: &RollerEnd) -> Self {
+        let (t, s) = (&end.torus, &end.sphere);
+        Self {
+            origin: t.origin,
+            axis: t.axis,
+            sphere_offset: (s.center - t.origin).dot(&t.axis),
+            sphere_radius: s.radius,
+            junction: s.radius * s.cap_angle.sin(),
+            tube_center: t.major_radius,
+            tube_radius: t.minor_radius,
+        }
+    }
+
+    /// dh/dρ, bounded by the slope past the edge (the torus's is vertical at the edge).
+    fn slope(&self, rho: f64) -> f64 {
+        let s = if rho <= self.junction {
+            -rho / ((self.sphere_radius - rho) * (self.sphere_radius + rho)).sqrt()
+        } else {
+            let x = rho - self.tube_center;
+            if x < self.tube_radius {
+                -x / ((self.tube_radius - x) * (self.tube_radius + x)).sqrt()
+            } else {
+                -PAST_THE_EDGE_SLOPE
+            }
+        };
+        s.max(-PAST_THE_EDGE_SLOPE)
+    }
+
+    /// h(ρ): end sphere inside the junction radius, edge torus outside it, and a steep fall
+    /// past the roller radius (no surface there).
+    fn height(&self, rho: f64) -> f64 {
+        if rho <= self.junction {
+            self.sphere_offset
+                + (self.sphere_radius - rho).sqrt() * (self.sphere_radius + rho).sqrt()
+        } else {
+            let x = rho - self.tube_center;
+            if x < self.tube_radius {
+                ((self.tube_radius - x) * (self.tube_radius + x)).sqrt()
+            } else {
+                -PAST_THE_EDGE_SLOPE * (x - self.tube_radius)
+            }
+        }
+    }
+}
+
+/// A flange as its meridian profile about the ring axis: root torus, cone, rim torus.
+#[derive(Debug, Clone, Copy)]
+struct FlangeProfile {
+    origin: Vec3,
+    axis: Vec3,
+    s0: f64,
+    rho0: f64,
+    ds: f64,
+    drho: f64,
+    normal: (f64, f64),
+    g_min: f64,
+    g_max: f64,
+    root: (f64, f64, f64),
+    rim: (f64, f64, f64),
+}
+
+impl FlangeProfile {
+    fn new(flange: &Flange) -> Self {
+        let c = &flange.cone;
+        let tube = |t: &crate::geometry::primitives::TorusPatch| {
+            (
+                (t.origin - c.origin).dot(&c.axis),
+                t.major_radius,
+                t.minor_radius,
+            )
+        };
+        Self {
+            origin: c.origin,
+            axis: c.axis,
+            s0: c.s0,
+            rho0: c.rho0,
+            ds: c.ds,
+            drho: c.drho,
+            // Outward meridian normal side·(−dρ, ds) (geometry::end_flange).
+            normal: (-c.side * c.drho, c.side * c.ds),
+            g_min: c.g_min,
+            g_max: c.g_max,
+            root: tube(&flange.root),
+            rim: tube(&flange.rim),
+        }
+    }
+
+    /// Depth of `p` inside the flange (positive inside, negative outside) and the flange's
+    /// outward unit normal at its foot.
+    fn depth(&self, p: &Vec3) -> (f64, Vec3) {
+        let d = p - self.origin;
+        let s = d.dot(&self.axis);
+        let radial = d - self.axis * s;
+        let rho = radial.norm();
+        let e_rho = if rho > 0.0 {
+            radial / rho
+        } else {
+            Vec3::zeros()
+        };
+        let g = (s - self.s0) * self.ds + (rho - self.rho0) * self.drho;
+        let tube = if g < self.g_min {
+            self.root
+        } else if g > self.g_max {
+            self.rim
+        } else {
+            let (ns, nr) = self.normal;
+            let distance = (s - self.s0) * ns + (rho - self.rho0) * nr;
+            return (-distance, self.axis * ns + e_rho * nr);
+        };
+        let (cs, crho, r) = tube;
+        let (vs, vr) = (s - cs, rho - crho);
+        let length = vs.hypot(vr);
+        (r - length, (self.axis * vs + e_rho * vr) / length)
+    }
+
+    /// The direction up the flange face at `p` (the generator, away from the raceway).
+    fn up(&self, p: &Vec3) -> Vec3 {
+        let d = p - self.origin;
+        let radial = d - self.axis * d.dot(&self.axis);
+        self.axis * self.ds + radial.normalize() * self.drho
+    }
+}
+
+/// The overlap field g over the end plane, in the end's frame (t, w): w up the flange face
+/// projected on the end plane, t = axis × w.
+struct Field {
+    end: EndGraph,
+    flange: FlangeProfile,
+    t: Vec3,
+    w: Vec3,
+}
+
+/// One sample of the field: depth, surface point on the roller, flange normal.
+struct Sample {
+    depth: f64,
+    point: Vec3,
+    normal: Vec3,
+}
+
+impl Field {
+    fn sample(&self, a: f64, b: f64) -> Sample {
+        let h = self.end.height(a.hypot(b));
+        let point = self.end.origin + self.t * a + self.w * b + self.end.axis * h;
+        let (depth, normal) = self.flange.depth(&point);
+        Sample {
+            depth,
+            point,
+            normal,
+        }
+    }
+
+    fn depth(&self, a: f64, b: f64) -> f64 {
+        self.sample(a, b).depth
+    }
+
+    /// g at (a, b) + r (ua, ub) and its derivative in r: the end point moves by
+    /// dP/dr = t ua + w ub + e h'(ρ) dρ/dr, and g = −distance falls along the flange normal.
+    fn depth_along(&self, (a, b): (f64, f64), (ua, ub): (f64, f64), r: f64) -> (f64, f64) {
+        let (x, y) = (a + r * ua, b + r * ub);
+        let rho = x.hypot(y);
+        let s = self.sample(x, y);
+        let drho = if rho > 0.0 {
+            (x * ua + y * ub) / rho
+        } else {
+            0.0
+        };
+        let dp = self.t * ua + self.w * ub + self.end.axis * (self.end.slope(rho) * drho);
+        (s.depth, -s.normal.dot(&dp))
+    }
+
+    /// The distance r > 0 from (a, b), where g = `inside` > 0, along (ua, ub) to the
+    /// support's boundary, from the guess `start`: Newton's method kept within the bracket
+    /// found so far (bisection when it leaves it; doubling until the first point outside).
+    /// g is concave along the ray, so Newton's steps from outside approach the root
+    /// monotonically.
+    fn boundary(&self, p: (f64, f64), u: (f64, f64), inside: f64, start: f64) -> f64 {
+        let limit = 4.0 * (self.end.tube_center + self.end.tube_radius) / u.0.hypot(u.1);
+        let ftol = ROOT_FTOL * inside;
+        let (mut lo, mut hi) = (0.0, f64::INFINITY);
+        let mut r = start.clamp(1e-12, limit);
+        for _ in 0..100 {
+            let (g, slope) = self.depth_along(p, u, r);
+            if g.abs() <= ftol {
+                return r;
+            }
+            if g > 0.0 {
+                lo = r;
+            } else {
+                hi = r;
+            }
+            if hi.is_finite() && hi - lo <= 1e-12 * hi {
+                return 0.5 * (lo + hi);
+            }
+            let newton = r - g / slope;
+            r = if slope < 0.0 && newton > lo && newton < hi {
+                newton
+            } else if hi.is_finite() {
+                0.5 * (lo + hi)
+            } else if lo >= limit {
+                return limit;
+            } else {
+                (2.0 * lo).min(limit)
+            };
+        }
+        r
+    }
+
+    /// The midpoint of the chord through `p` along `u`, and the chord's half-length.
+    fn chord_midpoint(&self, p: (f64, f64), u: (f64, f64), scale: f64) -> ((f64, f64), f64) {
+        let inside = self.depth(p.0, p.1);
+        let forward = self.boundary(p, u, inside, scale);
+        let backward = self.boundary(p, (-u.0, -u.1), inside, scale);
+        let shift = 0.5 * (forward - backward);
+        (
+            (p.0 + shift * u.0, p.1 + shift * u.1),
+            0.5 * (forward + backward),
+        )
+    }
+}
+
+/// The overlap of a roller end with a flange, integrated over its whole support.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DistributedOverlap {
+    /// Overlap volume V = ∫ g dA [m³].
+    pub volume: f64,
+    /// ∫ g² dA [m⁴] (the Winkler foundation's energy, [`crate::tribology::foundation`]).
+    pub square_volume: f64,
+    /// Support area A = ∫ dA [m²] (on the end plane).
+    pub area: f64,
+    /// Deepest overlap found [m].
+    pub max_depth: f64,
+    /// Centre of the overlap, ∫ g P_m dA / V, with P_m midway between the surfaces [m].
+    pub centre: Vec3,
+    /// Overlap-weighted flange normal, unit, from the flange towards the roller.
+    pub normal: Vec3,
+    /// Semi-axes (larger first) of the ellipse whose Hertzian pressure has the overlap's
+    /// second moments about its centre: a = √(5 λ) for each principal moment λ [m].
+    pub semi_axes: (f64, f64),
+    /// Unit direction of the larger semi-axis.
+    pub major_axis: Vec3,
+}
+
+/// Integrates the overlap of `end` with `flange` from `deepest`, a point on the roller end
+/// inside the flange (the detected contact's P₁). None if the field there is not positive.
+pub fn integrate(end: &RollerEnd, flange: &Flange, deepest: &Vec3) -> Option<DistributedOverlap> {
+    let graph = EndGraph::new(end);
+    let profile = FlangeProfile::new(flange);
+    let up = profile.up(deepest);
+    let w = (up - graph.axis * up.dot(&graph.axis)).try_normalize(1e-12)?;
+    let field = Field {
+        end: graph,
+        flange: profile,
+        t: graph.axis.cross(&w),
+        w,
+    };
+    let rel = deepest - graph.origin;
+    let anchor = (rel.dot(&field.t), rel.dot(&field.w));
+    let depth0 = field.depth(anchor.0, anchor.1);
+    if !(depth0 > 0.0 && depth0.is_finite()) {
+        return None;
+    }
+    // A first guess of the support's size: the half-width of the edge torus's overlap.
+    let scale = (2.0 * graph.tube_radius * depth0).sqrt();
+    // A first centre mid-way along the chords through the deepest point along w and t,
+    // then the support's own centroid and principal axes, from the reach of rays (the
+    // area's moments are exact in the reach), so that the final rays do not depend on
+    // where the deepest point lies.
+    let (mid_w, half_w) = field.chord_midpoint(anchor, (0.0, 1.0), scale);
+    let (first, half_t) = field.chord_midpoint(mid_w, (1.0, 0.0), scale);
+    let depth_first = field.depth(first.0, first.1);
+    if depth_first.is_nan() || depth_first <= 0.0 {
+        return None;
+    }
+    let frame = Stretch {
+        centre: first,
+        axes: [(1.0, 0.0), (0.0, 1.0)],
+        half: (half_t, half_w),
+    };
+    let shape = field.area_moments(&frame, depth_first);
+    let centroid = field.depth(shape.centre.0, shape.centre.1);
+    let frame = if centroid > 0.0 { shape } else { frame };
+    let depth_c = centroid.max(depth_first);
+    Some(field.sum_over_rays(&frame, depth_c, depth0))
+}
+
+/// Polar coordinates stretched along two orthonormal axes of the end plane: the point
+/// centre + ρ (half.0 cos θ axes[0] + half.1 sin θ axes[1]); the support is about the
+/// unit disc in ρ, θ, so the rays' reach varies slowly with θ.
+#[derive(Debug, Clone, Copy)]
+struct Stretch {
+    centre: (f64, f64),
+    axes: [(f64, f64); 2],
+    half: (f64, f64),
+}
+
+impl Stretch {
+    /// The direction of ray θ (not unit: ρ = 1 is the stretched unit circle).
+    fn ray(&self, theta: f64) -> (f64, f64) {
+        let (sin, cos) = theta.sin_cos();
+        let [e1, e2] = self.axes;
+        let (x, y) = (self.half.0 * cos, self.half.1 * sin);
+        (x * e1.0 + y * e2.0, x * e1.1 + y * e2.1)
+    }
+
+    /// The Jacobian of (ρ, θ) to the end plane, divided by ρ.
+    fn jacobian(&self) -> f64 {
+        self.half.0 * self.half.1
+    }
+}
+
+/// Running sums of the integrals.
+#[derive(Default)]
+struct Sums {
+    volume: f64,
+    square_volume: f64,
+    area: f64,
+    max_depth: f64,
+    a: f64,
+    b: f64,
+    aa: f64,
+    bb: f64,
+    ab: f64,
+    centre: Vec3,
+    normal: Vec3,
+}
+
+impl Field {
+    /// The support's centroid and principal axes (half-lengths 2√λ, an ellipse's semi-axes),
+    /// from `COARSE_RAYS` rays of `frame` (starting at its centre, where g = `inside`): with
+    /// the reach R of each ray, the area's moments are exact integrals of polynomials in ρ.
+    fn area_moments(&self, frame: &Stretch, inside: f64) -> Stretch {
+        let step = TAU / COARSE_RAYS as f64;
+        let jacobian = frame.jacobian() * step;
+        let (mut area, mut m1, mut m2) = (0.0, (0.0, 0.0), (0.0, 0.0, 0.0));
+        let mut reach = 1.0;
+        let (ca, cb) = frame.centre;
+        for k in 0..COARSE_RAYS {
+            let (ua, ub) = frame.ray((k as f64 + 0.5) * step);
+            reach = self.boundary(frame.centre, (ua, ub), inside, reach);
+            // ∫₀ᴿ ρ dρ, ∫₀ᴿ ρ² dρ, ∫₀ᴿ ρ³ dρ.
+            let (r2, r3, r4) = (
+                reach.powi(2) / 2.0,
+                reach.powi(3) / 3.0,
+                reach.powi(4) / 4.0,
+            );
+            area += r2 * jacobian;
+            m1.0 += (ca * r2 + ua * r3) * jacobian;
+            m1.1 += (cb * r2 + ub * r3) * jacobian;
+            m2.0 += (ca * ca * r2 + 2.0 * ca * ua * r3 + ua * ua * r4) * jacobian;
+            m2.1 += (cb * cb * r2 + 2.0 * cb * ub * r3 + ub * ub * r4) * jacobian;
+            m2.2 += (ca * cb * r2 + (ca * ub + cb * ua) * r3 + ua * ub * r4) * jacobian;
+        }
+        let centre = (m1.0 / area, m1.1 / area);
+        let caa = (m2.0 / area - centre.0 * centre.0).max(0.0);
+        let cbb = (m2.1 / area - centre.1 * centre.1).max(0.0);
+        let cab = m2.2 / area - centre.0 * centre.1;
+        let (l1, l2, (e1a, e1b)) = principal(caa, cbb, cab);
+        let floor = 1e-3 * frame.half.0.max(frame.half.1);
+        Stretch {
+            centre,
+            axes: [(e1a, e1b), (-e1b, e1a)],
+            half: ((2.0 * l1.sqrt()).max(floor), (2.0 * l2.sqrt()).max(floor)),
+        }
+    }
+
+    /// Sums the integrals over `RAYS` rays of `frame` (g = `depth_c` at its centre), with
+    /// `depth0` the deepest overlap known.
+    fn sum_over_rays(&self, frame: &Stretch, depth_c: f64, depth0: f64) -> DistributedOverlap {
+        let step = TAU / RAYS as f64;
+        let jacobian = frame.jacobian() * step;
+        let c = frame.centre;
+        let mut s = Sums {
+            max_depth: depth0.max(depth_c),
+            ..Default::default()
+        };
+        let mut reach = 1.0;
+        for k in 0..RAYS {
+            let (ua, ub) = frame.ray((k as f64 + 0.5) * step);
+            reach = self.boundary(c, (ua, ub), depth_c, reach);
+            s.area += 0.5 * reach * reach * jacobian;
+            for (xi, wi) in GAUSS_NODES.iter().zip(GAUSS_WEIGHTS) {
+                let r = reach * xi;
+                let (a, b) = (c.0 + r * ua, c.1 + r * ub);
+                let p = self.sample(a, b);
+                let g = p.depth.max(0.0);
+                let weight = wi * reach * r * jacobian * g;
+                s.volume += weight;
+                s.square_volume += weight * g;
+                s.max_depth = s.max_depth.max(g);
+                s.a += weight * a;
+                s.b += weight * b;
+                s.aa += weight * a * a;
+                s.bb += weight * b * b;
+                s.ab += weight * a * b;
+                s.centre += (p.point + p.normal * (0.5 * g)) * weight;
+                s.normal += p.normal * weight;
+            }
+        }
+        self.finish(&s)
+    }
+
+    fn finish(&self, s: &Sums) -> DistributedOverlap {
+        let v = s.volume;
+        let (ma, mb) = (s.a / v, s.b / v);
+        let caa = (s.aa / v - ma * ma).max(0.0);
+        let cbb = (s.bb / v - mb * mb).max(0.0);
+        let cab = s.ab / v - ma * mb;
+        let (l1, l2, (ea, eb)) = principal(caa, cbb, cab);
+        let major = (self.t * ea + self.w * eb)
+            .try_normalize(1e-300)
+            .unwrap_or(self.t);
+        DistributedOverlap {
+            volume: v,
+            square_volume: s.square_volume,
+            area: s.area,
+            max_depth: s.max_depth,
+            centre: s.centre / v,
+            normal: s.normal.normalize(),
+            semi_axes: ((5.0 * l1).sqrt(), (5.0 * l2).sqrt()),
+            major_axis: major,
+        }
+    }
+}
+
+/// The principal moments λ₁ ≥ λ₂ of the covariance [[caa, cab], [cab, cbb]] and the unit
+/// eigenvector of λ₁, its sign fixed (first non-zero component positive).
+fn principal(caa: f64, cbb: f64, cab: f64) -> (f64, f64, (f64, f64)) {
+    let mean = 0.5 * (caa + cbb);
+    let spread = (0.25 * (caa - cbb).powi(2) + cab * cab).sqrt();
+    let (l1, l2) = (mean + spread, (mean - spread).max(0.0));
+    // From whichever row is better conditioned.
+    let (x, y) = if caa >= cbb {
+        (l1 - cbb, cab)
+    } else {
+        (cab, l1 - caa)
+    };
+    let norm = x.hypot(y);
+    let (x, y) = if norm > 0.0 {
+        (x / norm, y / norm)
+    } else {
+        (1.0, 0.0)
+    };
+    let sign = if x > 0.0 || (x == 0.0 && y >= 0.0) {
+        1.0
+    } else {
+        -1.0
+    };
+    (l1, l2, (sign * x, sign * y))
+}
+
+#[cfg(test)]
+mod tests;
