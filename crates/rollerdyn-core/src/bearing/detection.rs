@@ -16,12 +16,13 @@ use super::model::BearingModel;
 use super::params::{BearingParams, Detector, FlangeLaw};
 use super::state::Kinematics;
 use super::topology::{end_slot, flange_side};
-use crate::contact::distributed::{self, DistributedOverlap};
+use crate::contact::distributed::{self, Asperities, DistributedOverlap};
 use crate::contact::gradient::{self, Unknowns};
 use crate::contact::mesh::{MeshDetector, MeshResolution};
 use crate::contact::pruning;
 use crate::contact::{border, deepest, semi_analytical, Contact};
 use crate::geometry::end_flange::{Flange, FlangePlacement, RollerEnd};
+use crate::tribology::foundation;
 use std::sync::{Mutex, MutexGuard, PoisonError};
 
 /// The gradient detector's warm starts: the last good unknowns of each of the six
@@ -101,10 +102,11 @@ impl BearingModel {
         k: usize,
     ) -> EndGeometry {
         let contact = self.end_contact(end, flange, roller, k);
+        let asperities = self.asperities();
         let overlap = match (self.params.flange_law, &contact) {
-            (FlangeLaw::Distributed, Some(c)) if c.penetration > 0.0 => {
+            (FlangeLaw::Distributed, Some(c)) if c.penetration > -asperities.reach() => {
                 let start = self.profiler.stopwatch();
-                let overlap = distributed::integrate(end, flange, &c.p1);
+                let overlap = distributed::integrate(end, flange, &c.p1, asperities, false);
                 self.profiler.spend_time(start, |pr, t| pr.detection += t);
                 overlap
             }
@@ -115,6 +117,35 @@ impl BearingModel {
             overlap,
             foundation_modulus: self.foundation_modulus[usize::from(k >= 2)],
         }
+    }
+
+    /// The roughness of the roller ends and flanges as the distributed law sees it.
+    pub(super) fn asperities(&self) -> Asperities {
+        Asperities {
+            sigma: self.params.flange_surface.roughness,
+        }
+    }
+
+    /// The elastic energy of roller i's end (`roller`) on flange k of `ring` under the
+    /// distributed law ([`crate::tribology::foundation::foundation_energy`]) [J].
+    pub(super) fn end_energy(
+        &self,
+        i: usize,
+        k: usize,
+        ring: &Kinematics,
+        roller: &Kinematics,
+    ) -> f64 {
+        let (end, flange) = (self.roller_end(k, roller), self.flange(k, ring));
+        let asperities = self.asperities();
+        self.end_contact(&end, &flange, i, k)
+            .filter(|c| c.penetration > -asperities.reach())
+            .and_then(|c| distributed::integrate(&end, &flange, &c.p1, asperities, true))
+            .map_or(0.0, |o| {
+                foundation::foundation_energy(
+                    self.foundation_modulus[usize::from(k >= 2)],
+                    o.energy,
+                )
+            })
     }
 
     /// The composite contact of roller i's end against flange k by the configured detector.

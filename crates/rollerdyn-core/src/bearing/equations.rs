@@ -11,13 +11,12 @@ use super::model::BearingModel;
 use super::params::FlangeLaw;
 use super::state::ROLLER_STATES;
 use super::state::{ring_kinematics, roller_kinematics, BearingKinematics, Kinematics};
-use super::topology::Body;
+use super::topology::{Body, Element};
 use crate::dynamics::rigid::{
     angle_rates, angular_acceleration, angular_momentum, driven_transverse_acceleration,
 };
 use crate::geometry::primitives::Vec3;
 use crate::tribology::drag::roller_drag;
-use crate::tribology::foundation;
 use crate::tribology::hertz::{EllipticalContact, EllipticalMethod};
 
 /// The contacts' wrenches summed per body.
@@ -159,15 +158,18 @@ impl BearingModel {
 
     /// Elastic energy stored in all contacts [J]: ∫F dδ of eq. 11 per slice,
     /// (l/k₁)·δ^(1/k₂+1)/(1/k₂+1), 2/5·F·δ for a Hertz contact (F ∝ δ^1.5), and
-    /// K ∫ g²/2 dA for the distributed flange law's Winkler foundation.
+    /// K ∫ Φ dA for the distributed flange law's Winkler foundation.
     pub fn contact_energy(&self, kin: &BearingKinematics) -> f64 {
         let mut energy = 0.0;
         for element in &self.topology.elements {
+            if let (Element::End(i, k), FlangeLaw::Distributed) = (*element, self.params.flange_law)
+            {
+                let fixed = Kinematics::fixed();
+                let [a, b] = element.bodies(self.layout.rollers);
+                energy += self.end_energy(i, k, kin.of(a, &fixed), kin.of(b, &fixed));
+                continue;
+            }
             match (self.geometry(element, kin), element.line()) {
-                (Geometry::End(g), _) if g.overlap.is_some() => {
-                    let o = g.overlap.as_ref().expect("checked");
-                    energy += foundation::foundation_energy(g.foundation_modulus, o.square_volume);
-                }
                 (
                     Geometry::End(EndGeometry {
                         contact: Some(c), ..

@@ -44,9 +44,10 @@ impl BearingModel {
         };
         out.penetration = c.penetration;
         let squeeze = &self.params.squeeze_film;
+        // The distributed law carries across gaps within the asperities' reach.
+        let carries = geometry.overlap.is_some() || (!self.distributed() && c.penetration > 0.0);
         if c.penetration.is_nan()
-            || c.penetration <= -squeeze.reach()
-            || (c.penetration <= 0.0 && !squeeze.enabled)
+            || (!carries && (c.penetration <= -squeeze.reach() || !squeeze.enabled))
         {
             return out;
         }
@@ -54,31 +55,20 @@ impl BearingModel {
         let p = c.location();
         let squeeze_force = squeeze.damping(self.tribology.eta0, c.rx, c.ry, c.penetration)
             * penetration_rate(ring, roller, &p, &c.normal);
-        if c.penetration <= 0.0 {
-            // A gap within the squeeze film's reach: only the film acts.
-            let film = ContactForces {
-                normal: squeeze_force,
-                ..Default::default()
-            };
-            out.add_forces(&film, &c.normal, &p, ring, roller);
-            self.profiler
-                .spend_time(start, |pr, t| pr.flange_forces += t);
-            return out;
-        }
-        out.pairing = Pairing::ALL.iter().position(|q| *q == c.pairing);
         let (mut f, normal, location) = match &geometry.overlap {
             Some(overlap) => (
-                self.distributed_forces(ring, roller, c, overlap, geometry.foundation_modulus),
+                self.distributed_forces(ring, roller, overlap, geometry.foundation_modulus),
                 overlap.normal,
                 overlap.centre,
             ),
-            None if geometry.overlap.is_none() && self.distributed() => {
-                // The overlap's integral found no support (a vanishing overlap).
-                (ContactForces::default(), c.normal, p)
-            }
-            None => (self.point_forces(ring, roller, c), c.normal, p),
+            None if carries => (self.point_forces(ring, roller, c), c.normal, p),
+            // A gap (or, with the distributed law, no load): only the squeeze film acts.
+            None => (ContactForces::default(), c.normal, p),
         };
-        out.location = location;
+        if carries {
+            out.location = location;
+            out.pairing = Pairing::ALL.iter().position(|q| *q == c.pairing);
+        }
         f.normal += squeeze_force;
         out.add_forces(&f, &normal, &location, ring, roller);
         self.profiler
@@ -110,18 +100,17 @@ impl BearingModel {
     /// The distributed overlap on its Winkler foundation of modulus `modulus`
     /// ([`foundation::foundation_force`]), at its centre, with the film and the traction of
     /// the ellipse of equal second moments (semi-axes a, b): p₀ = 1.5 F/(π a b), relative
-    /// radii a²/δ and b²/δ (Hertz's a² = R δ), δ the deepest overlap; stiffness 1.5 F/δ
-    /// (Hertz's) for the damping.
+    /// radii a²/δ and b²/δ (Hertz's a² = R δ), δ the largest local load p/K; the stiffness
+    /// dF/dδ = K ∫ dp/dg dA for the damping.
     fn distributed_forces(
         &self,
         ring: &Kinematics,
         roller: &Kinematics,
-        c: &Contact,
         overlap: &DistributedOverlap,
         modulus: f64,
     ) -> ContactForces {
         let elastic = foundation::foundation_force(modulus, overlap.volume);
-        let depth = overlap.max_depth.max(c.penetration);
+        let depth = overlap.max_depth;
         if !(elastic > 0.0 && depth > 0.0) {
             return ContactForces::default();
         }
@@ -130,7 +119,7 @@ impl BearingModel {
         let (r_major, r_minor) = (radius(a), radius(b));
         let load = FlangeLoad {
             elastic,
-            stiffness: 1.5 * elastic / depth,
+            stiffness: modulus * overlap.stiffness_area,
             radii: (r_minor.min(r_major), r_major.max(r_minor)),
             major_axis: overlap.major_axis,
         };

@@ -29,8 +29,6 @@
 //! the model's threads if it has any ([`BearingModel::with_threads`]), and summed in a fixed
 //! order: the numbers do not depend on the thread count.
 
-use crate::geometry::end_flange::face_contact_area;
-use crate::tribology::foundation::foundation_modulus;
 use super::detection::{flange_of, WarmStarts};
 use super::forces::{EllipseKind, Tribology};
 use super::line_contacts::LineContacts;
@@ -42,10 +40,12 @@ use crate::contact::pruning::FlangeBounds;
 use crate::dynamics::integrate::OdeSystem;
 use crate::dynamics::rigid::axis_from_angles;
 use crate::error::{Error, Result};
+use crate::geometry::end_flange::face_contact_area;
 use crate::geometry::primitives::Vec3;
 use crate::geometry::roller::MassProperties;
 use crate::numerics::quadrature::{mapped_table, GAUSS_LEGENDRE_4};
 use crate::tribology::film::ThermalCorrection;
+use crate::tribology::foundation::foundation_modulus;
 use nalgebra::DMatrix;
 use rayon::prelude::*;
 use std::sync::Arc;

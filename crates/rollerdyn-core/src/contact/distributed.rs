@@ -195,6 +195,84 @@ struct Field {
     flange: FlangeProfile,
     t: Vec3,
     w: Vec3,
+    /// The surfaces' roughness law ([`Asperities`]).
+    asperities: Asperities,
+    /// Whether to integrate the energy density too.
+    energy: bool,
+}
+
+/// The load of the surfaces' asperities at a local overlap g (negative: a gap), per unit
+/// of the foundation's modulus: σ ln(1 + e^{g/σ}), less its value at the support's edge
+/// g = −CUT·σ so that it vanishes there. For g ≫ σ it is the overlap g of smooth surfaces;
+/// across a gap it falls as σ e^{−h/σ}, the load of Greenwood & Williamson's asperities
+/// with an exponential distribution of heights of scale σ (Proc. R. Soc. A 295, 1966), the
+/// composite roughness. With σ = 0 it is max(g, 0).
+#[derive(Debug, Clone, Copy)]
+pub struct Asperities {
+    /// σ [m].
+    pub sigma: f64,
+}
+
+/// Where the asperities' load is cut off: at a gap of CUT·σ (e^{−4} = 1.8 % of σ's load).
+const CUT: f64 = 4.0;
+
+impl Asperities {
+    /// The gap beyond which nothing is carried [m].
+    pub fn reach(&self) -> f64 {
+        CUT * self.sigma
+    }
+
+    /// The load per unit modulus p(g) [m].
+    fn load(&self, g: f64) -> f64 {
+        if self.sigma > 0.0 {
+            let x = g / self.sigma;
+            (self.sigma * (softplus(x) - softplus(-CUT))).max(0.0)
+        } else {
+            g.max(0.0)
+        }
+    }
+
+    /// dp/dg [-]: the share of the area that carries.
+    fn stiffness(&self, g: f64) -> f64 {
+        if self.sigma > 0.0 {
+            if g > -self.reach() {
+                1.0 / (1.0 + (-g / self.sigma).exp())
+            } else {
+                0.0
+            }
+        } else if g > 0.0 {
+            1.0
+        } else {
+            0.0
+        }
+    }
+
+    /// ∫ p dg from the edge of the support to g [m²]: the energy density per unit modulus
+    /// (five-point Gauss on the smooth load; exact, g²/2, without roughness).
+    fn energy(&self, g: f64) -> f64 {
+        let edge = -self.reach();
+        if g <= edge {
+            return 0.0;
+        }
+        if self.sigma == 0.0 {
+            return 0.5 * g * g;
+        }
+        let width = g - edge;
+        GAUSS_NODES
+            .iter()
+            .zip(GAUSS_WEIGHTS)
+            .map(|(x, w)| w * width * self.load(edge + x * width))
+            .sum()
+    }
+}
+
+/// ln(1 + eˣ), without overflow.
+fn softplus(x: f64) -> f64 {
+    if x > 30.0 {
+        x
+    } else {
+        x.exp().ln_1p()
+    }
 }
 
 /// One sample of the field: depth, surface point on the roller, flange normal.
@@ -216,8 +294,10 @@ impl Field {
         }
     }
 
+    /// The local overlap g at (a, b) shifted by the asperities' reach: positive on the
+    /// support.
     fn depth(&self, a: f64, b: f64) -> f64 {
-        self.sample(a, b).depth
+        self.sample(a, b).depth + self.asperities.reach()
     }
 
     /// g at (a, b) + r (ua, ub) and its derivative in r: the end point moves by
@@ -232,7 +312,7 @@ impl Field {
             0.0
         };
         let dp = self.t * ua + self.w * ub + self.end.axis * (self.end.slope(rho) * drho);
-        (s.depth, -s.normal.dot(&dp))
+        (s.depth + self.asperities.reach(), -s.normal.dot(&dp))
     }
 
     /// The distance r > 0 from (a, b), where g = `inside` > 0, along (ua, ub) to the
@@ -288,15 +368,18 @@ impl Field {
 /// The overlap of a roller end with a flange, integrated over its whole support.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DistributedOverlap {
-    /// Overlap volume V = ∫ g dA [m³].
+    /// The load integral V = ∫ p(g) dA [m³] (without roughness, the overlap volume ∫ g dA;
+    /// [`Asperities`]).
     pub volume: f64,
-    /// ∫ g² dA [m⁴] (the Winkler foundation's energy, [`crate::tribology::foundation`]).
-    pub square_volume: f64,
+    /// ∫ g_p dA, the stiffness integral, g_p = dp/dg the carrying share [m²].
+    pub stiffness_area: f64,
+    /// ∫ ∫p dg dA [m⁴], the energy integral (only if asked for; else 0).
+    pub energy: f64,
     /// Support area A = ∫ dA [m²] (on the end plane).
     pub area: f64,
-    /// Deepest overlap found [m].
+    /// Largest load p(g) found [m].
     pub max_depth: f64,
-    /// Centre of the overlap, ∫ g P_m dA / V, with P_m midway between the surfaces [m].
+    /// Centre of the load, ∫ p P_m dA / V, with P_m midway between the surfaces [m].
     pub centre: Vec3,
     /// Overlap-weighted flange normal, unit, from the flange towards the roller.
     pub normal: Vec3,
@@ -307,9 +390,16 @@ pub struct DistributedOverlap {
     pub major_axis: Vec3,
 }
 
-/// Integrates the overlap of `end` with `flange` from `deepest`, a point on the roller end
-/// inside the flange (the detected contact's P₁). None if the field there is not positive.
-pub fn integrate(end: &RollerEnd, flange: &Flange, deepest: &Vec3) -> Option<DistributedOverlap> {
+/// Integrates the load of `end` on `flange` with the roughness `asperities` from `deepest`,
+/// the roller end's point nearest to or deepest in the flange (the detected contact's P₁);
+/// with `energy` also the energy integral. None if the load there is nil.
+pub fn integrate(
+    end: &RollerEnd,
+    flange: &Flange,
+    deepest: &Vec3,
+    asperities: Asperities,
+    energy: bool,
+) -> Option<DistributedOverlap> {
     let graph = EndGraph::new(end);
     let profile = FlangeProfile::new(flange);
     let up = profile.up(deepest);
@@ -319,6 +409,8 @@ pub fn integrate(end: &RollerEnd, flange: &Flange, deepest: &Vec3) -> Option<Dis
         flange: profile,
         t: graph.axis.cross(&w),
         w,
+        asperities,
+        energy,
     };
     let rel = deepest - graph.origin;
     let anchor = (rel.dot(&field.t), rel.dot(&field.w));
@@ -328,6 +420,7 @@ pub fn integrate(end: &RollerEnd, flange: &Flange, deepest: &Vec3) -> Option<Dis
     }
     // A first guess of the support's size: the half-width of the edge torus's overlap.
     let scale = (2.0 * graph.tube_radius * depth0).sqrt();
+    let depth0 = asperities.load(depth0 - asperities.reach());
     // A first centre mid-way along the chords through the deepest point along w and t,
     // then the support's own centroid and principal axes, from the reach of rays (the
     // area's moments are exact in the reach), so that the final rays do not depend on
@@ -346,7 +439,11 @@ pub fn integrate(end: &RollerEnd, flange: &Flange, deepest: &Vec3) -> Option<Dis
     let shape = field.area_moments(&frame, depth_first);
     let centroid = field.depth(shape.centre.0, shape.centre.1);
     let frame = if centroid > 0.0 { shape } else { frame };
-    let depth_c = centroid.max(depth_first);
+    let depth_c = if centroid > 0.0 {
+        centroid
+    } else {
+        depth_first
+    };
     Some(field.sum_over_rays(&frame, depth_c, depth0))
 }
 
@@ -379,7 +476,8 @@ impl Stretch {
 #[derive(Default)]
 struct Sums {
     volume: f64,
-    square_volume: f64,
+    stiffness_area: f64,
+    energy: f64,
     area: f64,
     max_depth: f64,
     a: f64,
@@ -437,7 +535,7 @@ impl Field {
         let jacobian = frame.jacobian() * step;
         let c = frame.centre;
         let mut s = Sums {
-            max_depth: depth0.max(depth_c),
+            max_depth: depth0,
             ..Default::default()
         };
         let mut reach = 1.0;
@@ -449,11 +547,16 @@ impl Field {
                 let r = reach * xi;
                 let (a, b) = (c.0 + r * ua, c.1 + r * ub);
                 let p = self.sample(a, b);
-                let g = p.depth.max(0.0);
-                let weight = wi * reach * r * jacobian * g;
+                let load = self.asperities.load(p.depth);
+                let area = wi * reach * r * jacobian;
+                let weight = area * load;
                 s.volume += weight;
-                s.square_volume += weight * g;
-                s.max_depth = s.max_depth.max(g);
+                s.stiffness_area += area * self.asperities.stiffness(p.depth);
+                if self.energy {
+                    s.energy += area * self.asperities.energy(p.depth);
+                }
+                s.max_depth = s.max_depth.max(load);
+                let g = p.depth.max(0.0);
                 s.a += weight * a;
                 s.b += weight * b;
                 s.aa += weight * a * a;
@@ -478,7 +581,8 @@ impl Field {
             .unwrap_or(self.t);
         DistributedOverlap {
             volume: v,
-            square_volume: s.square_volume,
+            stiffness_area: s.stiffness_area,
+            energy: s.energy,
             area: s.area,
             max_depth: s.max_depth,
             centre: s.centre / v,

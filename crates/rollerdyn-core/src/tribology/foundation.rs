@@ -25,9 +25,11 @@ pub fn foundation_force(modulus: f64, volume: f64) -> f64 {
     modulus * volume.max(0.0)
 }
 
-/// The elastic energy K ∫ g²/2 dA [J] of ∫ g² dA = `square_volume` [m⁴].
-pub fn foundation_energy(modulus: f64, square_volume: f64) -> f64 {
-    0.5 * modulus * square_volume.max(0.0)
+/// The elastic energy K ∫ Φ dA [J] of the energy integral ∫ Φ dA [m⁴], Φ(g) = ∫ p dg the
+/// load's integral over the overlap (g²/2 for smooth surfaces,
+/// [`crate::contact::distributed::Asperities`]).
+pub fn foundation_energy(modulus: f64, energy_integral: f64) -> f64 {
+    modulus * energy_integral.max(0.0)
 }
 
 #[cfg(test)]
@@ -52,10 +54,10 @@ mod tests {
 
     #[test]
     fn force_is_the_gradient_of_the_energy() {
-        // A sphere of radius R pressed by δ: V = π R δ², ∫g² dA = 2π R δ³/3 (the overlap
+        // A sphere of radius R pressed by δ: V = π R δ², ∫g²/2 dA = π R δ³/3 (the overlap
         // δ − r²/2R over r² < 2Rδ). dU/dδ = K π R δ² = K V.
         let (r, k) = (5.0, foundation_modulus(E_PRIME, 4e-7));
-        let energy = |d: f64| foundation_energy(k, 2.0 * PI * r * d.powi(3) / 3.0);
+        let energy = |d: f64| foundation_energy(k, PI * r * d.powi(3) / 3.0);
         for delta in [0.3e-6, 2e-6] {
             let h = 1e-12;
             let slope = (energy(delta + h) - energy(delta - h)) / (2.0 * h);
