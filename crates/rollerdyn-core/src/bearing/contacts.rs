@@ -95,6 +95,9 @@ impl ElementResult {
 }
 
 /// What of a contact element depends on positions only.
+// Roller ends are four of a roller's seven contacts, so most values are `End` anyway;
+// boxing it would allocate in every evaluation.
+#[allow(clippy::large_enum_variant)]
 pub(super) enum Geometry {
     /// A line contact: its slices' and film points' geometry.
     Line(LineGeometry),
