@@ -26,7 +26,7 @@ use crate::geometry::primitives::Vec3;
 use std::f64::consts::TAU;
 
 /// Rays from the support's centre (uniform in angle: the periodic trapezoidal rule).
-const RAYS: usize = 16;
+const RAYS: usize = 24;
 /// Rays that find the support's centroid and principal axes first.
 const COARSE_RAYS: usize = 12;
 /// Gauss–Legendre nodes and weights on [0, 1], five points (exact to degree 9).
@@ -179,22 +179,24 @@ impl FlangeProfile {
         let length = vs.hypot(vr);
         (r - length, (self.axis * vs + e_rho * vr) / length)
     }
-
-    /// The direction up the flange face at `p` (the generator, away from the raceway).
-    fn up(&self, p: &Vec3) -> Vec3 {
-        let d = p - self.origin;
-        let radial = d - self.axis * d.dot(&self.axis);
-        self.axis * self.ds + radial.normalize() * self.drho
-    }
 }
 
-/// The overlap field g over the end plane, in the end's frame (t, w): w up the flange face
-/// projected on the end plane, t = axis × w.
+/// The overlap field g over the end plane. Its points are addressed in polar coordinates
+/// about the ring axis, flattened: u = ρ − ρ₀ (radially) and v = ρ₀ φ (along the circle),
+/// ρ, φ about the point where the ring axis meets the end plane, ρ₀ the roller axis's
+/// distance from it. The flange's figures lie at constant ρ, so its rim and root are lines
+/// of constant u, and an overlap along the rim (a sliver bent with the rim's circle, whose
+/// sagitta over a 2 mm face exceeds its width) is straight in (u, v). The end's frame:
+/// w from the ring axis towards the roller axis in the end plane, t = axis × w.
 struct Field {
     end: EndGraph,
     flange: FlangeProfile,
     t: Vec3,
     w: Vec3,
+    /// Where the ring axis meets the end plane, as (a, b) of the end's frame [m].
+    ring_axis: (f64, f64),
+    /// The roller axis's distance from it, ρ₀ [m].
+    rho0: f64,
     /// The surfaces' roughness law ([`Asperities`]).
     asperities: Asperities,
     /// Whether to integrate the energy density too.
@@ -275,6 +277,42 @@ fn softplus(x: f64) -> f64 {
     }
 }
 
+impl Field {
+    /// The field of `end` against `flange`; None if the ring axis does not cross the end
+    /// plane at a useful angle (never in a bearing: the axes are within degrees).
+    fn new(end: EndGraph, flange: FlangeProfile) -> Option<Self> {
+        let e = end.axis;
+        let cos = flange.axis.dot(&e);
+        if cos.abs() < 0.5 {
+            return None;
+        }
+        // The ring axis O + s A meets the end plane (P − O_t)·e = 0 at s.
+        let s = (end.origin - flange.origin).dot(&e) / cos;
+        let crossing = flange.origin + flange.axis * s;
+        let outward = end.origin - crossing;
+        let rho0 = outward.norm();
+        let w = outward.try_normalize(1e-12)?;
+        Some(Self {
+            end,
+            flange,
+            t: e.cross(&w),
+            w,
+            ring_axis: (0.0, -rho0),
+            rho0,
+            asperities: Asperities { sigma: 0.0 },
+            energy: false,
+        })
+    }
+
+    /// The (u, v) of the end-plane projection of `p`.
+    fn coordinates(&self, p: &Vec3) -> (f64, f64) {
+        let rel = p - self.end.origin;
+        let (a, b) = (rel.dot(&self.t), rel.dot(&self.w));
+        let (x, y) = (a - self.ring_axis.0, b - self.ring_axis.1);
+        (x.hypot(y) - self.rho0, self.rho0 * x.atan2(y))
+    }
+}
+
 /// One sample of the field: depth, surface point on the roller, flange normal.
 struct Sample {
     depth: f64,
@@ -283,7 +321,28 @@ struct Sample {
 }
 
 impl Field {
-    fn sample(&self, a: f64, b: f64) -> Sample {
+    /// The end-plane coordinates (a, b) of (u, v), and the unit radial and tangential
+    /// directions of the ring's polar coordinates there, as (a, b) components.
+    fn plane(&self, u: f64, v: f64) -> ((f64, f64), (f64, f64), (f64, f64)) {
+        let (sin, cos) = (v / self.rho0).sin_cos();
+        let rho = self.rho0 + u;
+        let a = self.ring_axis.0 + rho * sin;
+        let b = self.ring_axis.1 + rho * cos;
+        ((a, b), (sin, cos), (cos, -sin))
+    }
+
+    /// dA = (ρ/ρ₀) du dv.
+    fn area_factor(&self, u: f64) -> f64 {
+        (self.rho0 + u) / self.rho0
+    }
+
+    fn sample(&self, u: f64, v: f64) -> Sample {
+        let ((a, b), _, _) = self.plane(u, v);
+        self.sample_plane(a, b)
+    }
+
+    /// The sample at the end-plane point (a, b).
+    fn sample_plane(&self, a: f64, b: f64) -> Sample {
         let h = self.end.height(a.hypot(b));
         let point = self.end.origin + self.t * a + self.w * b + self.end.axis * h;
         let (depth, normal) = self.flange.depth(&point);
@@ -300,33 +359,42 @@ impl Field {
         self.sample(a, b).depth + self.asperities.reach()
     }
 
-    /// g at (a, b) + r (ua, ub) and its derivative in r: the end point moves by
-    /// dP/dr = t ua + w ub + e h'(ρ) dρ/dr, and g = −distance falls along the flange normal.
-    fn depth_along(&self, (a, b): (f64, f64), (ua, ub): (f64, f64), r: f64) -> (f64, f64) {
-        let (x, y) = (a + r * ua, b + r * ub);
-        let rho = x.hypot(y);
-        let s = self.sample(x, y);
+    /// g at (u, v) + r (du, dv) (shifted by the asperities' reach) and its derivative in
+    /// r: the end-plane point moves by du along the ring's radial and (ρ/ρ₀) dv along its
+    /// tangential direction, the end point by that plus e h'(ρ_e) dρ_e/dr, and
+    /// g = −distance falls along the flange normal.
+    fn depth_along(&self, (u, v): (f64, f64), (du, dv): (f64, f64), r: f64) -> (f64, f64) {
+        let (u, v) = (u + r * du, v + r * dv);
+        let ((a, b), radial, tangential) = self.plane(u, v);
+        let stretch = self.area_factor(u);
+        let (da, db) = (
+            radial.0 * du + tangential.0 * stretch * dv,
+            radial.1 * du + tangential.1 * stretch * dv,
+        );
+        let rho = a.hypot(b);
+        let s = self.sample_plane(a, b);
         let drho = if rho > 0.0 {
-            (x * ua + y * ub) / rho
+            (a * da + b * db) / rho
         } else {
             0.0
         };
-        let dp = self.t * ua + self.w * ub + self.end.axis * (self.end.slope(rho) * drho);
+        let dp = self.t * da + self.w * db + self.end.axis * (self.end.slope(rho) * drho);
         (s.depth + self.asperities.reach(), -s.normal.dot(&dp))
     }
 
-    /// The distance r > 0 from (a, b), where g = `inside` > 0, along (ua, ub) to the
-    /// support's boundary, from the guess `start`: Newton's method kept within the bracket
-    /// found so far (bisection when it leaves it; doubling until the first point outside).
-    /// g is concave along the ray, so Newton's steps from outside approach the root
-    /// monotonically.
-    fn boundary(&self, p: (f64, f64), u: (f64, f64), inside: f64, start: f64) -> f64 {
-        let limit = 4.0 * (self.end.tube_center + self.end.tube_radius) / u.0.hypot(u.1);
+    /// The distance r > 0 from (u, v), where g = `inside` > 0, along `dir` to the support's
+    /// boundary, from the guess `start`: Newton's method kept within the bracket found so
+    /// far (bisection when it leaves it). g is concave along the ray, so Newton's steps
+    /// from outside approach the root monotonically. The bracket starts at 2.5 roller
+    /// radii, where every point is off the end (g falls steeply past its edge), and short of
+    /// the ring's circle's other side (v wraps around at 2πρ₀).
+    fn boundary(&self, p: (f64, f64), dir: (f64, f64), inside: f64, start: f64) -> f64 {
+        let limit = 2.5 * (self.end.tube_center + self.end.tube_radius) / dir.0.hypot(dir.1);
         let ftol = ROOT_FTOL * inside;
-        let (mut lo, mut hi) = (0.0, f64::INFINITY);
+        let (mut lo, mut hi) = (0.0, limit);
         let mut r = start.clamp(1e-12, limit);
         for _ in 0..100 {
-            let (g, slope) = self.depth_along(p, u, r);
+            let (g, slope) = self.depth_along(p, dir, r);
             if g.abs() <= ftol {
                 return r;
             }
@@ -335,21 +403,17 @@ impl Field {
             } else {
                 hi = r;
             }
-            if hi.is_finite() && hi - lo <= 1e-12 * hi {
-                return 0.5 * (lo + hi);
+            if hi - lo <= 1e-12 * hi {
+                break;
             }
             let newton = r - g / slope;
             r = if slope < 0.0 && newton > lo && newton < hi {
                 newton
-            } else if hi.is_finite() {
-                0.5 * (lo + hi)
-            } else if lo >= limit {
-                return limit;
             } else {
-                (2.0 * lo).min(limit)
+                0.5 * (lo + hi)
             };
         }
-        r
+        0.5 * (lo + hi)
     }
 
     /// The midpoint of the chord through `p` along `u`, and the chord's half-length.
@@ -402,18 +466,12 @@ pub fn integrate(
 ) -> Option<DistributedOverlap> {
     let graph = EndGraph::new(end);
     let profile = FlangeProfile::new(flange);
-    let up = profile.up(deepest);
-    let w = (up - graph.axis * up.dot(&graph.axis)).try_normalize(1e-12)?;
     let field = Field {
-        end: graph,
-        flange: profile,
-        t: graph.axis.cross(&w),
-        w,
         asperities,
         energy,
+        ..Field::new(graph, profile)?
     };
-    let rel = deepest - graph.origin;
-    let anchor = (rel.dot(&field.t), rel.dot(&field.w));
+    let anchor = field.coordinates(deepest);
     let depth0 = field.depth(anchor.0, anchor.1);
     if !(depth0 > 0.0 && depth0.is_finite()) {
         return None;
@@ -421,29 +479,31 @@ pub fn integrate(
     // A first guess of the support's size: the half-width of the edge torus's overlap.
     let scale = (2.0 * graph.tube_radius * depth0).sqrt();
     let depth0 = asperities.load(depth0 - asperities.reach());
-    // A first centre mid-way along the chords through the deepest point along w and t,
+    // A first centre mid-way along the chords through the deepest point along u and v,
     // then the support's own centroid and principal axes, from the reach of rays (the
     // area's moments are exact in the reach), so that the final rays do not depend on
     // where the deepest point lies.
-    let (mid_w, half_w) = field.chord_midpoint(anchor, (0.0, 1.0), scale);
-    let (first, half_t) = field.chord_midpoint(mid_w, (1.0, 0.0), scale);
+    let (mid_u, _) = field.chord_midpoint(anchor, (1.0, 0.0), scale);
+    let (mid_v, half_v) = field.chord_midpoint(mid_u, (0.0, 1.0), scale);
+    let (first, half_u) = field.chord_midpoint(mid_v, (1.0, 0.0), scale);
     let depth_first = field.depth(first.0, first.1);
     if depth_first.is_nan() || depth_first <= 0.0 {
         return None;
     }
-    let frame = Stretch {
+    let mut frame = Stretch {
         centre: first,
         axes: [(1.0, 0.0), (0.0, 1.0)],
-        half: (half_t, half_w),
+        half: (half_u, half_v),
     };
-    let shape = field.area_moments(&frame, depth_first);
-    let centroid = field.depth(shape.centre.0, shape.centre.1);
-    let frame = if centroid > 0.0 { shape } else { frame };
-    let depth_c = if centroid > 0.0 {
-        centroid
-    } else {
-        depth_first
-    };
+    let mut depth_c = depth_first;
+    // Twice: the first pass's frame may be stretched badly for a wedge-shaped support.
+    for _ in 0..2 {
+        let shape = field.area_moments(&frame, depth_c);
+        let centroid = field.depth(shape.centre.0, shape.centre.1);
+        if centroid > 0.0 {
+            (frame, depth_c) = (shape, centroid);
+        }
+    }
     Some(field.sum_over_rays(&frame, depth_c, depth0))
 }
 
@@ -495,6 +555,8 @@ impl Field {
     /// the reach R of each ray, the area's moments are exact integrals of polynomials in ρ.
     fn area_moments(&self, frame: &Stretch, inside: f64) -> Stretch {
         let step = TAU / COARSE_RAYS as f64;
+        // The area factor ρ/ρ₀ (0.86–1.14 across B1's ends) is left out: the centroid and
+        // axes only place the final rays.
         let jacobian = frame.jacobian() * step;
         let (mut area, mut m1, mut m2) = (0.0, (0.0, 0.0), (0.0, 0.0, 0.0));
         let mut reach = 1.0;
@@ -542,13 +604,13 @@ impl Field {
         for k in 0..RAYS {
             let (ua, ub) = frame.ray((k as f64 + 0.5) * step);
             reach = self.boundary(c, (ua, ub), depth_c, reach);
-            s.area += 0.5 * reach * reach * jacobian;
+            s.area += 0.5 * reach * reach * jacobian * self.area_factor(c.0);
             for (xi, wi) in GAUSS_NODES.iter().zip(GAUSS_WEIGHTS) {
                 let r = reach * xi;
                 let (a, b) = (c.0 + r * ua, c.1 + r * ub);
                 let p = self.sample(a, b);
                 let load = self.asperities.load(p.depth);
-                let area = wi * reach * r * jacobian;
+                let area = wi * reach * r * jacobian * self.area_factor(a);
                 let weight = area * load;
                 s.volume += weight;
                 s.stiffness_area += area * self.asperities.stiffness(p.depth);
@@ -575,7 +637,12 @@ impl Field {
         let caa = (s.aa / v - ma * ma).max(0.0);
         let cbb = (s.bb / v - mb * mb).max(0.0);
         let cab = s.ab / v - ma * mb;
-        let (l1, l2, (ea, eb)) = principal(caa, cbb, cab);
+        let (l1, l2, (eu, ev)) = principal(caa, cbb, cab);
+        let (_, radial, tangential) = self.plane(ma, mb);
+        let (ea, eb) = (
+            radial.0 * eu + tangential.0 * ev,
+            radial.1 * eu + tangential.1 * ev,
+        );
         let major = (self.t * ea + self.w * eb)
             .try_normalize(1e-300)
             .unwrap_or(self.t);

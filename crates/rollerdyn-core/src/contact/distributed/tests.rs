@@ -17,17 +17,8 @@ struct Grid {
 
 fn brute_force(end: &RollerEnd, flange: &Flange, deepest: &Vec3, n: usize) -> Grid {
     let graph = EndGraph::new(end);
-    let profile = FlangeProfile::new(flange);
-    let up = profile.up(deepest);
-    let w = (up - graph.axis * up.dot(&graph.axis)).normalize();
-    let field = Field {
-        end: graph,
-        flange: profile,
-        t: graph.axis.cross(&w),
-        w,
-        asperities: SMOOTH,
-        energy: false,
-    };
+    let field = Field::new(graph, FlangeProfile::new(flange)).expect("a field");
+    let _ = deepest;
     let r = graph.tube_center + graph.tube_radius;
     // Coarse scan for the support's box, then a fine grid over it.
     let coarse = 400;
@@ -36,7 +27,7 @@ fn brute_force(end: &RollerEnd, flange: &Flange, deepest: &Vec3, n: usize) -> Gr
     for i in 0..=coarse {
         for j in 0..=coarse {
             let (a, b) = (-r + i as f64 * h, -r + j as f64 * h);
-            if field.depth(a, b) > 0.0 {
+            if field.sample_plane(a, b).depth > 0.0 {
                 lo = (lo.0.min(a), lo.1.min(b));
                 hi = (hi.0.max(a), hi.1.max(b));
             }
@@ -55,7 +46,7 @@ fn brute_force(end: &RollerEnd, flange: &Flange, deepest: &Vec3, n: usize) -> Gr
     for i in 0..n {
         for j in 0..n {
             let (a, b) = (lo.0 + (i as f64 + 0.5) * ha, lo.1 + (j as f64 + 0.5) * hb);
-            let s = field.sample(a, b);
+            let s = field.sample_plane(a, b);
             if s.depth > 0.0 {
                 let da = ha * hb;
                 g.volume += s.depth * da;
@@ -96,11 +87,11 @@ fn rel(a: f64, b: f64) -> f64 {
 
 /// The integrals agree with the brute-force grid (500 × 500 cells over the support's box)
 /// at the three pairings the end takes on the inner ring's flange as it tilts through the
-/// flat position (TO-CO, SP-CO, SP-TO(rim)), and on an outer-ring flange. The 16 rays'
+/// flat position (TO-CO, SP-CO, SP-TO(rim)), and on an outer-ring flange. The 24 rays'
 /// quadrature errs most where the flange's rim line cuts the end's edge circle in two
-/// corners and at the tori's thin boundary layers: measured at most 1.2 % in volume, 0.6 %
-/// in area and 0.07 % of the larger semi-axis in the centre. The error is smooth
-/// in the pose.
+/// corners and at the tori's thin boundary layers: measured at most 0.67 % in volume,
+/// 0.20 % in area and 0.32 % of the larger semi-axis in the centre (16 rays: 3.5 %, 3.1 %,
+/// 0.9 %; 64 rays: 0.9 %, 0.13 %, 0.06 %). The error is smooth in the pose.
 #[test]
 fn integrals_match_a_brute_force_grid() {
     let outer = {
@@ -125,14 +116,14 @@ fn integrals_match_a_brute_force_grid() {
         let d = integrate(&end, &flange, &c.p1, SMOOTH, false).expect("an overlap");
         let g = brute_force(&end, &flange, &c.p1, 500);
         assert!(
-            rel(d.volume, g.volume) < 0.015,
+            rel(d.volume, g.volume) < 0.01,
             "{:?}: V {} vs {}",
             c.pairing,
             d.volume,
             g.volume
         );
         assert!(
-            rel(d.area, g.area) < 0.01,
+            rel(d.area, g.area) < 0.005,
             "{:?}: A {} vs {}",
             c.pairing,
             d.area,
@@ -140,7 +131,7 @@ fn integrals_match_a_brute_force_grid() {
         );
         let off = (d.centre - g.centre).norm() / d.semi_axes.0;
         assert!(
-            off < 2e-3,
+            off < 5e-3,
             "{:?}: centre off by {off} of the semi-axis",
             c.pairing
         );
