@@ -49,7 +49,7 @@ const GAUSS_WEIGHTS: [f64; 5] = [
 const PAST_THE_EDGE_SLOPE: f64 = 10.0;
 /// A boundary root is accepted when |g| falls below this fraction of the overlap at the
 /// ray's start: far below the changes of the finite-difference Jacobian's perturbations.
-const ROOT_FTOL: f64 = 1e-9;
+const ROOT_FTOL: f64 = 1e-6;
 
 /// The roller end as a graph over its end plane: the height h(ρ) along the outward axis
 /// of the surface point at distance ρ from the axis, measured from the edge torus's centre.
@@ -181,21 +181,21 @@ impl FlangeProfile {
     }
 }
 
-/// The overlap field g over the end plane. Its points are addressed in polar coordinates
-/// about the ring axis, flattened: u = ρ − ρ₀ (radially) and v = ρ₀ φ (along the circle),
-/// ρ, φ about the point where the ring axis meets the end plane, ρ₀ the roller axis's
-/// distance from it. The flange's figures lie at constant ρ, so its rim and root are lines
-/// of constant u, and an overlap along the rim (a sliver bent with the rim's circle, whose
-/// sagitta over a 2 mm face exceeds its width) is straight in (u, v). The end's frame:
-/// w from the ring axis towards the roller axis in the end plane, t = axis × w.
+/// The overlap field g over the end plane. Its points are addressed in coordinates that
+/// follow the ring's circles: (a, b) = (v, u − v²/2ρ₀) in the end's frame, ρ₀ the roller
+/// axis's distance from the ring axis, so that u is (to v⁴/8ρ₀³, 1 µm over B1's end) the
+/// radial distance from the ring's circle of radius ρ₀ and v the distance along it. The
+/// flange's figures lie at constant distance from the ring axis, so its rim and root are
+/// lines of nearly constant u, and an overlap along the rim (a sliver bent with the rim's
+/// circle, whose sagitta over a 2 mm face exceeds its width) is straight in (u, v). The
+/// map is a shear: it keeps areas (dA = du dv). The end's frame: w from the ring axis
+/// towards the roller axis in the end plane, t = axis × w.
 struct Field {
     end: EndGraph,
     flange: FlangeProfile,
     t: Vec3,
     w: Vec3,
-    /// Where the ring axis meets the end plane, as (a, b) of the end's frame [m].
-    ring_axis: (f64, f64),
-    /// The roller axis's distance from it, ρ₀ [m].
+    /// The roller axis's distance from the ring axis in the end plane, ρ₀ [m].
     rho0: f64,
     /// The surfaces' roughness law ([`Asperities`]).
     asperities: Asperities,
@@ -297,7 +297,6 @@ impl Field {
             flange,
             t: e.cross(&w),
             w,
-            ring_axis: (0.0, -rho0),
             rho0,
             asperities: Asperities { sigma: 0.0 },
             energy: false,
@@ -308,8 +307,7 @@ impl Field {
     fn coordinates(&self, p: &Vec3) -> (f64, f64) {
         let rel = p - self.end.origin;
         let (a, b) = (rel.dot(&self.t), rel.dot(&self.w));
-        let (x, y) = (a - self.ring_axis.0, b - self.ring_axis.1);
-        (x.hypot(y) - self.rho0, self.rho0 * x.atan2(y))
+        (b + 0.5 * a * a / self.rho0, a)
     }
 }
 
@@ -321,23 +319,13 @@ struct Sample {
 }
 
 impl Field {
-    /// The end-plane coordinates (a, b) of (u, v), and the unit radial and tangential
-    /// directions of the ring's polar coordinates there, as (a, b) components.
-    fn plane(&self, u: f64, v: f64) -> ((f64, f64), (f64, f64), (f64, f64)) {
-        let (sin, cos) = (v / self.rho0).sin_cos();
-        let rho = self.rho0 + u;
-        let a = self.ring_axis.0 + rho * sin;
-        let b = self.ring_axis.1 + rho * cos;
-        ((a, b), (sin, cos), (cos, -sin))
-    }
-
-    /// dA = (ρ/ρ₀) du dv.
-    fn area_factor(&self, u: f64) -> f64 {
-        (self.rho0 + u) / self.rho0
+    /// The end-plane coordinates (a, b) of (u, v).
+    fn plane(&self, u: f64, v: f64) -> (f64, f64) {
+        (v, u - 0.5 * v * v / self.rho0)
     }
 
     fn sample(&self, u: f64, v: f64) -> Sample {
-        let ((a, b), _, _) = self.plane(u, v);
+        let (a, b) = self.plane(u, v);
         self.sample_plane(a, b)
     }
 
@@ -360,17 +348,12 @@ impl Field {
     }
 
     /// g at (u, v) + r (du, dv) (shifted by the asperities' reach) and its derivative in
-    /// r: the end-plane point moves by du along the ring's radial and (ρ/ρ₀) dv along its
-    /// tangential direction, the end point by that plus e h'(ρ_e) dρ_e/dr, and
-    /// g = −distance falls along the flange normal.
+    /// r: the end-plane point moves by (da, db) = (dv, du − v dv/ρ₀), the end point by that
+    /// plus e h'(ρ_e) dρ_e/dr, and g = −distance falls along the flange normal.
     fn depth_along(&self, (u, v): (f64, f64), (du, dv): (f64, f64), r: f64) -> (f64, f64) {
         let (u, v) = (u + r * du, v + r * dv);
-        let ((a, b), radial, tangential) = self.plane(u, v);
-        let stretch = self.area_factor(u);
-        let (da, db) = (
-            radial.0 * du + tangential.0 * stretch * dv,
-            radial.1 * du + tangential.1 * stretch * dv,
-        );
+        let (a, b) = self.plane(u, v);
+        let (da, db) = (dv, du - v * dv / self.rho0);
         let rho = a.hypot(b);
         let s = self.sample_plane(a, b);
         let drho = if rho > 0.0 {
@@ -387,7 +370,7 @@ impl Field {
     /// far (bisection when it leaves it). g is concave along the ray, so Newton's steps
     /// from outside approach the root monotonically. The bracket starts at 2.5 roller
     /// radii, where every point is off the end (g falls steeply past its edge), and short of
-    /// the ring's circle's other side (v wraps around at 2πρ₀).
+    /// the ring's circle's other side.
     fn boundary(&self, p: (f64, f64), dir: (f64, f64), inside: f64, start: f64) -> f64 {
         let limit = 2.5 * (self.end.tube_center + self.end.tube_radius) / dir.0.hypot(dir.1);
         let ftol = ROOT_FTOL * inside;
@@ -483,9 +466,12 @@ pub fn integrate(
     // then the support's own centroid and principal axes, from the reach of rays (the
     // area's moments are exact in the reach), so that the final rays do not depend on
     // where the deepest point lies.
-    let (mid_u, _) = field.chord_midpoint(anchor, (1.0, 0.0), scale);
-    let (mid_v, half_v) = field.chord_midpoint(mid_u, (0.0, 1.0), scale);
-    let (first, half_u) = field.chord_midpoint(mid_v, (1.0, 0.0), scale);
+    // Each chord's search starts from the last chord's half-length (the first along v from
+    // the end's radius, an overlap that spans the face).
+    let (mid_u, half_u) = field.chord_midpoint(anchor, (1.0, 0.0), scale);
+    let reach_v = (graph.tube_center + graph.tube_radius) * 0.5;
+    let (mid_v, half_v) = field.chord_midpoint(mid_u, (0.0, 1.0), reach_v.max(half_u));
+    let (first, half_u) = field.chord_midpoint(mid_v, (1.0, 0.0), half_u);
     let depth_first = field.depth(first.0, first.1);
     if depth_first.is_nan() || depth_first <= 0.0 {
         return None;
@@ -555,8 +541,6 @@ impl Field {
     /// the reach R of each ray, the area's moments are exact integrals of polynomials in ρ.
     fn area_moments(&self, frame: &Stretch, inside: f64) -> Stretch {
         let step = TAU / COARSE_RAYS as f64;
-        // The area factor ρ/ρ₀ (0.86–1.14 across B1's ends) is left out: the centroid and
-        // axes only place the final rays.
         let jacobian = frame.jacobian() * step;
         let (mut area, mut m1, mut m2) = (0.0, (0.0, 0.0), (0.0, 0.0, 0.0));
         let mut reach = 1.0;
@@ -604,13 +588,13 @@ impl Field {
         for k in 0..RAYS {
             let (ua, ub) = frame.ray((k as f64 + 0.5) * step);
             reach = self.boundary(c, (ua, ub), depth_c, reach);
-            s.area += 0.5 * reach * reach * jacobian * self.area_factor(c.0);
+            s.area += 0.5 * reach * reach * jacobian;
             for (xi, wi) in GAUSS_NODES.iter().zip(GAUSS_WEIGHTS) {
                 let r = reach * xi;
                 let (a, b) = (c.0 + r * ua, c.1 + r * ub);
                 let p = self.sample(a, b);
                 let load = self.asperities.load(p.depth);
-                let area = wi * reach * r * jacobian * self.area_factor(a);
+                let area = wi * reach * r * jacobian;
                 let weight = area * load;
                 s.volume += weight;
                 s.stiffness_area += area * self.asperities.stiffness(p.depth);
@@ -638,11 +622,9 @@ impl Field {
         let cbb = (s.bb / v - mb * mb).max(0.0);
         let cab = s.ab / v - ma * mb;
         let (l1, l2, (eu, ev)) = principal(caa, cbb, cab);
-        let (_, radial, tangential) = self.plane(ma, mb);
-        let (ea, eb) = (
-            radial.0 * eu + tangential.0 * ev,
-            radial.1 * eu + tangential.1 * ev,
-        );
+        // (u, v) directions at the centroid in the end plane: ∂(a, b)/∂u = (0, 1),
+        // ∂(a, b)/∂v = (1, −v/ρ₀).
+        let (ea, eb) = (ev, eu - ev * mb / self.rho0);
         let major = (self.t * ea + self.w * eb)
             .try_normalize(1e-300)
             .unwrap_or(self.t);
