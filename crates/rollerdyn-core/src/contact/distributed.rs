@@ -10,16 +10,20 @@
 //! * the end surface is written as a graph over its end plane, h(ρ) along the roller axis
 //!   (end sphere for ρ ≤ ρ_j, edge torus out to the roller radius), exactly;
 //! * g at a point of the end surface is its depth inside the flange, from the flange's
-//!   meridian profile (root torus, cone, rim torus), exactly;
-//! * the support {g > 0} is convex (both solids are, and g is their intersection's chord
-//!   length to first order), so it is star-shaped about any interior point. Its centre c is
-//!   the midpoint of two chords through the detected deepest point; from c, rays in fixed
-//!   directions of the end's frame find the boundary (one bracketed root each), and Gauss
-//!   points along each ray integrate g, its moments and the flange normal.
+//!   meridian profile (root torus, cone, rim torus), exactly; the load p(g) of the
+//!   surfaces' asperities ([`Asperities`]) reaches across gaps of a few σ;
+//! * points of the end plane are addressed in coordinates (u, v) that follow the ring's
+//!   circles ([`Field`]), in which the support {p > 0} is nearly convex (both solids are
+//!   convex but for the flange's bend around the ring axis, which the coordinates undo);
+//! * the support's centre and principal axes are found from chords through the detected
+//!   deepest point and two passes of rays over the area; from that centroid, rays in the
+//!   frame stretched along the axes find the boundary (one bracketed root each), and Gauss
+//!   points along each ray integrate the load, its moments and the flange normal.
 //!
 //! The integration nodes move with the support's boundary, so every integral is a smooth
 //! function of the pose as the overlap moves from the edge across the face to the rim; the
-//! integrand vanishes at the boundary, so the roots' tolerance enters only at second order.
+//! integrand vanishes at the boundary, so the roots' tolerance enters the load and its
+//! centre only at second order.
 
 use crate::geometry::end_flange::{Flange, RollerEnd};
 use crate::geometry::primitives::Vec3;
@@ -48,7 +52,7 @@ const GAUSS_WEIGHTS: [f64; 5] = [
 /// support's boundary lies on the end; any value ≫ 1 does).
 const PAST_THE_EDGE_SLOPE: f64 = 10.0;
 /// A boundary root is accepted when |g| falls below this fraction of the overlap at the
-/// ray's start: far below the changes of the finite-difference Jacobian's perturbations.
+/// ray's start (the root's error enters the load and its centre at second order).
 const ROOT_FTOL: f64 = 1e-6;
 
 /// The roller end as a graph over its end plane: the height h(ρ) along the outward axis
@@ -459,38 +463,46 @@ pub fn integrate(
     if !(depth0 > 0.0 && depth0.is_finite()) {
         return None;
     }
-    // A first guess of the support's size: the half-width of the edge torus's overlap.
-    let scale = (2.0 * graph.tube_radius * depth0).sqrt();
+    let (frame, depth_c) = field.support_frame(anchor, depth0)?;
     let depth0 = asperities.load(depth0 - asperities.reach());
-    // A first centre mid-way along the chords through the deepest point along u and v,
-    // then the support's own centroid and principal axes, from the reach of rays (the
-    // area's moments are exact in the reach), so that the final rays do not depend on
-    // where the deepest point lies.
-    // Each chord's search starts from the last chord's half-length (the first along v from
-    // the end's radius, an overlap that spans the face).
-    let (mid_u, half_u) = field.chord_midpoint(anchor, (1.0, 0.0), scale);
-    let reach_v = (graph.tube_center + graph.tube_radius) * 0.5;
-    let (mid_v, half_v) = field.chord_midpoint(mid_u, (0.0, 1.0), reach_v.max(half_u));
-    let (first, half_u) = field.chord_midpoint(mid_v, (1.0, 0.0), half_u);
-    let depth_first = field.depth(first.0, first.1);
-    if depth_first.is_nan() || depth_first <= 0.0 {
-        return None;
-    }
-    let mut frame = Stretch {
-        centre: first,
-        axes: [(1.0, 0.0), (0.0, 1.0)],
-        half: (half_u, half_v),
-    };
-    let mut depth_c = depth_first;
-    // Twice: the first pass's frame may be stretched badly for a wedge-shaped support.
-    for _ in 0..2 {
-        let shape = field.area_moments(&frame, depth_c);
-        let centroid = field.depth(shape.centre.0, shape.centre.1);
-        if centroid > 0.0 {
-            (frame, depth_c) = (shape, centroid);
-        }
-    }
     Some(field.sum_over_rays(&frame, depth_c, depth0))
+}
+
+impl Field {
+    /// The frame of the final rays and g at its centre, from `anchor` (g = `depth0` > 0):
+    /// a first centre mid-way along chords through the anchor along u, v and u again, then
+    /// twice the support's own centroid and principal axes from the reach of rays (the
+    /// area's moments are exact in the reach; the second pass mends a frame stretched
+    /// badly by a wedge-shaped support), so that the final rays do not depend on where the
+    /// deepest point lies. None if the first centre is outside the support.
+    fn support_frame(&self, anchor: (f64, f64), depth0: f64) -> Option<(Stretch, f64)> {
+        // Each chord's search starts from the last chord's half-length: the first from the
+        // half-width of an edge torus's overlap, the one along v from half the end's
+        // radius (an overlap that spans the face).
+        let scale = (2.0 * self.end.tube_radius * depth0).sqrt();
+        let (mid_u, half_u) = self.chord_midpoint(anchor, (1.0, 0.0), scale);
+        let reach_v = 0.5 * (self.end.tube_center + self.end.tube_radius);
+        let (mid_v, half_v) = self.chord_midpoint(mid_u, (0.0, 1.0), reach_v.max(half_u));
+        let (first, half_u) = self.chord_midpoint(mid_v, (1.0, 0.0), half_u);
+        let depth_first = self.depth(first.0, first.1);
+        if depth_first.is_nan() || depth_first <= 0.0 {
+            return None;
+        }
+        let mut frame = Stretch {
+            centre: first,
+            axes: [(1.0, 0.0), (0.0, 1.0)],
+            half: (half_u, half_v),
+        };
+        let mut depth_c = depth_first;
+        for _ in 0..2 {
+            let shape = self.area_moments(&frame, depth_c);
+            let centroid = self.depth(shape.centre.0, shape.centre.1);
+            if centroid > 0.0 {
+                (frame, depth_c) = (shape, centroid);
+            }
+        }
+        Some((frame, depth_c))
+    }
 }
 
 /// Polar coordinates stretched along two orthonormal axes of the end plane: the point
