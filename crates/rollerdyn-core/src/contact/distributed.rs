@@ -101,8 +101,7 @@ impl EndGraph {
     /// past the roller radius (no surface there).
     fn height(&self, rho: f64) -> f64 {
         if rho <= self.junction {
-            self.sphere_offset
-                + (self.sphere_radius - rho).sqrt() * (self.sphere_radius + rho).sqrt()
+            self.sphere_offset + ((self.sphere_radius - rho) * (self.sphere_radius + rho)).sqrt()
         } else {
             let x = rho - self.tube_center;
             if x < self.tube_radius {
@@ -180,7 +179,7 @@ impl FlangeProfile {
         };
         let (cs, crho, r) = tube;
         let (vs, vr) = (s - cs, rho - crho);
-        let length = vs.hypot(vr);
+        let length = (vs * vs + vr * vr).sqrt();
         (r - length, (self.axis * vs + e_rho * vr) / length)
     }
 }
@@ -335,7 +334,7 @@ impl Field {
 
     /// The sample at the end-plane point (a, b).
     fn sample_plane(&self, a: f64, b: f64) -> Sample {
-        let h = self.end.height(a.hypot(b));
+        let h = self.end.height((a * a + b * b).sqrt());
         let point = self.end.origin + self.t * a + self.w * b + self.end.axis * h;
         let (depth, normal) = self.flange.depth(&point);
         Sample {
@@ -358,7 +357,7 @@ impl Field {
         let (u, v) = (u + r * du, v + r * dv);
         let (a, b) = self.plane(u, v);
         let (da, db) = (dv, du - v * dv / self.rho0);
-        let rho = a.hypot(b);
+        let rho = (a * a + b * b).sqrt();
         let s = self.sample_plane(a, b);
         let drho = if rho > 0.0 {
             (a * da + b * db) / rho
