@@ -184,6 +184,25 @@ def test_d_flange_axial_forces_carry_the_axial_load():
     assert abs(-outer / 1000.0 - 1) < 5e-3, outer
 
 
+def test_d_distributed_flange_law_carries_the_axial_load_on_the_rims():
+    # The distributed roller end-flange law (not in the paper; docs/dynamics.md) at 2000 N,
+    # where B1's loaded end faces tilt past lying flat on the flanges: settled, the inner
+    # flanges push the rollers along +x by the applied load and the outer flanges push
+    # back (Newton's third law for the ring, as test d: within 0.5 %), and the loaded
+    # ends bear on the flange rims (the end sphere on the rim torus, SP-TO(rim)).
+    cfg = variant(
+        **{**STATIC, "operating.axial_load": "2000 N", "surfaces.flange_law": "distributed"}
+    )
+    last = simulate(cfg).isel(time=-1)
+    inner = last.flange_axial_force.sel(flange=["inner-x", "inner+x"]).sum().item()
+    outer = last.flange_axial_force.sel(flange=["outer-x", "outer+x"]).sum().item()
+    assert abs(inner / 2000.0 - 1) < 5e-3, inner
+    assert abs(-outer / 2000.0 - 1) < 5e-3, outer
+    centre = last.sel(roller=0)
+    sphere_rim = PAIRINGS.index("SP-TO(rim)")
+    assert int(centre.flange_pairing.sel(flange="inner-x")) == sphere_rim
+
+
 def test_e_gradient_and_semi_analytical_detectors_give_the_same_trajectories():
     # 1. Trajectories through the first roller end / flange impacts (the ring, pushed by
     #    the axial load through its 20 um play, hits the roller ends): same to 1 nm.

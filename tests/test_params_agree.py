@@ -37,6 +37,7 @@ SECTIONS = (
 #: The values that are names, and the names each may be (in the core's messages).
 CHOICES = {
     "solver.detector": "semi-analytical, gradient or mesh",
+    "surfaces.flange_law": "point or distributed",
     "method": "tr-bdf2 or esdirk34",
     "start": "rest or equilibrium",
     **{f"operating.{h}.kind": "ramp or table" for h in HISTORIES},
