@@ -444,8 +444,9 @@ class RaceFilmConfig(_Section):
 class SurfacesConfig(SurfacesDerived, _Section):
     """``[surfaces]``. ``flange_law``: how a roller end-flange contact carries its load:
     ``"point"`` (the paper's Hertz at the deepest point of the detected pairing) or
-    ``"distributed"`` (not in the paper: the whole overlap over the roller end as a flat
-    punch, for ends that lie nearly flat on the flange; docs/dynamics.md)."""
+    ``"distributed"`` (not in the paper: the whole overlap over the roller end on a Winkler
+    foundation with the surfaces' asperities, for ends that lie nearly flat on the flange;
+    docs/dynamics.md)."""
 
     raceway: SurfacePairConfig
     flange: SurfacePairConfig
