@@ -213,7 +213,7 @@ def test_the_core_checks_its_own_run_options(b1, option, value):
         "method": "tr-bdf2",
         "max_step_growth": 1.3,
         "step_gain": 0.3,
-        "jacobian_after_newton_failure": False,
+        "jacobian_after_newton_failure": True,
         "checkpoint_interval": 0.1,
         "threads": 1,
         "start": "rest",

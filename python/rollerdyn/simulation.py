@@ -239,7 +239,11 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
                 "floor": sq.floor,
                 "cutoff": sq.cutoff,
             },
-            "race_film": {"enabled": bool(s.race_film.enabled), "cutoff": s.race_film.cutoff},
+            "race_film": {
+                "enabled": bool(s.race_film.enabled),
+                "cutoff": s.race_film.cutoff,
+                "suction_limit": s.race_film.suction_limit,
+            },
         },
         "operating": {
             "radial_load": _history(op.radial_load, op.load_ramp),

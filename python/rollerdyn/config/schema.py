@@ -435,10 +435,13 @@ class SqueezeFilmConfig(_Section):
 class RaceFilmConfig(_Section):
     """``[surfaces.race_film]``: the rigid-isoviscous oil film in the roller-race and
     roller-roller gaps (Martin's load, squeeze, Couette shear; not in the paper;
-    docs/dynamics.md). Its gap floor is each contact's composite roughness."""
+    docs/dynamics.md). Its gap floor is each contact's composite roughness.
+    ``suction_limit``: how far below ambient the film's pressure falls before it cavitates
+    (0: the half-Sommerfeld condition, a separating film pulls with nothing)."""
 
     enabled: bool = True
     cutoff: Quantity("length", positive=True, le="1 mm") = "100 um"
+    suction_limit: Quantity("pressure", ge=0.0, le="10 MPa") = "0.1 MPa"
 
 
 class SurfacesConfig(SurfacesDerived, _Section):

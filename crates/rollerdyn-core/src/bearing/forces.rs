@@ -344,7 +344,7 @@ pub fn film_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
     let (ua, ub, rate) = section.speeds();
     let (ua_r, ub_r) = (ua.dot(&rolling), ub.dot(&rolling));
     let u_m = tri.regularised(0.5 * (ua_r + ub_r));
-    let film = film_line(tri.eta0, kind.r_eff, gap, u_m, rate);
+    let film = film_line(tri.eta0, kind.r_eff, gap, u_m, rate, tri.film.suction_limit);
     let scale = weight * length;
     let mut out = ContactForces {
         normal: scale * film.load,
@@ -535,6 +535,7 @@ impl Tribology {
             film: RigidFilm {
                 enabled: true,
                 cutoff: 100e-6,
+                suction_limit: 1e5,
             },
         }
     }

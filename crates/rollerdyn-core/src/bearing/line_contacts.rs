@@ -411,6 +411,7 @@ mod tests {
         let film = RigidFilm {
             enabled: true,
             cutoff: 100e-6,
+            suction_limit: 0.0,
         };
         let (length, sigma, eta, r) = (4e-3, 0.16e-6, 0.0165, 1.8e-3);
         for end in [0.5e-6, 1e-6, 2e-6, 0.2e-6] {
@@ -418,7 +419,7 @@ mod tests {
                 let load = |s: f64| {
                     let penetration = -(5e-6 - (5e-6 - end) * s / (0.5 * length));
                     let (h, weight) = film.gap_and_weight(penetration, sigma).unwrap();
-                    weight * film_line(eta, r, h, u, rate).load
+                    weight * film_line(eta, r, h, u, rate, 0.0).load
                 };
                 let midpoint = |n: usize| -> f64 {
                     let dl = length / n as f64;

@@ -404,6 +404,13 @@ impl BearingParams {
                 "positive and finite",
             ));
         }
+        if !(self.race_film.suction_limit >= 0.0 && self.race_film.suction_limit.is_finite()) {
+            return Err(Error::invalid(
+                "race_film.suction_limit",
+                self.race_film.suction_limit,
+                "non-negative and finite",
+            ));
+        }
         for (name, v) in [
             ("mixture.density", self.mixture.density),
             ("mixture.viscosity", self.mixture.viscosity),

@@ -83,15 +83,15 @@ impl StepControl {
 }
 
 impl Default for StepControl {
-    /// rollerdyn's settings, chosen by measurement on the whole B1 run before the oil film
-    /// (docs/performance-log.md, "Step-size control: the tuning"): 74 s against 152 s
-    /// with [`StepControl::DIFFSOL`], the Newton failures 15 671 against 41 513, the
-    /// Jacobians 7 464 against 24 092.
+    /// rollerdyn's settings, chosen by measurement on the whole B1 run (docs/performance-log.md,
+    /// "Step-size control: the tuning"): the growth cap and gain before the oil film (74 s
+    /// against 152 s with [`StepControl::DIFFSOL`]); the Jacobian renewed after a first
+    /// Newton failure since the film's suction limit (30 812 steps against 36 380 kept).
     fn default() -> Self {
         StepControl {
             max_growth: 1.3,
             gain: 0.3,
-            jacobian_after_newton_failure: false,
+            jacobian_after_newton_failure: true,
         }
     }
 }

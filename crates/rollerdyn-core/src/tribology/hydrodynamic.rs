@@ -11,10 +11,22 @@
 //!   at X_c = x_c/sqrt(2Rh₀) = 0.4751 downstream of the narrowest gap.
 //! * **Squeeze.** Surfaces approaching at ḣ = −dh₀/dt with the film full on both sides:
 //!   w = 3√2·π·η·R^{3/2}·ḣ/h₀^{3/2} (the Reynolds equation with ∂h/∂t, same references).
-//! * **Cavitation of the sum.** A film cannot pull the surfaces together (it cavitates at
-//!   ambient pressure): the sum of both loads is bounded below by zero, smoothly, in the
-//!   form of the contact damping's bound ([`crate::bearing::forces::damped_normal_force`]),
-//!   F = ½(F_d + sqrt(F_d² + (ε·w_M)²)), F_d = w_M + w_S, ε = 0.02.
+//! * **Cavitation of the sum.** A separating film pulls the surfaces together only until
+//!   its pressure has fallen by the suction limit p_s below ambient, where it cavitates
+//!   (p_s = 0: the half-Sommerfeld condition, no pull; p_s = 0.1 MPa: cavitation at zero
+//!   absolute pressure under 1 bar, the vapour limit; Dowson & Taylor, "Cavitation in
+//!   bearings", Annu. Rev. Fluid Mech. 11, 1979). The full squeeze film's pressure is
+//!   p(X) = p_max/(1 + X²)², X = x/sqrt(2R h₀), whose load is p_max·(π/2)·sqrt(2R h₀); so
+//!   the film first cavitates, at its narrowest gap, when its load reaches the tension
+//!   T = p_s·(π/2)·sqrt(2R h₀). The sum of both loads is bounded below by −T, smoothly, in
+//!   the form of the contact damping's bound
+//!   ([`crate::bearing::forces::damped_normal_force`]):
+//!   F = ½(F_d + T + sqrt((F_d + T)² + (ε·(w_M + T))²)) − T, F_d = w_M + w_S, ε = 0.02.
+//!   The bound is conservative: past the onset the cavity grows and the real pull still
+//!   rises a little. With p_s > 0 a film between surfaces that neither roll nor approach
+//!   (F_d = 0, two counter-rotating neighbours at rest relative to each other) is smooth:
+//!   its load is linear in the approach rate across ḣ = 0 instead of switching there
+//!   between the squeeze load and nothing (docs/dynamics.md, "Cavitation of the film").
 //! * **Couette shear.** τ = η·Δu/h over the full film, ∫dx/h = π·sqrt(2R/h₀): the force
 //!   η·Δu·π·sqrt(2R/h₀) against the sliding of each surface (the cavitated outlet taken as
 //!   full: with rolling, at most 1.56 times the extent up to X_c).
@@ -55,6 +67,9 @@ pub struct RigidFilm {
     pub enabled: bool,
     /// Gap beyond which the film force is faded out (smoothly from half of it) [m].
     pub cutoff: f64,
+    /// Suction limit p_s [Pa]: how far below ambient the film's pressure falls before it
+    /// cavitates (0: the half-Sommerfeld condition).
+    pub suction_limit: f64,
 }
 
 impl RigidFilm {
@@ -62,6 +77,7 @@ impl RigidFilm {
     pub const OFF: RigidFilm = RigidFilm {
         enabled: false,
         cutoff: 0.0,
+        suction_limit: 0.0,
     };
 
     /// Widest gap at which the film acts [m] (0 when disabled).
@@ -96,7 +112,8 @@ impl RigidFilm {
 /// What the film does to a unit length of a line contact.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct FilmLine {
-    /// Load per unit length pushing the surfaces apart, ≥ 0 [N/m].
+    /// Load per unit length pushing the surfaces apart [N/m]; negative (a pull, at most the
+    /// tension T of [`film_line`]) only where the surfaces separate.
     pub load: f64,
     /// Couette force per unit length against the sliding of B on A, per unit sliding speed
     /// [N s/m²] (the force on B is −this·u_rel).
@@ -107,14 +124,17 @@ pub struct FilmLine {
 
 /// The film of a line contact at the gap `h` [m] (floored, see [`RigidFilm`]) between
 /// surfaces of equivalent radius `r` [m], viscosity `eta` [Pa s], mean surface speed
-/// `u_m` ≥ 0 [m/s] (regularised by the caller) and approach rate `approach` = −dh/dt [m/s].
+/// `u_m` ≥ 0 [m/s] (regularised by the caller), approach rate `approach` = −dh/dt [m/s] and
+/// suction limit `suction` = p_s ≥ 0 [Pa] (see the module's "Cavitation of the sum").
 #[inline]
-pub fn film_line(eta: f64, r: f64, h: f64, u_m: f64, approach: f64) -> FilmLine {
+pub fn film_line(eta: f64, r: f64, h: f64, u_m: f64, approach: f64, suction: f64) -> FilmLine {
     let root = (r / h).sqrt();
     let martin = MARTIN_LOAD * eta * u_m * r / h;
     let squeeze = SQUEEZE_LOAD * eta * r * root * approach / h;
-    let sum = martin + squeeze;
-    let load = 0.5 * (sum + (sum * sum + (CAVITATION_CLIP * martin).powi(2)).sqrt());
+    let tension = suction * 0.5 * PI * (2.0 * r * h).sqrt();
+    let shifted = martin + squeeze + tension;
+    let width = CAVITATION_CLIP * (martin + tension);
+    let load = 0.5 * (shifted + (shifted * shifted + width * width).sqrt()) - tension;
     FilmLine {
         load,
         shear: eta * PI * SQRT_2 * root,
@@ -186,7 +206,7 @@ mod tests {
         assert!((xc - 0.4751).abs() < 1e-3, "X_c = {xc}");
         // Dimensional: B1's inner race, η = 16.5 mPa s, u = 0.3 m/s, R = 1.75 mm, h = 1 µm.
         let (eta, u, r, h) = (0.0165, 0.3, 1.75e-3, 1e-6);
-        let f = film_line(eta, r, h, u, 0.0);
+        let f = film_line(eta, r, h, u, 0.0, 0.0);
         let martin = 4.894_97 * eta * u * r / h;
         assert!(
             (f.load / martin - 1.0).abs() < 1e-3,
@@ -219,7 +239,7 @@ mod tests {
             "{coefficient}"
         );
         let (eta, r, h, rate) = (0.0165, 1.75e-3, 2e-6, 1e-3);
-        let f = film_line(eta, r, h, 0.0, rate);
+        let f = film_line(eta, r, h, 0.0, rate, 0.0);
         let closed = SQUEEZE_LOAD * eta * r.powf(1.5) * rate / h.powf(1.5);
         assert!((f.load / closed - 1.0).abs() < 1e-3);
     }
@@ -227,9 +247,10 @@ mod tests {
     #[test]
     fn a_separating_film_cavitates_instead_of_pulling() {
         // Surfaces moving apart fast, no entrainment: a full film would pull them
-        // together with the squeeze load; a cavitating one carries (almost) nothing.
+        // together with the squeeze load; with the half-Sommerfeld condition (p_s = 0) a
+        // cavitating one carries (almost) nothing.
         let (eta, r, h) = (0.0165, 1.75e-3, 2e-6);
-        let f = film_line(eta, r, h, 1e-3, -1e-2);
+        let f = film_line(eta, r, h, 1e-3, -1e-2, 0.0);
         let pull = SQUEEZE_LOAD * eta * r.powf(1.5) * 1e-2 / h.powf(1.5);
         assert!(
             f.load >= 0.0 && f.load < 1e-6 * pull,
@@ -238,12 +259,63 @@ mod tests {
         );
     }
 
+    /// Brute force: the full squeeze film's pressure from the Reynolds equation
+    /// (h³p')' = −12ηḣ, the film full on both sides, integrated by the midpoint rule from
+    /// x = −L, at the approach rate whose load is the tension −T of [`film_line`]: its
+    /// pressure at the narrowest gap is −p_s (the film is at the onset of cavitation). And
+    /// separating ten times faster, the film pulls with T (within 2ε² of it: the bound's
+    /// rounding), not with the full film's tenfold pull.
+    #[test]
+    fn a_separating_film_pulls_until_it_cavitates_at_the_suction_limit() {
+        let (eta, r, h0, suction): (f64, f64, f64, f64) = (0.0165, 1.75e-3, 2e-7, 1e5);
+        let tension = suction * 0.5 * PI * (2.0 * r * h0).sqrt();
+        let rate = -tension / (SQUEEZE_LOAD * eta * r.powf(1.5) / h0.powf(1.5));
+        let (lo, n) = (-400.0 * (2.0 * r * h0).sqrt(), 4_000_000);
+        let dx = -lo / n as f64;
+        let mut p = 0.0;
+        for k in 0..n {
+            let x = lo + (k as f64 + 0.5) * dx;
+            let h = h0 + x * x / (2.0 * r);
+            p += -12.0 * eta * rate * x / (h * h * h) * dx;
+        }
+        assert!((p / -suction - 1.0).abs() < 1e-3, "p(0) = {p} Pa");
+        let f = film_line(eta, r, h0, 0.0, 10.0 * rate, suction);
+        assert!(
+            f.load < 0.0 && (f.load / -tension - 1.0).abs() < 2e-3,
+            "{}",
+            f.load
+        );
+    }
+
+    /// Two surfaces that neither roll nor approach (F_d = 0): with a suction limit the
+    /// load is the full film's squeeze load on both sides of ḣ = 0 (within the bound's
+    /// rounding, at most ε²/4 of T, and 1 % where the load is a tenth of T), so it has one slope
+    /// there; with p_s = 0 it switches from the squeeze load to nothing.
+    #[test]
+    fn with_a_suction_limit_the_film_is_smooth_where_it_neither_rolls_nor_squeezes() {
+        let (eta, r, h, suction): (f64, f64, f64, f64) = (0.0165, 1.75e-3, 2e-7, 1e5);
+        let tension = suction * 0.5 * PI * (2.0 * r * h).sqrt();
+        let per_rate = SQUEEZE_LOAD * eta * r.powf(1.5) / h.powf(1.5);
+        for fraction in [-0.1, -0.01, 0.0, 0.01, 0.1] {
+            let rate = fraction * tension / per_rate;
+            let f = film_line(eta, r, h, 0.0, rate, suction);
+            let full = per_rate * rate;
+            assert!(
+                (f.load - full).abs() < 0.01 * (fraction * tension).abs() + 2e-4 * tension,
+                "{fraction}: {} vs {full}",
+                f.load
+            );
+        }
+        let cavitating = film_line(eta, r, h, 0.0, -0.1 * tension / per_rate, 0.0);
+        assert!(cavitating.load.abs() < 1e-6 * tension);
+    }
+
     #[test]
     fn rolling_force_agrees_with_biboulet_houpert_in_the_rigid_limit() {
         // Biboulet & Houpert (2010), paper eq. 56 with ψ → 1 (light loads), at the load
         // that Martin's film carries at the gap h: independent source, within 4 %.
         let (eta, r, u, h, l) = (0.0165, 1.75e-3, 0.3, 5e-6, 1e-3);
-        let f = film_line(eta, r, h, u, 0.0);
+        let f = film_line(eta, r, h, u, 0.0, 0.0);
         let e_prime = 2.3e11;
         let bh = ehl_rolling_force(e_prime, r, l, eta, u, f.load * l);
         let ours = f.rolling * l;
@@ -262,7 +334,7 @@ mod tests {
                 eta / (h0 + x * x / (2.0 * r)) * dx
             })
             .sum();
-        let f = film_line(eta, r, h0, 0.1, 0.0);
+        let f = film_line(eta, r, h0, 0.1, 0.0, 0.0);
         // The tails beyond |x| = 0.2 m hold η·4R/0.2, 3e-4 of the whole.
         assert!(
             (f.shear / integral - 1.0).abs() < 2e-3,
@@ -276,6 +348,7 @@ mod tests {
         let film = RigidFilm {
             enabled: true,
             cutoff: 100e-6,
+            suction_limit: 0.0,
         };
         let sigma = 0.16e-6;
         let (h0, w0) = film.gap_and_weight(0.0, sigma).unwrap();
@@ -296,11 +369,12 @@ mod tests {
         #[test]
         fn load_is_non_negative_and_falls_as_the_gap_opens(
             log_h in -7.0..-4.5f64, u in 0.0..5.0f64, rate in 0.0..0.1f64,
+            suction in 0.0..1e6f64,
         ) {
             let (eta, r) = (0.0165, 1.75e-3);
             let h = 10f64.powf(log_h);
-            let near = film_line(eta, r, h, u + 1e-3, rate);
-            let far = film_line(eta, r, 1.1 * h, u + 1e-3, rate);
+            let near = film_line(eta, r, h, u + 1e-3, rate, suction);
+            let far = film_line(eta, r, 1.1 * h, u + 1e-3, rate, suction);
             prop_assert!(near.load >= 0.0 && near.load.is_finite());
             prop_assert!(far.load <= near.load * (1.0 + 1e-12));
             prop_assert!(far.shear < near.shear && far.rolling < near.rolling);

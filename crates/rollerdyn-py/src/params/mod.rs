@@ -148,6 +148,7 @@ fn to_core(p: ModelParameters, traction: &EhlTraction) -> PyResult<BearingParams
         race_film: RigidFilm {
             enabled: s.race_film.enabled,
             cutoff: s.race_film.cutoff,
+            suction_limit: s.race_film.suction_limit,
         },
         mixture: Mixture::new(
             cavity.oil_fraction,

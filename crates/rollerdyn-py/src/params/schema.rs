@@ -144,6 +144,7 @@ section! {
     struct RaceFilm {
         enabled: bool,
         cutoff: f64,
+        suction_limit: f64,
     }
 
     /// Loads [N] and speed [rad/s] over time, gravity [m/s²].
