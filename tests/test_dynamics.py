@@ -450,10 +450,14 @@ def test_a_run_resumed_from_a_checkpoint_equals_the_uninterrupted_run_bit_for_bi
     assert float(part.time[-1]) == 0.0055 and float(part.checkpoint_time) < 0.0055
     assert_bit_identical(simulate(cfg, resume=part), whole)
     # The checkpoints matter: with another interval the trajectory differs in its last
-    # bits (so the comparison above can fail), within the tolerances.
+    # bits (so the comparison above can fail), within the tolerances. The two runs are two
+    # solutions of the same equations whose steps each hold the local error to
+    # atol + rtol·|y| (1e-9 m + 1e-5·|y|); their difference is a global error, measured at
+    # up to 1.7 times that (the ring's position at 7 ms), and held here to 3 times.
     other = simulate(variant(**{**RESUMED, "solver.checkpoint_interval": "1.5 ms"}), resume=base)
     assert not np.array_equal(other.position.values, whole.position.values)
-    np.testing.assert_allclose(other.ring_position, whole.ring_position, rtol=0, atol=1e-9)
+    local = 1e-9 + 1e-5 * np.abs(whole.ring_position.values)
+    assert np.all(np.abs(other.ring_position.values - whole.ring_position.values) <= 3 * local)
 
 
 def test_time_spent_saving_checkpoints_is_reported():
