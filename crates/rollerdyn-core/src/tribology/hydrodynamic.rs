@@ -263,8 +263,8 @@ mod tests {
     /// (h³p')' = −12ηḣ, the film full on both sides, integrated by the midpoint rule from
     /// x = −L, at the approach rate whose load is the tension −T of [`film_line`]: its
     /// pressure at the narrowest gap is −p_s (the film is at the onset of cavitation). And
-    /// separating ten times faster, the film pulls with T (within 2ε² of it: the bound's
-    /// rounding), not with the full film's tenfold pull.
+    /// separating ten times faster, the film pulls with T (within 0.2 % of it: the bound is
+    /// rounded by ε²/36 of T), not with the full film's tenfold pull.
     #[test]
     fn a_separating_film_pulls_until_it_cavitates_at_the_suction_limit() {
         let (eta, r, h0, suction): (f64, f64, f64, f64) = (0.0165, 1.75e-3, 2e-7, 1e5);
