@@ -12,6 +12,7 @@ radial and circumferential), of tilt and skew, of the roller end-flange normal f
 output).
 """
 
+import signal
 import sys
 
 import numpy as np
@@ -21,8 +22,27 @@ FULL_SPEED = 0.75  # s: B1's speed ramp ends at 0.7 s
 UM = 1e6
 
 
+NEEDED = ("time", "azimuth", "position", "tilt", "skew", "flange_normal_force")
+
+
+def open_run(path: str) -> xr.Dataset:
+    """The result file at `path`, or exit with one line saying why it cannot be compared."""
+    try:
+        ds = xr.open_dataset(path)
+    except FileNotFoundError:
+        sys.exit(f"compare_runs: {path}: no such file")
+    except (OSError, ValueError) as error:
+        sys.exit(f"compare_runs: {path}: not a readable result file ({type(error).__name__})")
+    missing = [name for name in NEEDED + ("frictional_torque",) if name not in ds.variables]
+    if missing:
+        sys.exit(f"compare_runs: {path}: not a run's result (no {', '.join(missing)})")
+    return ds
+
+
 def main(first: str, second: str) -> None:
-    a, b = xr.open_dataset(first), xr.open_dataset(second)
+    a, b = open_run(first), open_run(second)
+    if a.sizes["roller"] != b.sizes["roller"]:
+        sys.exit(f"compare_runs: the runs have {a.sizes['roller']} and {b.sizes['roller']} rollers")
     n = min(a.sizes["time"], b.sizes["time"])
     a, b = a.isel(time=slice(0, n)), b.isel(time=slice(0, n))
     if not np.allclose(a.time, b.time):
@@ -72,6 +92,7 @@ def main(first: str, second: str) -> None:
 
 
 if __name__ == "__main__":
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # `| head` ends the output quietly
     if len(sys.argv) != 3:
         sys.exit(__doc__)
     main(sys.argv[1], sys.argv[2])
