@@ -10,7 +10,7 @@
 
 use super::state::Kinematics;
 use crate::geometry::primitives::Vec3;
-use crate::numerics::smooth::smooth_max;
+use crate::numerics::smooth::{hyperbolic_ramp, smooth_max};
 use crate::tribology::film::{FilmInputs, MoesTable, ThermalCorrection};
 use crate::tribology::friction::{BoundaryFriction, LoadSharing};
 use crate::tribology::hertz::{
@@ -162,7 +162,7 @@ pub fn damped_normal_force(elastic: f64, stiffness: f64, mass: f64, zeta: f64, r
         return 0.0;
     }
     let damped = elastic + 2.0 * zeta * (stiffness * mass).sqrt() * rate;
-    0.5 * (damped + (damped * damped + (DAMPING_CLIP * elastic).powi(2)).sqrt())
+    hyperbolic_ramp(damped, DAMPING_CLIP * elastic)
 }
 
 /// Surface speeds of A and B relative to the contact frame, in the tangent plane.

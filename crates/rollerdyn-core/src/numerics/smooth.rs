@@ -50,6 +50,14 @@ pub fn smooth_saturation(x: f64) -> f64 {
     smooth_min(x.abs(), 1.0).copysign(x)
 }
 
+/// Smooth max(x, 0), a hyperbola of half-width `width`: ½(x + sqrt(x² + w²)). Above
+/// max(x, 0) by at most w/2 (at x = 0); for w = 0 exactly max(x, 0). The smooth lower
+/// bound of a force that cannot pull: the contact damping's and the oil film's.
+#[inline]
+pub fn hyperbolic_ramp(x: f64, width: f64) -> f64 {
+    0.5 * (x + (x * x + width * width).sqrt())
+}
+
 /// The C¹ unit step 3t² − 2t³ of t clamped to [0, 1].
 #[inline]
 pub fn unit_smoothstep(t: f64) -> f64 {
@@ -100,6 +108,15 @@ mod tests {
             let s = smooth_min(x, y);
             prop_assert!(s <= x.min(y) * (1.0 + 1e-12));
             prop_assert!(s >= x.min(y) * 0.917);
+        }
+
+        #[test]
+        fn hyperbolic_ramp_is_within_half_its_width_above_the_sharp_one(
+            x in -1e3..1e3f64, width in 0.0..10.0f64,
+        ) {
+            let r = hyperbolic_ramp(x, width);
+            prop_assert!(r >= x.max(0.0) && r <= x.max(0.0) + 0.5 * width + 1e-12);
+            prop_assert_eq!(hyperbolic_ramp(x, 0.0), x.max(0.0));
         }
 
         #[test]

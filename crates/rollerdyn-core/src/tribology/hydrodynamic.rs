@@ -47,7 +47,7 @@
 //! Far away the film fades out between half the cutoff and the cutoff (the parabolic gap
 //! needs h₀ ≪ R).
 
-use crate::numerics::smooth::{fade_out, unit_smoothstep};
+use crate::numerics::smooth::{fade_out, hyperbolic_ramp, unit_smoothstep};
 use std::f64::consts::{PI, SQRT_2};
 
 /// Martin's load coefficient with the Reynolds cavitation condition: w = C·η·u_m·R/h₀.
@@ -134,7 +134,7 @@ pub fn film_line(eta: f64, r: f64, h: f64, u_m: f64, approach: f64, suction: f64
     let tension = suction * 0.5 * PI * (2.0 * r * h).sqrt();
     let shifted = martin + squeeze + tension;
     let width = CAVITATION_CLIP * (martin + tension);
-    let load = 0.5 * (shifted + (shifted * shifted + width * width).sqrt()) - tension;
+    let load = hyperbolic_ramp(shifted, width) - tension;
     FilmLine {
         load,
         shear: eta * PI * SQRT_2 * root,
