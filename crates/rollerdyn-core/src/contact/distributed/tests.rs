@@ -256,6 +256,8 @@ fn force_is_smooth_through_the_flat_tilt() {
 fn asperity_load_joins_the_overlap_and_the_exponential_tail() {
     let rough = Asperities { sigma: 0.24e-6 };
     let s = rough.sigma;
+    // The load's constant at the edge is ln(1 + e^-CUT), written out.
+    assert!((SOFTPLUS_AT_CUT - (-CUT).exp().ln_1p()).abs() < 1e-17);
     // Deep overlap: g less the constant σ ln(1 + e^-4) = 0.018 σ (to σ e^{-g/σ} = 6e-6 σ).
     let deep = 12.0 * s;
     assert!((rough.load(deep) - (deep - s * (-CUT).exp().ln_1p())).abs() < 1e-5 * s);
