@@ -184,6 +184,21 @@ def test_d_flange_axial_forces_carry_the_axial_load():
     assert abs(-outer / 1000.0 - 1) < 5e-3, outer
 
 
+@pytest.mark.parametrize("axial_load", ["2000 N", "3000 N"])
+def test_point_law_refuses_loads_that_lay_the_loaded_ends_flat_on_the_flanges(axial_load):
+    """docs/dynamics.md, "Why the steps collapse at 2000 N": with the paper's point law,
+    B1 at 2000 N stalled at t = 0.503 s and at 3000 N crept for minutes. Its quasi-static
+    equilibrium at the end of the load ramp puts the most loaded roller end on its end
+    face (SP-TO(rim), roller tilt 1.64 mrad past the flat 1.57 mrad; at 3000 N the point
+    law has no equilibrium, and at 2100 N already the same), so the run is refused at
+    once, naming the setting and the remedy, before any step. At 1000 N (TO-CO, 0.99 mrad)
+    the B1 runs of this file pass the check, and so does the distributed law at 2000 N
+    (the test below)."""
+    cfg = variant(**{"operating.axial_load": axial_load})
+    with pytest.raises(ValueError, match=r"surfaces\.flange_law = point: .*end face.*distributed"):
+        simulate(cfg)
+
+
 def test_d_distributed_flange_law_carries_the_axial_load_on_the_rims():
     # The distributed roller end-flange law (not in the paper; docs/dynamics.md) at 2000 N,
     # where B1's loaded end faces tilt past lying flat on the flanges: settled, the inner

@@ -262,15 +262,18 @@ pub fn run(
     options.validate(model.layout.rollers, start.as_ref().map_or(0.0, |s| s.time))?;
     let start = match start {
         Some(s) => s,
-        None => Start {
-            time: 0.0,
-            state: if options.start_from_equilibrium {
-                model.equilibrium_state(0.0)?
-            } else {
-                model.initial_state()?
-            },
-            step: None,
-        },
+        None => {
+            model.check_point_law(options.t_end)?;
+            Start {
+                time: 0.0,
+                state: if options.start_from_equilibrium {
+                    model.equilibrium_state(0.0)?
+                } else {
+                    model.initial_state()?
+                },
+                step: None,
+            }
+        }
     };
     let (t0, y0) = (start.time, &start.state);
     let n = model.layout.len();
