@@ -47,7 +47,7 @@ use crate::numerics::quadrature::{mapped_table, GAUSS_LEGENDRE_4};
 use crate::tribology::film::ThermalCorrection;
 use crate::tribology::foundation::foundation_modulus;
 use nalgebra::DMatrix;
-use rayon::prelude::*;
+use crate::dynamics::team::Team;
 use std::sync::Arc;
 
 pub use super::contacts::{ElementResult, Wrench};
@@ -89,9 +89,9 @@ pub struct BearingModel {
     pub(super) warm_starts: WarmStarts,
     /// The profile, one slot per thread that evaluates the model.
     pub(super) profiler: Profiler,
-    /// The threads that evaluate contacts and Jacobian columns (None: this thread only);
-    /// see [`Self::with_threads`].
-    pool: Option<Arc<rayon::ThreadPool>>,
+    /// The helper threads that evaluate contacts and Jacobian columns beside the calling
+    /// thread (None: the calling thread only); see [`Self::with_threads`] and [`Self::map`].
+    pool: Option<Arc<Team>>,
 }
 
 impl BearingModel {
@@ -160,9 +160,8 @@ impl BearingModel {
         }
         self.profiler = Profiler::for_threads(threads);
         self.pool = if threads > 1 && self.params.options.detector != Detector::Gradient {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
+            // The calling thread works too (Self::map): threads − 1 helpers.
+            let pool = Team::new(threads - 1)
                 .map_err(|e| Error::invalid("threads", threads, e.to_string()))?;
             Some(Arc::new(pool))
         } else {
@@ -173,13 +172,19 @@ impl BearingModel {
 
     /// Threads that evaluate the model (1: this thread only).
     pub fn threads(&self) -> usize {
-        self.pool.as_ref().map_or(1, |p| p.current_num_threads())
+        self.pool.as_ref().map_or(1, |p| p.threads())
     }
 
-    /// `f(0..n)` in order, on the model's threads if it has any.
-    pub(super) fn map<T: Send>(&self, n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
+    /// `f(0..n)` in order, on the model's threads if it has any ([`Team::map`]: the
+    /// calling thread starts at once and the helpers, awake within a run, join it; every
+    /// value is computed alone, so the result does not depend on the threads).
+    pub(super) fn map<T: Send + Sync>(
+        &self,
+        n: usize,
+        f: impl Fn(usize) -> T + Sync + Send,
+    ) -> Vec<T> {
         match &self.pool {
-            Some(pool) => pool.install(|| (0..n).into_par_iter().map(&f).collect()),
+            Some(team) => team.map(n, f),
             None => (0..n).map(f).collect(),
         }
     }

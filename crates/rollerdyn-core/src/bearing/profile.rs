@@ -134,7 +134,7 @@ impl Profiler {
     /// This thread's profile slot: the pool's threads have one each, other threads share
     /// the first (so that the threads never contend for one lock or cache line).
     fn slot(&self) -> &ProfileSlot {
-        let index = rayon::current_thread_index().map_or(0, |i| i + 1);
+        let index = crate::dynamics::team::thread_slot();
         &self.slots[index % self.slots.len()]
     }
 }
