@@ -39,6 +39,7 @@ use super::topology::Topology;
 use crate::contact::pruning::FlangeBounds;
 use crate::dynamics::integrate::OdeSystem;
 use crate::dynamics::rigid::axis_from_angles;
+use crate::dynamics::team::Team;
 use crate::error::{Error, Result};
 use crate::geometry::end_flange::face_contact_area;
 use crate::geometry::primitives::Vec3;
@@ -47,7 +48,6 @@ use crate::numerics::quadrature::{mapped_table, GAUSS_LEGENDRE_4};
 use crate::tribology::film::ThermalCorrection;
 use crate::tribology::foundation::foundation_modulus;
 use nalgebra::DMatrix;
-use crate::dynamics::team::Team;
 use std::sync::Arc;
 
 pub use super::contacts::{ElementResult, Wrench};

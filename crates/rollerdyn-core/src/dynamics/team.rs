@@ -181,7 +181,12 @@ impl Drop for Close<'_> {
 impl Drop for Team {
     fn drop(&mut self) {
         self.shared.shutdown.store(true, Ordering::SeqCst);
-        drop(self.shared.sleep.lock().unwrap_or_else(PoisonError::into_inner));
+        drop(
+            self.shared
+                .sleep
+                .lock()
+                .unwrap_or_else(PoisonError::into_inner),
+        );
         self.shared.wake.notify_all();
         for handle in self.helpers.drain(..) {
             let _ = handle.join();
