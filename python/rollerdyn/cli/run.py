@@ -151,16 +151,22 @@ def run(
             unsaved.append(err)
 
     status = 0
+    terminated: list[int] = []
     with _run_progress(cfg.name, t_start, end) as show:
-        # SIGTERM (a batch system or `kill`) stops the run like Ctrl-C: at the next output
-        # time, with everything computed so far written (exit status 143).
-        previous_handler = signal.signal(signal.SIGTERM, _terminate)
+        # SIGTERM (a batch system or `kill`) stops the run like Ctrl-C: at the next progress
+        # report (every output time and 0.2 s of wall time), with everything computed so
+        # far written (exit status 143). The handler only records the signal: raised where
+        # the signal lands, the exception could be swallowed by library code (pydantic's
+        # serializer, during a checkpoint's write, warns and goes on).
+        previous_handler = signal.signal(
+            signal.SIGTERM, lambda signum, _: terminated.append(signum)
+        )
         try:
             ds = simulate(
                 cfg,
                 t_end=end,
                 detector=detector,
-                progress=lambda p: show(p) or bool(unsaved),
+                progress=lambda p: _stop_if(terminated) or show(p) or bool(unsaved),
                 resume=previous,
                 checkpoint=checkpoint,
                 threads=threads,
@@ -302,6 +308,7 @@ def _run_progress(name: str, t_start: float, t_end: float):
         yield show
 
 
-def _terminate(signum, frame) -> None:
-    """SIGTERM handler of `run`: raised inside the core's signal check, it stops the run."""
-    raise KeyboardInterrupt("terminated by SIGTERM")
+def _stop_if(terminated: list[int]) -> None:
+    """Stops the run from its progress report once SIGTERM has come (``terminated``)."""
+    if terminated:
+        raise KeyboardInterrupt("terminated by SIGTERM")
