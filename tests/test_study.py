@@ -643,3 +643,21 @@ def test_a_run_the_study_stopped_is_marked_in_the_figures_legends():
     assert _label(ds, Path("axial-2000N.nc")) == "axial-2000N (F_a = 2000 N)"
     ds.attrs["study_stopped"] = "stopped after 600 s of wall time"
     assert _label(ds, Path("axial-2000N.nc")).endswith("[not finished, to t = 0.503 s]")
+
+
+def test_timing_counts_a_run_refused_at_its_start_as_costing_nothing():
+    """The study of 2026-11-26 printed "whose own times sum to nan s": B1 at 2000 N with the
+    point law is refused before its first step (docs/dynamics.md) and has no wall time. The
+    sum is over the runs that have one, and the efficiency is sum / (wall x workers)."""
+    from rollerdyn.study.schedule import timing
+
+    records = {
+        "a": {"action": "ran", "attempt wall [s]": 30.0},
+        "b": {"action": "ran", "attempt wall [s]": math.nan},
+        "c": {"action": "continued", "attempt wall [s]": 10.0},
+        "d": {"action": "reused", "attempt wall [s]": 99.0},
+    }
+    t = timing(records, wall=25.0, workers=2)
+    assert t["runs run"] == 3
+    assert t["sum of run walls [s]"] == 40.0
+    assert t["parallel efficiency"] == pytest.approx(40.0 / 50.0)

@@ -168,9 +168,11 @@ def run_all(
 
 def timing(records: dict[str, dict], wall: float, workers: int) -> dict:
     """The study's wall time, the sum of its runs' wall times in this invocation (runs
-    reused from disk excluded) and the parallel efficiency: sum / (wall x workers)."""
+    reused from disk excluded; a run refused before its first step has no wall time and
+    counts nothing) and the parallel efficiency: sum / (wall x workers)."""
     ran = [r for r in records.values() if r["action"] in ("ran", "continued")]
-    total = sum(r.get("attempt wall [s]", math.nan) for r in ran)
+    walls = [r.get("attempt wall [s]", math.nan) for r in ran]
+    total = sum(w for w in walls if math.isfinite(w))
     return {
         "study wall [s]": wall,
         "runs run": len(ran),
