@@ -114,6 +114,9 @@ impl Team {
     /// model's evaluations do not): a panic on the caller's thread unwinds from here once
     /// the helpers are done; one on a helper leaves its index empty and panics here.
     pub fn map<T: Send + Sync>(&self, n: usize, f: impl Fn(usize) -> T + Sync) -> Vec<T> {
+        if n < 2 {
+            return (0..n).map(f).collect();
+        }
         let next = AtomicUsize::new(0);
         let values: Vec<OnceLock<T>> = (0..n).map(|_| OnceLock::new()).collect();
         let work = || loop {
@@ -151,7 +154,9 @@ impl Team {
         });
         *s.job.lock().unwrap_or_else(PoisonError::into_inner) = Some(job);
         // Open the next generation with no helper active.
-        let generation = (s.ticket.load(Ordering::SeqCst) & !(GENERATION - 1)) + GENERATION;
+        // (Wrapping after 2³² jobs is harmless: a helper compares with the last it saw.)
+        let generation =
+            (s.ticket.load(Ordering::SeqCst) & !(GENERATION - 1)).wrapping_add(GENERATION);
         s.ticket.store(generation, Ordering::SeqCst);
         if s.sleeping.load(Ordering::SeqCst) > 0 {
             drop(s.sleep.lock().unwrap_or_else(PoisonError::into_inner));
@@ -317,5 +322,22 @@ mod tests {
                 });
             }
         });
+    }
+
+    /// A panic in `f` (on whichever thread takes that index) comes out of `map` once the
+    /// helpers are done with the job, and the team works on afterwards.
+    #[test]
+    fn a_panic_in_a_map_leaves_the_team_working() {
+        let team = Team::new(1).expect("threads");
+        for _ in 0..20 {
+            let failed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                team.map(64, |i| {
+                    assert!(i != 40, "index 40 fails");
+                    i
+                })
+            }));
+            assert!(failed.is_err());
+            assert_eq!(team.map(6, |i| 2 * i), vec![0, 2, 4, 6, 8, 10]);
+        }
     }
 }
