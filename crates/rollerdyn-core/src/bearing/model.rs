@@ -91,7 +91,7 @@ pub struct BearingModel {
     pub(super) profiler: Profiler,
     /// The helper threads that evaluate contacts and Jacobian columns beside the calling
     /// thread (None: the calling thread only); see [`Self::with_threads`] and [`Self::map`].
-    pool: Option<Arc<Team>>,
+    team: Option<Arc<Team>>,
 }
 
 impl BearingModel {
@@ -144,7 +144,7 @@ impl BearingModel {
             locked_axis: axis_from_angles(0.0, params.inner_ring_misalignment),
             warm_starts: WarmStarts::new(z),
             profiler: Profiler::single(),
-            pool: None,
+            team: None,
             params,
         })
     }
@@ -159,11 +159,11 @@ impl BearingModel {
             return Err(Error::invalid("threads", threads, ">= 1"));
         }
         self.profiler = Profiler::for_threads(threads);
-        self.pool = if threads > 1 && self.params.options.detector != Detector::Gradient {
+        self.team = if threads > 1 && self.params.options.detector != Detector::Gradient {
             // The calling thread works too (Self::map): threads − 1 helpers.
-            let pool = Team::new(threads - 1)
+            let team = Team::new(threads - 1)
                 .map_err(|e| Error::invalid("threads", threads, e.to_string()))?;
-            Some(Arc::new(pool))
+            Some(Arc::new(team))
         } else {
             None
         };
@@ -172,7 +172,7 @@ impl BearingModel {
 
     /// Threads that evaluate the model (1: this thread only).
     pub fn threads(&self) -> usize {
-        self.pool.as_ref().map_or(1, |p| p.threads())
+        self.team.as_ref().map_or(1, |t| t.threads())
     }
 
     /// `f(0..n)` in order, on the model's threads if it has any ([`Team::map`]: the
@@ -183,7 +183,7 @@ impl BearingModel {
         n: usize,
         f: impl Fn(usize) -> T + Sync + Send,
     ) -> Vec<T> {
-        match &self.pool {
+        match &self.team {
             Some(team) => team.map(n, f),
             None => (0..n).map(f).collect(),
         }

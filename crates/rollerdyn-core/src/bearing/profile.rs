@@ -78,8 +78,8 @@ impl Profiler {
         }
     }
 
-    /// A profiler for a pool of `threads` threads: one slot each, and one for the threads
-    /// outside the pool.
+    /// A profiler for `threads` threads (the calling thread and its team's helpers,
+    /// `dynamics::team`): one slot each, and one to spare.
     pub(super) fn for_threads(threads: usize) -> Self {
         Self {
             slots: (0..=threads).map(|_| ProfileSlot::default()).collect(),
@@ -131,7 +131,7 @@ impl Profiler {
             .unwrap_or_else(PoisonError::into_inner));
     }
 
-    /// This thread's profile slot: the pool's threads have one each, other threads share
+    /// This thread's profile slot: the team's helpers have one each, other threads share
     /// the first (so that the threads never contend for one lock or cache line).
     fn slot(&self) -> &ProfileSlot {
         let index = crate::dynamics::team::thread_slot();
