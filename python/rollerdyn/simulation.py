@@ -444,10 +444,10 @@ def simulate(
     carries the Dataset so far.
 
     ``threads``: how many threads evaluate the contacts and the Jacobian's columns (default:
-    all cores; the gradient detector always uses one). The result does not depend on it,
-    bit for bit. ``progress(Progress)`` is called at every output
-    time and every 0.2 s of wall time between them (``Progress.at_output`` tells which);
-    returning True stops the run (the Dataset then ends at the last output). Raises
+    all cores; at most the cores this process may use; the gradient detector always uses
+    one). The result does not depend on it, bit for bit. ``progress(Progress)`` is called
+    at every output time and every 0.2 s of wall time between them (``Progress.at_output``
+    tells which); returning True stops the run (the Dataset then ends at the last output). Raises
     :class:`SimulationError` (with the partial Dataset) if the integration fails.
 
     ``checkpoint(ds)`` is called at every checkpoint (every ``solver.checkpoint_interval``
@@ -497,7 +497,7 @@ def simulate(
     raw = core.run(options, callback, start, None if checkpoint is None else at_checkpoint)
     raw["stats"]["checkpoint_seconds"] = saving["seconds"]
     ds = to_dataset(raw, config, det)
-    ds.attrs["threads"] = threads if det != GRADIENT else 1
+    ds.attrs["threads"] = min(threads, default_threads()) if det != GRADIENT else 1
     if resume is not None:
         ds = _join(resume, ds)
     if "interruption" in raw:

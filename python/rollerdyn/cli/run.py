@@ -91,8 +91,8 @@ def run(
             "--threads",
             min=1,
             help="Threads that evaluate the contacts and the Jacobian's columns (default: all "
-            "cores; the gradient detector always uses one). The result does not depend on "
-            "it, bit for bit.",
+            "cores; never more than the cores this process may use; the gradient detector "
+            "always uses one). The result does not depend on it, bit for bit.",
         ),
     ] = None,
     force: Annotated[
