@@ -16,7 +16,7 @@
 
 use super::model::BearingModel;
 use super::params::FlangeLaw;
-use super::quasi_static::{StaticCase, StaticSolution};
+use super::quasi_static::{flange_loads, StaticCase, StaticSolution};
 use super::state::ROLLER_STATES;
 use super::topology::FLANGE_NAMES;
 use crate::contact::Pairing;
@@ -135,11 +135,7 @@ impl BearingModel {
 /// Where the most loaded roller end of `solution` touches its flange with the end sphere
 /// ([`BearingModel::check_point_law`]): which end, its load and pairing.
 fn end_on_its_face(solution: &StaticSolution) -> Option<String> {
-    let (i, k, load) = solution
-        .forces
-        .iter()
-        .enumerate()
-        .flat_map(|(i, f)| f.flanges.iter().enumerate().map(move |(k, x)| (i, k, x)))
+    let (i, k, load) = flange_loads(&solution.forces)
         .filter(|(_, _, x)| x.force > 0.0)
         .max_by(|a, b| a.2.force.total_cmp(&b.2.force))?;
     let pairing = Pairing::ALL[load.pairing?];

@@ -37,7 +37,7 @@ mod stiffness;
 #[cfg(test)]
 mod tests;
 
-pub use roller::{FlangeLoad, RollerForces, RollerPose, ROLLER_UNKNOWNS};
+pub use roller::{flange_loads, FlangeLoad, RollerForces, RollerPose, ROLLER_UNKNOWNS};
 pub use solver::{FLANGE_PRESSURE_LIMIT, RING_UNKNOWNS};
 
 use super::contacts::Wrench;

@@ -97,6 +97,14 @@ pub struct RollerForces {
     pub flanges: [FlangeLoad; 4],
 }
 
+/// Every flange contact of `forces` as (roller, flange 0–3, its load).
+pub fn flange_loads(forces: &[RollerForces]) -> impl Iterator<Item = (usize, usize, &FlangeLoad)> {
+    forces
+        .iter()
+        .enumerate()
+        .flat_map(|(i, f)| f.flanges.iter().enumerate().map(move |(k, x)| (i, k, x)))
+}
+
 impl BearingModel {
     /// The normal forces of the contacts of a roller at `roller` (at rest) against the
     /// inner ring at `ring` and the fixed outer ring; with `details`, the slice loads too.

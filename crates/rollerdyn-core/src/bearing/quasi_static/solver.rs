@@ -611,15 +611,8 @@ pub const FLANGE_PRESSURE_LIMIT: f64 = 4.0e9;
 
 /// Refuses an equilibrium whose flange contacts exceed [`FLANGE_PRESSURE_LIMIT`].
 fn check_flange_pressures(case: &StaticCase, forces: &[RollerForces]) -> Result<()> {
-    let worst = forces
-        .iter()
-        .enumerate()
-        .flat_map(|(i, f)| {
-            f.flanges
-                .iter()
-                .enumerate()
-                .map(move |(k, x)| (i, k, x.pressure))
-        })
+    let worst = super::flange_loads(forces)
+        .map(|(i, k, x)| (i, k, x.pressure))
         .max_by(|a, b| a.2.total_cmp(&b.2));
     match worst {
         Some((i, k, pressure)) if pressure > FLANGE_PRESSURE_LIMIT => Err(Error::invalid(
