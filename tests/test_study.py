@@ -93,25 +93,64 @@ def _attrs(out: Path, name: str) -> dict:
 def test_plan_holds_each_run_once_with_its_role():
     plan = build_plan(load_b1(), 0.01)
     names = [s.name for s in plan.specs]
-    assert len(names) == len(set(names)) == 10
+    assert len(names) == len(set(names)) == 14
     assert plan.reference == "axial-1000N" and plan.loads[1000.0] == "axial-1000N"
     assert sorted(plan.loads) == [0.0, 500.0, 1000.0, 2000.0]
     assert plan.reference_gradient == "axial-1000N-gradient"
-    assert plan.free_tilt == "free-tilt"
+    # figs. 8, 9: B1's point law cannot run the free tilt; the pair runs the distributed law
+    assert plan.free_tilt == "free-tilt-distributed"
+    assert plan.tilt_locked == "axial-1000N-distributed"
+    for name, tilt in ((plan.free_tilt, "free"), (plan.tilt_locked, "locked")):
+        assert plan.spec(name).data["surfaces"]["flange_law"] == "distributed"
+        assert plan.spec(name).data["inner_ring"]["tilt"] == tilt
+    assert plan.spec("axial-1000N").data["surfaces"]["flange_law"] == "point"
+    own_law = build_plan(variant(**{"surfaces.flange_law": "distributed"}), 0.01)
+    assert (own_law.free_tilt, own_law.tilt_locked) == ("free-tilt", "axial-1000N")
+    # figs. 10-13 once more with the distributed law, which runs the loads the point law
+    # refuses; its own load's run is the locked run of figs. 8, 9
+    assert plan.loads_distributed == {
+        0.0: "axial-0N-distributed",
+        500.0: "axial-500N-distributed",
+        1000.0: "axial-1000N-distributed",
+        2000.0: "axial-2000N-distributed",
+    }
+    for fa, name in plan.loads_distributed.items():
+        data = plan.spec(name).data
+        assert data["surfaces"]["flange_law"] == "distributed"
+        assert data["operating"]["axial_load"] == fa and data["inner_ring"]["tilt"] == "locked"
+    assert own_law.loads_distributed == {}
     # fig. 14 at B1's own dt_max is the reference pair, run once
     assert sorted(plan.runtime) == pytest.approx([2e-5, 5e-5, 1e-4])
     assert plan.runtime[1e-4] == {SEMI_ANALYTICAL: "axial-1000N", GRADIENT: "axial-1000N-gradient"}
-    tilt = plan.spec("free-tilt").data["inner_ring"]
+    tilt = plan.spec("free-tilt-distributed").data["inner_ring"]
     assert tilt["tilt"] == "free" and tilt["misalignment"] == 0.0
     assert plan.spec("axial-2000N").data["operating"]["axial_load"] == 2000.0
     assert {s.t_end for s in plan.specs} == {0.01}
-    none = build_plan(load_b1(), 0.01, loads=(0.0,), free_tilt=False, gradient=False)
+    none = build_plan(
+        load_b1(), 0.01, loads=(0.0,), free_tilt=False, gradient=False, distributed=False
+    )
     assert [s.name for s in none.specs] == ["axial-1000N", "axial-0N"]
     assert none.free_tilt is None and none.runtime == {}
     with pytest.raises(StudyError, match="--loads"):
         build_plan(load_b1(), 0.01, loads=(-5.0,))
     assert list(build_plan(load_b1(), 0.01, loads=()).loads) == [1000.0]  # its own load
     assert list(build_plan(load_b1(), 0.01, loads=()).loads) == [1000.0]  # its own load
+
+
+def test_runs_start_longest_first_and_are_reported_in_plan_order():
+    """The gradient runs (4-5 times a semi-analytical run's wall time) start first, the
+    smallest Δt_max first; the rest keep the plan's order."""
+    from rollerdyn.study.schedule import _longest_first
+
+    plan = build_plan(load_b1(), 0.01)
+    order = [s.name for s in _longest_first(plan.specs)]
+    assert order[:3] == ["dt-max-2e-05s-gradient", "dt-max-5e-05s-gradient", "axial-1000N-gradient"]
+    # then the distributed law's runs (about twice the point law's time), then the rest
+    law = {s.name: s.data["surfaces"]["flange_law"] for s in plan.specs}
+    rest = [s.name for s in plan.specs if s.detector != GRADIENT]
+    assert order[3:] == sorted(rest, key=lambda name: law[name] != "distributed")
+    assert order[3] == "axial-1000N-distributed" and law[order[8]] == "point"
+    assert sorted(order) == sorted(s.name for s in plan.specs)
 
 
 # --------------------------------------------------------------------------- the paper study
@@ -121,11 +160,11 @@ def test_every_run_completes_and_equals_the_same_run_in_series(study):
     out, result, events = study
     runs = result.runs
     assert list(runs["name"]) == [s.name for s in result.plan.specs]
-    assert len(runs) == 6 and set(runs["status"]) == {"completed"}
+    assert len(runs) == 8 and set(runs["status"]) == {"completed"}
     assert set(runs["action"]) == {"ran"}
-    assert list(runs["reached [s]"]) == pytest.approx([T_END] * 6)
+    assert list(runs["reached [s]"]) == pytest.approx([T_END] * 8)
     plan = events[0]
-    assert plan["kind"] == "plan" and plan["reused"] == [] and len(plan["pending"]) == 6
+    assert plan["kind"] == "plan" and plan["reused"] == [] and len(plan["pending"]) == 8
     assert sorted(e["name"] for e in events if e["kind"] == "done") == sorted(runs["name"])
     # the 0 N run is B1 with the axial load changed, bit for bit
     ref = simulate(variant(**{"operating.axial_load": "0 N"}), t_end=T_END, threads=1)
@@ -135,7 +174,7 @@ def test_every_run_completes_and_equals_the_same_run_in_series(study):
         np.testing.assert_array_equal(got[name].values, ref[name].values, err_msg=name)
     assert _attrs(out, "axial-1000N-gradient")["detector"] == GRADIENT
     assert _attrs(out, "dt-max-5e-05s-gradient")["dt_max_s"] == 5e-5
-    assert '"tilt": "free"' in _attrs(out, "free-tilt")["config_resolved"]
+    assert '"tilt": "free"' in _attrs(out, "free-tilt-distributed")["config_resolved"]
     # every file written, the tables among them
     for name in ("report.html", "runs.csv", "findings.csv", "findings.json", "study.json"):
         assert (out / name).is_file(), name
@@ -144,7 +183,7 @@ def test_every_run_completes_and_equals_the_same_run_in_series(study):
 def test_findings_carry_the_numbers_of_the_runs(study):
     out, result, _ = study
     found = {f.key: f for f in result.findings}
-    assert len(found) == 8
+    assert len(found) == 11  # 8 and the 3 load checks on the distributed law's series
     wall = {n: _attrs(out, n)["stats_total_seconds"] for n in result.runs["name"]}
     saving = 1.0 - wall["axial-1000N"] / wall["axial-1000N-gradient"]
     semi = found["semi_faster"]
@@ -191,6 +230,8 @@ def test_the_report_shows_findings_runs_and_figures(study):
         assert f"runs/{name}.nc" in page
     for key in ("fig10", "fig11", "fig12", "fig13", "fig8", "fig9", "fig14_wall"):
         assert f'id="plot-{key}"' in page, key
+    for key in ("fig10", "fig11", "fig12", "fig13"):  # the distributed law's load series
+        assert f'id="plot-{key}_distributed"' in page, key
     assert "document.body.setAttribute('data-plots'" in page
     assert page.count("<td class='PASS'>") == sum(f.status == PASS for f in result.findings)
 
@@ -199,8 +240,9 @@ def test_the_report_renders_in_headless_chromium_without_errors(study, tmp_path)
     from test_report import rendered_dom
 
     out, _, _ = study
-    # figs. 10, 11, 12, 13, the roller loads, 8, 9 and fig. 14's two: nine plots drawn
-    rendered_dom(out / "report.html", tmp_path, plots=9)
+    # figs. 10, 11, 12, 13 and the roller loads of each load series, 8, 9 and fig. 14's
+    # two: fourteen plots drawn
+    rendered_dom(out / "report.html", tmp_path, plots=14)
 
 
 # --------------------------------------------------------------------------- one run
@@ -338,6 +380,25 @@ def test_torque_and_flange_friction_checks_pass_and_fail_as_defined(judged):
         {"axial-0N": 0.01, "axial-1000N": 0.3}, {"axial-0N": 5.0, "axial-1000N": 5.0}
     )
     assert _check(judged, "flange_friction_explains", no_friction).status == FAIL
+    # the distributed law's series is judged on its own runs, under its own keys
+    grows_d = loads(
+        {"axial-0N-distributed": 0.01, "axial-1000N-distributed": 0.3},
+        {"axial-0N-distributed": 0.0, "axial-1000N-distributed": 200.0},
+    )
+    found = _check(judged, "torque_grows_distributed", lambda sets: (falls(sets), grows_d(sets)))
+    assert found.status == PASS and "distributed flange law" in found.statement
+    assert found.values["torque [N*m]"] == pytest.approx({0.0: 0.01, 1000.0: 0.3})
+    assert _check(judged, "torque_grows", lambda sets: (falls(sets), grows_d(sets))).status == FAIL
+    plan, sets, records = judged
+    keys = [f.key for f in check_findings(plan, sets, records)]
+    assert keys[:6] == [
+        "torque_grows",
+        "flange_friction_explains",
+        "axial_in_load_zone",
+        "torque_grows_distributed",
+        "flange_friction_explains_distributed",
+        "axial_in_load_zone_distributed",
+    ]
 
 
 def test_pairing_checks_pass_and_fail_as_defined(judged):
@@ -346,8 +407,9 @@ def test_pairing_checks_pass_and_fail_as_defined(judged):
     def pairings(locked: int, free: int):
         def change(sets):
             sets["axial-1000N"]["flange_pairing"][:] = locked
-            sets["free-tilt"]["flange_pairing"][:] = free
-            sets["free-tilt"]["flange_pairing"][:, :3] = to_co
+            sets["axial-1000N-distributed"]["flange_pairing"][:] = locked
+            sets["free-tilt-distributed"]["flange_pairing"][:] = free
+            sets["free-tilt-distributed"]["flange_pairing"][:, :3] = to_co
 
         return change
 
@@ -589,6 +651,7 @@ def test_cli_study_paper_short_version_and_its_rerun(tmp_path, client):
         "none",
         "--no-free-tilt",
         "--no-gradient",
+        "--no-distributed",
         "--scheduler",
         address,
     ]

@@ -42,8 +42,10 @@ def runtime_frame(plan: Plan, records: dict):
 
 def write_figures(plan: Plan, records: dict, outdir: Path) -> list[Path]:
     """Figs. 8-14 as PNG and SVG under ``outdir/figures``: ``axial-loads/`` (figs. 10-13
-    and the roller loads, one line per load), ``tilt/`` (figs. 8, 9: locked and free
-    tilt) and ``fig14_runtime_over_dt_max`` (completed runs only). Returns the files."""
+    and the roller loads, one line per load; ``axial-loads-distributed/`` the same with
+    the distributed flange law, when the configuration has the point law), ``tilt/``
+    (figs. 8, 9: locked and free tilt) and ``fig14_runtime_over_dt_max`` (completed runs
+    only). Returns the files."""
     from ..plots import plot_results, plot_runtime_study
 
     runs = Path(outdir) / "runs"
@@ -56,7 +58,10 @@ def write_figures(plan: Plan, records: dict, outdir: Path) -> list[Path]:
     loads = existing(plan.loads.values())
     if loads:
         written += plot_results(loads, figures / "axial-loads")
-    tilt = existing(dict.fromkeys([plan.reference, plan.free_tilt]))  # a free ring: one run
+    loads = existing(plan.loads_distributed.values())
+    if loads:
+        written += plot_results(loads, figures / "axial-loads-distributed")
+    tilt = existing(dict.fromkeys([plan.tilt_locked, plan.free_tilt]))  # a free ring: one run
     if plan.free_tilt is not None and len(tilt) == 2:
         written += plot_results(tilt, figures / "tilt")
     frame = runtime_frame(plan, records)

@@ -123,8 +123,10 @@ def _active_shares(ds, ring: str) -> dict[str, float] | None:
 class _Context:
     """The plan, the runs' datasets and records, for the checks."""
 
-    def __init__(self, plan: Plan, sets: dict, records: dict):
+    def __init__(self, plan: Plan, sets: dict, records: dict, loads: dict | None = None):
         self.plan, self.sets, self.records, self.cfg = plan, sets, records, plan.config
+        #: the axial-load series the load checks judge (F_a [N] -> run)
+        self.loads = plan.loads if loads is None else loads
 
     def ds(self, name: str | None):
         return None if name is None else self.sets.get(name)
@@ -136,7 +138,7 @@ class _Context:
         """(fa, name, mask) of the load runs with outputs at full speed, and why others
         are left out."""
         usable, left_out = [], []
-        for fa, name in self.plan.loads.items():
+        for fa, name in self.loads.items():
             ds = self.ds(name)
             if ds is None:
                 left_out.append(f"{fa:g} N: not run")
@@ -227,7 +229,7 @@ def axial_force_in_load_zone(c: _Context) -> Finding:
     )
     t_loaded = load_end(c.cfg)
     parts, values, verdicts = [], {}, []
-    for fa, name in c.plan.loads.items():
+    for fa, name in c.loads.items():
         if fa <= 0:
             continue
         ds = c.ds(name)
@@ -310,7 +312,7 @@ def other_pairings_with_tilt(c: _Context) -> Finding:
     if c.plan.free_tilt is not None and c.plan.free_tilt == c.plan.reference:
         why = "the configuration's own inner ring is free to tilt: no run with it locked"
         return Finding("other_pairings_with_tilt", statement, NOT_RUN, why)
-    free, locked = c.ds(c.plan.free_tilt), c.ds(c.plan.reference)
+    free, locked = c.ds(c.plan.free_tilt), c.ds(c.plan.tilt_locked)
     if c.plan.free_tilt is None or free is None or locked is None:
         return Finding("other_pairings_with_tilt", statement, NOT_RUN, "the free-tilt run not run")
     t_free = float(free.attrs["final_time_s"])
@@ -334,7 +336,10 @@ def other_pairings_with_tilt(c: _Context) -> Finding:
             f"{ring}: other pairings {_pct(other_free)} of the contacts with the tilt free, "
             f"{_pct(other_locked)} locked"
         )
-    span = f"both over 0 … {t_free:.4g} s{_mark(c.rec(c.plan.free_tilt), 'the free-tilt run ')}"
+    span = (
+        f"runs {c.plan.tilt_locked} and {c.plan.free_tilt}, both over 0 … {t_free:.4g} s"
+        f"{_mark(c.rec(c.plan.free_tilt), 'the free-tilt run ')}"
+    )
     return _verdict(
         "other_pairings_with_tilt", statement, ok, "; ".join(parts) + "; " + span, values
     )
@@ -497,11 +502,17 @@ def same_contacts(c: _Context) -> Finding:
     )
 
 
-#: The checks in the order of the table.
-CHECKS: tuple[Callable[[_Context], Finding], ...] = (
+#: The checks of the axial-load series (the first of :data:`CHECKS`), also made on the
+#: distributed law's series when the configuration's law is the point law.
+LOAD_CHECKS: tuple[Callable[[_Context], Finding], ...] = (
     torque_grows,
     flange_friction_explains,
     axial_force_in_load_zone,
+)
+
+#: The checks in the order of the table.
+CHECKS: tuple[Callable[[_Context], Finding], ...] = (
+    *LOAD_CHECKS,
     to_co_dominates,
     other_pairings_with_tilt,
     semi_analytical_faster,
@@ -514,4 +525,16 @@ def check_findings(plan: Plan, sets: dict, records: dict) -> list[Finding]:
     """Every check of :data:`CHECKS` on the runs: ``sets`` {name: Dataset} of the runs
     with a file, ``records`` {name: record} (:func:`rollerdyn.study.runs.record`)."""
     c = _Context(plan, sets, records)
-    return [check(c) for check in CHECKS]
+    found = [check(c) for check in CHECKS]
+    if plan.loads_distributed:  # the load checks once more on the distributed law's series
+        d = _Context(plan, sets, records, loads=plan.loads_distributed)
+        extra = [_distributed(check(d)) for check in LOAD_CHECKS]
+        found[len(LOAD_CHECKS) : len(LOAD_CHECKS)] = extra
+    return found
+
+
+def _distributed(f: Finding) -> Finding:
+    """A load check's finding on the distributed law's series, so named."""
+    f.key = f"{f.key}_distributed"
+    f.statement = f"{f.statement} With the distributed flange law (not in the paper)."
+    return f

@@ -68,6 +68,7 @@ def paper(
     dt_max: Sequence[float] | None = None,
     free_tilt: bool = True,
     gradient: bool = True,
+    distributed: bool = True,
     max_wall: float = DEFAULT_MAX_WALL,
     scheduler: Any = None,
     workers: int | None = None,
@@ -84,8 +85,11 @@ def paper(
     configuration's own is always added). ``dt_max``: Δt_max of fig. 14 [s] (default 0.2,
     0.5 and 1 times ``solver.dt_max``; ``()``: none). ``free_tilt``/``gradient``: include
     the free-tilt run (figs. 8, 9) and the gradient-detector runs (sect. 5.1, 5.3, fig.
-    14). ``max_wall``: wall-time cap of each run in this invocation [s]; a run stopped by
-    it is reported as not finished and continued at the next invocation. ``scheduler``:
+    14). ``distributed``: with the point law, run the axial loads once more with the
+    distributed flange law (a second series of figs. 10-13; the free tilt's pair of figs.
+    8, 9 has that law in any case). ``max_wall``: wall-time cap of each run in this
+    invocation [s]; a run stopped by it is reported as not finished and continued at the
+    next invocation. ``scheduler``:
     None (a ``LocalCluster`` of ``workers`` processes, default all cores), an address or a
     ``distributed.Client``. ``overwrite``: start afresh (removes the study's own files).
     ``run=False``: run nothing, analyse what the folder holds. ``report``/``figures``:
@@ -110,7 +114,9 @@ def paper(
     workers = default_workers() if workers is None else workers
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise StudyError(f"--workers = {workers!r}: must be a whole number >= 1")
-    plan = build_plan(cfg, t_end, loads, dt_max, free_tilt=free_tilt, gradient=gradient)
+    plan = build_plan(
+        cfg, t_end, loads, dt_max, free_tilt=free_tilt, gradient=gradient, distributed=distributed
+    )
     if run:
         check_scheduler(scheduler)
     out = prepare_folder(

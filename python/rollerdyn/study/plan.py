@@ -3,9 +3,16 @@ each is for (its role), and their names and files.
 
 - figs. 10, 11, 12, 13: one run per axial load (default 0, 500, 1000 and 2000 N; the
   configuration's own load is always one of them), inner ring tilt locked, the
-  configuration's detector (semi-analytical for B1) and Δt_max;
+  configuration's detector (semi-analytical for B1) and Δt_max. With the point law, the
+  same loads once more with the distributed law (a second series): the point law refuses
+  loads at which the loaded roller ends lie flat on the flanges (B1 at 2000 N;
+  docs/dynamics.md), the distributed law runs them;
 - figs. 8, 9: the configuration's own run (tilt locked) and the same with
-  ``inner_ring.tilt = "free"`` (never a prescribed misalignment in its place);
+  ``inner_ring.tilt = "free"`` (never a prescribed misalignment in its place). With the
+  paper's point law (``surfaces.flange_law = "point"``) the pair is run with the
+  distributed law instead: the point law's free tilt collapses its steps (B1 reached
+  t = 0.066 s of 1.288 s in 600 s; docs/dynamics.md, "Free inner ring tilt"), and a
+  locked run with the same law is what the free one is compared with;
 - sect. 5.1 and 5.3: the configuration's own run with the gradient detector (the same
   contact points and penetrations? the MBS runtime of both methods);
 - fig. 14: both detectors at each Δt_max (default 0.2, 0.5 and 1 times the
@@ -33,6 +40,10 @@ DEFAULT_LOADS: tuple[float, ...] = (0.0, 500.0, 1000.0, 2000.0)
 #: Δt_max of fig. 14 as multiples of the configuration's solver.dt_max.
 DEFAULT_DT_MAX_FACTORS: tuple[float, ...] = (0.2, 0.5, 1.0)
 
+#: ``surfaces.flange_law``: the paper's point contact, and the distributed law that runs
+#: the free tilt (module doc).
+POINT_LAW, DISTRIBUTED_LAW = "point", "distributed"
+
 #: Wall-time cap of one run [s] (per invocation of the study).
 DEFAULT_MAX_WALL = 600.0
 
@@ -45,9 +56,12 @@ class Plan:
     t_end: float
     specs: list[RunSpec] = field(default_factory=list)
     loads: dict[float, str] = field(default_factory=dict)  # F_a [N] -> run
+    # the same loads with the distributed flange law, when the configuration's is the point law
+    loads_distributed: dict[float, str] = field(default_factory=dict)
     reference: str = ""  # the configuration as it is (tilt locked, its detector)
     reference_gradient: str | None = None  # the same with the gradient detector
     free_tilt: str | None = None  # the same with the inner ring free to tilt
+    tilt_locked: str = ""  # the locked run of figs. 8, 9 (the free tilt's law)
     runtime: dict[float, dict[str, str]] = field(default_factory=dict)  # dt_max -> detector
 
     def spec(self, name: str) -> RunSpec:
@@ -72,11 +86,13 @@ def build_plan(
     dt_max: Sequence[float] | None = None,
     free_tilt: bool = True,
     gradient: bool = True,
+    distributed: bool = True,
 ) -> Plan:
     """The runs of the paper study of ``config`` to ``t_end`` [s] (default: the
     configuration's end time); ``loads`` [N], ``dt_max`` [s] (default: 0.2, 0.5 and 1
     times ``solver.dt_max``; empty: no fig. 14 runs). ``gradient=False``: no run with the
-    gradient detector (so neither fig. 14 nor the comparison of the methods). Raises
+    gradient detector (so neither fig. 14 nor the comparison of the methods).
+    ``distributed=False``: no second load series with the distributed law. Raises
     :class:`StudyError` for values that make no run."""
     cfg = config
     end = float(cfg.end_time if t_end is None else t_end)
@@ -150,18 +166,12 @@ def build_plan(
             f"{_label_fa(own_fa)}, {tilt_text}, gradient detector",
             meta(own_fa, cfg.inner_ring.tilt, dt0),
         )
+    plan.tilt_locked = plan.reference
     if free_tilt:
         if not locked:
             plan.free_tilt = plan.reference
         else:
-            tilted = _variant(cfg, {"inner_ring.tilt": "free", "inner_ring.misalignment": 0.0})
-            plan.free_tilt = add(
-                "free-tilt",
-                tilted,
-                detector,
-                f"{_label_fa(own_fa)}, inner ring free to tilt",
-                meta(own_fa, "free", dt0),
-            )
+            _add_free_tilt(plan, cfg, add, meta(own_fa, "locked", dt0), tilt_text)
     # figs. 10-13: the highest load early (it may be the slowest), the rest after fig. 14's.
     series = sorted(set(loads) | ({own_fa} if own_fa is not None else set()))
     later = []
@@ -187,7 +197,49 @@ def build_plan(
     for fa in later:
         plan.loads[fa] = add_load(fa)
     plan.loads = dict(sorted(plan.loads.items()))
+    if distributed and cfg.surfaces.flange_law == POINT_LAW:
+        for fa in sorted(plan.loads, reverse=True):  # the highest (slowest) load first
+            law = {"surfaces.flange_law": DISTRIBUTED_LAW}
+            own_load = fa == own_fa
+            plan.loads_distributed[fa] = add(
+                f"{plan.reference}-{DISTRIBUTED_LAW}"
+                if own_load
+                else f"axial-{_fmt(fa)}N-{DISTRIBUTED_LAW}",
+                _variant(cfg, law if own_load else {**law, "operating.axial_load": fa}),
+                detector,
+                f"F_a = {_fmt(fa)} N, {tilt_text}, {DISTRIBUTED_LAW} flange law",
+                meta(fa, cfg.inner_ring.tilt, dt0),
+            )
+        plan.loads_distributed = dict(sorted(plan.loads_distributed.items()))
     return plan
+
+
+def _add_free_tilt(plan: Plan, cfg: BearingConfig, add, meta: dict, tilt_text: str) -> None:
+    """figs. 8, 9: the run with the inner ring free to tilt and the locked run it is
+    compared with (the configuration's own, or with the point law the distributed law's
+    locked run: see the module's doc)."""
+    fa = meta["axial_load [N]"]
+    fa_label = _label_fa(None if math.isnan(fa) else fa)
+    tilt = {"inner_ring.tilt": "free", "inner_ring.misalignment": 0.0}
+    suffix, law_text = "", ""
+    if cfg.surfaces.flange_law == POINT_LAW:
+        law = {"surfaces.flange_law": DISTRIBUTED_LAW}
+        suffix, law_text = f"-{DISTRIBUTED_LAW}", f", {DISTRIBUTED_LAW} flange law"
+        plan.tilt_locked = add(
+            f"{plan.reference}{suffix}",
+            _variant(cfg, law),
+            plan.config.solver.detector,
+            f"{fa_label}, {tilt_text}{law_text}",
+            meta,
+        )
+        tilt = {**tilt, **law}
+    plan.free_tilt = add(
+        f"free-tilt{suffix}",
+        _variant(cfg, tilt),
+        plan.config.solver.detector,
+        f"{fa_label}, inner ring free to tilt{law_text}",
+        {**meta, "tilt": "free"},
+    )
 
 
 def _label_fa(fa: float | None) -> str:

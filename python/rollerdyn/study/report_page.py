@@ -148,20 +148,25 @@ def build_page(
         "legend entry to hide a run. Azimuth plots use the outputs at (at least 99 % of) "
         "full inner ring speed, or the whole run if the ring never turns.</p>"
     )
-    load_names = [n for n in plan.loads.values() if sets.get(n) is not None]
-    if load_names:
+    series = [("", "Axial loads: figs. 10-13", plan.loads)]
+    if plan.loads_distributed:
+        title = "Axial loads with the distributed flange law (not in the paper): figs. 10-13"
+        series.append(("_distributed", title, plan.loads_distributed))
+    for suffix, heading, loads in series:
+        load_names = [n for n in loads.values() if sets.get(n) is not None]
+        body.append(f"<h3>{heading}</h3>")
+        if not load_names:
+            body.append("<p class='warn'>No run of this axial-load series has a result.</p>")
+            continue
         labels = [_label(plan, n, records) for n in load_names]
         data = [sets[n] for n in load_names]
-        body.append("<h3>Axial loads: figs. 10-13</h3>")
         for key, fig in time_figures(labels, data):
-            body.append(embed(fig, key))
+            body.append(embed(fig, key + suffix))
         for key, fig in azimuth_figures(labels, data):
-            body.append(embed(fig, key))
-    else:
-        body.append("<p class='warn'>No run of the axial-load series has a result.</p>")
+            body.append(embed(fig, key + suffix))
     body.append("<h3>Inner ring tilt locked and free: figs. 8, 9</h3>")
     # (a configuration whose inner ring is free to tilt is its own free-tilt run)
-    pair = dict.fromkeys((plan.reference, plan.free_tilt))
+    pair = dict.fromkeys((plan.tilt_locked, plan.free_tilt))
     pair = [n for n in pair if n and sets.get(n) is not None]
     if plan.free_tilt is None:
         body.append("<p class='warn'>The free-tilt run is not part of this study.</p>")
@@ -170,8 +175,8 @@ def build_page(
     free = sets.get(plan.free_tilt) if plan.free_tilt != plan.reference else None
     if free is not None and records.get(plan.free_tilt, {}).get("status") != COMPLETED:
         t_free = float(free.attrs["final_time_s"])
-        locked = sets[plan.reference]
-        labels.append(f"{_label(plan, plan.reference, records)}, over 0 … {t_free:.4g} s")
+        locked = sets[plan.tilt_locked]
+        labels.append(f"{_label(plan, plan.tilt_locked, records)}, over 0 … {t_free:.4g} s")
         data.append(locked.sel(time=locked.time <= t_free + 1e-12))
         body.append(
             f"<p class='note'>The free-tilt run did not finish (t ≤ {t_free:.4g} s): the "
