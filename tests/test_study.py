@@ -166,6 +166,15 @@ def test_every_run_completes_and_equals_the_same_run_in_series(study):
     plan = events[0]
     assert plan["kind"] == "plan" and plan["reused"] == [] and len(plan["pending"]) == 8
     assert sorted(e["name"] for e in events if e["kind"] == "done") == sorted(runs["name"])
+    # two workers: the k-th run of the start order reports only once k - 1 runs have ended
+    from rollerdyn.study.schedule import _longest_first
+
+    position = {s.name: k for k, s in enumerate(_longest_first(result.plan.specs))}
+    ended = 0
+    for e in events:
+        ended += e["kind"] == "done"
+        if e["kind"] == "update":
+            assert position[e["name"]] < ended + 2, (e["name"], ended)
     # the 0 N run is B1 with the axial load changed, bit for bit
     ref = simulate(variant(**{"operating.axial_load": "0 N"}), t_end=T_END, threads=1)
     with xr.open_dataset(out / "runs" / "axial-0N.nc", engine="h5netcdf") as opened:

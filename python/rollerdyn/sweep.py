@@ -527,16 +527,12 @@ def connect(scheduler: Any, workers: int, timeout: float):
     each), the given Client, or a Client of the scheduler at an address;
     :class:`SweepError` if that cannot be reached. Shared with the studies
     (:mod:`rollerdyn.study.schedule`); the caller closes what it gets."""
-    import dask
     from distributed import Client, LocalCluster
 
     if scheduler is None:
-        # A worker takes its next task only when it is free (Dask's default of 1.1 gives a
-        # one-thread worker a second task at once): tasks start in their priority order.
-        with dask.config.set({"distributed.scheduler.worker-saturation": 1.0}):
-            cluster = LocalCluster(
-                n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
-            )
+        cluster = LocalCluster(
+            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
+        )
         return Client(cluster), cluster
     if isinstance(scheduler, Client):
         return scheduler, None

@@ -150,8 +150,14 @@ def run_all(
     topic = f"rollerdyn-study-{uuid.uuid4().hex}"
     try:
         client.subscribe_topic(topic, lambda event: emit({"kind": "update", **event[1]}))
-        futures, by_key = [], {}
-        for i, spec in enumerate(_longest_first(pending)):
+        queue = iter(_longest_first(pending))
+        by_key: dict[str, RunSpec] = {}
+
+        def submit_next():
+            """The next run of the queue as a task (None when all are submitted)."""
+            spec = next(queue, None)
+            if spec is None:
+                return None
             fut = client.submit(
                 execute,
                 spec,
@@ -161,12 +167,18 @@ def run_all(
                 (stop_rules or {}).get(spec.name),
                 pure=False,
                 retries=retries,
-                priority=len(pending) - i,  # started in this order
                 key=f"study-{spec.name}-{uuid.uuid4().hex[:8]}",
             )
-            futures.append(fut)
             by_key[fut.key] = spec
-        for fut in as_completed(futures):
+            return fut
+
+        # As many tasks as the cluster has threads, the next when one ends: Dask assigns a
+        # task to a worker when it is submitted, so submitting all at once would start
+        # them in another order than the queue's (measured on B1's study).
+        slots = sum(client.nthreads().values()) or len(pending)
+        started = [f for f in (submit_next() for _ in range(slots)) if f is not None]
+        running = as_completed(started)
+        for fut in running:
             spec = by_key[fut.key]
             try:
                 rec = fut.result()
@@ -174,6 +186,9 @@ def run_all(
                 rec = lost_record(spec, outdir, err)
             records[spec.name] = rec
             emit({"kind": "done", "name": spec.name, "record": rec})
+            following = submit_next()
+            if following is not None:
+                running.add(following)
     finally:
         try:
             client.unsubscribe_topic(topic)
