@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The main job: set up, check every model against published values, run the paper's whole
-# study of bearing B1 (sect. 5, figs. 8-14: axial loads 0, 500, 1000, 2000 N, the inner ring
-# locked and free to tilt, both contact detectors, the runtime over dt_max) on all cores,
+# study of bearing B1 (sect. 5, figs. 8-14: axial loads 0, 500, 1000, 2000 N with the point
+# and the distributed end-flange law, the inner ring locked and free to tilt, both contact
+# detectors, the runtime over dt_max) on all cores,
 # check the paper's findings, and draw B1's own figures and report.
 #   results/study/report.html     the study: every figure, the findings table, each run
 #   results/study/runs/*.nc       one netCDF result per run (xarray; SI units in attributes)

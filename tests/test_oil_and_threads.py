@@ -165,6 +165,18 @@ def test_no_equilibrium_is_a_clear_error_naming_the_residual_and_the_body() -> N
         simulate(cfg, t_end=0.001, threads=1)
 
 
+def test_no_equilibrium_with_the_distributed_law_says_the_statics_have_the_point_law() -> None:
+    # B1 at 3000 N axially runs whole with the distributed law from rest (docs/dynamics.md),
+    # but its equilibrium start is solved with the point law, which finds none there
+    cfg = parse_config(
+        _no_ramps(**{"operating.axial_load": "3 kN", "surfaces.flange_law": "distributed"})
+    )
+    with pytest.raises(ValueError, match=r"no equilibrium found at t = 0 s: .*") as err:
+        simulate(cfg, t_end=0.001, threads=1)
+    text = str(err.value)
+    assert "point law" in text and 'solver.start = "rest"' in text, text
+
+
 def test_a_case_that_cannot_start_is_reported_not_raised() -> None:
     cfg = variant(**{"operating.axial_load": "30 kN"})
     result = run_case(cfg, "equilibrium-500rpm", max_wall=10.0)

@@ -479,6 +479,7 @@ def same_contacts(c: _Context) -> Finding:
             "max |d penetration| loaded [m]": float(np.max(d_pen[loaded])),
             "max |d location| loaded [m]": float(np.max(d_loc[loaded])),
             "same pairing loaded": float(np.mean(same[loaded])),
+            "other pairing loaded": int(np.sum(loaded & ~same)),
         }
     )
     ok = (
@@ -494,7 +495,8 @@ def same_contacts(c: _Context) -> Finding:
         f"contacts (δ ≥ {LOADED:.0%} of δ_max and ≥ {LOADED_FORCE:g} N in both runs): max |Δδ| = "
         f"{values['max |d penetration| loaded [m]']:.3g} m, max |ΔP_m| = "
         f"{values['max |d location| loaded [m]']:.3g} m, the same pairing in "
-        f"{_pct(values['same pairing loaded'])}; {touching_text}; PASS needs, on the loaded "
+        f"{_pct(values['same pairing loaded'])} ({values['other pairing loaded']} in another); "
+        f"{touching_text}; PASS needs, on the loaded "
         "contacts, "
         f"|Δδ| ≤ {PENETRATION_TOL:.0%} of δ_max, |ΔP_m| ≤ {LOCATION_TOL:g} m and the same "
         "pairing",
