@@ -184,8 +184,7 @@ def paper_command(
     and 5.3) and both detectors at each Δt_max (fig. 14). Each is one Dask task on one
     core; progress is shown for the whole study. The findings table gives each of the
     paper's statements PASS, FAIL or NOT RUN (nothing to judge) with the numbers behind
-    it. Units: SI (s, N, N*m, m) unless a
-    column says otherwise.
+    it. Units: SI (s, N, N*m, m) unless a column says otherwise.
 
     Exit status: 0 when the study ran (runs that did not finish and findings that FAIL
     are results, in the tables); 1 when a run could not be run at all; 2 for bad input

@@ -41,7 +41,7 @@ DEFAULT_LOADS: tuple[float, ...] = (0.0, 500.0, 1000.0, 2000.0)
 DEFAULT_DT_MAX_FACTORS: tuple[float, ...] = (0.2, 0.5, 1.0)
 
 #: ``surfaces.flange_law``: the paper's point contact, and the distributed law that runs
-#: the free tilt (module doc).
+#: the free tilt and the loads the point law refuses (module doc).
 POINT_LAW, DISTRIBUTED_LAW = "point", "distributed"
 
 #: Wall-time cap of one run [s] (per invocation of the study).
