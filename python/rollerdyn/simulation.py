@@ -589,14 +589,33 @@ def _join(previous: xr.Dataset, continued: xr.Dataset) -> xr.Dataset:
     return joined
 
 
-def write(ds: xr.Dataset, path) -> None:
+#: Lossless compression of a result's numeric arrays: HDF5's byte shuffle and gzip at level
+#: 1. B1's whole run (1 289 outputs): 8.0 MB -> 4.7 MB, written in about 0.2 s instead of
+#: 0.1 s and read in 0.12 s instead of 0.09 s (level 4: 1 % smaller, 20 % slower).
+COMPRESSION = {"compression": "gzip", "compression_opts": 1, "shuffle": True}
+#: Arrays smaller than this [bytes] are stored as they are: a compressed array is stored in
+#: chunks, whose index costs a few kB per array (a result of 5 outputs: 113 kB plain,
+#: 166 kB with every array compressed).
+COMPRESS_FROM = 64 * 1024
+
+
+def write(ds: xr.Dataset, path, compress: bool = True) -> None:
     """Writes a result to netCDF (h5netcdf engine) atomically: to a temporary file beside
     ``path``, then renamed over it, so that ``path`` always holds a complete file (the
-    previous checkpoint's, if the process is killed while writing)."""
+    previous checkpoint's, if the process is killed while writing). Numeric arrays of at
+    least :data:`COMPRESS_FROM` bytes are compressed without loss (:data:`COMPRESSION`);
+    values read back are bit for bit the ones written. ``compress=False`` for the
+    checkpoints a run writes as it goes (B1 writes 13: compressing each would add about
+    1.5 s to a 40 s run); the final file is compressed."""
     path = os.fspath(path)
     tmp = f"{path}.tmp{os.getpid()}"
+    encoding = {
+        name: dict(COMPRESSION)
+        for name, var in ds.data_vars.items()
+        if compress and var.ndim > 0 and var.dtype.kind in "fiub" and var.nbytes >= COMPRESS_FROM
+    }
     try:
-        ds.to_netcdf(tmp, engine="h5netcdf")
+        ds.to_netcdf(tmp, engine="h5netcdf", encoding=encoding)
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):

@@ -146,7 +146,7 @@ def run(
 
     def checkpoint(partial) -> None:
         try:
-            write(partial, output)
+            write(partial, output, compress=False)  # the final write compresses
         except OSError as err:
             unsaved.append(err)
 

@@ -275,7 +275,7 @@ def execute(
             return bool(done) or now - started > max_wall
 
         def checkpoint(partial) -> None:
-            write(partial, path)
+            write(partial, path, compress=False)  # the final write compresses
             if stop_rule is not None and not done:
                 verdict = stop_rule(partial)
                 if verdict:
