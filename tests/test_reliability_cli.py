@@ -422,7 +422,7 @@ def test_force_reaches_simulate_and_a_failed_write_is_one_line(tmp_path, result,
     invoke("run", B1, "-o", tmp_path / "a.nc", "--force", code=0, says=("wrote",))
     assert seen == [False, True]
 
-    def failing(ds, path):
+    def failing(ds, path, **options):
         raise OSError(28, "No space left on device")
 
     monkeypatch.setattr(simulation, "write", failing)
