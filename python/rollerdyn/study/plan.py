@@ -142,10 +142,26 @@ def build_plan(
             meta(fa, cfg.inner_ring.tilt, dt0),
         )
 
+    law = {"surfaces.flange_law": DISTRIBUTED_LAW}
+
+    def add_distributed(fa: float | None) -> str:  # the distributed law at load fa
+        own_load = fa is None or fa == own_fa  # None: the configuration's own load
+        fa = own_fa if own_load else fa
+        return add(
+            f"{plan.reference}-{DISTRIBUTED_LAW}"
+            if own_load
+            else f"axial-{_fmt(fa)}N-{DISTRIBUTED_LAW}",
+            _variant(cfg, law if own_load else {**law, "operating.axial_load": fa}),
+            detector,
+            f"{_label_fa(fa)}, {tilt_text}, {DISTRIBUTED_LAW} flange law",
+            meta(fa, cfg.inner_ring.tilt, dt0),
+        )
+
     own = cfg.operating.axial_load
     own_fa = float(own) if isinstance(own, int | float) else None
     dt0 = cfg.solver.dt_max
     locked = cfg.inner_ring.tilt == "locked"
+    point_law = cfg.surfaces.flange_law == POINT_LAW
     tilt_text = "tilt locked" if locked else "tilt free"
     if cfg.inner_ring.misalignment:
         tilt_text = f"misaligned {math.degrees(cfg.inner_ring.misalignment):g} deg"
@@ -167,11 +183,22 @@ def build_plan(
             meta(own_fa, cfg.inner_ring.tilt, dt0),
         )
     plan.tilt_locked = plan.reference
-    if free_tilt:
-        if not locked:
-            plan.free_tilt = plan.reference
-        else:
-            _add_free_tilt(plan, cfg, add, meta(own_fa, "locked", dt0), tilt_text)
+    if free_tilt and not locked:
+        plan.free_tilt = plan.reference
+    elif free_tilt:  # figs. 8, 9: with the point law both runs with the distributed law
+        tilt = {"inner_ring.tilt": "free", "inner_ring.misalignment": 0.0}
+        suffix = law_text = ""
+        if point_law:
+            plan.tilt_locked = add_distributed(None)
+            tilt, suffix = {**tilt, **law}, f"-{DISTRIBUTED_LAW}"
+            law_text = f", {DISTRIBUTED_LAW} flange law"
+        plan.free_tilt = add(
+            f"free-tilt{suffix}",
+            _variant(cfg, tilt),
+            detector,
+            f"{_label_fa(own_fa)}, inner ring free to tilt{law_text}",
+            meta(own_fa, "free", dt0),
+        )
     # figs. 10-13: the highest load early (it may be the slowest), the rest after fig. 14's.
     series = sorted(set(loads) | ({own_fa} if own_fa is not None else set()))
     later = []
@@ -197,49 +224,11 @@ def build_plan(
     for fa in later:
         plan.loads[fa] = add_load(fa)
     plan.loads = dict(sorted(plan.loads.items()))
-    if distributed and cfg.surfaces.flange_law == POINT_LAW:
+    if distributed and point_law:
         for fa in sorted(plan.loads, reverse=True):  # the highest (slowest) load first
-            law = {"surfaces.flange_law": DISTRIBUTED_LAW}
-            own_load = fa == own_fa
-            plan.loads_distributed[fa] = add(
-                f"{plan.reference}-{DISTRIBUTED_LAW}"
-                if own_load
-                else f"axial-{_fmt(fa)}N-{DISTRIBUTED_LAW}",
-                _variant(cfg, law if own_load else {**law, "operating.axial_load": fa}),
-                detector,
-                f"F_a = {_fmt(fa)} N, {tilt_text}, {DISTRIBUTED_LAW} flange law",
-                meta(fa, cfg.inner_ring.tilt, dt0),
-            )
+            plan.loads_distributed[fa] = add_distributed(fa)
         plan.loads_distributed = dict(sorted(plan.loads_distributed.items()))
     return plan
-
-
-def _add_free_tilt(plan: Plan, cfg: BearingConfig, add, meta: dict, tilt_text: str) -> None:
-    """figs. 8, 9: the run with the inner ring free to tilt and the locked run it is
-    compared with (the configuration's own, or with the point law the distributed law's
-    locked run: see the module's doc)."""
-    fa = meta["axial_load [N]"]
-    fa_label = _label_fa(None if math.isnan(fa) else fa)
-    tilt = {"inner_ring.tilt": "free", "inner_ring.misalignment": 0.0}
-    suffix, law_text = "", ""
-    if cfg.surfaces.flange_law == POINT_LAW:
-        law = {"surfaces.flange_law": DISTRIBUTED_LAW}
-        suffix, law_text = f"-{DISTRIBUTED_LAW}", f", {DISTRIBUTED_LAW} flange law"
-        plan.tilt_locked = add(
-            f"{plan.reference}{suffix}",
-            _variant(cfg, law),
-            plan.config.solver.detector,
-            f"{fa_label}, {tilt_text}{law_text}",
-            meta,
-        )
-        tilt = {**tilt, **law}
-    plan.free_tilt = add(
-        f"free-tilt{suffix}",
-        _variant(cfg, tilt),
-        plan.config.solver.detector,
-        f"{fa_label}, inner ring free to tilt{law_text}",
-        {**meta, "tilt": "free"},
-    )
 
 
 def _label_fa(fa: float | None) -> str:

@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from ..names import GRADIENT
+from .plan import DISTRIBUTED_LAW
 from .runs import (
     ABSENT,
     FAILED,
@@ -94,7 +95,7 @@ def _longest_first(specs: Sequence[RunSpec]) -> list[RunSpec]:
         gradient = spec.detector == GRADIENT
         dt_max = (spec.data.get("solver") or {}).get("dt_max", math.inf) if gradient else 0.0
         law = (spec.data.get("surfaces") or {}).get("flange_law")
-        return (not gradient, law != "distributed", dt_max, i)
+        return (not gradient, law != DISTRIBUTED_LAW, dt_max, i)
 
     return [spec for _, spec in sorted(enumerate(specs), key=key)]
 
