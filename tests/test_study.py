@@ -133,6 +133,9 @@ def test_plan_holds_each_run_once_with_its_role():
     assert none.free_tilt is None and none.runtime == {}
     with pytest.raises(StudyError, match="--loads"):
         build_plan(load_b1(), 0.01, loads=(-5.0,))
+    # a load the configuration's rules refuse: the option, the field, the value, the rule
+    with pytest.raises(StudyError, match=r"^--loads: operating.axial_load: 1000000000.0 — must"):
+        build_plan(load_b1(), 0.01, loads=(1e9,))
     assert list(build_plan(load_b1(), 0.01, loads=()).loads) == [1000.0]  # its own load
     assert list(build_plan(load_b1(), 0.01, loads=()).loads) == [1000.0]  # its own load
 

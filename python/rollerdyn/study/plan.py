@@ -68,11 +68,25 @@ class Plan:
         return next(s for s in self.specs if s.name == name)
 
 
+#: The study's option behind each field its runs change.
+_OPTIONS = {"operating.axial_load": "--loads", "solver.dt_max": "--dt-max"}
+
+
 def _variant(cfg: BearingConfig, changes: dict) -> BearingConfig:
-    """``cfg`` with dotted-path changes (SI numbers), validated again."""
+    """``cfg`` with dotted-path changes (SI numbers), validated again; a change the
+    configuration's rules refuse raises :class:`StudyError` naming the option, the field,
+    the value and the rule."""
+    from ..config import ConfigError
     from ..sweep import changed
 
-    return parse_config(changed(cfg.model_dump(), changes), si_numbers=True)
+    try:
+        return parse_config(changed(cfg.model_dump(), changes), si_numbers=True)
+    except ConfigError as err:
+        problem = next(iter(err.problems or ()), None)
+        if problem is None:
+            raise StudyError(str(err).splitlines()[-1].strip()) from None
+        option = _OPTIONS.get(problem.path, "the study's change")
+        raise StudyError(f"{option}: {' '.join(str(problem).split())}") from None
 
 
 def _fmt(value: float) -> str:
