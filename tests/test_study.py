@@ -93,10 +93,16 @@ def _attrs(out: Path, name: str) -> dict:
 def test_plan_holds_each_run_once_with_its_role():
     plan = build_plan(load_b1(), 0.01)
     names = [s.name for s in plan.specs]
-    assert len(names) == len(set(names)) == 14
+    assert len(names) == len(set(names)) == 15
     assert plan.reference == "axial-1000N" and plan.loads[1000.0] == "axial-1000N"
     assert sorted(plan.loads) == [0.0, 500.0, 1000.0, 2000.0]
     assert plan.reference_gradient == "axial-1000N-gradient"
+    # the round-off twin: the reference with solver.atol changed in the tenth digit only
+    twin = plan.spec(plan.reference_twin)
+    assert plan.reference_twin == "axial-1000N-roundoff" and twin.detector == SEMI_ANALYTICAL
+    assert twin.data["solver"]["atol"] == pytest.approx(1e-9 * (1 + 1e-10), rel=1e-15)
+    assert twin.data["solver"]["atol"] != 1e-9
+    assert twin.meta["changes"] == "solver.atol: 1e-09 -> 1.0000000001e-09"
     # figs. 8, 9: B1's point law cannot run the free tilt; the pair runs the distributed law
     assert plan.free_tilt == "free-tilt-distributed"
     assert plan.tilt_locked == "axial-1000N-distributed"
@@ -130,7 +136,7 @@ def test_plan_holds_each_run_once_with_its_role():
         load_b1(), 0.01, loads=(0.0,), free_tilt=False, gradient=False, distributed=False
     )
     assert [s.name for s in none.specs] == ["axial-1000N", "axial-0N"]
-    assert none.free_tilt is None and none.runtime == {}
+    assert none.free_tilt is None and none.runtime == {} and none.reference_twin is None
     with pytest.raises(StudyError, match="--loads"):
         build_plan(load_b1(), 0.01, loads=(-5.0,))
     # a load the configuration's rules refuse: the option, the field, the value, the rule
@@ -163,11 +169,11 @@ def test_every_run_completes_and_equals_the_same_run_in_series(study):
     out, result, events = study
     runs = result.runs
     assert list(runs["name"]) == [s.name for s in result.plan.specs]
-    assert len(runs) == 8 and set(runs["status"]) == {"completed"}
+    assert len(runs) == 9 and set(runs["status"]) == {"completed"}
     assert set(runs["action"]) == {"ran"}
-    assert list(runs["reached [s]"]) == pytest.approx([T_END] * 8)
+    assert list(runs["reached [s]"]) == pytest.approx([T_END] * 9)
     plan = events[0]
-    assert plan["kind"] == "plan" and plan["reused"] == [] and len(plan["pending"]) == 8
+    assert plan["kind"] == "plan" and plan["reused"] == [] and len(plan["pending"]) == 9
     assert sorted(e["name"] for e in events if e["kind"] == "done") == sorted(runs["name"])
     # two workers: the k-th run of the start order reports only once k - 1 runs have ended
     from rollerdyn.study.schedule import _longest_first
@@ -195,7 +201,7 @@ def test_every_run_completes_and_equals_the_same_run_in_series(study):
 def test_findings_carry_the_numbers_of_the_runs(study):
     out, result, _ = study
     found = {f.key: f for f in result.findings}
-    assert len(found) == 11  # 8 and the 3 load checks on the distributed law's series
+    assert len(found) == 12  # 9 and the 3 load checks on the distributed law's series
     wall = {n: _attrs(out, n)["stats_total_seconds"] for n in result.runs["name"]}
     saving = 1.0 - wall["axial-1000N"] / wall["axial-1000N-gradient"]
     semi = found["semi_faster"]
@@ -470,6 +476,62 @@ def test_contact_comparison_passes_for_equal_contacts_and_fails_for_others(judge
     grazing = _check(judged, "same_contacts", contacts(2e-8, force=0.5))  # below 1 N
     assert grazing.status == NOT_RUN and "no contact carries load" in grazing.numbers
     assert grazing.values["max |d penetration| touching [m]"] == pytest.approx(2e-8)
+
+
+def test_kinematics_comparison_is_judged_against_the_round_off_twin(judged):
+    """The methods' runs pass where they differ no more than 3 times the round-off twin
+    differs from the reference, or within the absolute bounds (0.1 µm), else fail."""
+    plan, sets, _ = judged
+    azimuth = np.mod(sets["axial-1000N"].azimuth.values[0], 2 * np.pi)
+    top = int(np.argmax(np.abs(azimuth - np.pi)))  # a roller outside the load zone
+
+    def moved(gradient: float, twin: float):
+        def change(sets):
+            for name in ("axial-1000N-gradient", "axial-1000N-roundoff"):
+                sets[name] = sets["axial-1000N"].copy(deep=True)
+            for name, shift in (("axial-1000N-gradient", gradient), ("axial-1000N-roundoff", twin)):
+                sets[name]["position"][:, top, 0] += shift  # along the axis
+
+        return change
+
+    same = _check(judged, "same_kinematics", moved(0.0, 0.0))
+    assert same.status == PASS
+    assert same.values["measures"]["position_outside_full_speed"]["methods"] == 0.0
+    within_bound = _check(judged, "same_kinematics", moved(0.09e-6, 0.0))
+    assert within_bound.status == PASS  # 0.09 µm: within the absolute 0.1 µm
+    apart = _check(judged, "same_kinematics", moved(1e-6, 0.0))
+    assert apart.status == FAIL and "position_outside_full_speed" in apart.numbers
+    measures = apart.values["measures"]["position_outside_full_speed"]
+    assert measures["methods"] == pytest.approx(1e-6) and measures["bound"] == 1e-7
+    like_the_twin = _check(judged, "same_kinematics", moved(1e-6, 0.4e-6))
+    assert like_the_twin.status == PASS  # 1 µm within 3 x 0.4 µm
+    beyond_the_twin = _check(judged, "same_kinematics", moved(1e-6, 0.3e-6))
+    assert beyond_the_twin.status == FAIL  # 1 µm beyond 3 x 0.3 µm
+    no_twin = _check(judged, "same_kinematics", lambda sets: sets.pop("axial-1000N-roundoff"))
+    assert no_twin.status == NOT_RUN and "round-off twin" in no_twin.numbers
+
+
+def test_run_differences_split_a_shift_into_its_directions(judged):
+    """A roller moved along the circumference, the radius or the axis by a known length
+    shows that length in its own direction only (the measures of both comparisons)."""
+    from rollerdyn.study.agreement import differences
+
+    _, sets, _ = judged
+    a = sets["axial-1000N"]
+    psi = np.mod(a.azimuth.values, 2 * np.pi)  # from +y towards +z
+    for direction, unit in (
+        ("circumferential_full_speed", np.stack([0 * psi, -np.sin(psi), np.cos(psi)], axis=-1)),
+        ("radial_full_speed", np.stack([0 * psi, np.cos(psi), np.sin(psi)], axis=-1)),
+        ("axial_full_speed", np.stack([np.ones_like(psi), 0 * psi, 0 * psi], axis=-1)),
+    ):
+        b = a.copy(deep=True)
+        b["position"][:] = a.position.values + 2e-7 * unit
+        d = differences(a, b, full_speed=0.0)
+        for name in ("axial_full_speed", "radial_full_speed", "circumferential_full_speed"):
+            expected = 2e-7 if name == direction else 0.0
+            assert d[name] == pytest.approx(expected, abs=1e-15), (direction, name)
+        assert d["position_outside"] == pytest.approx(2e-7, rel=1e-9)
+        assert d["flange_force"] == 0.0 or math.isnan(d["flange_force"])
 
 
 def test_axial_force_check_uses_the_load_zone(judged):

@@ -19,6 +19,7 @@ from ..config import BearingConfig, TimeTable
 from ..names import GRADIENT, SEMI_ANALYTICAL
 from ..report_figures import pairing_shares
 from ..simulation import carried_axial_force
+from .agreement import MEASURES, differences
 from .plan import Plan
 from .runs import COMPLETED
 
@@ -44,6 +45,20 @@ LOADED_FORCE = 1.0
 PENETRATION_TOL = 0.01
 #: Largest distance between the methods' contact points that counts as equal [m].
 LOCATION_TOL = 1e-5
+#: The two methods' runs count as equal in kinematics, forces and torque where each of
+#: their differences is at most this many times the round-off twin's (plan.ROUNDOFF):
+#: three pairs of B1 runs that differ only in round-off (docs/dynamics.md, "Agreement of
+#: the two detectors") differ from one another by maxima that spread by up to 1.8 times
+#: (tilt at full speed), so a single twin's maxima can fall short of the methods' by that
+#: much without the methods differing.
+TWIN_FACTOR = 3.0
+#: ... or within these absolute bounds, which are met whatever the twin says: roller
+#: positions 0.1 µm [m], roller end-flange normal forces 1 % of the largest, mean torque
+#: at full speed 0.1 % (tilt and skew: 0.1 µm over half the roller's length, from the
+#: configuration).
+POSITION_TOL = 1e-7
+FLANGE_FORCE_TOL = 0.01
+TORQUE_TOL = 1e-3
 
 
 @dataclass
@@ -504,6 +519,82 @@ def same_contacts(c: _Context) -> Finding:
     )
 
 
+def _kinematics_bounds(cfg: BearingConfig) -> dict[str, float]:
+    """The absolute bounds of :func:`same_kinematics` per measure of
+    :data:`rollerdyn.study.agreement.MEASURES` (measures not named are not judged)."""
+    angle = POSITION_TOL / (0.5 * cfg.geometry.roller.length)
+    return {
+        "position_load_zone": POSITION_TOL,
+        "position_outside": POSITION_TOL,
+        "position_load_zone_full_speed": POSITION_TOL,
+        "position_outside_full_speed": POSITION_TOL,
+        "tilt_full_speed": angle,
+        "skew_full_speed": angle,
+        "flange_force": FLANGE_FORCE_TOL,
+        "torque_mean_full_speed": TORQUE_TOL,
+    }
+
+
+def _measure_text(key: str, value: float) -> str:
+    unit = MEASURES[key][1]
+    if not math.isfinite(value):
+        return "n/a"
+    if unit == "m":
+        return f"{value * 1e6:.3g} µm"
+    if unit == "rad":
+        return f"{value * 1e3:.3g} mrad"
+    return f"{100 * value:.3g} %"
+
+
+def same_kinematics(c: _Context) -> Finding:
+    statement = (
+        "The differences in the resultant forces and torques and the consequent kinematics "
+        "of both methods' runs are negligible (sect. 5.1): no larger than what a change of "
+        "round-off size alone makes of the run."
+    )
+    key = "same_kinematics"
+    semi, grad, twin = c.plan.reference, c.plan.reference_gradient, c.plan.reference_twin
+    a, b, t = c.ds(semi), c.ds(grad), c.ds(twin)
+    if grad is None or twin is None or a is None or b is None or t is None:
+        return Finding(key, statement, NOT_RUN, "no gradient run or no round-off twin")
+    final = abs(c.cfg.operating.final_inner_ring_speed)
+    turning = np.abs(a.ring_speed.values) >= FULL_SPEED * final if final > 0 else []
+    full_speed = float(a.time.values[np.argmax(turning)]) if np.any(turning) else math.inf
+    try:
+        methods = differences(a, b, full_speed)
+        roundoff = differences(a, t, full_speed)
+    except ValueError as error:
+        return Finding(key, statement, NOT_RUN, str(error))
+    judged, failed, parts = {}, [], []
+    for name, tol in _kinematics_bounds(c.cfg).items():
+        d, r = methods[name], roundoff[name]
+        if not math.isfinite(d):
+            continue
+        bound = max(TWIN_FACTOR * r if math.isfinite(r) else 0.0, tol)
+        judged[name] = {"methods": d, "round-off twin": r, "bound": bound}
+        text = f"{MEASURES[name][0]}: {_measure_text(name, d)} (twin {_measure_text(name, r)})"
+        parts.append(text)
+        if d > bound:
+            failed.append(name)
+    span = (
+        f"over 0 … {methods['t_end']:.4g} s{_mark(c.rec(semi), 'semi-analytical run ')}"
+        f"{_mark(c.rec(grad), 'gradient run ')}{_mark(c.rec(twin), 'round-off twin ')}"
+    )
+    if not judged:
+        return Finding(key, statement, NOT_RUN, f"{span}: nothing to compare")
+    exceeded = f"; over the bound: {', '.join(failed)}" if failed else ""
+    return _verdict(
+        key,
+        statement,
+        not failed,
+        f"{span}: methods against the round-off twin: {'; '.join(parts)}{exceeded}; PASS needs "
+        f"each within {TWIN_FACTOR:g} times the twin's, or within the absolute bounds (positions "
+        f"{POSITION_TOL * 1e6:g} µm, flange forces {FLANGE_FORCE_TOL:.0%} of the largest, mean "
+        f"torque {TORQUE_TOL:.1%})",
+        {"full speed from [s]": full_speed, "measures": judged},
+    )
+
+
 #: The checks of the axial-load series (the first of :data:`CHECKS`), also made on the
 #: distributed law's series when the configuration's law is the point law.
 LOAD_CHECKS: tuple[Callable[[_Context], Finding], ...] = (
@@ -520,6 +611,7 @@ CHECKS: tuple[Callable[[_Context], Finding], ...] = (
     semi_analytical_faster,
     advantage_shrinks,
     same_contacts,
+    same_kinematics,
 )
 
 

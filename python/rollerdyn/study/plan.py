@@ -14,7 +14,10 @@ each is for (its role), and their names and files.
   t = 0.066 s of 1.288 s in 600 s; docs/dynamics.md, "Free inner ring tilt"), and a
   locked run with the same law is what the free one is compared with;
 - sect. 5.1 and 5.3: the configuration's own run with the gradient detector (the same
-  contact points and penetrations? the MBS runtime of both methods);
+  contact points and penetrations? the MBS runtime of both methods), and its round-off
+  twin: the own run with ``solver.atol`` changed in the tenth digit (:data:`ROUNDOFF`),
+  which tells how far the run moves under a change of round-off size, the yardstick of
+  the two methods' differences in kinematics, forces and torque;
 - fig. 14: both detectors at each Δt_max (default 0.2, 0.5 and 1 times the
   configuration's ``solver.dt_max``).
 
@@ -44,6 +47,11 @@ DEFAULT_DT_MAX_FACTORS: tuple[float, ...] = (0.2, 0.5, 1.0)
 #: the free tilt and the loads the point law refuses (module doc).
 POINT_LAW, DISTRIBUTED_LAW = "point", "distributed"
 
+#: The round-off twin's relative change of ``solver.atol``: it changes the error norms,
+#: and so the step sizes, in the tenth digit, a difference of the size of the two
+#: detectors' round-off differences (docs/dynamics.md, "Agreement of the two detectors").
+ROUNDOFF = 1e-10
+
 #: Wall-time cap of one run [s] (per invocation of the study).
 DEFAULT_MAX_WALL = 600.0
 
@@ -60,6 +68,7 @@ class Plan:
     loads_distributed: dict[float, str] = field(default_factory=dict)
     reference: str = ""  # the configuration as it is (tilt locked, its detector)
     reference_gradient: str | None = None  # the same with the gradient detector
+    reference_twin: str | None = None  # the same with solver.atol changed by ROUNDOFF
     free_tilt: str | None = None  # the same with the inner ring free to tilt
     tilt_locked: str = ""  # the locked run of figs. 8, 9 (the free tilt's law)
     runtime: dict[float, dict[str, str]] = field(default_factory=dict)  # dt_max -> detector
@@ -105,7 +114,8 @@ def build_plan(
     """The runs of the paper study of ``config`` to ``t_end`` [s] (default: the
     configuration's end time); ``loads`` [N], ``dt_max`` [s] (default: 0.2, 0.5 and 1
     times ``solver.dt_max``; empty: no fig. 14 runs). ``gradient=False``: no run with the
-    gradient detector (so neither fig. 14 nor the comparison of the methods).
+    gradient detector (so neither fig. 14 nor the comparison of the methods, nor its
+    round-off twin).
     ``distributed=False``: no second load series with the distributed law. Raises
     :class:`StudyError` for values that make no run."""
     cfg = config
@@ -194,6 +204,13 @@ def build_plan(
             cfg,
             GRADIENT,
             f"{_label_fa(own_fa)}, {tilt_text}, gradient detector",
+            meta(own_fa, cfg.inner_ring.tilt, dt0),
+        )
+        plan.reference_twin = add(
+            f"{ref_name}-roundoff",
+            _variant(cfg, {"solver.atol": cfg.solver.atol * (1.0 + ROUNDOFF)}),
+            detector,
+            f"{_label_fa(own_fa)}, {tilt_text}, round-off twin (solver.atol × (1 + {ROUNDOFF:g}))",
             meta(own_fa, cfg.inner_ring.tilt, dt0),
         )
     plan.tilt_locked = plan.reference

@@ -1,0 +1,118 @@
+"""How far two runs of the same bearing drift apart, output by output: the roller
+positions (in the load zone and outside it, and split into axial, radial and
+circumferential), tilts and skews at full speed, the roller end-flange normal forces and
+the frictional torque (docs/dynamics.md, "Agreement of the two detectors in whole B1
+runs").
+
+Used on the semi-analytical and the gradient detector's runs of the paper study, and on the
+semi-analytical run and its round-off twin (the same configuration with ``solver.atol``
+changed in the tenth digit), which measures how far the run itself moves under a change of
+round-off size: a bound below which no comparison of two runs can go."""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+#: The speed ramp of B1 ends at 0.7 s; outputs from here on count as full speed [s]. Runs
+#: whose speed ramp ends later use their own end (:func:`differences`).
+FULL_SPEED = 0.75
+
+#: Half-width of the load zone about its centre (the roller azimuth pi: radial load along
+#: -y, azimuth measured from +y towards +z) [rad].
+LOAD_ZONE_HALF_WIDTH = np.radians(60.0)
+
+#: What :func:`differences` needs in each file.
+NEEDED = (
+    "time",
+    "azimuth",
+    "position",
+    "tilt",
+    "skew",
+    "flange_normal_force",
+    "frictional_torque",
+)
+
+#: The measures of :func:`differences`: key -> (what, unit of the value).
+MEASURES: dict[str, tuple[str, str]] = {
+    "position_load_zone": ("roller position in the load zone (±60°), whole run", "m"),
+    "position_outside": ("roller position outside the load zone, whole run", "m"),
+    "position_load_zone_full_speed": ("roller position in the load zone, full speed", "m"),
+    "position_outside_full_speed": ("roller position outside the load zone, full speed", "m"),
+    "axial_full_speed": ("any roller's position along the axis, full speed", "m"),
+    "radial_full_speed": ("any roller's position along the radius, full speed", "m"),
+    "circumferential_full_speed": (
+        "any roller's position along the circumference, full speed",
+        "m",
+    ),
+    "tilt_full_speed": ("roller tilt, full speed", "rad"),
+    "skew_full_speed": ("roller skew, full speed", "rad"),
+    "flange_force": ("roller end-flange normal force, of the largest", "-"),
+    "torque_mean_full_speed": ("mean frictional torque at full speed, relative", "-"),
+    "torque_full_speed": ("frictional torque output by output at full speed, of the largest", "-"),
+}
+
+
+def missing_variables(ds: xr.Dataset) -> list[str]:
+    """The variables :func:`differences` needs that ``ds`` lacks."""
+    return [name for name in NEEDED if name not in ds.variables]
+
+
+def common_outputs(a: xr.Dataset, b: xr.Dataset) -> int:
+    """How many leading outputs the two runs share (same times within 1e-12 s)."""
+    n = min(a.sizes["time"], b.sizes["time"])
+    same = np.isclose(a.time.values[:n], b.time.values[:n], rtol=0.0, atol=1e-12)
+    return n if same.all() else int(np.argmin(same))
+
+
+def differences(a: xr.Dataset, b: xr.Dataset, full_speed: float = FULL_SPEED) -> dict:
+    """The largest differences of :data:`MEASURES` between runs ``a`` and ``b`` over their
+    common outputs (NaN where no output qualifies, e.g. no full speed in a short run), with
+    ``"outputs"`` and ``"t_end"`` [s]: what was compared. Raises ``ValueError`` if the runs
+    have different roller counts or no common output."""
+    if a.sizes["roller"] != b.sizes["roller"]:
+        raise ValueError(f"the runs have {a.sizes['roller']} and {b.sizes['roller']} rollers")
+    n = common_outputs(a, b)
+    if n == 0:
+        raise ValueError("the runs share no output times")
+    a, b = a.isel(time=slice(0, n)), b.isel(time=slice(0, n))
+    t = a.time.values
+    azimuth = np.mod(a.azimuth.values, 2 * np.pi)
+    zone = np.abs(azimuth - np.pi) <= LOAD_ZONE_HALF_WIDTH
+    d = a.position.values - b.position.values  # (time, roller, xyz)
+    dist = np.linalg.norm(d, axis=2)
+    full = t >= full_speed
+    radial = np.stack([np.zeros_like(azimuth), np.cos(azimuth), np.sin(azimuth)], axis=2)
+    around = np.stack([np.zeros_like(azimuth), -np.sin(azimuth), np.cos(azimuth)], axis=2)
+    fz, fo = zone & full[:, None], ~zone & full[:, None]
+    fa = np.nan_to_num(a.flange_normal_force.values)
+    fb = np.nan_to_num(b.flange_normal_force.values)
+    largest = max(float(np.abs(fa).max()), float(np.abs(fb).max()))
+    ta, tb = a.frictional_torque.values, b.frictional_torque.values
+    out = {
+        "outputs": n,
+        "t_end": float(t[-1]),
+        "position_load_zone": _largest(dist[zone]),
+        "position_outside": _largest(dist[~zone]),
+        "position_load_zone_full_speed": _largest(dist[fz]),
+        "position_outside_full_speed": _largest(dist[fo]),
+        "axial_full_speed": _largest(np.abs(d[..., 0])[full]),
+        "radial_full_speed": _largest(np.abs((d * radial).sum(2))[full]),
+        "circumferential_full_speed": _largest(np.abs((d * around).sum(2))[full]),
+        "tilt_full_speed": _largest(np.abs(a.tilt.values - b.tilt.values)[full]),
+        "skew_full_speed": _largest(np.abs(a.skew.values - b.skew.values)[full]),
+        "flange_force": _largest(np.abs(fa - fb)) / largest if largest > 0 else np.nan,
+        "torque_mean_full_speed": np.nan,
+        "torque_full_speed": np.nan,
+    }
+    if full.any():
+        ma, mb = float(ta[full].mean()), float(tb[full].mean())
+        out["torque_mean_full_speed"] = abs(ma - mb) / abs(ma) if ma != 0 else np.nan
+        out["torque_full_speed"] = _largest(np.abs(ta - tb)[full]) / float(np.abs(ta).max())
+    return out
+
+
+def _largest(values: np.ndarray) -> float:
+    """The largest finite value, NaN if there is none."""
+    finite = values[np.isfinite(values)]
+    return float(finite.max()) if finite.size else np.nan
