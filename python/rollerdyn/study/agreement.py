@@ -6,8 +6,11 @@ runs").
 
 Used on the semi-analytical and the gradient detector's runs of the paper study, and on the
 semi-analytical run and its round-off twin (the same configuration with ``solver.atol``
-changed in the tenth digit), which measures how far the run itself moves under a change of
-round-off size: a bound below which no comparison of two runs can go."""
+changed in the tenth digit): the twin's error norms differ in their last digits, so sooner
+or later one of its steps does, and from there it follows another sequence of steps within
+the same tolerances. How far it then drifts is how far the integration at those
+tolerances leaves the motion undetermined, a bound below which no comparison of two runs
+can go."""
 
 from __future__ import annotations
 
@@ -68,7 +71,9 @@ def common_outputs(a: xr.Dataset, b: xr.Dataset) -> int:
 def differences(a: xr.Dataset, b: xr.Dataset, full_speed: float = FULL_SPEED) -> dict:
     """The largest differences of :data:`MEASURES` between runs ``a`` and ``b`` over their
     common outputs (NaN where no output qualifies, e.g. no full speed in a short run), with
-    ``"outputs"`` and ``"t_end"`` [s]: what was compared. Raises ``ValueError`` if the runs
+    ``"outputs"`` and ``"t_end"`` [s]: what was compared, and ``"flange_force_largest"``
+    [N]: the largest roller end-flange normal force of either run, which ``"flange_force"``
+    is relative to. Raises ``ValueError`` if the runs
     have different roller counts or no common output."""
     if a.sizes["roller"] != b.sizes["roller"]:
         raise ValueError(f"the runs have {a.sizes['roller']} and {b.sizes['roller']} rollers")
@@ -102,6 +107,7 @@ def differences(a: xr.Dataset, b: xr.Dataset, full_speed: float = FULL_SPEED) ->
         "tilt_full_speed": _largest(np.abs(a.tilt.values - b.tilt.values)[full]),
         "skew_full_speed": _largest(np.abs(a.skew.values - b.skew.values)[full]),
         "flange_force": _largest(np.abs(fa - fb)) / largest if largest > 0 else np.nan,
+        "flange_force_largest": largest,
         "torque_mean_full_speed": np.nan,
         "torque_full_speed": np.nan,
     }

@@ -16,8 +16,9 @@ each is for (its role), and their names and files.
 - sect. 5.1 and 5.3: the configuration's own run with the gradient detector (the same
   contact points and penetrations? the MBS runtime of both methods), and its round-off
   twin: the own run with ``solver.atol`` changed in the tenth digit (:data:`ROUNDOFF`),
-  which tells how far the run moves under a change of round-off size, the yardstick of
-  the two methods' differences in kinematics, forces and torque;
+  which takes another sequence of steps within the same tolerances and so tells how far
+  the integration leaves the motion undetermined, the yardstick of the two methods'
+  differences in kinematics, forces and torque;
 - fig. 14: both detectors at each Δt_max (default 0.2, 0.5 and 1 times the
   configuration's ``solver.dt_max``).
 
@@ -47,9 +48,10 @@ DEFAULT_DT_MAX_FACTORS: tuple[float, ...] = (0.2, 0.5, 1.0)
 #: the free tilt and the loads the point law refuses (module doc).
 POINT_LAW, DISTRIBUTED_LAW = "point", "distributed"
 
-#: The round-off twin's relative change of ``solver.atol``: it changes the error norms,
-#: and so the step sizes, in the tenth digit, a difference of the size of the two
-#: detectors' round-off differences (docs/dynamics.md, "Agreement of the two detectors").
+#: The round-off twin's relative change of ``solver.atol``: it changes the error norms in
+#: their last digits, as the two detectors' contact results differ in theirs, and so,
+#: sooner or later, a step (docs/dynamics.md, "How far a run moves when only its steps
+#: change").
 ROUNDOFF = 1e-10
 
 #: Wall-time cap of one run [s] (per invocation of the study).
