@@ -59,7 +59,8 @@ def statics_command(
     The inner ring's and every roller's equilibrium under the case's radial load (along
     -y), axial load (+x), tilting moment or prescribed misalignment, at its speed
     (centrifugal forces), with the dynamic model's contact laws: race slices (eq. 11) and
-    roller end / flange contacts by the semi-analytical detector. Prints the ring's
+    roller end / flange contacts by the semi-analytical detector, with the configuration's
+    surfaces.flange_law (the paper's point contact or the distributed overlap). Prints the ring's
     displacement, the heaviest roller, the load zone, the stiffness and the rating lives
     (ISO 281 L_10, ISO/TS 16281 L_10r and L_nmr, in 10^6 revolutions).
     """

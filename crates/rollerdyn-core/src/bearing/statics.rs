@@ -28,32 +28,18 @@ const USE_DISTRIBUTED: &str = "the paper's point contact jumps across the flat e
     there and a run's steps collapse (docs/dynamics.md, \"Why the steps collapse at 2000 N\"); \
     use surfaces.flange_law = \"distributed\"";
 
-/// Why a distributed-law run's equilibrium start can fail where its run from rest does not.
-const STATICS_HAVE_THE_POINT_LAW: &str = " (the equilibrium has the paper's point law at the \
-    flanges, also with surfaces.flange_law = \"distributed\", and the point law finds none \
-    once the roller end faces lie flat on the flanges, B1 above about 2.2 kN axially; the \
-    distributed law runs such loads from solver.start = \"rest\" with load ramps)";
-
 impl BearingModel {
     /// The state of steady rolling at time `t` whose positions balance the normal forces
-    /// (module doc). Where there is no equilibrium (a load larger than the bearing can
-    /// carry) the error names the load level reached, the residual and the body.
-    ///
-    /// The equilibrium has the paper's point law at the flanges whatever
-    /// `surfaces.flange_law` says (docs/dynamics.md); with the distributed law the error
-    /// says so, since that law's run may carry a load the point law's statics cannot.
+    /// (module doc), with the configuration's end–flange law. Where there is no
+    /// equilibrium (a load larger than the bearing can carry) the error names the load
+    /// level reached, the residual and the body.
     pub fn equilibrium_state(&self, t: f64) -> Result<Vec<f64>> {
         let case = StaticCase::at_time(&self.params, t);
         let solution = self.statics(&case, None).map_err(|e| {
-            let law = if self.params.flange_law == FlangeLaw::Distributed {
-                STATICS_HAVE_THE_POINT_LAW
-            } else {
-                ""
-            };
             Error::invalid(
                 "solver.start",
                 "equilibrium",
-                format!("no equilibrium found at t = {t} s: {e}{law}"),
+                format!("no equilibrium found at t = {t} s: {e}"),
             )
         })?;
         Ok(self.steady_state(&solution))

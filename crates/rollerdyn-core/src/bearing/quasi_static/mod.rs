@@ -7,7 +7,9 @@
 //! * race contacts by slices (eq. 11 per slice, the roller's crowning in the slice radii,
 //!   the roller's tilt in the slice penetrations);
 //! * roller end–flange contacts by the semi-analytical detector with pruning (sect. 2.1,
-//!   5.3) and the curvature blended across patch borders, Hertz by Brewe–Hamrock (eqs. 5–8);
+//!   5.3) and the curvature blended across patch borders, Hertz by Brewe–Hamrock (eqs. 5–8),
+//!   or with the distributed flange law (not in the paper) the whole overlap on its
+//!   Winkler foundation ([`crate::contact::distributed`], [`crate::tribology::foundation`]);
 //! * centrifugal force and the gyroscopic moment of the roller's steady motion (the roller
 //!   set orbits at the epicyclic speed ω_c = Ω(1 − D/d_m)/2 and each roller spins relative
 //!   to it at ω_s = −(Ω − ω_c) r_i/r, Harris & Kotzalas sect. 8.2), and gravity.

@@ -1,16 +1,21 @@
 //! One roller of the quasi-static analysis: its pose from its unknowns, and the normal
 //! forces of its contacts with the two races (slices, eq. 11) and the four flanges
-//! (semi-analytical detection, Hertz by Brewe–Hamrock, eqs. 5–8), as a wrench on the roller
-//! and a wrench on the inner ring about the ring's centre.
+//! (semi-analytical detection, Hertz by Brewe–Hamrock, eqs. 5–8, or the distributed
+//! overlap), as a wrench on the roller and a wrench on the inner ring about the ring's
+//! centre.
 
 use crate::bearing::contacts::Wrench;
 use crate::bearing::model::{BearingModel, LineContact};
+use crate::bearing::params::FlangeLaw;
 use crate::bearing::state::Kinematics;
-use crate::contact::{border, pruning, Contact, Pairing};
+use crate::contact::{border, distributed, pruning, Contact, Pairing};
+use crate::geometry::end_flange::{Flange, RollerEnd};
 use crate::geometry::primitives::Vec3;
+use crate::tribology::foundation;
 use crate::tribology::hertz::{
     line_half_width, line_max_pressure, EllipticalContact, EllipticalMethod,
 };
+use std::f64::consts::PI;
 
 /// Unknowns per roller: radial offset, axial position, tilt.
 pub const ROLLER_UNKNOWNS: usize = 3;
@@ -204,7 +209,10 @@ impl BearingModel {
             .collect()
     }
 
-    /// The normal force of roller end k against flange k of `race`, added to `out`.
+    /// The normal force of roller end k against flange k of `race`, added to `out`: the
+    /// paper's point contact (Hertz at the detected point), or with
+    /// `surfaces.flange_law = "distributed"` the whole overlap on its Winkler foundation at
+    /// the load's centre, as in the dynamic model ([`crate::bearing::flange_contacts`]).
     fn flange_load(
         &self,
         k: usize,
@@ -215,8 +223,15 @@ impl BearingModel {
     ) -> FlangeLoad {
         let end = self.roller_end(k, roller);
         let flange = self.flange(k, race);
+        let distributed = self.params.flange_law == FlangeLaw::Distributed;
+        // The distributed law carries across gaps within the asperities' reach.
+        let reach = if distributed {
+            self.asperities().reach()
+        } else {
+            0.0
+        };
         let Some(found) =
-            pruning::composite_within_bounds(&end, &flange, &self.flange_bounds[k], 0.0)
+            pruning::composite_within_bounds(&end, &flange, &self.flange_bounds[k], reach)
         else {
             return FlangeLoad {
                 penetration: f64::NAN,
@@ -224,32 +239,69 @@ impl BearingModel {
             };
         };
         let c: Contact = border::blend(&found, &end, &flange, &self.params.options.border_bands);
-        let mut load = FlangeLoad {
+        let load = FlangeLoad {
             penetration: c.penetration,
+            pairing: Pairing::ALL.iter().position(|q| *q == c.pairing),
             ..Default::default()
         };
-        if !(c.valid && c.penetration > 0.0 && c.rx > 0.0 && c.ry > 0.0 && c.ry.is_finite()) {
-            return load;
+        let placed = if distributed {
+            self.distributed_flange_load(k, &end, &flange, &c)
+        } else {
+            point_flange_load(&c, self.ellipse.e_prime)
+        };
+        let Some((force, pressure, location, normal)) = placed else {
+            return FlangeLoad {
+                pairing: None,
+                ..load
+            };
+        };
+        add_force(out, force * normal, &location, roller, ring, k < 2);
+        FlangeLoad {
+            force,
+            pressure,
+            ..load
         }
-        let hertz = EllipticalContact::new(
-            c.rx,
-            c.ry,
-            self.ellipse.e_prime,
-            EllipticalMethod::BreweHamrock,
-        );
-        load.force = hertz.force(c.penetration);
-        load.pressure = hertz.at_force(load.force).max_pressure;
-        load.pairing = Pairing::ALL.iter().position(|q| *q == c.pairing);
-        add_force(
-            out,
-            load.force * c.normal,
-            &c.location(),
-            roller,
-            ring,
-            k < 2,
-        );
-        load
     }
+
+    /// The distributed law's load of `end` on flange k (detected contact `c`): (force,
+    /// pressure p₀ of the ellipse of the load's second moments, centre, normal), None where
+    /// nothing is carried.
+    fn distributed_flange_load(
+        &self,
+        k: usize,
+        end: &RollerEnd,
+        flange: &Flange,
+        c: &Contact,
+    ) -> Option<(f64, f64, Vec3, Vec3)> {
+        let asperities = self.asperities();
+        // (NaN penetration: no contact found, nothing carried)
+        if c.penetration.is_nan() || c.penetration <= -asperities.reach() {
+            return None;
+        }
+        let overlap = distributed::integrate(end, flange, &c.p1, asperities, false)?;
+        let force = foundation::foundation_force(
+            self.foundation_modulus[usize::from(k >= 2)],
+            overlap.volume,
+        );
+        if force.is_nan() || force <= 0.0 {
+            return None;
+        }
+        let (a, b) = overlap.semi_axes;
+        let pressure = 1.5 * force / (PI * a.max(1e-12) * b.max(1e-12));
+        Some((force, pressure, overlap.centre, overlap.normal))
+    }
+}
+
+/// The paper's point law at the detected contact `c`: (Hertz force by Brewe–Hamrock,
+/// p₀, contact point, normal), None where it carries nothing.
+fn point_flange_load(c: &Contact, e_prime: f64) -> Option<(f64, f64, Vec3, Vec3)> {
+    if !(c.valid && c.penetration > 0.0 && c.rx > 0.0 && c.ry > 0.0 && c.ry.is_finite()) {
+        return None;
+    }
+    let hertz = EllipticalContact::new(c.rx, c.ry, e_prime, EllipticalMethod::BreweHamrock);
+    let force = hertz.force(c.penetration);
+    let pressure = hertz.at_force(force).max_pressure;
+    Some((force, pressure, c.location(), c.normal))
 }
 
 /// Adds the force `f` on the roller at `p` (and, when the race is the inner ring's, −f on

@@ -458,8 +458,27 @@ impl<'a> Problem<'a> {
     }
 
     /// The equilibrium from `start` (or from [`Self::guess`]): by the fast path
-    /// ([`Self::newton`]), and where that fails, by the careful one.
+    /// ([`Self::newton`]), and where that fails, by the careful one. A `start` (another
+    /// case's solution, e.g. a sweep's neighbour) that leads to none is dropped for the
+    /// guess: the continuation from it runs in this case's load from zero, far from the
+    /// neighbour's state (B1 swept from 0 to 1000 N axially found no equilibrium at 1000 N
+    /// from the 0 N solution, and one from the guess).
     pub(super) fn solve(
+        &mut self,
+        start: Option<Vec<f64>>,
+    ) -> Result<(Vec<f64>, DVector<f64>, usize)> {
+        if start.is_none() {
+            return self.solve_by_both_paths(None);
+        }
+        self.solve_by_both_paths(start).or_else(|_| {
+            self.careful = false;
+            self.roller_jacobians.iter_mut().for_each(|j| *j = None);
+            self.solve_by_both_paths(None)
+        })
+    }
+
+    /// [`Self::solve`] from `start` by the fast path, then the careful one.
+    fn solve_by_both_paths(
         &mut self,
         start: Option<Vec<f64>>,
     ) -> Result<(Vec<f64>, DVector<f64>, usize)> {
