@@ -47,10 +47,11 @@ PENETRATION_TOL = 0.01
 LOCATION_TOL = 1e-5
 #: The two methods' runs count as equal in kinematics, forces and torque where each of
 #: their differences is at most this many times the round-off twin's (plan.ROUNDOFF):
-#: three pairs of B1 runs that differ only in round-off (docs/dynamics.md, "Agreement of
-#: the two detectors") differ from one another by maxima that spread by up to 1.8 times
-#: (the load zone's positions and the tilt at full speed), so a single twin's maxima can
-#: fall short of the methods' by that much without the methods differing.
+#: five pairs of whole B1 runs that differ in the last digits only (two atol twins, the
+#: two detectors; docs/dynamics.md, "How far a run moves when only its steps change")
+#: differ by maxima that spread by up to 1.8 times (the load zone's positions and the tilt
+#: at full speed), so a single twin's maxima can fall short of the methods' by that much
+#: without the methods differing.
 TWIN_FACTOR = 3.0
 #: ... or within these absolute bounds, which are met whatever the twin says: roller
 #: positions 0.1 µm [m], roller end-flange normal forces 1 % of the largest, mean torque
