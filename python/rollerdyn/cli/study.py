@@ -149,7 +149,8 @@ def paper_command(
         typer.Option(
             "--gradient/--no-gradient",
             help="Run the gradient detector too (sect. 5.1 contact points, sect. 5.3 MBS "
-            "runtime, fig. 14).",
+            "runtime, fig. 14), and the round-off twin of the configuration's run "
+            "(solver.atol x (1 + 1e-10)) that its differences in kinematics are judged against.",
         ),
     ] = True,
     distributed: Annotated[
@@ -181,7 +182,9 @@ def paper_command(
     with the point law also with the distributed flange law), with the inner ring free to
     tilt (figs. 8, 9; with the point law both runs of that pair with the distributed law),
     with the gradient detector (contact points and penetrations, MBS runtime, sect. 5.1
-    and 5.3) and both detectors at each Δt_max (fig. 14). Each is one Dask task on one
+    and 5.3), its round-off twin (solver.atol changed in the tenth digit: how far a run
+    moves when only its steps change, the yardstick of the detectors' differences) and
+    both detectors at each Δt_max (fig. 14). Each is one Dask task on one
     core; progress is shown for the whole study. The findings table gives each of the
     paper's statements PASS, FAIL or NOT RUN (nothing to judge) with the numbers behind
     it. Units: SI (s, N, N*m, m) unless a column says otherwise.
