@@ -19,7 +19,7 @@ from ..config import BearingConfig, TimeTable
 from ..names import GRADIENT, SEMI_ANALYTICAL
 from ..report_figures import pairing_shares
 from ..simulation import carried_axial_force
-from .agreement import MEASURES, differences
+from .agreement import MEASURES, common_outputs, differences
 from .plan import Plan
 from .runs import COMPLETED
 
@@ -441,11 +441,8 @@ def same_contacts(c: _Context) -> Finding:
     a, b = c.ds(c.plan.reference), c.ds(c.plan.reference_gradient)
     if c.plan.reference_gradient is None or a is None or b is None:
         return Finding("same_contacts", statement, NOT_RUN, "no gradient run to compare with")
-    n = min(a.sizes["time"], b.sizes["time"])
-    ta, tb = a.time.values[:n], b.time.values[:n]
-    same = np.isclose(ta, tb, rtol=0.0, atol=1e-12)
-    if not same.all():  # compared up to the first output time that differs
-        n = int(np.argmin(same))
+    n = common_outputs(a, b)  # compared up to the first output time that differs
+    ta = a.time.values[:n]
     if n == 0:
         return Finding("same_contacts", statement, NOT_RUN, "the runs share no output times")
     da, db = a.flange_penetration.values[:n], b.flange_penetration.values[:n]
@@ -559,8 +556,8 @@ def same_kinematics(c: _Context) -> Finding:
     if grad is None or twin is None or a is None or b is None or t is None:
         return Finding(key, statement, NOT_RUN, "no gradient run or no round-off twin")
     final = abs(c.cfg.operating.final_inner_ring_speed)
-    turning = np.abs(a.ring_speed.values) >= FULL_SPEED * final if final > 0 else []
-    full_speed = float(a.time.values[np.argmax(turning)]) if np.any(turning) else math.inf
+    turning = (np.abs(a.ring_speed.values) >= FULL_SPEED * final) & (final > 0)
+    full_speed = float(a.time.values[np.argmax(turning)]) if turning.any() else math.inf
     try:
         methods = differences(a, b, full_speed)
         roundoff = differences(a, t, full_speed)

@@ -102,11 +102,10 @@ impl BearingModel {
         k: usize,
     ) -> EndGeometry {
         let contact = self.end_contact(end, flange, roller, k);
-        let asperities = self.asperities();
         let overlap = match (self.params.flange_law, &contact) {
-            (FlangeLaw::Distributed, Some(c)) if c.penetration > -asperities.reach() => {
+            (FlangeLaw::Distributed, Some(c)) => {
                 let start = self.profiler.stopwatch();
-                let overlap = distributed::integrate(end, flange, &c.p1, asperities, false);
+                let overlap = self.overlap(end, flange, c, false);
                 self.profiler.spend_time(start, |pr, t| pr.detection += t);
                 overlap
             }
@@ -117,6 +116,24 @@ impl BearingModel {
             overlap,
             foundation_modulus: self.foundation_modulus[usize::from(k >= 2)],
         }
+    }
+
+    /// The whole overlap of `end` on `flange` ([`distributed::integrate`], with the energy
+    /// integral if `energy`) from the detected contact `c`, when `c` lies within the
+    /// asperities' reach (None beyond it, or where nothing is carried): the one place the
+    /// run, its energy check and the statics take the distributed law's overlap from.
+    pub(crate) fn overlap(
+        &self,
+        end: &RollerEnd,
+        flange: &Flange,
+        c: &Contact,
+        energy: bool,
+    ) -> Option<DistributedOverlap> {
+        let asperities = self.asperities();
+        // (a NaN penetration, no contact found, compares false: nothing carried)
+        (c.penetration > -asperities.reach())
+            .then(|| distributed::integrate(end, flange, &c.p1, asperities, energy))
+            .flatten()
     }
 
     /// The roughness of the roller ends and flanges as the distributed law sees it.
@@ -136,10 +153,8 @@ impl BearingModel {
         roller: &Kinematics,
     ) -> f64 {
         let (end, flange) = (self.roller_end(k, roller), self.flange(k, ring));
-        let asperities = self.asperities();
         self.end_contact(&end, &flange, i, k)
-            .filter(|c| c.penetration > -asperities.reach())
-            .and_then(|c| distributed::integrate(&end, &flange, &c.p1, asperities, true))
+            .and_then(|c| self.overlap(&end, &flange, &c, true))
             .map_or(0.0, |o| {
                 foundation::foundation_energy(
                     self.foundation_modulus[usize::from(k >= 2)],

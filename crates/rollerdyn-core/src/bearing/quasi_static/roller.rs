@@ -8,7 +8,7 @@ use crate::bearing::contacts::Wrench;
 use crate::bearing::model::{BearingModel, LineContact};
 use crate::bearing::params::FlangeLaw;
 use crate::bearing::state::Kinematics;
-use crate::contact::{border, distributed, pruning, Contact, Pairing};
+use crate::contact::{border, pruning, Contact, Pairing};
 use crate::geometry::end_flange::{Flange, RollerEnd};
 use crate::geometry::primitives::Vec3;
 use crate::tribology::foundation;
@@ -272,12 +272,7 @@ impl BearingModel {
         flange: &Flange,
         c: &Contact,
     ) -> Option<(f64, f64, Vec3, Vec3)> {
-        let asperities = self.asperities();
-        // (NaN penetration: no contact found, nothing carried)
-        if c.penetration.is_nan() || c.penetration <= -asperities.reach() {
-            return None;
-        }
-        let overlap = distributed::integrate(end, flange, &c.p1, asperities, false)?;
+        let overlap = self.overlap(end, flange, c, false)?;
         let force = foundation::foundation_force(
             self.foundation_modulus[usize::from(k >= 2)],
             overlap.volume,
