@@ -36,7 +36,55 @@ fn b1_shaped() -> (Vec<f64>, usize) {
     (a, n)
 }
 
+/// A mechanical Newton matrix I − hγJ of B1's shape, J = [[0, I], [K, C]]: 17 rollers
+/// and the inner ring, 3 positions and 3 velocities each (q' = v), the velocities coupled
+/// to the neighbours' and the ring's states (K/m about 1e11 1/s², C/m 1e3 1/s, hγ = 1e-5 s).
+fn mechanical() -> (Vec<f64>, usize) {
+    let (rollers, bodies) = (17, 18);
+    let n = 6 * bodies;
+    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let coupled = |a: usize, b: usize| {
+        a == 0 || b == 0 || a == b || a % rollers + 1 == b || b % rollers + 1 == a
+    };
+    let mut a = vec![0.0; n * n];
+    for j in 0..n {
+        for i in 0..n {
+            let (bi, bj, li, lj) = (i / 6, j / 6, i % 6, j % 6);
+            let jac = if li < 3 {
+                f64::from(u8::from(bi == bj && lj == li + 3))
+            } else if coupled(bi, bj) && next() < 0.8 {
+                (if lj < 3 { 1e11 } else { 1e3 }) * (next() - 0.5)
+            } else {
+                0.0
+            };
+            a[j * n + i] = f64::from(u8::from(i == j)) - 1e-5 * jac;
+        }
+    }
+    (a, n)
+}
+
 fn lu(c: &mut Criterion) {
+    let (m, n_m) = mechanical();
+    c.bench_function(
+        "sparse LU: mechanical 108 states, positions condensed",
+        |b| b.iter(|| SparseSkipLu::default().factorise(black_box(&m), n_m)),
+    );
+    c.bench_function(
+        "sparse LU: mechanical 108 states, partial pivoting only",
+        |b| {
+            b.iter(|| {
+                let mut lu = SparseSkipLu::default();
+                lu.partial_pivoting_only = true;
+                lu.factorise(black_box(&m), n_m)
+            })
+        },
+    );
     let (a, n) = b1_shaped();
     c.bench_function("sparse LU: factorise in full, B1-shaped 193 states", |b| {
         b.iter(|| SparseSkipLu::default().factorise(black_box(&a), n))

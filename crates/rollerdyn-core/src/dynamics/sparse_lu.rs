@@ -7,26 +7,30 @@
 //! about 2 700 non-zeros (7 %), and diffsol's dense LU took 12 % of a run's samples (perf).
 //! Here the right-looking elimination of Golub & Van Loan (Matrix Computations, 4th ed.,
 //! algorithm 3.4.1, "Gaussian elimination with partial pivoting") updates only the rows with
-//! a non-zero multiplier and the columns with a non-zero pivot-row entry, and the states that
-//! couple to more than a quarter of all others are eliminated last (an arrow ordering), so
-//! that eliminating them first cannot fill the whole matrix: B1's factors have about 6 400
-//! non-zeros and take about 28 000 multiply-adds.
+//! a non-zero multiplier and the columns with a non-zero pivot-row entry. The positions of
+//! the mechanical system (rows with a few non-zeros, dominated by their diagonal) are
+//! eliminated first, on their diagonals ([`condensed_first`]: static condensation); the
+//! states that couple to more than a quarter of all others are eliminated last (an arrow
+//! ordering), so that eliminating them early cannot fill the whole matrix. Partial
+//! pivoting alone picked the velocity rows as the positions' pivots and took 280 000 to
+//! 740 000 multiply-adds on B1's Newton matrices at full speed; with the condensation the
+//! whole B1 run spends about 2.6 s instead of 7.4 s outside its right-hand sides and
+//! Jacobians (docs/performance-log.md, "Static condensation in the sparse LU").
 //!
 //! The elimination works in place, in the matrix diffsol assembles, and never moves a row:
-//! the pivot rows are recorded instead of interchanged (B1's columns nearly all pivot off
-//! the diagonal: a position's column has its largest entries in the velocity rows), and the
+//! the pivot rows are recorded instead of interchanged, and the
 //! structure of the rows and columns is kept in bit sets, so that after the one pass that
 //! finds the non-zeros no work is spent on zeros. The arithmetic on the non-zeros is that of
-//! the dense algorithm; the pivots are the largest in their column, so the stability is that
-//! of partial pivoting (GVL sect. 3.4.6). On B1 this takes about 90 µs.
+//! the dense algorithm; the pivots are the largest in their column, or for a condensed
+//! position the largest in its row, so the stability is that of partial pivoting (GVL
+//! sect. 3.4.6, by columns or by rows).
 //!
 //! Most Newton matrices differ from the one before only by the step size h (diffsol
 //! assembles a new one whenever h changes by 30 %, and keeps J for up to 50 steps). They have
 //! the same non-zeros, so the last elimination is replayed: the same pivot rows, the same
-//! structure and fill-in, with only the arithmetic done again (about 40 µs on B1), as long
-//! as each pivot stays within [`REPLAY_PIVOT_THRESHOLD`] of the largest entry of its column
-//! (threshold partial pivoting); else the matrix is factorised in full. On B1 at full speed
-//! about two in three factorisations are replays.
+//! structure and fill-in, with only the arithmetic done again, as long as each pivot stays
+//! within [`REPLAY_PIVOT_THRESHOLD`] of the largest entry of its column (of its row, for a
+//! condensed position: threshold partial pivoting); else the matrix is factorised in full.
 
 use diffsol_la::error::LinearSolverError;
 use diffsol_la::{
@@ -37,6 +41,11 @@ use diffsol_la::{
 /// Fraction of the states a state must couple to (in its row and column together) to be
 /// eliminated last.
 const GLOBAL_COUPLING: f64 = 0.25;
+
+/// A state whose row has at most this many non-zeros besides the diagonal, and whose
+/// diagonal is at least the sum of their magnitudes, is eliminated first, on its diagonal
+/// ([`condensed_first`]).
+const CONDENSED_ROW: usize = 8;
 
 /// A replayed elimination keeps its pivot where it is at least this fraction of the
 /// largest candidate in its column: threshold partial pivoting (Duff, Erisman & Reid,
@@ -101,6 +110,9 @@ struct Schedule {
     /// The elimination order and the pivot rows of the steps.
     order: Vec<usize>,
     pivot_rows: Vec<usize>,
+    /// Whether step k took its diagonal as pivot by the row test of [`condensed_first`]
+    /// (else: the largest of its column).
+    row_pivot: Vec<bool>,
     /// The step at which each row became a pivot row.
     step_of_row: Vec<usize>,
     /// Step k: the rows of the pivot column not pivoted before it, ascending (the pivot
@@ -193,6 +205,9 @@ pub struct SparseSkipLu {
     /// Factorisations done by replaying the schedule, and in full.
     replays: usize,
     full: usize,
+    /// Partial pivoting throughout, no state eliminated first on its diagonal
+    /// ([`condensed_first`]): for comparison only (tests, `benches/linear.rs`).
+    pub partial_pivoting_only: bool,
 }
 
 impl SparseSkipLu {
@@ -215,6 +230,18 @@ impl SparseSkipLu {
     /// Factorisations so far: (by replaying the last elimination, in full).
     pub fn counts(&self) -> (usize, usize) {
         (self.replays, self.full)
+    }
+
+    /// Multiply-adds of the last elimination's updates (what a replay costs).
+    pub fn elimination_cost(&self) -> usize {
+        let sc = &self.schedule;
+        (0..sc.pivot_rows.len())
+            .map(|k| {
+                let rows = sc.candidate_start[k + 1] - sc.candidate_start[k];
+                let columns = sc.column_start[k + 1] - sc.column_start[k];
+                (rows - 1) * columns
+            })
+            .sum()
     }
 
     /// Factorises `a` (n × n, column-major) by replaying the last full elimination if `a`
@@ -247,7 +274,13 @@ impl SparseSkipLu {
         let nw = words(n);
         find_pattern(a, n, &mut w.pattern);
         structure_of(n, w);
-        sc.order = arrow_order_of(&w.row_bits, &w.column_bits, n, &mut w.coupling);
+        let arrow = arrow_order_of(&w.row_bits, &w.column_bits, n, &mut w.coupling);
+        let condensed = if self.partial_pivoting_only {
+            sc.order = arrow;
+            0
+        } else {
+            condensed_first(a, n, &w.row_bits, arrow, &mut sc.order)
+        };
         for bits in [&mut w.pivoted, &mut w.eliminated, &mut w.updated] {
             bits.clear();
             bits.resize(nw, 0);
@@ -255,6 +288,7 @@ impl SparseSkipLu {
         sc.step_of_row.clear();
         sc.step_of_row.resize(n, usize::MAX);
         sc.pivot_rows.clear();
+        sc.row_pivot.clear();
         for list in [&mut sc.candidates, &mut sc.columns] {
             list.clear();
         }
@@ -269,7 +303,15 @@ impl SparseSkipLu {
                 &w.column_bits[c * nw..(c + 1) * nw],
                 &w.pivoted,
             ));
-            let Some(p) = pivot_row(a, n, c, &sc.candidates[from..], !is_set(&w.pivoted, c)) else {
+            let row_pivot = k < condensed
+                && !is_set(&w.pivoted, c)
+                && dominates_its_row(a, n, c, &w.row_bits[c * nw..(c + 1) * nw], &w.eliminated);
+            let pivot = if row_pivot {
+                Some(c)
+            } else {
+                pivot_row(a, n, c, &sc.candidates[from..], !is_set(&w.pivoted, c))
+            };
+            let Some(p) = pivot else {
                 sc.pattern.clear();
                 self.factors = Factors {
                     n,
@@ -280,6 +322,7 @@ impl SparseSkipLu {
             };
             sc.candidate_start.push(sc.candidates.len());
             sc.pivot_rows.push(p);
+            sc.row_pivot.push(row_pivot);
             sc.step_of_row[p] = k;
             set(&mut w.pivoted, p);
             eliminate(a, n, c, p, w, sc);
@@ -404,6 +447,54 @@ fn arrow_order_of(
     order
 }
 
+/// Puts first, into `order`, the states of `arrow` whose rows have at most
+/// [`CONDENSED_ROW`] non-zeros besides the diagonal and are diagonally dominant
+/// (|a_ii| ≥ Σ_{j≠i} |a_ij|), the rest after them as `arrow` has them; returns how many
+/// were put first.
+///
+/// Such rows are those of the positions of a mechanical system, q' = v: in the Newton
+/// matrix I − hγJ a position's row holds 1 and the −hγ of its velocities, while its
+/// column holds the stiffness hγ·∂a/∂q of every body it touches, which partial pivoting
+/// would pick as pivots (and fill the matrix with). Eliminated first on their diagonals,
+/// the positions leave the velocities' system I − hγJ_vv − (hγ)²J_vq, which has the
+/// sparsity of the velocities (static condensation, as in the Newmark-type solvers of
+/// structural dynamics; Géradin & Rixen, *Mechanical Vibrations*, 3rd ed., 2015, ch. 7).
+/// With a dominant pivot row every |u_kj/u_kk| ≤ 1, so each such step at most doubles an
+/// entry: the bound of partial pivoting, by rows (Golub & Van Loan, 4th ed., sect. 3.4.6,
+/// applied to Aᵀ). On B1 the elimination takes 4–10 times fewer multiply-adds than with
+/// partial pivoting throughout (`benches/linear.rs`, docs/performance-log.md).
+fn condensed_first(
+    a: &[f64],
+    n: usize,
+    row_bits: &[u64],
+    arrow: Vec<usize>,
+    order: &mut Vec<usize>,
+) -> usize {
+    let nw = words(n);
+    let light = |i: usize| {
+        let row = &row_bits[i * nw..(i + 1) * nw];
+        let (count, sum) = ones(row)
+            .filter(|&j| j != i)
+            .fold((0, 0.0), |(c, s), j| (c + 1, s + a[j * n + i].abs()));
+        count <= CONDENSED_ROW && sum <= a[i * n + i].abs() && a[i * n + i] != 0.0
+    };
+    order.clear();
+    order.extend(arrow.iter().copied().filter(|&i| light(i)));
+    let condensed = order.len();
+    order.extend(arrow.iter().copied().filter(|&i| !light(i)));
+    condensed
+}
+
+/// Whether row c of `a` (its structure `row`) is still dominated by its diagonal over the
+/// columns not yet eliminated, as when [`condensed_first`] chose it.
+fn dominates_its_row(a: &[f64], n: usize, c: usize, row: &[u64], eliminated: &[u64]) -> bool {
+    let off: f64 = ones_except(row, eliminated)
+        .filter(|&j| j != c)
+        .map(|j| a[j * n + c].abs())
+        .sum();
+    a[c * n + c] != 0.0 && off <= a[c * n + c].abs()
+}
+
 /// The pivot of column c among its `candidates` (the rows not yet pivoted where it may be
 /// non-zero, ascending): the largest in magnitude, ties to row c itself (if it is not yet
 /// pivoted: `c_free`), then to the first; None if all are zero (A is singular).
@@ -482,12 +573,18 @@ fn replay_elimination(a: &mut [f64], n: usize, sc: &Schedule) -> bool {
     for (k, &c) in sc.order.iter().enumerate() {
         let rows = &sc.candidates[sc.candidate_start[k]..sc.candidate_start[k + 1]];
         let p = sc.pivot_rows[k];
-        let column = &a[c * n..(c + 1) * n];
-        let largest = rows.iter().fold(0.0f64, |m, &i| m.max(column[i].abs()));
-        if !(column[p].abs() >= REPLAY_PIVOT_THRESHOLD * largest && column[p] != 0.0) {
+        let columns = &sc.columns[sc.column_start[k]..sc.column_start[k + 1]];
+        let pivot = a[c * n + p];
+        let largest = if sc.row_pivot[k] {
+            columns
+                .iter()
+                .fold(0.0f64, |m, &j| m.max(a[j * n + p].abs()))
+        } else {
+            rows.iter().fold(0.0f64, |m, &i| m.max(a[c * n + i].abs()))
+        };
+        if !(pivot.abs() >= REPLAY_PIVOT_THRESHOLD * largest && pivot != 0.0) {
             return false;
         }
-        let columns = &sc.columns[sc.column_start[k]..sc.column_start[k + 1]];
         update(a, n, c, p, rows, columns);
     }
     true
