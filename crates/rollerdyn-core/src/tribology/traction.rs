@@ -133,6 +133,20 @@ struct KernelTable {
     ellipse: Vec<f64>,
 }
 
+/// How many tables a process keeps ([`EhlTraction::tabulated`]; about 2.6 MB each for
+/// the default grid); the oldest goes first.
+const TABLE_CACHE: usize = 8;
+
+/// The tables built in this process, with the key of what they were built from, oldest
+/// first.
+fn table_cache() -> std::sync::MutexGuard<'static, Vec<(Vec<u64>, std::sync::Arc<KernelTable>)>> {
+    static TABLES: std::sync::Mutex<Vec<(Vec<u64>, std::sync::Arc<KernelTable>)>> =
+        std::sync::Mutex::new(Vec::new());
+    // A panic while the lock was held cannot leave the list inconsistent (one push or
+    // remove): the poison is ignored.
+    TABLES.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 /// The two contact shapes whose traction integrals are tabulated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Kernel {
@@ -185,9 +199,56 @@ impl EhlTraction {
         }
     }
 
-    /// The same model with its two kernels tabulated on `grid` (built once; lookups
-    /// outside the grid fall back to the direct rule).
+    /// The same model with its two kernels tabulated on `grid` (lookups outside the grid
+    /// fall back to the direct rule). A table is built once per process for the same
+    /// model and grid ([`TABLE_CACHE`]): every run of a sweep, a study's worker or a test
+    /// suite after the first takes it from there.
     pub fn tabulated(mut self, grid: TableGrid) -> Self {
+        let key = self.table_key(&grid);
+        let cached = table_cache()
+            .iter()
+            .find(|(k, _)| *k == key)
+            .map(|(_, table)| table.clone());
+        let table = cached.unwrap_or_else(|| {
+            let table = std::sync::Arc::new(self.build_table(&grid));
+            let mut cache = table_cache();
+            if cache.len() == TABLE_CACHE {
+                cache.remove(0);
+            }
+            cache.push((key, table.clone()));
+            table
+        });
+        self.table = Some(table);
+        self
+    }
+
+    /// Everything a table depends on, as bits: the model's constants and the grid.
+    fn table_key(&self, grid: &TableGrid) -> Vec<u64> {
+        let (r, c, l) = (self.roelands, self.carreau, self.lss);
+        [
+            r.eta_p,
+            r.p_p,
+            r.z,
+            c.tau0,
+            c.n,
+            l.chi,
+            l.p_star,
+            l.tau_l0,
+            l.smoothing,
+            self.ln_viscosity_ratio,
+            grid.pressure_max,
+            grid.rate_min,
+            grid.rate_max,
+            grid.log_rate_step,
+        ]
+        .iter()
+        .map(|v| v.to_bits())
+        .chain([grid.pressure_points as u64, grid.nodes as u64])
+        .collect()
+    }
+
+    /// The two kernels on `grid`, by the direct rule with `grid.nodes` nodes.
+    fn build_table(&self, grid: &TableGrid) -> KernelTable {
         let fine = Self::new(
             self.roelands,
             self.carreau,
@@ -225,7 +286,7 @@ impl EhlTraction {
                 });
             }
         });
-        self.table = Some(std::sync::Arc::new(KernelTable {
+        KernelTable {
             root_pressure_step: root_step,
             n_p,
             log_rate_min: y0,
@@ -233,8 +294,7 @@ impl EhlTraction {
             n_y: n_y.max(4),
             line,
             ellipse,
-        }));
-        self
+        }
     }
 
     /// η₀ of this model.
@@ -421,6 +481,40 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A table is built once per process for the same model and grid: a second model
+    /// shares the first one's table (and so computes the same traction to the bit); a
+    /// model of another η₀ or grid gets its own, which differs.
+    #[test]
+    fn tables_are_built_once_per_model_and_grid() {
+        let grid = TableGrid {
+            pressure_points: 41,
+            log_rate_step: 0.5,
+            ..TableGrid::default()
+        };
+        let first = b1_traction(12).tabulated(grid);
+        let second = b1_traction(12).tabulated(grid);
+        let (a, b) = (
+            first.table.as_ref().unwrap(),
+            second.table.as_ref().unwrap(),
+        );
+        assert!(std::sync::Arc::ptr_eq(a, b));
+        let coarser = b1_traction(12).tabulated(TableGrid {
+            log_rate_step: 0.6,
+            ..grid
+        });
+        assert!(!std::sync::Arc::ptr_eq(a, coarser.table.as_ref().unwrap()));
+        let mut thicker = b1_traction(12);
+        thicker.ln_viscosity_ratio += 0.1;
+        let thicker = thicker.tabulated(grid);
+        let c = thicker.table.as_ref().unwrap();
+        assert!(!std::sync::Arc::ptr_eq(a, c));
+        let (p0, rate) = (1e9, 1e6);
+        assert_ne!(
+            first.kernel(Kernel::Line, p0, rate),
+            thicker.kernel(Kernel::Line, p0, rate)
+        );
     }
 
     fn tabulated_b1() -> &'static EhlTraction {
