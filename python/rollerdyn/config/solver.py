@@ -55,7 +55,7 @@ class SolverConfig(_Section):
     rtol: Number(ge=1e-12, lt=1.0) = 1e-5
     atol: Number(ge=1e-15) = 1e-9
     atol_time_scale: Quantity("time", positive=True, le="1 s") = "1e-5 s"
-    dt_max: Quantity("time", ge="1 ns") = "1e-4 s"
+    dt_max: Quantity("time", ge="1 ns") = "1e-3 s"
     output_interval: Quantity("time", ge="1 ns") = "1e-4 s"
     checkpoint_interval: Quantity("time", positive=True) = "100 ms"
     detector: Literal[DETECTORS] = SEMI_ANALYTICAL
