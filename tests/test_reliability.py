@@ -214,6 +214,7 @@ def test_the_core_checks_its_own_run_options(b1, option, value):
         "max_step_growth": 1.3,
         "step_gain": 0.3,
         "jacobian_after_newton_failure": True,
+        "jacobian_at_latest_iterate": True,
         "checkpoint_interval": 0.1,
         "threads": 1,
         "start": "rest",

@@ -65,6 +65,7 @@ class SolverConfig(_Section):
     max_step_growth: Number(gt=1.0, le=10.0) = 1.3
     step_gain: Number(gt=0.0, le=1.0) = 0.3
     jacobian_after_newton_failure: bool = True
+    jacobian_at_latest_iterate: bool = True
     pruning: bool = True
     mesh_around: Integer(ge=8, le=1024) = 64
     mesh_along: Integer(ge=2, le=256) = 16

@@ -71,6 +71,16 @@ pub struct StepControl {
     /// before the retry (diffsol's default). `false`: retry with the Newton matrix as it is
     /// and cut the step if that fails too, keeping Jacobians for when the step changed.
     pub jacobian_after_newton_failure: bool,
+    /// Take each Jacobian at the state of the latest right-hand side (the last Newton
+    /// iterate) instead of at the state diffsol names (the step's start). After a first
+    /// Newton failure diffsol renews the Jacobian at the start of the failed step, which,
+    /// when the step crossed a change of the dynamics (a contact that closed, a pairing
+    /// that changed), linearises the same side of it as the Jacobian that failed; the last
+    /// iterate lies beyond it. A scheduled renewal after an accepted step names the new
+    /// state, which the last iterate of its last stage approaches. The Newton matrix is
+    /// only the iteration's; the residuals, and so the solution, are unchanged. `false`:
+    /// diffsol's own.
+    pub jacobian_at_latest_iterate: bool,
 }
 
 impl StepControl {
@@ -79,6 +89,7 @@ impl StepControl {
         max_growth: 2.0,
         gain: 0.5,
         jacobian_after_newton_failure: true,
+        jacobian_at_latest_iterate: false,
     };
 }
 
@@ -92,6 +103,7 @@ impl Default for StepControl {
             max_growth: 1.3,
             gain: 0.3,
             jacobian_after_newton_failure: true,
+            jacobian_at_latest_iterate: true,
         }
     }
 }
@@ -176,10 +188,21 @@ struct Counters<'s, S: OdeSystem> {
     key: Vec<f64>,
     key_t: f64,
     jac: DMatrix<f64>,
+    /// Take the Jacobian at the latest right-hand side's state ([`StepControl`]).
+    at_latest_iterate: bool,
+    /// The state of the latest right-hand side (empty: none since the segment began, or
+    /// not finite) and its time.
+    latest: Vec<f64>,
+    latest_t: f64,
 }
 
 impl<S: OdeSystem> Counters<'_, S> {
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
+        self.latest_t = t;
+        self.latest.clear();
+        if y.iter().all(|v| v.is_finite()) {
+            self.latest.extend_from_slice(y);
+        }
         let start = Instant::now();
         self.system.rhs(t, y, dy);
         self.stats.rhs_evaluations += 1;
@@ -188,10 +211,18 @@ impl<S: OdeSystem> Counters<'_, S> {
 
     /// J·v. diffsol assembles its Newton matrix column by column from products with unit
     /// vectors; the Jacobian is computed once per (t, y) and the columns are read off.
+    /// With [`StepControl::jacobian_at_latest_iterate`] it is taken at the state of the
+    /// latest right-hand side instead of (t, y).
     fn jac_mul(&mut self, t: f64, y: &[f64], v: &[f64], out: &mut [f64]) {
         if t != self.key_t || self.key.as_slice() != y {
             let start = Instant::now();
-            self.system.jacobian(t, y, &mut self.jac);
+            if self.at_latest_iterate && self.latest.len() == y.len() {
+                let latest = std::mem::take(&mut self.latest);
+                self.system.jacobian(self.latest_t, &latest, &mut self.jac);
+                self.latest = latest;
+            } else {
+                self.system.jacobian(t, y, &mut self.jac);
+            }
             self.key.clear();
             self.key.extend_from_slice(y);
             self.key_t = t;
@@ -314,6 +345,9 @@ pub fn integrate<S: OdeSystem>(
         key: Vec::with_capacity(n),
         key_t: f64::NAN,
         jac: DMatrix::zeros(n, n),
+        at_latest_iterate: options.step_control.jacobian_at_latest_iterate,
+        latest: Vec::with_capacity(n),
+        latest_t: f64::NAN,
     });
     let fail = |time: f64, message: String, state: Vec<f64>, c: &RefCell<Counters<S>>| {
         let mut stats = c.borrow().stats;
@@ -365,6 +399,7 @@ pub fn integrate<S: OdeSystem>(
             let mut c = counters.borrow_mut();
             c.key.clear();
             c.key_t = f64::NAN;
+            c.latest.clear();
         }
         let y_init = y.clone();
         let mut problem = OdeBuilder::<NalgebraMat<f64>>::new()

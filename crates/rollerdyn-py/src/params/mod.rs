@@ -55,6 +55,7 @@ pub(crate) fn run_options(d: &Bound<'_, PyDict>) -> PyResult<(RunOptions, Option
             max_growth: s.max_step_growth,
             gain: s.step_gain,
             jacobian_after_newton_failure: s.jacobian_after_newton_failure,
+            jacobian_at_latest_iterate: s.jacobian_at_latest_iterate,
         },
         checkpoint_interval: s.checkpoint_interval,
         start_from_equilibrium: s.start == Some(Start::Equilibrium),

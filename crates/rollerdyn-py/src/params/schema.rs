@@ -202,6 +202,7 @@ section! {
         max_step_growth: f64,
         step_gain: f64,
         jacobian_after_newton_failure: bool,
+        jacobian_at_latest_iterate: bool,
         /// None: no checkpoints.
         checkpoint_interval: Option<f64>,
         /// None: from rest.

@@ -376,6 +376,41 @@ fn both_jacobian_policies_after_a_newton_failure_end_on_the_solution() {
     assert_ne!(counts(&kept), counts(&renewed));
 }
 
+/// The Jacobian at the latest iterate: on `Jump`, a step that crosses t = 1 fails its
+/// Newton iteration with the Jacobian of λ = 1e4; diffsol's renewal at the step's start
+/// (t < 1) gives that Jacobian again and the step must be cut, while the renewal at the
+/// last iterate (t > 1) gives λ = 1e6 and the retry converges. Both end on the solution
+/// (the Newton matrix is only the iteration's), and the one at the latest iterate fails
+/// fewer Newton iterations.
+#[test]
+fn the_jacobian_at_the_latest_iterate_sees_beyond_the_jump() {
+    let run = |latest: bool| {
+        let mut opts = options(Method::TrBdf2, None);
+        opts.step_control.jacobian_at_latest_iterate = latest;
+        let mut last = f64::NAN;
+        let stats = integrate(&Jump, &fresh_1d(), 2.0, &opts, |event| {
+            if let Event::Output { state, .. } = event {
+                last = state[0];
+            }
+            ControlFlow::Continue(())
+        })
+        .unwrap();
+        assert!(
+            (last - 2.0f64.cos()).abs() < 1e-7,
+            "latest {latest}: {last}"
+        );
+        stats
+    };
+    let (start, latest) = (run(false), run(true));
+    assert!(start.newton_failures > 0);
+    assert!(
+        latest.newton_failures < start.newton_failures,
+        "{} against {}",
+        latest.newton_failures,
+        start.newton_failures
+    );
+}
+
 fn fresh_1d() -> Start {
     Start {
         time: 0.0,
