@@ -79,8 +79,13 @@ impl BearingModel {
 
     /// Rates of roller i's states.
     pub(super) fn roller_rates(&self, kin: &Kinematics, y: &[f64], w: &Wrench, dy: &mut [f64]) {
-        let m = &self.roller_mass;
-        let (drag, drag_moment) = roller_drag(
+        self.roller_rates_with(kin, y, w, &self.roller_drag(kin), dy);
+    }
+
+    /// The drag of the oil–air mixture on a roller of kinematics `kin`: force and moment
+    /// about its centre ([`roller_drag`]).
+    pub(super) fn roller_drag(&self, kin: &Kinematics) -> Wrench {
+        let (force, moment) = roller_drag(
             &self.params.mixture,
             self.params.roller.radius,
             self.params.roller.length,
@@ -89,6 +94,21 @@ impl BearingModel {
             &kin.velocity,
             &kin.omega,
         );
+        Wrench { force, moment }
+    }
+
+    /// [`Self::roller_rates`] with the roller's drag given (the Jacobian's columns of
+    /// another body reuse it: it depends on the roller's own kinematics only).
+    pub(super) fn roller_rates_with(
+        &self,
+        kin: &Kinematics,
+        y: &[f64],
+        w: &Wrench,
+        drag: &Wrench,
+        dy: &mut [f64],
+    ) {
+        let m = &self.roller_mass;
+        let (drag, drag_moment) = (drag.force, drag.moment);
         let acc = (w.force + drag) / m.mass + self.params.gravity;
         let alpha = angular_acceleration(
             &kin.axis,

@@ -9,7 +9,7 @@
 //! Also the per-state scales of the difference steps and of the integrator's absolute
 //! tolerances.
 
-use super::contacts::{ElementResult, Geometry};
+use super::contacts::{ElementResult, Geometry, Wrench};
 use super::equations::Loads;
 use super::model::BearingModel;
 use super::state::{ring_kinematics, roller_kinematics, BearingKinematics, ROLLER_STATES};
@@ -29,6 +29,8 @@ struct Linearisation<'a> {
     geometries: &'a [Geometry],
     results: &'a [ElementResult],
     loads: Loads,
+    /// Each roller's drag at the state.
+    drags: Vec<Wrench>,
 }
 
 impl BearingModel {
@@ -88,6 +90,7 @@ impl BearingModel {
             geometries: &geometries,
             loads: self.loads(&results),
             results: &results,
+            drags: kin.rollers.iter().map(|r| self.roller_drag(r)).collect(),
         };
         let mut f0 = vec![0.0; self.layout.len()];
         self.rates(t, y, &kin, &base.loads, &mut f0);
@@ -172,10 +175,18 @@ impl BearingModel {
         for (r, _) in touched.iter().enumerate().filter(|(_, t)| **t) {
             let s = self.layout.roller(r);
             let range = s..s + ROLLER_STATES;
-            self.roller_rates(
+            let moved_drag;
+            let drag = if body == Some(r) {
+                moved_drag = self.roller_drag(&kin_p.rollers[r]);
+                &moved_drag
+            } else {
+                &base.drags[r]
+            };
+            self.roller_rates_with(
                 &kin_p.rollers[r],
                 &yp[range.clone()],
                 &loads_p.rollers[r],
+                drag,
                 &mut fp[range.clone()],
             );
             column.extend(range.map(|row| (row, (fp[row] - f0[row]) / h)));
