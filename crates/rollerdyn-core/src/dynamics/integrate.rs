@@ -216,11 +216,15 @@ impl<S: OdeSystem> Counters<'_, S> {
     fn jac_mul(&mut self, t: f64, y: &[f64], v: &[f64], out: &mut [f64]) {
         if t != self.key_t || self.key.as_slice() != y {
             let start = Instant::now();
+            let mut done = false;
             if self.at_latest_iterate && self.latest.len() == y.len() {
                 let latest = std::mem::take(&mut self.latest);
                 self.system.jacobian(self.latest_t, &latest, &mut self.jac);
                 self.latest = latest;
-            } else {
+                // An iterate far enough off to give a non-finite Jacobian: the named state's.
+                done = self.jac.iter().all(|v| v.is_finite());
+            }
+            if !done {
                 self.system.jacobian(t, y, &mut self.jac);
             }
             self.key.clear();
