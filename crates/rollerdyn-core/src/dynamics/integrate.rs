@@ -187,6 +187,8 @@ struct Counters<'s, S: OdeSystem> {
     stats: Stats,
     key: Vec<f64>,
     key_t: f64,
+    /// Right-hand sides evaluated when the Jacobian of the key was computed.
+    key_rhs: usize,
     jac: DMatrix<f64>,
     /// Take the Jacobian at the latest right-hand side's state ([`StepControl`]).
     at_latest_iterate: bool,
@@ -210,11 +212,14 @@ impl<S: OdeSystem> Counters<'_, S> {
     }
 
     /// J·v. diffsol assembles its Newton matrix column by column from products with unit
-    /// vectors; the Jacobian is computed once per (t, y) and the columns are read off.
-    /// With [`StepControl::jacobian_at_latest_iterate`] it is taken at the state of the
-    /// latest right-hand side instead of (t, y).
+    /// vectors (and asks for them only when it renews the Jacobian); the Jacobian is
+    /// computed once per (t, y) and the columns are read off. With
+    /// [`StepControl::jacobian_at_latest_iterate`] it is taken at the state of the latest
+    /// right-hand side instead of (t, y), and computed again for the same (t, y) once a
+    /// right-hand side has been evaluated since (a renewal after a failed iteration).
     fn jac_mul(&mut self, t: f64, y: &[f64], v: &[f64], out: &mut [f64]) {
-        if t != self.key_t || self.key.as_slice() != y {
+        let moved = self.at_latest_iterate && self.stats.rhs_evaluations != self.key_rhs;
+        if moved || t != self.key_t || self.key.as_slice() != y {
             let start = Instant::now();
             let mut done = false;
             if self.at_latest_iterate && self.latest.len() == y.len() {
@@ -230,6 +235,7 @@ impl<S: OdeSystem> Counters<'_, S> {
             self.key.clear();
             self.key.extend_from_slice(y);
             self.key_t = t;
+            self.key_rhs = self.stats.rhs_evaluations;
             self.stats.jacobian_evaluations += 1;
             self.stats.jacobian_seconds += start.elapsed().as_secs_f64();
         }
@@ -348,6 +354,7 @@ pub fn integrate<S: OdeSystem>(
         stats: Stats::default(),
         key: Vec::with_capacity(n),
         key_t: f64::NAN,
+        key_rhs: 0,
         jac: DMatrix::zeros(n, n),
         at_latest_iterate: options.step_control.jacobian_at_latest_iterate,
         latest: Vec::with_capacity(n),
