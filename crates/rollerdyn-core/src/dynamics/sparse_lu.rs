@@ -239,7 +239,7 @@ impl SparseSkipLu {
             .map(|k| {
                 let rows = sc.candidate_start[k + 1] - sc.candidate_start[k];
                 let columns = sc.column_start[k + 1] - sc.column_start[k];
-                (rows - 1) * columns
+                rows.saturating_sub(1) * columns
             })
             .sum()
     }
