@@ -8,18 +8,23 @@ use criterion::{criterion_group, criterion_main, Criterion};
 use rollerdyn_core::dynamics::sparse_lu::SparseSkipLu;
 use std::hint::black_box;
 
+/// A fixed pseudo-random sequence on [0, 1) from a non-zero `seed` (xorshift64).
+fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// The B1-shaped matrix, column-major; entries from a fixed pseudo-random sequence,
 /// 70 % of the coupled entries kept.
 fn b1_shaped() -> (Vec<f64>, usize) {
     let (rollers, size, ring) = (17, 11, 6);
     let n = ring + rollers * size;
-    let mut state = 0x2545_f491_4f6c_dd1d_u64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = uniform(0x2545_f491_4f6c_dd1d_u64);
     let body = |k: usize| (k >= ring).then(|| (k - ring) / size);
     let mut a = vec![0.0; n * n];
     for j in 0..n {
@@ -42,13 +47,7 @@ fn b1_shaped() -> (Vec<f64>, usize) {
 fn mechanical() -> (Vec<f64>, usize) {
     let (rollers, bodies) = (17, 18);
     let n = 6 * bodies;
-    let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-    let mut next = move || {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = uniform(0x9e37_79b9_7f4a_7c15_u64);
     let coupled = |a: usize, b: usize| {
         a == 0 || b == 0 || a == b || a % rollers + 1 == b || b % rollers + 1 == a
     };

@@ -4,19 +4,24 @@ use super::*;
 use nalgebra::{DMatrix, DVector};
 use proptest::prelude::*;
 
+/// A fixed pseudo-random sequence on [0, 1) from a non-zero `seed` (xorshift64).
+fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// A random matrix with a bearing's pattern: `blocks` bodies of `size` states coupled
 /// to their neighbours around a ring, and `global` states coupled to all (placed first,
 /// as the inner ring is in the state layout), each non-zero kept with probability
 /// `density`; the diagonal made dominant or not by `shift`.
 fn bearing_like(seed: u64, blocks: usize, size: usize, global: usize, shift: f64) -> DMatrix<f64> {
     let n = global + blocks * size;
-    let mut s = seed | 1;
-    let mut next = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = uniform(seed | 1);
     DMatrix::from_fn(n, n, |i, j| {
         let body = |k: usize| (k >= global).then(|| (k - global) / size);
         let coupled = match (body(i), body(j)) {
@@ -258,13 +263,7 @@ fn singular_matrix_is_an_error() {
 fn mechanical(seed: u64, blocks: usize, stiffness: f64) -> DMatrix<f64> {
     let body_count = blocks + 1;
     let n = 6 * body_count;
-    let mut s = seed | 1;
-    let mut next = move || {
-        s ^= s << 13;
-        s ^= s >> 7;
-        s ^= s << 17;
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut next = uniform(seed | 1);
     // Body 0 is the global one; bodies 1..=blocks the ring of neighbours.
     let coupled = |a: usize, b: usize| {
         a == 0 || b == 0 || a == b || a % blocks + 1 == b || b % blocks + 1 == a
