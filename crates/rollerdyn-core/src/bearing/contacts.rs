@@ -37,6 +37,11 @@ impl Wrench {
         self.force -= other.force;
         self.moment -= other.moment;
     }
+    /// Adds `scale` times `other`.
+    pub(super) fn add_scaled(&mut self, other: &Wrench, scale: f64) {
+        self.force += scale * other.force;
+        self.moment += scale * other.moment;
+    }
     /// Force `f` at point `p` on a body centred at `c`, plus a pure moment.
     fn at(f: Vec3, p: &Vec3, c: &Vec3, pure: Vec3) -> Self {
         Self {

@@ -3,8 +3,13 @@
 //! roller i re-evaluates only roller i's eight contacts, and changes only the rows of
 //! roller i, its two neighbours and the inner ring. A velocity moves no contact, so its
 //! columns reuse the slice geometry and the detected flange contacts of the unperturbed
-//! state (`Geometry`). The columns are computed apart, on the model's threads if it has
-//! any, and written in order: the numbers do not depend on the thread count.
+//! state (`Geometry`). A contact's forces depend on the two bodies' relative pose and
+//! velocity only, so moving the inner ring by δ does to each of its contacts what moving
+//! the roller by −δ does: the ring's translation and velocity columns are assembled from
+//! the rollers' corresponding columns (their ring contacts' changes, negated) instead of
+//! evaluating every ring contact again; its tilt columns are differenced. The columns are
+//! computed apart, on the model's threads if it has any, and written in order: the
+//! numbers do not depend on the thread count.
 //!
 //! Also the per-state scales of the difference steps and of the integrator's absolute
 //! tolerances.
@@ -31,6 +36,32 @@ struct Linearisation<'a> {
     loads: Loads,
     /// Each roller's drag at the state.
     drags: Vec<Wrench>,
+}
+
+/// One column of the Jacobian: (row, value) pairs and, for a roller's translation or
+/// velocity column, what it changed in the roller's inner-ring contacts.
+struct Column {
+    entries: Vec<(usize, f64)>,
+    /// The difference step.
+    step: f64,
+    /// For each of the roller's inner-ring contacts: (new − old) wrench on the ring and on
+    /// the roller (only for a roller's translation and velocity columns).
+    ring_changes: Vec<(Wrench, Wrench)>,
+}
+
+/// The roller state (local index) that moves a roller as inner-ring state `k` moves the
+/// ring, for the ring's translations (0–2) and velocities (3–5); `None` for its tilt.
+fn roller_twin(k: usize) -> Option<usize> {
+    match k {
+        0..=2 => Some(k),
+        3..=5 => Some(k + 2),
+        _ => None,
+    }
+}
+
+/// Whether a roller's state (local index) is the twin of an inner-ring state.
+fn has_ring_twin(local: usize) -> bool {
+    (0..6).any(|k| roller_twin(k) == Some(local))
 }
 
 impl BearingModel {
@@ -94,18 +125,78 @@ impl BearingModel {
         };
         let mut f0 = vec![0.0; self.layout.len()];
         self.rates(t, y, &kin, &base.loads, &mut f0);
-        let columns = self.map(y.len(), |k| self.jacobian_column(&base, &f0, k));
+        let m = self.layout.ring_states();
+        let rollers = self.map(y.len() - m, |j| self.jacobian_column(&base, &f0, m + j));
+        let ring = self.map(m, |k| match roller_twin(k) {
+            Some(local) => self.ring_column_from_rollers(&base, &f0, k, local, &rollers),
+            None => self.jacobian_column(&base, &f0, k).entries,
+        });
         jac.fill(0.0);
-        for (k, column) in columns.iter().enumerate() {
+        let entries = ring.iter().chain(rollers.iter().map(|c| &c.entries));
+        for (k, column) in entries.enumerate() {
             for &(row, value) in column {
                 jac[(row, k)] = value;
             }
         }
     }
 
+    /// Column k of the inner ring (a translation or a velocity, `local` the roller state
+    /// that moves a roller alike) from the rollers' columns: moving the ring by h changes
+    /// each inner-ring contact as moving its roller by −h does, i.e. by −h/h_r times the
+    /// change that roller's column of step h_r made. The ring's and every roller's rates
+    /// are then evaluated with the loads so changed (and the ring's state moved by h, for
+    /// its kinematic rows).
+    fn ring_column_from_rollers(
+        &self,
+        base: &Linearisation,
+        f0: &[f64],
+        k: usize,
+        local: usize,
+        rollers: &[Column],
+    ) -> Vec<(usize, f64)> {
+        let (t, y, kin) = (base.t, base.y, base.kin);
+        let m = self.layout.ring_states();
+        let mut yp = y.to_vec();
+        let h = 1.5e-8 * y[k].abs().max(self.scale(k));
+        yp[k] = y[k] + h;
+        let h = yp[k] - y[k];
+        let mut loads_p = base.loads.clone();
+        for i in 0..self.layout.rollers {
+            let column = &rollers[self.layout.roller(i) + local - m];
+            let ratio = -h / column.step;
+            for (on_ring, on_roller) in &column.ring_changes {
+                loads_p.inner_ring.add_scaled(on_ring, ratio);
+                loads_p.rollers[i].add_scaled(on_roller, ratio);
+            }
+        }
+        let ring = ring_kinematics(
+            &self.layout,
+            &yp,
+            self.params.inner_ring_speed.at(t).0,
+            &self.locked_axis,
+        );
+        let mut fp = vec![0.0; f0.len()];
+        self.ring_rates(t, &ring, &yp[..m], &loads_p.inner_ring, &mut fp[..m]);
+        let mut column: Vec<(usize, f64)> =
+            (0..m).map(|row| (row, (fp[row] - f0[row]) / h)).collect();
+        for r in 0..self.layout.rollers {
+            let s = self.layout.roller(r);
+            let range = s..s + ROLLER_STATES;
+            self.roller_rates_with(
+                &kin.rollers[r],
+                &y[range.clone()],
+                &loads_p.rollers[r],
+                &base.drags[r],
+                &mut fp[range.clone()],
+            );
+            column.extend(range.map(|row| (row, (fp[row] - f0[row]) / h)));
+        }
+        column
+    }
+
     /// Column k of the Jacobian as (row, value) pairs: state k perturbed, only its body's
     /// contacts evaluated again, only the rows of the bodies they touch.
-    fn jacobian_column(&self, base: &Linearisation, f0: &[f64], k: usize) -> Vec<(usize, f64)> {
+    fn jacobian_column(&self, base: &Linearisation, f0: &[f64], k: usize) -> Column {
         let (t, y, kin) = (base.t, base.y, base.kin);
         let mut yp = y.to_vec();
         let h = 1.5e-8 * y[k].abs().max(self.scale(k));
@@ -136,6 +227,8 @@ impl BearingModel {
             touched[i] = true;
         }
         let moves = !self.is_velocity(k);
+        let twin = body.is_some_and(|i| has_ring_twin(k - self.layout.roller(i)));
+        let mut ring_changes = Vec::new();
         for &e in elements {
             let element = &self.topology.elements[e];
             let new = if moves {
@@ -145,6 +238,13 @@ impl BearingModel {
             };
             let old = &base.results[e];
             let [body_a, body_b] = element.bodies(z);
+            if twin && body_a == Body::InnerRing {
+                let mut on_ring = new.on_a;
+                on_ring.sub(&old.on_a);
+                let mut on_roller = new.on_b;
+                on_roller.sub(&old.on_b);
+                ring_changes.push((on_ring, on_roller));
+            }
             for (bd, wn, wo) in [
                 (body_a, &new.on_a, &old.on_a),
                 (body_b, &new.on_b, &old.on_b),
@@ -191,6 +291,10 @@ impl BearingModel {
             );
             column.extend(range.map(|row| (row, (fp[row] - f0[row]) / h)));
         }
-        column
+        Column {
+            entries: column,
+            step: h,
+            ring_changes,
+        }
     }
 }
