@@ -92,6 +92,29 @@ def test_runtime_study_writes_table_csv_and_plot(tmp_path):
     assert bad.exit_code == 2 and "comma-separated positive" in bad.output
 
 
+def test_run_notes_the_slow_free_tilt_with_the_point_law(tmp_path):
+    """B1 with `inner_ring.tilt = "free"` and the point end-flange law reaches t = 0.046 s
+    in 120 s of wall time (docs/dynamics.md, "Free inner ring tilt"): `run` says so in one
+    line and names the law that runs it, and says nothing for B1 as it is or for the free
+    tilt with the distributed law."""
+    from rollerdyn import load_config
+    from rollerdyn.cli.run import slow_configuration_note
+
+    free = b1_file_with(tmp_path, 'tilt = "locked"', 'tilt = "free"', "free.toml")
+    note = slow_configuration_note(load_config(free))
+    assert note is not None and "flange_law" in note and "distributed" in note
+    assert slow_configuration_note(load_config(B1)) is None
+    distributed = tmp_path / "d.toml"
+    distributed.write_text(
+        free.read_text().replace('flange_law = "point"', 'flange_law = "distributed"')
+    )
+    assert slow_configuration_note(load_config(distributed)) is None
+    out = tmp_path / "free.nc"
+    result = RUNNER.invoke(app, ["run", str(free), "-o", str(out), "--t-end", "0.0002"])
+    assert result.exit_code == 0, result.output
+    assert "runs very slowly" in result.output and "Traceback" not in result.output
+
+
 def test_run_checkpoint_interval_option(tmp_path):
     """`run --checkpoint-interval SECONDS` overrides solver.checkpoint_interval (10 ms in
     B1, so a 0.4 ms run would have no checkpoint); --resume keeps the earlier run's

@@ -139,6 +139,8 @@ def run(
     if interval is not None:
         solver = cfg.solver.model_copy(update={"checkpoint_interval": float(interval)})
         cfg = cfg.model_copy(update={"solver": solver})
+    if (note := slow_configuration_note(cfg)) is not None:
+        say(note, "yellow")
     for tmp, pid in remove_stale_temporaries(output):
         say(f"removed {tmp}: a temporary file of process {pid}, which no longer runs")
     t_start = 0.0 if previous is None else float(resume_state(previous)[0])
@@ -189,6 +191,19 @@ def run(
     say(_run_line(output, ds))
     if status:
         raise typer.Exit(status)
+
+
+def slow_configuration_note(cfg) -> str | None:
+    """A one-line note for a configuration known to run far slower than B1, or None: the
+    free inner-ring tilt with the paper's point end-flange law (docs/dynamics.md, "Free
+    inner ring tilt": B1 so configured reaches t = 0.046 s in 120 s of wall time)."""
+    if cfg.inner_ring.tilt == "free" and cfg.surfaces.flange_law == "point":
+        return (
+            "note: inner_ring.tilt = free with surfaces.flange_law = point runs very slowly "
+            '(B1: hours for the whole run); with surfaces.flange_law = "distributed" it takes '
+            'less than the locked run with that law (docs/dynamics.md, "Free inner ring tilt")'
+        )
+    return None
 
 
 def _stop_status(message: str) -> int:
