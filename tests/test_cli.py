@@ -93,7 +93,7 @@ def test_runtime_study_writes_table_csv_and_plot(tmp_path):
 
 
 def test_run_notes_the_slow_free_tilt_with_the_point_law(tmp_path):
-    """B1 with `inner_ring.tilt = "free"` and the point end-flange law reaches t = 0.046 s
+    """B1 with `inner_ring.tilt = "free"` and the point end-flange law reaches t = 0.036 s
     in 120 s of wall time (docs/dynamics.md, "Free inner ring tilt"): `run` says so in one
     line and names the law that runs it, and says nothing for B1 as it is or for the free
     tilt with the distributed law."""

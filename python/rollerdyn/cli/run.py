@@ -196,7 +196,7 @@ def run(
 def slow_configuration_note(cfg) -> str | None:
     """A one-line note for a configuration known to run far slower than B1, or None: the
     free inner-ring tilt with the paper's point end-flange law (docs/dynamics.md, "Free
-    inner ring tilt": B1 so configured reaches t = 0.046 s in 120 s of wall time)."""
+    inner ring tilt": B1 so configured reaches t = 0.036 s in 120 s of wall time)."""
     if cfg.inner_ring.tilt == "free" and cfg.surfaces.flange_law == "point":
         return (
             "note: inner_ring.tilt = free with surfaces.flange_law = point runs very slowly "
