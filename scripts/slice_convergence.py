@@ -14,6 +14,7 @@ each other.
 
 import signal
 import sys
+from pathlib import Path
 
 import numpy as np
 
@@ -22,7 +23,7 @@ from rollerdyn.config import parse_config
 from rollerdyn.simulation import simulate
 from rollerdyn.sweep import _changed
 
-B1 = "examples/b1.toml"
+B1 = Path(__file__).resolve().parents[1] / "examples" / "b1.toml"
 
 
 def results_at_full_speed(ds) -> dict[str, float]:
