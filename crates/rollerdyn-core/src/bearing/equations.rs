@@ -77,11 +77,6 @@ impl BearingModel {
         )
     }
 
-    /// Rates of roller i's states.
-    pub(super) fn roller_rates(&self, kin: &Kinematics, y: &[f64], w: &Wrench, dy: &mut [f64]) {
-        self.roller_rates_with(kin, y, w, &self.roller_drag(kin), dy);
-    }
-
     /// The drag of the oil–air mixture on a roller of kinematics `kin`: force and moment
     /// about its centre ([`roller_drag`]).
     pub(super) fn roller_drag(&self, kin: &Kinematics) -> Wrench {
@@ -97,8 +92,9 @@ impl BearingModel {
         Wrench { force, moment }
     }
 
-    /// [`Self::roller_rates`] with the roller's drag given (the Jacobian's columns of
-    /// another body reuse it: it depends on the roller's own kinematics only).
+    /// Rates of roller i's states under the contact load `w` and its drag `drag` (the
+    /// Jacobian's columns of another body reuse the drag: it depends on the roller's own
+    /// kinematics only, [`Self::roller_drag`]).
     pub(super) fn roller_rates_with(
         &self,
         kin: &Kinematics,
@@ -162,15 +158,30 @@ impl BearingModel {
         loads: &Loads,
         dy: &mut [f64],
     ) {
+        self.rates_with(t, y, kin, loads, |i| self.roller_drag(&kin.rollers[i]), dy);
+    }
+
+    /// [`Self::rates`] with roller i's drag given by `drag(i)` (a Jacobian column reuses
+    /// the drags of the unperturbed state for the rollers it does not move).
+    pub(super) fn rates_with(
+        &self,
+        t: f64,
+        y: &[f64],
+        kin: &BearingKinematics,
+        loads: &Loads,
+        drag: impl Fn(usize) -> Wrench,
+        dy: &mut [f64],
+    ) {
         let n = self.layout.ring_states();
         self.ring_rates(t, &kin.inner_ring, &y[..n], &loads.inner_ring, &mut dy[..n]);
         for i in 0..self.layout.rollers {
             let s = self.layout.roller(i);
             let r = s..s + ROLLER_STATES;
-            self.roller_rates(
+            self.roller_rates_with(
                 &kin.rollers[i],
                 &y[r.clone()],
                 &loads.rollers[i],
+                &drag(i),
                 &mut dy[r],
             );
         }

@@ -124,7 +124,7 @@ impl BearingModel {
             drags: kin.rollers.iter().map(|r| self.roller_drag(r)).collect(),
         };
         let mut f0 = vec![0.0; self.layout.len()];
-        self.rates(t, y, &kin, &base.loads, &mut f0);
+        self.rates_with(t, y, &kin, &base.loads, |i| base.drags[i], &mut f0);
         let m = self.layout.ring_states();
         let rollers = self.map(y.len() - m, |j| self.jacobian_column(&base, &f0, m + j));
         let ring = self.map(m, |k| match roller_twin(k) {
@@ -169,29 +169,18 @@ impl BearingModel {
                 loads_p.rollers[i].add_scaled(on_roller, ratio);
             }
         }
-        let ring = ring_kinematics(
+        let mut kin_p = kin.clone();
+        kin_p.inner_ring = ring_kinematics(
             &self.layout,
             &yp,
             self.params.inner_ring_speed.at(t).0,
             &self.locked_axis,
         );
         let mut fp = vec![0.0; f0.len()];
-        self.ring_rates(t, &ring, &yp[..m], &loads_p.inner_ring, &mut fp[..m]);
-        let mut column: Vec<(usize, f64)> =
-            (0..m).map(|row| (row, (fp[row] - f0[row]) / h)).collect();
-        for r in 0..self.layout.rollers {
-            let s = self.layout.roller(r);
-            let range = s..s + ROLLER_STATES;
-            self.roller_rates_with(
-                &kin.rollers[r],
-                &y[range.clone()],
-                &loads_p.rollers[r],
-                &base.drags[r],
-                &mut fp[range.clone()],
-            );
-            column.extend(range.map(|row| (row, (fp[row] - f0[row]) / h)));
-        }
-        column
+        self.rates_with(t, &yp, &kin_p, &loads_p, |i| base.drags[i], &mut fp);
+        (0..fp.len())
+            .map(|row| (row, (fp[row] - f0[row]) / h))
+            .collect()
     }
 
     /// Column k of the Jacobian as (row, value) pairs: state k perturbed, only its body's
