@@ -9,7 +9,7 @@ import math
 import signal
 import time
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
@@ -26,6 +26,9 @@ from .common import (
     say,
     time_option,
 )
+
+if TYPE_CHECKING:
+    from ..config import BearingConfig
 
 
 def run(
@@ -193,7 +196,7 @@ def run(
         raise typer.Exit(status)
 
 
-def slow_configuration_note(cfg) -> str | None:
+def slow_configuration_note(cfg: BearingConfig) -> str | None:
     """A one-line note for a configuration known to run far slower than B1, or None: the
     free inner-ring tilt with the paper's point end-flange law (docs/dynamics.md, "Free
     inner ring tilt": B1 so configured reaches t = 0.036 s in 120 s of wall time)."""
