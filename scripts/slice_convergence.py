@@ -12,7 +12,6 @@ roller. Each run takes about as long as `rollerdyn bench mbs --cases whole --thr
 each other.
 """
 
-import signal
 import sys
 from pathlib import Path
 
@@ -20,7 +19,7 @@ import numpy as np
 
 from rollerdyn import load_config
 from rollerdyn.config import parse_config
-from rollerdyn.simulation import simulate
+from rollerdyn.simulation import SimulationError, simulate
 from rollerdyn.sweep import _changed
 
 B1 = Path(__file__).resolve().parents[1] / "examples" / "b1.toml"
@@ -54,8 +53,9 @@ def main(counts: list[int]) -> None:
 
 
 if __name__ == "__main__":
-    signal.signal(signal.SIGINT, lambda *_: sys.exit("stopped"))
     try:
         main([int(n) for n in sys.argv[1:]] or [10, 20, 40])
-    except ValueError as err:
+    except (ValueError, SimulationError) as err:  # a bad count, or a run stopped (Ctrl-C)
         sys.exit(f"slice_convergence.py: {err}")
+    except KeyboardInterrupt:
+        sys.exit("slice_convergence.py: stopped")
