@@ -287,7 +287,7 @@ def run_options(config: BearingConfig, t_end: float) -> dict:
         "jacobian_at_latest_iterate": s.jacobian_at_latest_iterate,
         "checkpoint_interval": s.checkpoint_interval,
         "start": s.start,
-        "min_mean_step": s.min_mean_step,
+        "min_mean_step": s.stall_step,
     }
 
 

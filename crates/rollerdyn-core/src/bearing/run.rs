@@ -4,9 +4,11 @@
 
 use super::contacts::ElementResult;
 use super::model::BearingModel;
+use super::params::FlangeLaw;
 use super::profile::Profile;
 use super::state::{azimuth, tilt_and_skew, Kinematics};
 use super::topology::{Element, FLANGE_NAMES};
+use crate::contact::Pairing;
 use crate::dynamics::integrate::{
     integrate, Checkpoint, Event, Method, Options, Start, Stats, StepControl,
 };
@@ -512,8 +514,56 @@ pub fn diagnose(model: &BearingModel, t: f64, y: &[f64]) -> String {
         other => format!("{other:?}"),
     };
     format!(
-        "deepest contact: {name}, penetration {:.3e} m, normal force {:.3e} N",
-        result.penetration, result.normal
+        "deepest contact: {name}, penetration {:.3e} m, normal force {:.3e} N{}",
+        result.penetration,
+        result.normal,
+        flat_end_hint(model, &results)
+    )
+}
+
+/// With the point law, a note on the roller ends that press a flange with their end
+/// sphere (SP-CO, SP-TO): there the nearly flat face lies almost parallel to the flange
+/// and the point contact jumps across it, which collapses the steps (docs/dynamics.md,
+/// "Why the steps collapse at 2000 N"). Empty otherwise.
+fn flat_end_hint(model: &BearingModel, results: &[ElementResult]) -> String {
+    if model.params.flange_law != FlangeLaw::Point {
+        return String::new();
+    }
+    let on_sphere = |pairing: usize| {
+        matches!(
+            Pairing::ALL[pairing],
+            Pairing::SphereCone | Pairing::SphereRoot | Pairing::SphereRim
+        )
+    };
+    let mut ends: Vec<(f64, String)> = model
+        .elements()
+        .iter()
+        .zip(results)
+        .filter_map(|(element, r)| match (*element, r.pairing) {
+            (Element::End(i, k), Some(p)) if on_sphere(p) && r.normal > 0.0 => Some((
+                r.normal,
+                format!(
+                    "roller {i} on flange {}, {}, {:.3} N",
+                    FLANGE_NAMES[k],
+                    Pairing::ALL[p].label(),
+                    r.normal
+                ),
+            )),
+            _ => None,
+        })
+        .collect();
+    if ends.is_empty() {
+        return String::new();
+    }
+    ends.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let named: Vec<&str> = ends.iter().take(3).map(|(_, e)| e.as_str()).collect();
+    format!(
+        "; {} roller end(s) press a flange with the end sphere (the most loaded: {}): the \
+         point law's contact jumps across the nearly flat end face there (docs/dynamics.md, \
+         \"Why the steps collapse at 2000 N\"); surfaces.flange_law = \"distributed\" \
+         spreads it over the face",
+        ends.len(),
+        named.join("; ")
     )
 }
 

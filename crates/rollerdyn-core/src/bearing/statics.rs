@@ -100,7 +100,7 @@ impl BearingModel {
     }
 
     /// The state of steady rolling (module doc) at the positions of `solution`.
-    fn steady_state(&self, solution: &StaticSolution) -> Vec<f64> {
+    pub(super) fn steady_state(&self, solution: &StaticSolution) -> Vec<f64> {
         let mut y = vec![0.0; self.layout.len()];
         y[..3].copy_from_slice(&solution.ring[..3]);
         if self.layout.tilt_free {

@@ -571,3 +571,36 @@ fn with_the_distributed_law_the_stiffness_is_symmetric_under_axial_load() {
         assert!(a < 1e-3, "{axial} N: {a}");
     }
 }
+
+/// A failed run's message ends with `run::diagnose` of its last state. With the point law
+/// it names the roller ends that press a flange with their end sphere, where the point
+/// contact jumps across the flat face and the steps collapse, the most loaded first: B1
+/// at rest at 2000 N axially, whose load-zone centre (roller 0) lies on SP-TO(rim) with
+/// 284 N (the evidence `check_point_law` refuses on); at 1000 N roller 0 is on its edge
+/// torus (TO-CO) and only lighter ends at the load zone's edges lie on their faces
+/// (measured: SP-CO, 26 N the most).
+#[test]
+fn a_failed_runs_diagnosis_names_ends_on_their_end_sphere() {
+    let m = model(&B1);
+    let diagnosis = |axial: f64| {
+        let solution = m
+            .statics(&at_rest(5000.0, axial), None)
+            .expect("an equilibrium");
+        crate::bearing::run::diagnose(&m, 0.0, &m.steady_state(&solution))
+    };
+    let at_2000 = diagnosis(2000.0);
+    assert!(
+        at_2000.contains("with the end sphere (the most loaded: roller 0 on flange")
+            && at_2000.contains("SP-TO(rim)"),
+        "{at_2000}"
+    );
+    assert!(
+        at_2000.contains("flange_law = \"distributed\""),
+        "{at_2000}"
+    );
+    let at_1000 = diagnosis(1000.0);
+    assert!(
+        at_1000.contains("with the end sphere") && !at_1000.contains("roller 0 on"),
+        "{at_1000}"
+    );
+}
