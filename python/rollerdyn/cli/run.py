@@ -197,14 +197,15 @@ def run(
 
 
 def slow_configuration_note(cfg: BearingConfig) -> str | None:
-    """A one-line note for a configuration known to run far slower than B1, or None: the
-    free inner-ring tilt with the paper's point end-flange law (docs/dynamics.md, "Free
-    inner ring tilt": B1 so configured reaches t = 0.036 s in 120 s of wall time)."""
+    """A one-line note for a configuration known to stall where B1 runs, or None: the free
+    inner-ring tilt with the paper's point end-flange law (docs/dynamics.md, "Free inner
+    ring tilt": B1 so configured stalls in the load ramp, at t = 0.0226 s)."""
     if cfg.inner_ring.tilt == "free" and cfg.surfaces.flange_law == "point":
         return (
-            "note: inner_ring.tilt = free with surfaces.flange_law = point runs very slowly "
-            '(B1: hours for the whole run); with surfaces.flange_law = "distributed" it takes '
-            'less than the locked run with that law (docs/dynamics.md, "Free inner ring tilt")'
+            "note: inner_ring.tilt = free with surfaces.flange_law = point stalls in the load "
+            "ramp (B1: the steps collapse at t = 0.023 s and the run stops); with "
+            'surfaces.flange_law = "distributed" it takes less than the locked run with that '
+            'law (docs/dynamics.md, "Free inner ring tilt")'
         )
     return None
 
