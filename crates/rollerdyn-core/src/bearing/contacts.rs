@@ -167,26 +167,6 @@ impl BearingModel {
         geometry
     }
 
-    /// [`Self::evaluate`] at positions a finite-difference step from those that gave
-    /// `base` (the element's geometry there): a distributed end–flange overlap is
-    /// integrated on `base`'s rays ([`Self::end_geometry_near`]), the rest as by
-    /// [`Self::evaluate`].
-    pub(super) fn evaluate_near(
-        &self,
-        element: &Element,
-        kin: &BearingKinematics,
-        base: &Geometry,
-    ) -> ElementResult {
-        let (Element::End(i, k), Geometry::End(base)) = (*element, base) else {
-            return self.evaluate(element, kin);
-        };
-        let fixed = Kinematics::fixed();
-        let (a, b) = self.bodies(element, kin, &fixed);
-        let end = self.roller_end(k, b);
-        let geometry = self.end_geometry_near(&end, &self.flange(k, a), i, k, base);
-        self.flange_element_at(a, b, &geometry)
-    }
-
     /// [`Self::evaluate`] with the element's `geometry` taken at the same positions.
     pub(super) fn evaluate_at(
         &self,

@@ -118,36 +118,6 @@ impl BearingModel {
         }
     }
 
-    /// [`Self::end_geometry`] at a pose a finite-difference step from the one that gave
-    /// `base`: the overlap integrated on `base`'s rays ([`distributed::integrate_near`]).
-    pub(super) fn end_geometry_near(
-        &self,
-        end: &RollerEnd,
-        flange: &Flange,
-        roller: usize,
-        k: usize,
-        base: &EndGeometry,
-    ) -> EndGeometry {
-        let Some(near) = base.overlap.map(|o| o.rays) else {
-            return self.end_geometry(end, flange, roller, k);
-        };
-        let contact = self.end_contact(end, flange, roller, k);
-        let overlap = contact.and_then(|c| {
-            let start = self.profiler.stopwatch();
-            let asperities = self.asperities();
-            let overlap = (c.penetration > -asperities.reach())
-                .then(|| distributed::integrate_near(end, flange, &c.p1, &near, asperities, false))
-                .flatten();
-            self.profiler.spend_time(start, |pr, t| pr.detection += t);
-            overlap
-        });
-        EndGeometry {
-            contact,
-            overlap,
-            foundation_modulus: self.foundation_modulus[usize::from(k >= 2)],
-        }
-    }
-
     /// The whole overlap of `end` on `flange` ([`distributed::integrate`], with the energy
     /// integral if `energy`) from the detected contact `c`, when `c` lies within the
     /// asperities' reach (None beyond it, or where nothing is carried): the one place the

@@ -221,7 +221,7 @@ impl BearingModel {
         for &e in elements {
             let element = &self.topology.elements[e];
             let new = if moves {
-                self.evaluate_near(element, &kin_p, &base.geometries[e])
+                self.evaluate(element, &kin_p)
             } else {
                 self.evaluate_at(element, &kin_p, &base.geometries[e])
             };

@@ -397,11 +397,6 @@ impl Field {
     /// radii, where every point is off the end (g falls steeply past its edge), and short of
     /// the ring's circle's other side.
     fn boundary(&self, p: (f64, f64), dir: (f64, f64), inside: f64, start: f64) -> f64 {
-        self.boundary_root(p, dir, inside, start).reach
-    }
-
-    /// [`Self::boundary`] with how its root was taken ([`Root`]).
-    fn boundary_root(&self, p: (f64, f64), dir: (f64, f64), inside: f64, start: f64) -> Root {
         let limit = 2.5 * (self.end.tube_center + self.end.tube_radius) / dir.0.hypot(dir.1);
         let ftol = ROOT_FTOL * inside;
         let (mut lo, mut hi) = (0.0, limit);
@@ -409,11 +404,7 @@ impl Field {
         for _ in 0..100 {
             let (g, slope) = self.depth_along(p, dir, r);
             if g.abs() <= ftol {
-                return Root {
-                    reach: r,
-                    anchor: r,
-                    target: g,
-                };
+                return r;
             }
             if g > 0.0 {
                 lo = r;
@@ -426,33 +417,11 @@ impl Field {
             let newton = r - g / slope;
             let in_bracket = slope < 0.0 && newton > lo && newton < hi;
             if in_bracket && g.abs() <= NEWTON_FTOL * inside {
-                return Root {
-                    reach: newton,
-                    anchor: r,
-                    target: 0.0,
-                };
+                return newton;
             }
             r = if in_bracket { newton } else { 0.5 * (lo + hi) };
         }
-        let reach = 0.5 * (lo + hi);
-        Root {
-            reach,
-            anchor: reach,
-            target: f64::NAN,
-        }
-    }
-
-    /// The boundary along `dir` at a pose near the one whose search gave `root`: one
-    /// Newton step from the same anchor to the same target depth, so that at that pose it
-    /// is `root.reach` to the last bit and nearby it moves with the pose alone (not with a
-    /// search's path). None where that step is not usable (the caller searches).
-    fn boundary_near(&self, p: (f64, f64), dir: (f64, f64), root: &Root) -> Option<f64> {
-        if !root.target.is_finite() {
-            return None;
-        }
-        let (g, slope) = self.depth_along(p, dir, root.anchor);
-        let reach = root.anchor - (g - root.target) / slope;
-        (slope < 0.0 && reach > 0.0 && reach.is_finite()).then_some(reach)
+        0.5 * (lo + hi)
     }
 
     /// The midpoint of the chord through `p` along `u`, and the chord's half-length.
@@ -491,36 +460,6 @@ pub struct DistributedOverlap {
     pub semi_axes: (f64, f64),
     /// Unit direction of the larger semi-axis.
     pub major_axis: Vec3,
-    /// The rays this overlap was integrated on, for a nearby pose ([`integrate_near`]).
-    pub rays: RayFrame,
-}
-
-/// The final rays of one overlap: their frame and how each found the support's boundary.
-/// A pose a finite-difference step away ([`integrate_near`]) is integrated on the same
-/// rays, each boundary one Newton step from the same anchor ([`Field::boundary_near`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RayFrame {
-    frame: Stretch,
-    roots: [Root; RAYS],
-}
-
-/// How a boundary search took its root: `reach` = `anchor` − (g(anchor) − `target`) /
-/// g'(anchor), with `anchor` the last point evaluated (target 0 for a Newton step taken
-/// unchecked, target g(anchor) for a root taken where it was evaluated; NaN for a root
-/// left to bisection).
-#[derive(Debug, Clone, Copy, PartialEq)]
-struct Root {
-    reach: f64,
-    anchor: f64,
-    target: f64,
-}
-
-/// Where the final rays' boundary searches start.
-enum Starts<'a> {
-    /// Guesses of the reaches ([`predicted_reaches`]).
-    Guesses(&'a [f64; RAYS]),
-    /// The roots at a nearby pose ([`Field::boundary_near`]).
-    Near(&'a [Root; RAYS]),
 }
 
 /// Integrates the load of `end` on `flange` with the roughness `asperities` from `deepest`,
@@ -547,42 +486,7 @@ pub fn integrate(
     }
     let (frame, depth_c, starts) = field.support_frame(anchor, depth0)?;
     let depth0 = asperities.load(depth0 - asperities.reach());
-    Some(field.sum_over_rays(&frame, depth_c, depth0, Starts::Guesses(&starts)))
-}
-
-/// [`integrate`] at a pose near the one that gave `near` (a finite-difference step away,
-/// for the Jacobian): the same rays, each boundary one Newton step from where the search
-/// at that pose ended, instead of finding the support's frame and boundary again (one
-/// field evaluation per ray instead of 54 searches). At the same pose it gives `near`'s
-/// overlap bit for bit, so a difference is that of the overlap alone, not of two searches'
-/// paths. Falls back to [`integrate`] if the rays' centre has left the support.
-pub fn integrate_near(
-    end: &RollerEnd,
-    flange: &Flange,
-    deepest: &Vec3,
-    near: &RayFrame,
-    asperities: Asperities,
-    energy: bool,
-) -> Option<DistributedOverlap> {
-    let graph = EndGraph::new(end);
-    let profile = FlangeProfile::new(flange);
-    let field = Field {
-        asperities,
-        energy,
-        ..Field::new(graph, profile)?
-    };
-    let anchor = field.coordinates(deepest);
-    let depth0 = field.depth(anchor.0, anchor.1);
-    if !(depth0 > 0.0 && depth0.is_finite()) {
-        return None;
-    }
-    let centre = near.frame.centre;
-    let depth_c = field.depth(centre.0, centre.1);
-    if !(depth_c > 0.0 && depth_c.is_finite()) {
-        return integrate(end, flange, deepest, asperities, energy);
-    }
-    let depth0 = asperities.load(depth0 - asperities.reach());
-    Some(field.sum_over_rays(&near.frame, depth_c, depth0, Starts::Near(&near.roots)))
+    Some(field.sum_over_rays(&frame, depth_c, depth0, &starts))
 }
 
 impl Field {
@@ -694,7 +598,7 @@ fn pseudo_angle(x: f64, y: f64) -> f64 {
 /// Polar coordinates stretched along two orthonormal axes of the end plane: the point
 /// centre + ρ (half.0 cos θ axes[0] + half.1 sin θ axes[1]); the support is about the
 /// unit disc in ρ, θ, so the rays' reach varies slowly with θ.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy)]
 struct Stretch {
     centre: (f64, f64),
     axes: [(f64, f64); 2],
@@ -783,13 +687,13 @@ impl Field {
 
     /// Sums the integrals over `RAYS` rays of `frame` (g = `depth_c` at its centre), with
     /// `depth0` the deepest overlap known; each ray's boundary searched from its guess in
-    /// `starts` ([`predicted_reaches`], or the reaches at a nearby pose).
+    /// `starts` ([`predicted_reaches`]).
     fn sum_over_rays(
         &self,
         frame: &Stretch,
         depth_c: f64,
         depth0: f64,
-        starts: Starts,
+        starts: &[f64; RAYS],
     ) -> DistributedOverlap {
         let step = TAU / RAYS as f64;
         let jacobian = frame.jacobian() * step;
@@ -798,22 +702,9 @@ impl Field {
             max_depth: depth0,
             ..Default::default()
         };
-        let mut roots = [Root {
-            reach: 0.0,
-            anchor: 0.0,
-            target: 0.0,
-        }; RAYS];
         for (k, angle) in RAY_ANGLES.iter().enumerate() {
-            let dir = frame.ray(*angle);
-            let (ua, ub) = dir;
-            roots[k] = match starts {
-                Starts::Guesses(guesses) => self.boundary_root(c, dir, depth_c, guesses[k]),
-                Starts::Near(near) => match self.boundary_near(c, dir, &near[k]) {
-                    Some(reach) => Root { reach, ..near[k] },
-                    None => self.boundary_root(c, dir, depth_c, near[k].reach),
-                },
-            };
-            let reach = roots[k].reach;
+            let (ua, ub) = frame.ray(*angle);
+            let reach = self.boundary(c, (ua, ub), depth_c, starts[k]);
             s.area += 0.5 * reach * reach * jacobian;
             for (xi, wi) in GAUSS_NODES.iter().zip(GAUSS_WEIGHTS) {
                 let r = reach * xi;
@@ -838,14 +729,10 @@ impl Field {
                 s.normal += p.normal * weight;
             }
         }
-        let rays = RayFrame {
-            frame: *frame,
-            roots,
-        };
-        self.finish(&s, rays)
+        self.finish(&s)
     }
 
-    fn finish(&self, s: &Sums, rays: RayFrame) -> DistributedOverlap {
+    fn finish(&self, s: &Sums) -> DistributedOverlap {
         let v = s.volume;
         let (ma, mb) = (s.a / v, s.b / v);
         let caa = (s.aa / v - ma * ma).max(0.0);
@@ -868,7 +755,6 @@ impl Field {
             normal: s.normal.normalize(),
             semi_axes: ((5.0 * l1).sqrt(), (5.0 * l2).sqrt()),
             major_axis: major,
-            rays,
         }
     }
 }
