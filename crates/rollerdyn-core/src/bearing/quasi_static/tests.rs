@@ -562,7 +562,7 @@ fn with_the_distributed_law_the_stiffness_is_symmetric_under_axial_load() {
     // 8.2.4), where the point law's is 4.5e-3 off at 1 kN and 0.10 at 2 kN (above). Left:
     // the forward differences' error (above) and the overlap's quadrature (its moment
     // matches the energy's derivative within 0.12 %, contact/distributed/tests.rs):
-    // held to 1e-3 of the largest diagonal (measured 6.6e-4 at 1 kN, 3.9e-4 at 2.5 kN).
+    // held to 1e-3 of the largest diagonal (measured 6.6e-4 at 1 kN, 4.0e-4 at 2.5 kN).
     let m = distributed_model();
     let r = m.params.roller.radius;
     for axial in [1000.0, 2500.0] {
