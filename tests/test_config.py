@@ -1038,15 +1038,15 @@ def test_misalignment_needs_the_tilt_locked(raw: dict) -> None:
 
 def test_stall_step_defaults_to_a_fraction_of_dt_max(b1: BearingConfig) -> None:
     """`solver.min_mean_step` unset: the stall check stops a run whose steps average less
-    than dt_max / 5000 over 10 000 steps (200 ns for B1's 1 ms; B1's completing runs average
-    at least 35 µs, docs/dynamics.md); set, its own value wins, and 0 turns the check off. A
-    Δt_max below 200 ns is still valid (the check then scales with it)."""
+    than dt_max / 20 000 over 10 000 steps (50 ns for B1's 1 ms; B1's completing runs
+    average at least 180 ns, docs/dynamics.md); set, its own value wins, and 0 turns the
+    check off. A Δt_max below 50 ns is still valid (the check then scales with it)."""
     assert b1.solver.min_mean_step is None
-    assert b1.solver.stall_step == pytest.approx(2e-7, rel=1e-12)
+    assert b1.solver.stall_step == pytest.approx(5e-8, rel=1e-12)
     data = b1.model_dump()
-    set_to = parse_config(mutate(data, "solver.min_mean_step", "50 ns"), si_numbers=True)
-    assert set_to.solver.stall_step == pytest.approx(5e-8, rel=1e-12)
+    set_to = parse_config(mutate(data, "solver.min_mean_step", "200 ns"), si_numbers=True)
+    assert set_to.solver.stall_step == pytest.approx(2e-7, rel=1e-12)
     off = parse_config(mutate(data, "solver.min_mean_step", "0 s"), si_numbers=True)
     assert off.solver.stall_step == 0.0
     fine = parse_config(mutate(data, "solver.dt_max", "1e-7 s"), si_numbers=True)
-    assert fine.solver.stall_step == pytest.approx(2e-11, rel=1e-12)
+    assert fine.solver.stall_step == pytest.approx(5e-12, rel=1e-12)
