@@ -24,11 +24,16 @@ Before :func:`main` runs (Python's own start, ``import rollerdyn`` and this modu
 
 from __future__ import annotations
 
-# The C module behind ``signal``: ``signal`` itself imports enum (about 10 ms of the start,
-# in which a Ctrl-C would still be Python's own traceback).
-import _signal as signal
 import os
 import sys
+
+# The C module behind ``signal``: ``signal`` itself imports enum (about 10 ms of the start,
+# in which a Ctrl-C would still be Python's own traceback). Type checkers read ``signal``.
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    import signal
+else:
+    import _signal as signal
 
 #: The hook that reports exceptions CPython cannot raise, as it was before :func:`main`.
 _usual_unraisablehook = sys.unraisablehook
