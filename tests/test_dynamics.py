@@ -794,7 +794,12 @@ def test_sigterm_stops_a_run_and_keeps_its_results(tmp_path):
         stdout=subprocess.PIPE,
         stderr=subprocess.STDOUT,
     )
-    time.sleep(8.0)  # past the setup (traction table, line-contact fits) into the run
+    # Into the run, past its setup: the result file appears at its first checkpoint (a
+    # fixed wait would depend on the machine's load).
+    deadline = time.monotonic() + 120.0
+    while not out.exists() and time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.01)
+    assert proc.poll() is None, "the run ended before SIGTERM"
     proc.send_signal(signal.SIGTERM)
     output = proc.communicate(timeout=120)[0].decode()
     assert proc.returncode == 143, output
