@@ -73,6 +73,32 @@ def test_bench_refuses_unknown_target():
     assert result.exit_code == 2
 
 
+@pytest.mark.parametrize(
+    "args",
+    [["validate"], ["bench", "traction"], ["study", "paper", "--t-end", "0.001", "-o"]],
+)
+def test_commands_without_b1_next_to_the_package_say_so_in_one_line(monkeypatch, tmp_path, args):
+    # A copy of the package installed without the source tree has no examples/b1.toml:
+    # the commands that default to it name the missing file and --config (status 2), never
+    # a traceback.
+    import rollerdyn.validation
+
+    def missing():
+        raise FileNotFoundError(
+            "B1's configuration (examples/b1.toml of the source tree) is not found next to "
+            "the installed package (site-packages/rollerdyn); pass --config PATH"
+        )
+
+    monkeypatch.setattr(rollerdyn.validation, "default_config_path", missing)
+    if args[-1] == "-o":
+        args = [*args, str(tmp_path / "study")]
+    result = RUNNER.invoke(app, args)
+    assert result.exit_code == 2, result.output
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+    assert "examples/b1.toml" in result.output and "--config" in result.output
+    assert "Traceback" not in result.output
+
+
 def test_runtime_study_writes_table_csv_and_plot(tmp_path):
     """bench mbs --sweep-dt-max (the paper's fig. 14): both detectors at each dt_max, a CSV
     with one row per run and the plot; a bad list is refused with the rule named."""

@@ -73,7 +73,10 @@ def default_config_path() -> Path:
         candidate = parent / "examples" / "b1.toml"
         if candidate.is_file():
             return candidate
-    raise FileNotFoundError("examples/b1.toml not found; pass --config")
+    raise FileNotFoundError(
+        "B1's configuration (examples/b1.toml of the source tree) is not found next to the "
+        f"installed package ({here.parent}); pass --config PATH"
+    )
 
 
 def cases(config: BearingConfig | None = None) -> list[Case]:

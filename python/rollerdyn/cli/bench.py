@@ -20,7 +20,15 @@ from .bench_targets import (
     bench_traction,
     runtime_study,
 )
-from .common import ConfigOption, checked, load, output_option, refuse, time_option
+from .common import (
+    ConfigOption,
+    checked,
+    default_config,
+    load,
+    output_option,
+    refuse,
+    time_option,
+)
 
 
 def bench(
@@ -74,8 +82,10 @@ def bench(
             help=f"mbs: comma-separated operating points to run with the {SEMI_ANALYTICAL} "
             "detector instead of the detector comparison: whole, full-speed-500rpm, "
             "full-speed-3000rpm, equilibrium-500rpm, equilibrium-3000rpm, free-tilt, axial-0N, "
-            "axial-500N, axial-2000N, axial-3000N; "
-            "'default' (the first five) or 'all'. Prints steps, Newton failures, right-hand "
+            "axial-500N, axial-2000N, axial-3000N, and distributed-NAME for NAME one of whole, "
+            "free-tilt and the axial-* (the distributed end-flange law); 'default' (whole, "
+            "full-speed-500rpm, full-speed-3000rpm, free-tilt, axial-0N) or 'all'. Prints "
+            "steps, Newton failures, right-hand "
             "sides, wall time [s] and simulated seconds per wall second, and writes "
             "bench_cases.csv to --output.",
         ),
@@ -144,8 +154,6 @@ def bench(
     statics: one quasi-static equilibrium of the configuration's load case (ms, median of
     20) and a sweep of --statics-cases radial loads (s), in the core and with datasets.
     """
-    from ..validation import default_config_path
-
     if target not in ("traction", "contact", "model", "mbs", "statics", "all"):
         raise refuse(f"target = {target!r}: must be traction, contact, model, mbs, statics or all")
     end = time_option("--t-end", t_end)
@@ -153,7 +161,7 @@ def bench(
     thread_counts = _thread_counts(threads)
     if target == "mbs" and (cases is not None or dt_max_values is not None):
         checked(check_output_dir, output, "-o")
-    cfg = load(config if config is not None else default_config_path())
+    cfg = load(config if config is not None else default_config())
     if target in ("traction", "all"):
         bench_traction(cfg, repetitions)
     if target in ("contact", "all"):

@@ -118,6 +118,17 @@ def check_detector(detector: str | None) -> None:
         raise refuse(f"--detector = {detector!r}: must be {one_of(DETECTORS)}")
 
 
+def default_config() -> Path:
+    """B1's configuration of the source tree, the commands' default; exits with status 2 and
+    one line if the package was installed without it (``pip install`` of a copy)."""
+    from ..validation import default_config_path
+
+    try:
+        return default_config_path()
+    except FileNotFoundError as err:
+        raise refuse(err) from None
+
+
 def load(path: Path):
     """The configuration in ``path``; exits with status 2 and its problems if invalid."""
     try:

@@ -15,7 +15,17 @@ from rich.table import Table
 from rich.text import Text
 
 from ..study.plan import DEFAULT_MAX_WALL
-from .common import console, load, output_option, plain, refuse, refusing, say, time_option
+from .common import (
+    console,
+    default_config,
+    load,
+    output_option,
+    plain,
+    refuse,
+    refusing,
+    say,
+    time_option,
+)
 
 app = typer.Typer(
     help="Studies of many runs on Dask: the paper's section 5 (paper) and operating maps (map).",
@@ -127,7 +137,7 @@ def paper_command(
         typer.Option(
             "--dt-max",
             help="Δt_max of fig. 14 in s, comma-separated (each run with both detectors), "
-            "or 'none'. Default: 0.2, 0.5 and 1 times solver.dt_max (2e-5, 5e-5, 1e-4 s for "
+            "or 'none'. Default: 0.2, 0.5 and 1 times solver.dt_max (2e-4, 5e-4, 1e-3 s for "
             "B1).",
             metavar="S,S,...",
         ),
@@ -194,12 +204,11 @@ def paper_command(
     (nothing run); 130 after Ctrl-C (finished runs and checkpoints stay on disk).
     """
     from ..study import paper
-    from ..validation import default_config_path
 
     end = time_option("--t-end", t_end)
     load_values = _numbers(loads, "--loads", "N") or []
     dt_values = _numbers(dt_max, "--dt-max", "s")
-    path = config if config is not None else default_config_path()
+    path = config if config is not None else default_config()
     load(path)  # a bad file: the same message and exit status as rollerdyn run
     started = time.perf_counter()
     result = _run_study(

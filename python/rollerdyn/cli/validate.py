@@ -10,7 +10,7 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
-from .common import ConfigOption, console, load
+from .common import ConfigOption, console, default_config, load
 
 
 def validate(config: ConfigOption = None) -> None:
@@ -22,7 +22,7 @@ def validate(config: ConfigOption = None) -> None:
     """
     from ..validation import run
 
-    cfg = load(config) if config is not None else None
+    cfg = load(config if config is not None else default_config())
     table = Table(title="rollerdyn validation", show_lines=False)
     for col in ("group", "case", "source", "expected", "computed", "rel. error", "tol.", "pass"):
         table.add_column(col, overflow="fold")
