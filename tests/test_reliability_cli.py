@@ -366,10 +366,12 @@ def test_t_end_takes_units_and_refuses_other_quantities(tmp_path):
     invoke("run", B1, "-o", out, "--t-end", "1.5 ms", code=0, says=("to t = 0.0015 s",))
     for bad, rule in (
         ("5 N", "got a force"),
-        ("-1 ms", "positive"),
-        ("0", "positive"),
-        ("nan", "positive"),
-        ("fast", "positive time"),
+        ("-1 ms", "at least 1 ns"),
+        ("0", "at least 1 ns"),
+        ("nan", "at least 1 ns"),
+        ("fast", "at least 1 ns"),
+        # below 1 ns the run's clock would not move: it looped without end, deaf to Ctrl-C
+        ("1e-40", "at least 1 ns"),
     ):
         for args in (
             ("run", B1, "-o", tmp_path / "x.nc"),
@@ -380,6 +382,8 @@ def test_t_end_takes_units_and_refuses_other_quantities(tmp_path):
             one_line_saying(res.output, "--t-end", repr(bad), rule)
     res = invoke("run", B1, "-o", tmp_path / "x.nc", "--checkpoint-interval", "1 kg", code=2)
     one_line_saying(res.output, "--checkpoint-interval", "got a mass")
+    res = invoke("run", B1, "-o", tmp_path / "x.nc", "--checkpoint-interval", "1e-30", code=2)
+    one_line_saying(res.output, "--checkpoint-interval", "at least 1 ns")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r.nc"]
 
 

@@ -257,3 +257,18 @@ def test_missing_or_foreign_files_exit_with_status_2_and_a_clear_message(tmp_pat
     assert not (tmp_path / "x.html").exists()
     helped = RUNNER.invoke(app, ["report", "--help"])
     assert helped.exit_code == 0 and "N*m" in helped.output and "report.html" in helped.output
+
+
+def test_only_an_earlier_report_is_replaced(page, result, tmp_path):
+    # -o names an existing page: one rollerdyn wrote is replaced, anyone else's (notes
+    # saved as .html) is refused with status 2 and left as it was.
+    earlier = tmp_path / "earlier.html"
+    shutil.copyfile(page, earlier)
+    res = RUNNER.invoke(app, ["report", str(result), "-o", str(earlier), "--max-frames", "2"])
+    assert res.exit_code == 0, res.output
+    assert "(2 frames of" in earlier.read_text(encoding="utf-8")
+    notes = tmp_path / "notes.html"
+    notes.write_text("<html><body>my notes</body></html>", encoding="utf-8")
+    res = RUNNER.invoke(app, ["report", str(result), "-o", str(notes)])
+    assert res.exit_code == 2 and "only an earlier report of rollerdyn" in res.output
+    assert notes.read_text(encoding="utf-8") == "<html><body>my notes</body></html>"

@@ -269,6 +269,7 @@ def html_page(title: str, body: list[str], css: str = "") -> str:
     return (
         '<!DOCTYPE html>\n<html lang="en"><head><meta charset="utf-8">'
         '<meta name="viewport" content="width=device-width, initial-scale=1">'
+        f'<meta name="generator" content="{REPORT_GENERATOR}">'
         f"<title>{html.escape(title)}</title><style>{CSS}{css}</style></head>"
         f"<body><main>{''.join([*body, *footer])}</main></body></html>\n"
     )
@@ -403,18 +404,39 @@ def report(paths, out, max_frames: int = MAX_FRAMES) -> Path:
     return out
 
 
+#: The page's generator (``<meta name="generator">``): what marks an earlier report.
+REPORT_GENERATOR = "rollerdyn"
+
+
+def is_report_page(path: Path) -> bool:
+    """Whether ``path`` is a page rollerdyn wrote: its head names rollerdyn as generator, or
+    (pages before that tag) its footer says "Made by rollerdyn"."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(4096)
+            f.seek(max(0, f.seek(0, 2) - 65536))
+            tail = f.read()
+    except OSError:
+        return False
+    return (
+        f'<meta name="generator" content="{REPORT_GENERATOR}">'.encode() in head
+        or b'<p class="note">Made by rollerdyn with plotly' in tail
+    )
+
+
 def check_report_output(results: list[Path], output: Path) -> Path:
     """Checks before any work that ``output`` may take the report (see
     :mod:`rollerdyn.paths`): not an input, its folder there and writable, and if it
-    exists an earlier report (``.html``/``.htm``), not a result or any other file."""
-    from .paths import check_output_file, is_result_file
+    exists an earlier report (``.html``/``.htm`` that rollerdyn wrote), not a result, a
+    page of someone else's or any other file."""
+    from .paths import check_output_file
 
     output = Path(output)
-    replaceable = output.suffix.lower() in (".html", ".htm") and not is_result_file(output)
+    replaceable = output.suffix.lower() in (".html", ".htm") and is_report_page(output)
     return check_output_file(
         output,
         "-o",
         inputs=[(f"the result file {r}", r) for r in results],
         overwrite=replaceable,
-        hint="; only an earlier report (.html) is replaced: choose another name",
+        hint="; only an earlier report of rollerdyn is replaced: choose another name",
     )

@@ -495,7 +495,9 @@ def simulate(
         saving["seconds"] += time.perf_counter() - started
         return False
 
-    core = _core.Model(params, model.traction, threads)  # built once for the whole run
+    # never more threads than the cores this process may use (as the core does; and a
+    # number too large for the core's integers is no error)
+    core = _core.Model(params, model.traction, min(threads, default_threads()))
     raw = core.run(options, callback, start, None if checkpoint is None else at_checkpoint)
     raw["stats"]["checkpoint_seconds"] = saving["seconds"]
     ds = to_dataset(raw, config, det)

@@ -414,8 +414,8 @@ def sweep(
 
     if detector is not None and detector not in DETECTORS:
         raise SweepError(f"detector = {detector!r}: must be {', '.join(DETECTORS)}")
-    if t_end is not None and not (t_end > 0.0 and math.isfinite(t_end)):
-        raise SweepError(f"t_end = {t_end}: must be a positive time in seconds")
+    if t_end is not None and not (t_end >= 1e-9 and math.isfinite(t_end)):
+        raise SweepError(f"t_end = {t_end}: must be a time of at least 1 ns, in seconds")
     if scheduler is None and workers < 1:
         raise SweepError(f"workers = {workers}: must be at least 1")
     if retries < 0:

@@ -316,11 +316,16 @@ def parse_quantity(value: Any, fam: str | Family, *, si_numbers: bool = False) -
     return si
 
 
+#: The shortest time an option takes [s] (as the solver's dt_max and output interval): below
+#: it a checkpoint or end time would not move the run's clock (1e-40 s past t = 0.01 s).
+SHORTEST_TIME = 1e-9
+
+
 def parse_time(value: Any, name: str) -> float:
-    """A positive, finite time in s from a number of seconds, a number's text (``"0.05"``)
+    """A finite time of at least 1 ns, in s, from a number of seconds, a number's text (``"0.05"``)
     or a quantity (``"50 ms"``), for options such as ``--t-end`` and ``t_end=``; raises
     :class:`ValueError` naming ``name``, the value and the rule."""
-    rule = "must be a positive time, e.g. 50 ms, 0.05 s or 0.05 (seconds)"
+    rule = "must be a time of at least 1 ns, e.g. 50 ms, 0.05 s or 0.05 (seconds)"
     if isinstance(value, bool) or not isinstance(value, int | float | str):
         raise ValueError(f"{name} = {value!r}: {rule}")
     try:
@@ -331,7 +336,7 @@ def parse_time(value: Any, name: str) -> float:
         except QuantityError as err:  # its first clause says what is wrong, then a hint
             reason = str(err).split("; ")[0]
             raise ValueError(f"{name} = {value!r}: {reason}; {rule}") from None
-    if not (math.isfinite(seconds) and seconds > 0.0):
+    if not (math.isfinite(seconds) and seconds >= SHORTEST_TIME):
         raise ValueError(f"{name} = {value!r}: {rule}")
     return seconds
 

@@ -100,7 +100,7 @@ def checked(check, *args, **kwargs):
 def time_option(option: str, text: str | None) -> float | None:
     """The value of a time option (``--t-end``) in s: ``"50 ms"``, ``"0.05 s"`` or a bare
     number of seconds (``"0.05"``); None stays None. Exits with status 2 naming the
-    option, the value and the rule for anything but a positive, finite time
+    option, the value and the rule for anything but a finite time of at least 1 ns
     (:func:`rollerdyn.units.parse_time`)."""
     from ..units import parse_time
 

@@ -65,7 +65,7 @@ class SolverConfig(_Section):
     atol_time_scale: Quantity("time", positive=True, le="1 s") = "1e-5 s"
     dt_max: Quantity("time", ge="1 ns") = "1e-3 s"
     output_interval: Quantity("time", ge="1 ns") = "1e-4 s"
-    checkpoint_interval: Quantity("time", positive=True) = "100 ms"
+    checkpoint_interval: Quantity("time", ge="1 ns") = "100 ms"
     detector: Literal[DETECTORS] = SEMI_ANALYTICAL
     start: Literal["rest", "equilibrium"] = "rest"
     method: Literal["tr-bdf2", "esdirk34"] = "tr-bdf2"

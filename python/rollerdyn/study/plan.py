@@ -122,8 +122,8 @@ def build_plan(
     :class:`StudyError` for values that make no run."""
     cfg = config
     end = float(cfg.end_time if t_end is None else t_end)
-    if not (end > 0 and math.isfinite(end)):
-        raise StudyError(f"--t-end = {t_end!r}: must be a positive time")
+    if not (end >= 1e-9 and math.isfinite(end)):
+        raise StudyError(f"--t-end = {t_end!r}: must be a time of at least 1 ns")
     loads = [float(v) for v in loads]
     if any(not (math.isfinite(v) and v >= 0.0) for v in loads):
         raise StudyError(f"--loads = {loads}: every axial load must be >= 0 N")

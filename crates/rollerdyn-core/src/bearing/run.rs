@@ -56,6 +56,10 @@ pub const MAX_RECORD_BYTES: f64 = 8e9;
 /// progress, and the front end reads signals at least this often between outputs.
 pub const PROGRESS_EVERY: f64 = 0.2;
 
+/// The shortest end time, maximum step, output and checkpoint interval a run takes [s]
+/// (the configuration's floor of `dt_max` and `output_interval`).
+pub const SHORTEST_INTERVAL: f64 = 1e-9;
+
 impl RunOptions {
     /// Checks the settings before any work (the core never runs on a NaN tolerance or an
     /// output grid it cannot hold); `rollers` sizes the records, `t0` is the start time.
@@ -71,11 +75,20 @@ impl RunOptions {
                 ))
             }
         };
-        positive("t_end", self.t_end)?;
+        // Times below 1 ns would not move the run's clock past its start (t + 1e-40 = t):
+        // the run would loop without end.
+        let interval = |name: &str, v: f64| {
+            if v.is_finite() && v >= SHORTEST_INTERVAL {
+                Ok(())
+            } else {
+                Err(crate::Error::invalid(name, v, "must be at least 1e-9 s"))
+            }
+        };
+        interval("t_end", self.t_end)?;
         positive("atol", self.atol)?;
         positive("atol_time_scale", self.atol_time_scale)?;
-        positive("dt_max", self.dt_max)?;
-        positive("output_interval", self.output_interval)?;
+        interval("dt_max", self.dt_max)?;
+        interval("output_interval", self.output_interval)?;
         if !(self.rtol > 0.0 && self.rtol < 1.0) {
             return Err(crate::Error::invalid(
                 "rtol",
@@ -84,7 +97,7 @@ impl RunOptions {
             ));
         }
         if let Some(c) = self.checkpoint_interval {
-            positive("checkpoint_interval", c)?;
+            interval("checkpoint_interval", c)?;
         }
         if !(self.min_mean_step >= 0.0 && self.min_mean_step < self.dt_max) {
             return Err(crate::Error::invalid(
@@ -597,7 +610,7 @@ mod tests {
     #[test]
     fn nan_negative_and_infinite_settings_are_refused_by_name() {
         type Change = fn(&mut RunOptions);
-        let cases: [(&str, Change); 8] = [
+        let cases: [(&str, Change); 11] = [
             ("rtol", |o| o.rtol = f64::NAN),
             ("rtol", |o| o.rtol = -1.0),
             ("atol", |o| o.atol = 0.0),
@@ -608,6 +621,10 @@ mod tests {
                 o.checkpoint_interval = Some(f64::NAN)
             }),
             ("max_step_growth", |o| o.step_control.max_growth = 1.0),
+            // below 1 ns a checkpoint or the end would not move the clock: a run without end
+            ("checkpoint_interval", |o| o.checkpoint_interval = Some(1e-30)),
+            ("t_end", |o| o.t_end = 1e-40),
+            ("output_interval", |o| o.output_interval = 1e-12),
         ];
         for (name, change) in cases {
             let mut o = options();
@@ -618,15 +635,15 @@ mod tests {
     }
 
     /// An output grid whose records would not fit in memory is refused before the run
-    /// allocates them: 1e-12 s over B1's 1.288 s is 1.3e12 outputs of 17 rollers.
+    /// allocates them: 1 ns over B1's 1.288 s is 1.3e9 outputs of 17 rollers.
     #[test]
     fn an_output_grid_beyond_memory_is_refused() {
         let mut o = options();
-        o.output_interval = 1e-12;
+        o.output_interval = 1e-9;
         let message = o.validate(17, 0.0).unwrap_err().to_string();
         assert!(message.contains("output_interval") && message.contains("bytes"));
         // the same interval over a short span is fine: the limit is the records' memory
-        o.t_end = 1e-9;
+        o.t_end = 1e-6;
         assert!(o.validate(17, 0.0).is_ok());
     }
 }
