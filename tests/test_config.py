@@ -579,6 +579,15 @@ BAD = [
         "geometry.roller.slices",
         "expected an integer",
     ),
+    # a switch takes a TOML boolean: "false" (a true string), 0 and 1 were taken silently
+    (
+        "string for a switch",
+        "solver.friction",
+        "false",
+        "solver.friction",
+        "expected true or false",
+    ),
+    ("integer for a switch", "solver.pruning", 0, "solver.pruning", "expected true or false"),
     (
         "crowned without crown",
         "geometry.roller.profile",

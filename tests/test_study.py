@@ -741,6 +741,12 @@ def test_cli_study_paper_short_version_and_its_rerun(tmp_path, client):
     second = RUNNER.invoke(app, args)
     assert second.exit_code == 0, second.output
     assert "nothing to run: every run was already in the folder" in second.output
+    # --no-run on a folder without the runs: it says so, and claims no runs it does not hold
+    empty = [*args[:4], str(tmp_path / "empty"), *args[5:], "--no-run"]
+    none = RUNNER.invoke(app, empty)
+    assert none.exit_code == 0, none.output
+    assert "no run was run: 0 of the 1 runs are in the folder" in none.output
+    assert "every run was already in the folder" not in none.output
 
 
 def test_cli_help_explains_units_and_defaults():

@@ -369,7 +369,7 @@ def _run_study(title: str, study, config: Path, output: Path, **options):
 def _finish(output: Path, files, frame, figures: list, timing: dict, started: float) -> None:
     """The end of a study's command: its timing, the ``files`` it wrote in ``output``, and
     exit status 1 if a run (a row of ``frame``) could not be run at all (no file)."""
-    _print_timing(timing, time.perf_counter() - started)
+    _print_timing(timing, time.perf_counter() - started, frame)
     wrote = ", ".join(str(output / name) for name in files)
     say(f"wrote {wrote} and {len(figures)} figure files in {output / 'figures'}")
     if len(frame[(frame["status"] == "failed") & (frame["file"] == "")]):
@@ -567,11 +567,18 @@ def _print_findings(findings) -> None:
     console.print(table)
 
 
-def _print_timing(timing: dict, total: float) -> None:
+def _print_timing(timing: dict, total: float, frame) -> None:
     eff = timing.get("parallel efficiency", math.nan)
     runs = timing.get("runs run", 0)
     if not runs:
-        say(f"nothing to run: every run was already in the folder ({total:.1f} s in all)")
+        present, planned = int((frame["file"] != "").sum()), len(frame)
+        if present == planned:
+            say(f"nothing to run: every run was already in the folder ({total:.1f} s in all)")
+        else:
+            say(
+                f"no run was run: {present} of the {planned} runs are in the "
+                f"folder ({total:.1f} s in all)"
+            )
         return
     say(
         f"runs: {timing['study wall [s]']:.1f} s of wall time for {runs} run(s) whose own "

@@ -164,6 +164,8 @@ def _rule_for(err: Mapping[str, Any], loc: tuple[str | int, ...]) -> str:
         return f"must be one of {ctx.get('expected', '')}".replace("'", '"')
     if typ == "string_type":
         return "expected a string"
+    if typ == "bool_type":
+        return "expected true or false (a TOML boolean)"
     if typ == "string_too_short":
         return "must not be empty"
     if typ in ("tuple_type", "list_type"):

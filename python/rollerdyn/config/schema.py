@@ -13,7 +13,7 @@ import math
 from collections.abc import Mapping
 from typing import Annotated, Any, Literal
 
-from pydantic import BeforeValidator, Field, PrivateAttr, model_validator
+from pydantic import BeforeValidator, Field, PrivateAttr, StrictBool, model_validator
 from pydantic_core import PydanticCustomError
 
 from ..units import Integer, Number, Quantity, Vector, format_si
@@ -426,7 +426,7 @@ class SqueezeFilmConfig(_Section):
     """``[surfaces.squeeze_film]``: squeeze-film damping of the oil between roller ends and
     flanges (not in the paper; docs/dynamics.md)."""
 
-    enabled: bool = True
+    enabled: StrictBool = True
     half_width: Quantity("length", positive=True, le="10 mm") = "0.5 mm"
     floor: Quantity("length", positive=True, le="100 um") = "0.24 um"
     cutoff: Quantity("length", positive=True, le="1 mm") = "20 um"
@@ -439,7 +439,7 @@ class RaceFilmConfig(_Section):
     ``suction_limit``: how far below ambient the film's pressure falls before it cavitates
     (0: the half-Sommerfeld condition, a separating film pulls with nothing)."""
 
-    enabled: bool = True
+    enabled: StrictBool = True
     cutoff: Quantity("length", positive=True, le="1 mm") = "100 um"
     suction_limit: Quantity("pressure", ge=0.0, le="10 MPa") = "0.1 MPa"
 

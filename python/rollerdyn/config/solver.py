@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import Field, model_validator
+from pydantic import Field, StrictBool, model_validator
 
 from ..names import DETECTORS, SEMI_ANALYTICAL
 from ..units import Integer, Number, Quantity, format_si
@@ -72,14 +72,14 @@ class SolverConfig(_Section):
     min_mean_step: Quantity("time", ge=0.0, le="1 ms") | None = None
     max_step_growth: Number(gt=1.0, le=10.0) = 1.3
     step_gain: Number(gt=0.0, le=1.0) = 0.3
-    jacobian_after_newton_failure: bool = True
-    jacobian_at_latest_iterate: bool = True
-    pruning: bool = True
+    jacobian_after_newton_failure: StrictBool = True
+    jacobian_at_latest_iterate: StrictBool = True
+    pruning: StrictBool = True
     mesh_around: Integer(ge=8, le=1024) = 64
     mesh_along: Integer(ge=2, le=256) = 16
     border_band_roller: Quantity("angle", ge=0.0, le="1 deg") = "1.5e-4 rad"
     border_band_flange: Quantity("length", ge=0.0, le="1 mm") = "50 um"
-    friction: bool = True
+    friction: StrictBool = True
     traction_nodes: Integer(ge=1, le=200) = 12
     traction: Literal["tabulated", "direct"] = "tabulated"
     line_fit: LineFitConfig = Field(default_factory=LineFitConfig)
