@@ -579,7 +579,40 @@ BAD = [
         "geometry.roller.slices",
         "expected an integer",
     ),
-    # a switch takes a TOML boolean: "false" (a true string), 0 and 1 were taken silently
+    # Values that passed the configuration and then failed inside the model, with a
+    # traceback or a panic: Roelands' eta_p above B1's ambient 16.5 mPa*s; a Vogel law whose
+    # viscosity overflows; the alpha* fit's range far past any oil; a density and a modulus
+    # no solid has.
+    (
+        "eta_p above the ambient viscosity",
+        "lubricant.roelands.eta_p",
+        "20 mPa*s",
+        "lubricant.roelands.eta_p",
+        "must be below the ambient viscosity",
+    ),
+    ("overflowing Vogel law", "lubricant.vogel.b", "1e300 K", "lubricant.vogel", "finite and > 0"),
+    (
+        "alpha* fit far past any oil",
+        "lubricant.alpha_star_fit.t_max",
+        "1e6 degC",
+        "lubricant.alpha_star_fit.t_max",
+        "<= 1000 degC",
+    ),
+    (
+        "density of no solid",
+        "materials.roller.density",
+        "1e300 kg/m^3",
+        "materials.roller.density",
+        "<= 100000 kg/m^3",
+    ),
+    (
+        "modulus of no solid",
+        "materials.inner_ring.youngs_modulus",
+        "1e-300 GPa",
+        "materials.inner_ring.youngs_modulus",
+        ">= 1 MPa",
+    ),
+    # a switch takes a TOML boolean: the string "false", 0 and 1 were converted silently
     (
         "string for a switch",
         "solver.friction",
@@ -984,9 +1017,13 @@ def test_roller_mass_properties_plumbing(monkeypatch: pytest.MonkeyPatch, raw: d
         calls.append((diameter, length, edge_radius, end_face_radius, density))
         return {"mass": 1.0, "axial_inertia": 2.0, "transverse_inertia": 3.0}
 
+    import rollerdyn
+    from rollerdyn import _core
+
     fake = types.ModuleType("rollerdyn._core")
     fake.roller_mass_properties = roller_mass_properties  # type: ignore[attr-defined]
-    import rollerdyn
+    # the configuration's check of the ambient viscosity evaluates the Vogel law
+    fake.vogel_viscosity = _core.vogel_viscosity  # type: ignore[attr-defined]
 
     monkeypatch.setitem(sys.modules, "rollerdyn._core", fake)
     monkeypatch.setattr(rollerdyn, "_core", fake, raising=False)

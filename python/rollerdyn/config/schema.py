@@ -208,11 +208,13 @@ class GeometryConfig(GeometryDerived, _Section):
 
 
 class MaterialConfig(_Section):
-    """An isotropic elastic solid."""
+    """An isotropic elastic solid. The bounds hold every engineering solid with a wide
+    margin (rubber's modulus is about 10 MPa, diamond's 1.2 TPa; osmium, the densest
+    element, 22 590 kg/m^3); beyond them the contact laws leave their range."""
 
-    youngs_modulus: Quantity("pressure", positive=True, example="210 GPa")
+    youngs_modulus: Quantity("pressure", ge="1 MPa", le="10 TPa", example="210 GPa")
     poisson_ratio: Number(gt=0.0, lt=0.5)
-    density: Quantity("density", positive=True, example="7850 kg/m^3")
+    density: Quantity("density", ge="1 kg/m^3", le="100000 kg/m^3", example="7850 kg/m^3")
 
 
 class MaterialsConfig(_Section):
@@ -343,7 +345,9 @@ class AlphaStarFitConfig(_Section):
     """Temperature range of the fit ``alpha*(T) = c1*exp(c2*T) + c3*exp(c4*T)`` (eq. 32)."""
 
     t_min: Quantity("temperature") = "20 degC"
-    t_max: Quantity("temperature") = "140 degC"
+    #: Lubricating oils decompose far below 1000 degC; the fit's exponentials overflow far
+    #: above (1e6 degC made its least squares fail with NaN).
+    t_max: Quantity("temperature", le="1000 degC") = "140 degC"
 
     @model_validator(mode="after")
     def _check(self) -> AlphaStarFitConfig:
@@ -596,6 +600,8 @@ class BearingConfig(BearingDerived, _Section):
                 "must be above the Vogel pole theta = -c "
                 f"({format_si(lub.vogel.pole(), 'temperature')})",
             )
+        if t > lub.vogel.pole():
+            self._check_ambient_viscosity(cross, t_shown)
         if lub.roelands.z == "fit" and lub.dicke is not None and lub.dicke.denominator(0.0, t) <= 0:
             cross.add(
                 "lubricant.dicke.a2",
@@ -624,6 +630,31 @@ class BearingConfig(BearingDerived, _Section):
             )
         cross.raise_if_any()
         return self
+
+    def _check_ambient_viscosity(self, cross: _Cross, t_shown: str) -> None:
+        """The ambient viscosity eta0 at the operating temperature (Vogel, rescaled to the
+        reference viscosity) must be finite and above Roelands' eta_p: eq. 19's
+        ln(eta0/eta_p) is the pressure-viscosity's scale."""
+        lub = self.lubricant
+        eta0 = self.base_viscosity
+        if not (math.isfinite(eta0) and eta0 > 0.0):
+            cross.add(
+                "lubricant.vogel",
+                f"k = {format_si(lub.vogel.k, 'dynamic viscosity')}, "
+                f"b = {format_si(lub.vogel.b, 'temperature interval')}, "
+                f"c = {format_si(lub.vogel.c, 'temperature interval')}",
+                f"gives an ambient viscosity of {eta0:g} Pa*s at the operating temperature "
+                f"({t_shown}); it must be finite and > 0",
+            )
+        elif eta0 <= lub.roelands.eta_p:
+            cross.add(
+                "lubricant.roelands.eta_p",
+                format_si(lub.roelands.eta_p, "dynamic viscosity"),
+                f"must be below the ambient viscosity at the operating temperature "
+                f"({format_si(eta0, 'dynamic viscosity')} at {t_shown}, from lubricant.vogel"
+                + (" and reference_viscosity" if lub.reference_viscosity is not None else "")
+                + ")",
+            )
 
     def _check_operating_limits(self, cross: _Cross) -> None:
         """Loads and speeds far beyond what any rolling bearing carries are refused before
