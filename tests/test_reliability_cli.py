@@ -196,6 +196,10 @@ def test_plot_report_sweep_check_their_outputs_first(tmp_path, result):
         ((*sweep, "-o", regular / "s"), ("is a file, not a folder",)),
         ((*sweep, "-o", tmp_path / "a" / "s"), ("does not exist",)),
         ((*sweep, "-o", earlier), ("summary.parquet", "--overwrite")),
+        # a folder whose permissions allow writing but which takes no file (/proc): found
+        # before the work, not when its result is written (a run's was lost)
+        (("run", B1, "-o", Path("/proc/r.nc"), "--t-end", "0.001"), ("cannot create a file",)),
+        (("statics", B1, "-o", Path("/proc/s.nc")), ("cannot create a file",)),
     ):
         res = invoke(*args, code=2)
         one_line_saying(res.output, "-o", *texts)

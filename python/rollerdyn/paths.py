@@ -59,6 +59,23 @@ def _check_parent(path: Path, option: str) -> None:
         raise OutputPathError(f"{option} {path}: {parent} is a file, not a folder")
     if not os.access(parent, os.W_OK | os.X_OK):
         raise OutputPathError(f"{option} {path}: the folder {parent} is not writable")
+    _probe(parent, path, option)
+
+
+def _probe(parent: Path, path: Path, option: str) -> None:
+    """Creates and removes a file in ``parent``: permissions alone do not tell (a read-only
+    mount, /proc, a full quota); a run would find out only when it writes its result."""
+    import tempfile
+
+    try:
+        handle, name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".probe", dir=parent)
+    except OSError as err:
+        reason = err.strerror or type(err).__name__
+        raise OutputPathError(
+            f"{option} {path}: cannot create a file in the folder {parent} ({reason})"
+        ) from None
+    os.close(handle)
+    os.unlink(name)
 
 
 def check_output_file(

@@ -104,14 +104,18 @@ def statics_command(
     except st.StaticsError as err:
         error(f"rollerdyn statics: {err}")
         raise typer.Exit(1) from None
-    if output is not None:
-        ds.to_netcdf(output, engine="h5netcdf")
-        say(f"wrote {output}")
-    if plot is not None:
-        from ..statics_plots import draw
+    try:
+        if output is not None:
+            ds.to_netcdf(output, engine="h5netcdf")
+            say(f"wrote {output}")
+        if plot is not None:
+            from ..statics_plots import draw
 
-        draw(ds, plot)
-        say(f"wrote {plot}")
+            draw(ds, plot)
+            say(f"wrote {plot}")
+    except OSError as err:  # checked before the work; a disk that filled up since
+        error(f"rollerdyn statics: could not write the result ({err.strerror or err})")
+        raise typer.Exit(1) from None
 
 
 def _print_case(ds) -> None:

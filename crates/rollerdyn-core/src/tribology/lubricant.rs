@@ -138,7 +138,7 @@ pub fn fit_roelands_z(
         return Err(Error::InvalidParameter {
             name: "ambient viscosity",
             value: eta0,
-            rule: "must exceed Roelands' eta_p = 0.0631 mPa·s",
+            rule: "must exceed Roelands' eta_p (lubricant.roelands.eta_p)",
         });
     }
     let z_slope =
