@@ -232,3 +232,14 @@ def test_cli_prints_the_equilibrium_and_refuses_bad_options(tmp_path):
     assert bad.exit_code == 2 and "operating.axial_load" in bad.output
     again = runner.invoke(app, ["statics", str(B1), "-o", str(out)])
     assert again.exit_code == 2 and "--overwrite" in again.output
+    # the configuration's rules hold for --set values (B1's load limit is 83 272.8 N; a
+    # misalignment within 1 deg); 1e300 N was solved and reported as a failed equilibrium
+    for option, rule in (
+        ("operating.radial_load=1e300 N", "the configuration's load limit"),
+        ("operating.radial_load=0:90000:3", "the configuration's load limit"),
+        ("inner_ring.misalignment=90 deg", "+-1 deg"),
+        ("operating.inner_ring_speed=1e9 rpm", "pitch-circle speed"),
+    ):
+        refused = runner.invoke(app, ["statics", str(B1), "--set", option])
+        assert refused.exit_code == 2, refused.output
+        assert f"--set {option}" in refused.output and rule in refused.output

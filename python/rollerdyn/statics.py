@@ -170,6 +170,29 @@ def _check_path(path: str) -> None:
         )
 
 
+def check_range(cfg: BearingConfig, path: str, text: str, values: Sequence[float]) -> None:
+    """The configuration's rules for the load case's fields, on the values of a sweep
+    option (``--set path=text``): loads up to the configuration's load limit (radial ones not
+    negative), speeds up to its pitch-circle speed, misalignments within 1 deg. Raises
+    :class:`StaticsError` naming the option, the value and the rule."""
+    from .config.base import MAX_PITCH_SPEED
+
+    limit = cfg.load_limit
+    field = STATIC_FIELDS[path][0]
+    for v in values:
+        if field == "radial_load" and not 0.0 <= v <= limit:
+            rule = f"must lie in [0, {limit:.6g}] N (the configuration's load limit)"
+        elif field == "axial_load" and not abs(v) <= limit:
+            rule = f"must be at most {limit:.6g} N in size (the configuration's load limit)"
+        elif field == "speed" and not abs(v) * cfg.geometry.pitch_diameter / 2.0 <= MAX_PITCH_SPEED:
+            rule = f"must give a pitch-circle speed of at most {MAX_PITCH_SPEED:g} m/s"
+        elif field == "misalignment" and not abs(v) <= math.radians(1.0):
+            rule = "must lie within +-1 deg (0.01745 rad), as inner_ring.misalignment"
+        else:
+            continue
+        raise StaticsError(f"--set {path}={text}: {v:.6g} (SI) {rule}")
+
+
 def parse_range(path: str, text: str) -> list[float]:
     """The SI values of a sweep option: ``"a:b:n"`` (n values from a to b) or a comma list,
     each value a quantity with its unit (``"500 rpm"``) or a bare number in the field's SI

@@ -86,6 +86,7 @@ def statics_command(
             raise refuse(f"--set {option!r}: expected PATH=VALUES")
         try:
             grid[path.strip()] = st.parse_range(path.strip(), text)
+            st.check_range(cfg, path.strip(), text, grid[path.strip()])
         except st.StaticsError as err:
             raise refuse(err) from None
     single = all(len(v) == 1 for v in grid.values())
