@@ -505,7 +505,11 @@ def simulate(
     if resume is not None:
         ds = _join(resume, ds)
     if "interruption" in raw:
-        ds.attrs["error"] = f"interrupted at t = {raw['final_time']:.6g} s: {raw['interruption']}"
+        # "KeyboardInterrupt: " (Ctrl-C carries no message) reads as an unfinished sentence
+        cause = raw["interruption"].strip().removesuffix(":")
+        if cause == "KeyboardInterrupt":
+            cause = "KeyboardInterrupt (Ctrl-C)"
+        ds.attrs["error"] = f"interrupted at t = {raw['final_time']:.6g} s: {cause}"
         if raw["interruption"].startswith("KeyboardInterrupt"):
             raise SimulationInterrupted(ds.attrs["error"], ds)
         raise SimulationError(ds.attrs["error"], ds)
