@@ -612,6 +612,11 @@ BAD = [
         "materials.inner_ring.youngs_modulus",
         ">= 1 MPa",
     ),
+    # values that passed the check and failed only in the run (a roller 1e300 mm long, an
+    # absolute tolerance of 1e300 m: "roller 0 left the bearing")
+    ("tolerance of no use", "solver.atol", 1e300, "solver.atol", "<= 0.001"),
+    ("ring of no mass", "inner_ring.mass", "1e-300 kg", "inner_ring.mass", ">= 1 g"),
+    ("roller of no size", "geometry.roller.length", "1e300 mm", "geometry.roller.length", "<= 1 m"),
     # a switch takes a TOML boolean: the string "false", 0 and 1 were converted silently
     (
         "string for a switch",

@@ -51,7 +51,7 @@ from .solver import SolverConfig
 class RollerConfig(RollerDerived, _Section):
     """``[geometry.roller]``: one roller (all rollers are equal)."""
 
-    length: Quantity("length", positive=True, example="5 mm")
+    length: Quantity("length", positive=True, le="1 m", example="5 mm")
     edge_radius: Quantity("length", positive=True, example="0.5 mm")
     end_face_radius: Quantity("length", positive=True, example="5000 mm")
     profile: Literal["straight", "crowned"] = "straight"
@@ -228,7 +228,7 @@ class MaterialsConfig(_Section):
 class InnerRingConfig(_Section):
     """``[inner_ring]``: the inner ring together with its (rigid) shaft."""
 
-    mass: Quantity("mass", positive=True, example="0.1 kg")
+    mass: Quantity("mass", ge="1 g", le="100000 kg", example="0.1 kg")
     axial_inertia: Quantity("moment of inertia", positive=True) | None = None
     transverse_inertia: Quantity("moment of inertia", positive=True) | None = None
     tilt: Literal["locked", "free"] = "locked"

@@ -61,7 +61,7 @@ class SolverConfig(_Section):
     0.05° prescribed tilt with fast ramps 180 ns); 0 s: never."""
 
     rtol: Number(ge=1e-12, lt=1.0) = 1e-5
-    atol: Number(ge=1e-15) = 1e-9
+    atol: Number(ge=1e-15, le=1e-3) = 1e-9
     atol_time_scale: Quantity("time", positive=True, le="1 s") = "1e-5 s"
     dt_max: Quantity("time", ge="1 ns") = "1e-3 s"
     output_interval: Quantity("time", ge="1 ns") = "1e-4 s"
