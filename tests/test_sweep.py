@@ -308,3 +308,28 @@ def test_cli_sweep_help_explains_units_and_defaults():
     assert result.exit_code == 0
     for text in ("--set", "unit", "--workers", "--scheduler", "N*m", "summary.parquet"):
         assert text in result.output
+
+
+def test_ctrl_c_keeps_the_summary_of_the_finished_runs(tmp_path):
+    # Ctrl-C while runs are out (here raised by the progress report of the first finished
+    # run, as the main thread would get it): summary.parquet lists that run as finished
+    # and the others as interrupted; the interrupt still ends the sweep.
+    def interrupt(done, total, row):
+        if row is not None:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        rollerdyn.sweep(
+            SHORT_DATA,
+            {"operating.axial_load": ["0 N", "500 N", "1000 N"]},
+            tmp_path,
+            workers=1,
+            progress=interrupt,
+        )
+    frame = pd.read_parquet(tmp_path / "summary.parquet")
+    assert list(frame["run"]) == [0, 1, 2]
+    finished = frame[frame["status"] == "completed"]
+    assert len(finished) == 1 and (tmp_path / finished["file"].iloc[0]).is_file()
+    rest = frame[frame["status"] != "completed"]
+    assert set(rest["status"]) == {"interrupted"} and len(rest) == 2
+    assert rest["error"].str.contains("Ctrl-C").all()

@@ -409,7 +409,6 @@ def sweep(
     ``outdir/summary.parquet``. A scheduler that cannot be reached (within
     ``connect_timeout`` seconds) raises :class:`SweepError` before ``outdir`` is touched.
     """
-    import pandas as pd
     from distributed import as_completed
 
     if detector is not None and detector not in DETECTORS:
@@ -461,6 +460,10 @@ def sweep(
             rows[p.run] = _row(p, result)
             if progress is not None:
                 progress(len(rows), total, rows[p.run])
+    except KeyboardInterrupt:
+        # Ctrl-C: the summary still lists the finished runs (and the others as interrupted)
+        _summarize(out, points, rows, "interrupted", "KeyboardInterrupt (Ctrl-C): not finished")
+        raise
     finally:
         if client is not scheduler:
             client.close()
@@ -469,6 +472,26 @@ def sweep(
     for p in points:  # what attempts killed while writing left behind
         for partial in out.glob(f".{p.file}.*.partial"):
             partial.unlink(missing_ok=True)
+    return _summarize(out, points, rows)
+
+
+def _summarize(out: Path, points, rows: dict[int, dict], status: str = "", error: str = ""):
+    """Writes ``summary.parquet`` (one row per point, in order) and returns its frame; points
+    without a row (an interrupted sweep) get ``status`` and ``error``."""
+    import pandas as pd
+
+    for p in points:
+        if p.run not in rows:
+            rows[p.run] = _row(
+                p,
+                {
+                    "status": status,
+                    "error": error,
+                    **_empty_numbers(),
+                    "wall [s]": math.nan,
+                    "file": p.file if (out / p.file).is_file() else "",
+                },
+            )
     frame = pd.DataFrame([rows[p.run] for p in points])
     frame.to_parquet(out / SUMMARY_FILE, engine="pyarrow", index=False)
     return frame
