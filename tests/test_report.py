@@ -255,6 +255,17 @@ def test_missing_or_foreign_files_exit_with_status_2_and_a_clear_message(tmp_pat
     assert res.exit_code == 2 and "not a rollerdyn result" in res.output
     assert "frictional_torque" in res.output
     assert not (tmp_path / "x.html").exists()
+    # a result whose torque holds text (made by hand): refused, not a TypeError traceback
+    from rollerdyn.report import REQUIRED
+
+    texts = tmp_path / "texts.nc"
+    fake = {v: ("time", ["a", "b"]) for v in REQUIRED}
+    xr.Dataset(fake, coords={"time": [0.0, 1.0]}, attrs={"final_time_s": 1.0}).to_netcdf(
+        texts, engine="h5netcdf"
+    )
+    res = RUNNER.invoke(app, ["report", str(texts), "-o", str(tmp_path / "x.html")])
+    assert res.exit_code == 2 and "not numeric" in res.output, res.output
+    assert isinstance(res.exception, SystemExit)
     helped = RUNNER.invoke(app, ["report", "--help"])
     assert helped.exit_code == 0 and "N*m" in helped.output and "report.html" in helped.output
 

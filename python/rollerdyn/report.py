@@ -105,6 +105,12 @@ def open_result(path: Path, required: tuple[str, ...] = REQUIRED) -> xr.Dataset:
     if missing or "final_time_s" not in ds.attrs:
         what = _listed(missing) if missing else "attribute final_time_s"
         raise ReportError(f"{path}: not a rollerdyn result (missing {what})")
+    not_numbers = [v for v in required if not np.issubdtype(ds[v].dtype, np.number)]
+    if not_numbers:
+        raise ReportError(
+            f"{path}: not a rollerdyn result ({_listed(not_numbers)} not numeric: "
+            f"{ds[not_numbers[0]].dtype})"
+        )
     if ds.sizes.get("time", 0) == 0:
         raise ReportError(f"{path}: the result holds no outputs (empty time axis)")
     return ds
