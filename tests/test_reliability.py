@@ -335,3 +335,29 @@ def test_the_core_model_is_built_once_and_answers_as_the_functions_do(b1):
     assert model.energy(0.0, y) == _core.model_energy(params, traction, 0.0, y)
     with pytest.raises(ValueError, match="states"):
         model.rhs(0.0, y[:-1])
+
+
+def test_a_full_disk_is_refused_before_hdf5_writes(tmp_path, monkeypatch):
+    # HDF5 that runs out of space mid-write printed tracebacks it could not raise and
+    # crashed the process (a full tmpfs); the room is checked first: OSError (ENOSPC), no
+    # temporary file, and the earlier file untouched.
+    import errno
+    import shutil
+    from collections import namedtuple
+
+    import numpy as np
+    import xarray as xr
+
+    from rollerdyn.simulation import write
+
+    ds = xr.Dataset({"x": ("time", np.arange(1000.0))})
+    path = tmp_path / "r.nc"
+    write(ds, path)
+    before = path.read_bytes()
+    usage = namedtuple("usage", "total used free")
+    monkeypatch.setattr(shutil, "disk_usage", lambda _: usage(10**6, 10**6 - 4096, 4096))
+    with pytest.raises(OSError) as err:
+        write(ds, path)
+    assert err.value.errno == errno.ENOSPC and "4096 bytes free" in str(err.value)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r.nc"]
+    assert path.read_bytes() == before

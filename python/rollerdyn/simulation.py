@@ -607,6 +607,23 @@ COMPRESSION = {"compression": "gzip", "compression_opts": 1, "shuffle": True}
 COMPRESS_FROM = 64 * 1024
 
 
+def _check_free_space(ds: xr.Dataset, path: str) -> None:
+    """Raises OSError (ENOSPC) if the disk of ``path`` has less room than the dataset's
+    uncompressed size and 256 KiB: HDF5 that runs out of space while writing prints
+    tracebacks it cannot raise and can crash the process (seen with a full tmpfs)."""
+    import errno
+    import shutil
+
+    need = sum(v.nbytes for v in ds.variables.values()) + 2**18
+    free = shutil.disk_usage(os.path.dirname(os.path.abspath(path))).free
+    if free < need:
+        raise OSError(
+            errno.ENOSPC,
+            f"No space left on device ({free} bytes free, the file needs up to {need})",
+            path,
+        )
+
+
 def write(ds: xr.Dataset, path, compress: bool = True) -> None:
     """Writes a result to netCDF (h5netcdf engine) atomically: to a temporary file beside
     ``path``, then renamed over it, so that ``path`` always holds a complete file (the
@@ -617,6 +634,7 @@ def write(ds: xr.Dataset, path, compress: bool = True) -> None:
     1.5 s to a 40 s run); the final file is compressed."""
     path = os.fspath(path)
     tmp = f"{path}.tmp{os.getpid()}"
+    _check_free_space(ds, path)
     encoding = {
         name: dict(COMPRESSION)
         for name, var in ds.data_vars.items()
