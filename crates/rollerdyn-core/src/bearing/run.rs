@@ -622,7 +622,9 @@ mod tests {
             }),
             ("max_step_growth", |o| o.step_control.max_growth = 1.0),
             // below 1 ns a checkpoint or the end would not move the clock: a run without end
-            ("checkpoint_interval", |o| o.checkpoint_interval = Some(1e-30)),
+            ("checkpoint_interval", |o| {
+                o.checkpoint_interval = Some(1e-30)
+            }),
             ("t_end", |o| o.t_end = 1e-40),
             ("output_interval", |o| o.output_interval = 1e-12),
         ];
