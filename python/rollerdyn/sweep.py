@@ -17,6 +17,7 @@ complete file and one summary row. See ``docs/sweeps.md``; the command is
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import math
 import os
@@ -461,8 +462,13 @@ def sweep(
             if progress is not None:
                 progress(len(rows), total, rows[p.run])
     except KeyboardInterrupt:
-        # Ctrl-C: the summary still lists the finished runs (and the others as interrupted)
-        _summarize(out, points, rows, "interrupted", "KeyboardInterrupt (Ctrl-C): not finished")
+        # Ctrl-C: the summary still lists the finished runs (and the others as interrupted);
+        # a summary that cannot be written must not hide the interrupt
+        if out.is_dir():
+            with contextlib.suppress(OSError):
+                _summarize(
+                    out, points, rows, "interrupted", "KeyboardInterrupt (Ctrl-C): not finished"
+                )
         raise
     finally:
         if client is not scheduler:
