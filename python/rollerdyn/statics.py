@@ -175,7 +175,7 @@ def check_range(cfg: BearingConfig, path: str, text: str, values: Sequence[float
     option (``--set path=text``): loads up to the configuration's load limit (radial ones not
     negative), speeds up to its pitch-circle speed, misalignments within 1 deg. Raises
     :class:`StaticsError` naming the option, the value and the rule."""
-    from .config.base import MAX_PITCH_SPEED
+    from .config.base import MAX_MISALIGNMENT_DEG, MAX_PITCH_SPEED
 
     limit = cfg.load_limit
     field = STATIC_FIELDS[path][0]
@@ -186,8 +186,8 @@ def check_range(cfg: BearingConfig, path: str, text: str, values: Sequence[float
             rule = f"must be at most {limit:.6g} N in size (the configuration's load limit)"
         elif field == "speed" and not abs(v) * cfg.geometry.pitch_diameter / 2.0 <= MAX_PITCH_SPEED:
             rule = f"must give a pitch-circle speed of at most {MAX_PITCH_SPEED:g} m/s"
-        elif field == "misalignment" and not abs(v) <= math.radians(1.0):
-            rule = "must lie within +-1 deg (0.01745 rad), as inner_ring.misalignment"
+        elif field == "misalignment" and not abs(v) <= math.radians(MAX_MISALIGNMENT_DEG):
+            rule = f"must lie within +-{MAX_MISALIGNMENT_DEG:g} deg, as inner_ring.misalignment"
         else:
             continue
         raise StaticsError(f"--set {path}={text}: {v:.6g} (SI) {rule}")

@@ -32,7 +32,7 @@ import numpy as np
 
 from .config import BearingConfig, ConfigError, _field_at, parse_config
 from .names import DETECTORS
-from .units import IntegerSpec, NumberSpec, QuantitySpec
+from .units import SHORTEST_TIME, IntegerSpec, NumberSpec, QuantitySpec
 
 __all__ = [
     "SUMMARY_COLUMNS",
@@ -414,7 +414,7 @@ def sweep(
 
     if detector is not None and detector not in DETECTORS:
         raise SweepError(f"detector = {detector!r}: must be {', '.join(DETECTORS)}")
-    if t_end is not None and not (t_end >= 1e-9 and math.isfinite(t_end)):
+    if t_end is not None and not (t_end >= SHORTEST_TIME and math.isfinite(t_end)):
         raise SweepError(f"t_end = {t_end}: must be a time of at least 1 ns, in seconds")
     if scheduler is None and workers < 1:
         raise SweepError(f"workers = {workers}: must be at least 1")

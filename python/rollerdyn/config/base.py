@@ -32,6 +32,9 @@ MAX_HERTZ_PRESSURE = 10e9
 #: bearings, hybrid spindle bearings with n*d_m of about 3e6 mm/min, reach about 160 m/s).
 MAX_PITCH_SPEED = 300.0
 
+#: Largest prescribed inner ring misalignment, either way [deg].
+MAX_MISALIGNMENT_DEG = 1.0
+
 
 class _Cross:
     """Collects cross-field problems inside a model validator and raises them together.

@@ -19,6 +19,7 @@ from pydantic_core import PydanticCustomError
 from ..units import Integer, Number, Quantity, Vector, format_si
 from .base import (
     MAX_HERTZ_PRESSURE,
+    MAX_MISALIGNMENT_DEG,
     MAX_PITCH_SPEED,
     MAX_SLICES,
     ForceHistory,
@@ -235,7 +236,9 @@ class InnerRingConfig(_Section):
     # Prescribed tilt of a locked ring about z (perpendicular to the radial load along -y and
     # the axial load along +x, as the paper's tilt, sect. 5.2); the ring's axis is
     # (cos g, sin g, 0) for the whole run.
-    misalignment: Quantity("angle", ge="-1 deg", le="1 deg") = "0 deg"
+    misalignment: Quantity(
+        "angle", ge=f"-{MAX_MISALIGNMENT_DEG:g} deg", le=f"{MAX_MISALIGNMENT_DEG:g} deg"
+    ) = "0 deg"
 
     @model_validator(mode="after")
     def _check(self) -> InnerRingConfig:

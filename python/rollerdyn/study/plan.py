@@ -36,6 +36,7 @@ from dataclasses import dataclass, field
 from ..config import BearingConfig, parse_config
 from ..names import GRADIENT, SEMI_ANALYTICAL
 from ..provenance import config_hash, differences, resolved
+from ..units import SHORTEST_TIME
 from .runs import RunSpec, StudyError
 
 #: Axial loads of figs. 10-13 [N] (paper sect. 5.2).
@@ -122,7 +123,7 @@ def build_plan(
     :class:`StudyError` for values that make no run."""
     cfg = config
     end = float(cfg.end_time if t_end is None else t_end)
-    if not (end >= 1e-9 and math.isfinite(end)):
+    if not (end >= SHORTEST_TIME and math.isfinite(end)):
         raise StudyError(f"--t-end = {t_end!r}: must be a time of at least 1 ns")
     loads = [float(v) for v in loads]
     if any(not (math.isfinite(v) and v >= 0.0) for v in loads):
