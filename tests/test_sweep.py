@@ -333,3 +333,41 @@ def test_ctrl_c_keeps_the_summary_of_the_finished_runs(tmp_path):
     rest = frame[frame["status"] != "completed"]
     assert set(rest["status"]) == {"interrupted"} and len(rest) == 2
     assert rest["error"].str.contains("Ctrl-C").all()
+
+
+def test_ctrl_c_in_the_terminal_stops_the_sweep_with_one_line(tmp_path):
+    # A terminal's Ctrl-C reaches the whole process group, the Dask workers too: the
+    # workers ignore it (the command closes them), so the output is the command's one line,
+    # no worker's KeyboardInterrupt traceback, no Dask shutdown warning, and no
+    # "Exception ignored in Client.__del__" of a client xarray opened in a worker; the
+    # summary is written. The closing takes at most 5 s (Dask kills a busy worker after
+    # 4 s); 30 s allows for a loaded machine.
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    command = Path(sys.executable).parent / "rollerdyn"
+    args = [str(command), "sweep", str(B1), "--set", "operating.axial_load=500 N,1000 N,1500 N"]
+    args += ["--t-end", "0.2 s", "--workers", "2", "-o", str(tmp_path / "sw")]
+    proc = subprocess.Popen(
+        args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True
+    )
+    lines = []
+    for line in proc.stdout:  # until the runs are out on the workers
+        lines.append(line)
+        if "submitted" in line:
+            break
+    time.sleep(2.0)
+    os.killpg(proc.pid, signal.SIGINT)
+    sent = time.monotonic()
+    out, _ = proc.communicate(timeout=60)
+    out = "".join(lines) + out
+    assert time.monotonic() - sent < 30.0, out
+    assert proc.returncode == 130, out
+    for noise in ("Traceback", "WARNING", "Exception ignored"):
+        assert noise not in out, out
+    assert out.rstrip().endswith("rollerdyn: interrupted"), out
+    frame = pd.read_parquet(tmp_path / "sw" / "summary.parquet")
+    assert set(frame["status"]) == {"interrupted"}, frame

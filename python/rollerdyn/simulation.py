@@ -632,6 +632,8 @@ def write(ds: xr.Dataset, path, compress: bool = True) -> None:
     values read back are bit for bit the ones written. ``compress=False`` for the
     checkpoints a run writes as it goes (B1 writes 13: compressing each would add about
     1.5 s to a 40 s run); the final file is compressed."""
+    import dask
+
     path = os.fspath(path)
     tmp = f"{path}.tmp{os.getpid()}"
     _check_free_space(ds, path)
@@ -641,7 +643,12 @@ def write(ds: xr.Dataset, path, compress: bool = True) -> None:
         if compress and var.ndim > 0 and var.dtype.kind in "fiub" and var.nbytes >= COMPRESS_FROM
     }
     try:
-        ds.to_netcdf(tmp, engine="h5netcdf", encoding=encoding)
+        # The synchronous scheduler: in a Dask worker (a sweep's or a study's run), xarray
+        # would otherwise ask for the worker's client and open one to the scheduler, a
+        # connection that outlives the cluster ("Exception ignored in Client.__del__"
+        # once the cluster is closed). A result is numpy data: nothing to schedule.
+        with dask.config.set(scheduler="synchronous"):
+            ds.to_netcdf(tmp, engine="h5netcdf", encoding=encoding)
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):

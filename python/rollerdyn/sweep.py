@@ -19,8 +19,10 @@ from __future__ import annotations
 
 import contextlib
 import itertools
+import logging
 import math
 import os
+import signal
 import time
 import tomllib
 from collections.abc import Callable, Mapping, Sequence
@@ -471,10 +473,7 @@ def sweep(
                 )
         raise
     finally:
-        if client is not scheduler:
-            client.close()
-        if cluster is not None:
-            cluster.close()
+        disconnect(client, cluster, scheduler)
     for p in points:  # what attempts killed while writing left behind
         for partial in out.glob(f".{p.file}.*.partial"):
             partial.unlink(missing_ok=True)
@@ -559,9 +558,24 @@ def connect(scheduler: Any, workers: int, timeout: float):
     from distributed import Client, LocalCluster
 
     if scheduler is None:
-        cluster = LocalCluster(
-            n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None
-        )
+        # The workers ignore Ctrl-C (the command handles it): SIGINT ignored while they are
+        # spawned (a spawned process inherits that), and again by their preload for
+        # workers a nanny restarts later.
+        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+        try:
+            cluster = LocalCluster(
+                n_workers=workers,
+                threads_per_worker=1,
+                processes=True,
+                dashboard_address=None,
+                preload=["rollerdyn._dask_worker"],
+                # Dask's warnings are not the user's: they are about its own shutdown
+                # ("Worker process still alive ... killing" after a Ctrl-C); a run's
+                # failure is in its row of the summary.
+                silence_logs=logging.ERROR,
+            )
+        finally:
+            signal.signal(signal.SIGINT, previous)
         return Client(cluster), cluster
     if isinstance(scheduler, Client):
         return scheduler, None
@@ -571,6 +585,26 @@ def connect(scheduler: Any, workers: int, timeout: float):
     except Exception as err:  # Dask raises OSError, TimeoutError, ValueError, ...
         reason = " ".join(str(err).split()) or type(err).__name__
         raise SweepError(f"scheduler = {scheduler!r}: cannot connect ({reason})") from None
+
+
+def disconnect(client: Any, cluster: Any, scheduler: Any) -> None:
+    """Closes what :func:`connect` opened: the client unless it was the caller's
+    ``scheduler``, and the local cluster. Ctrl-C is ignored meanwhile (in the main thread):
+    the workers take up to 5 s to stop (a worker in the middle of a run is killed after
+    4 s), and a Ctrl-C that interrupted the closing would leave it to the interpreter's
+    exit, which waited 12 s (measured)."""
+    import threading
+
+    main = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+    try:
+        if client is not scheduler:
+            client.close()
+        if cluster is not None:
+            cluster.close()
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGINT, previous)
 
 
 # Their names before they were shared, kept for the callers that still use them

@@ -126,6 +126,7 @@ def run_all(
     {name: rule} handed to :func:`.runs.execute` (a run ends early when its rule says)."""
     from distributed import as_completed
 
+    from ..sweep import disconnect
     from .runs import record
 
     outdir = Path(outdir)
@@ -195,10 +196,7 @@ def run_all(
             client.unsubscribe_topic(topic)
         except Exception:  # the client may be gone already
             pass
-        if client is not scheduler:
-            client.close()
-        if cluster is not None:
-            cluster.close()
+        disconnect(client, cluster, scheduler)
     return {s.name: records[s.name] for s in specs}
 
 
