@@ -243,3 +243,27 @@ def test_cli_prints_the_equilibrium_and_refuses_bad_options(tmp_path):
         refused = runner.invoke(app, ["statics", str(B1), "--set", option])
         assert refused.exit_code == 2, refused.output
         assert f"--set {option}" in refused.output and rule in refused.output
+
+
+def test_the_traction_table_does_not_enter_the_equilibrium(b1):
+    """The quasi-static model takes normal forces only, so ``statics`` builds its core model
+    with the untabulated traction (at once, instead of the table's 1.3-1.5 s): the
+    equilibria with the tabulated traction are the same bit for bit (B1 at its loads and
+    500 rpm, and at twice the axial load and 3000 rpm)."""
+    from rollerdyn import _core
+    from rollerdyn.model import Model
+    from rollerdyn.names import SEMI_ANALYTICAL
+    from rollerdyn.simulation import model_parameters
+    from rollerdyn.statics import StaticCase, _core_model
+
+    params = model_parameters(b1, SEMI_ANALYTICAL)
+    tabulated = _core.Model(params, Model(b1).traction_model(tabulated=True))
+    cases = [
+        StaticCase(5000.0, 1000.0, speed=500.0 * math.pi / 30.0, misalignment=0.0),
+        StaticCase(5000.0, 2000.0, speed=3000.0 * math.pi / 30.0, misalignment=0.0),
+    ]
+    part = [c.core() for c in cases]
+    fast = _core.statics(_core_model(b1), part, chain=True, stiffness=True)
+    table = _core.statics(tabulated, part, chain=True, stiffness=True)
+    assert all(isinstance(r, dict) for r in fast), fast
+    assert repr(fast) == repr(table)

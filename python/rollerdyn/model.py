@@ -138,6 +138,12 @@ class Model:
     @cached_property
     def traction(self) -> _core.EhlTraction:
         """The EHL traction model at the run temperature (sect. 3.2.1)."""
+        return self.traction_model(self.config.solver.traction == "tabulated")
+
+    def traction_model(self, tabulated: bool) -> _core.EhlTraction:
+        """:attr:`traction`, its table built (``tabulated``; about 1.5 s, once per
+        process) or not (the direct quadrature, built at once: for models whose traction
+        is never evaluated, such as the quasi-static one)."""
         lub = self.config.lubricant
         lss = lub.limiting_shear_stress
         return _ehl_traction(
@@ -151,7 +157,7 @@ class Model:
             eta_p=lub.roelands.eta_p,
             p_p=lub.roelands.p_p,
             nodes=int(self.config.solver.traction_nodes),
-            tabulated=self.config.solver.traction == "tabulated",
+            tabulated=tabulated,
         )
 
 
