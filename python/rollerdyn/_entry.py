@@ -4,17 +4,18 @@ interrupted later writes what it computed first and says so (``rollerdyn run``).
 
 Ctrl-C in three phases:
 
-1. From the start of :func:`main` until the command line is imported (with it the heavy
-   libraries, about a second), nothing has been done that would need undoing: the
-   handler writes the line and ends the process at once (:func:`_exit_interrupted`). It
-   raises nothing, because a KeyboardInterrupt raised at an arbitrary point of the imports
-   can land in one of CPython's own callbacks (an import lock's weakref callback), where
-   CPython prints it as "Exception ignored in ..." with a traceback and drops it (seen at
-   50 ms after the start).
-2. From then on, while a command has no handler of its own (reading the configuration,
-   building the model), Ctrl-C is Python's KeyboardInterrupt: typer ends with status 130
-   and :func:`main` prints the line. One that CPython drops in such a callback is not
-   printed but raised again once the callback has returned (:func:`_redeliver`).
+1. From the start of :func:`main` until the command line is imported (typer and rich,
+   about 0.2 s; the commands load the heavy libraries when they run), nothing has been
+   done that would need undoing: the handler writes the line and ends the process at once
+   (:func:`_exit_interrupted`). It raises nothing, because a KeyboardInterrupt raised at
+   an arbitrary point of the imports can land in one of CPython's own callbacks (an import
+   lock's weakref callback), where CPython prints it as "Exception ignored in ..." with a
+   traceback and drops it (seen at 50 ms after the start).
+2. From then on, while a command has no handler of its own (importing the libraries it
+   needs, reading the configuration, building the model), Ctrl-C is Python's
+   KeyboardInterrupt: typer ends with status 130 and :func:`main` prints the line. One
+   that CPython drops in such a callback is not printed but raised again once the
+   callback has returned (:func:`_redeliver`).
 3. A command's own handling takes over where it has one (``rollerdyn run`` writes what
    the run computed).
 

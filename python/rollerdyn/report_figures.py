@@ -10,11 +10,9 @@ import math
 import numpy as np
 import xarray as xr
 
+from .limits import MAX_FRAMES
 from .names import PAIRINGS, flange_indices
 from .simulation import carried_axial_force, full_speed
-
-MAX_FRAMES = 200
-"""Most frames of the roller-set animation; longer runs are subsampled evenly."""
 
 MAX_POINTS = 40_000
 """Most points per trace of the azimuth scatter plots (figs. 12, 13); evenly thinned."""

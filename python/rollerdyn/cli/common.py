@@ -16,7 +16,6 @@ import typer
 from rich.console import Console
 from rich.text import Text
 
-from ..config import ConfigError, load_config
 from ..names import DETECTORS, SEMI_ANALYTICAL, one_of
 from ..paths import OutputPathError
 
@@ -131,6 +130,8 @@ def default_config() -> Path:
 
 def load(path: Path):
     """The configuration in ``path``; exits with status 2 and its problems if invalid."""
+    from ..config import ConfigError, load_config
+
     try:
         return load_config(path)
     except ConfigError as err:

@@ -8,7 +8,7 @@ from typing import Annotated
 
 import typer
 
-from ..report import MAX_FRAMES, ReportError, check_report_output, report
+from ..limits import MAX_FRAMES
 from .common import checked, error, refuse, say
 
 
@@ -60,6 +60,8 @@ def report_command(
     Exits with status 2 if a file is missing or is not a rollerdyn result, or if -o
     cannot take the report (checked before any work).
     """
+    from ..report import ReportError, check_report_output, report
+
     checked(check_report_output, results, output)
     try:
         written = report(results, output, max_frames=max_frames)

@@ -126,12 +126,14 @@ def run(
     kill -9 or a crash it holds the run up to the last checkpoint, and --resume finishes
     the run. Bad input exits with status 2 before any work.
     """
-    from ..simulation import SimulationError, resume_state, simulate, write
-
     check_detector(detector)
     interval = time_option("--checkpoint-interval", checkpoint_interval)
     end = time_option("--t-end", t_end)
     cfg = load(config)
+    # after the input checks: a bad option or file is refused before xarray and the
+    # simulation's other libraries load (about 0.6 s)
+    from ..simulation import SimulationError, resume_state, simulate, write
+
     end = cfg.end_time if end is None else end
     _check_run_output(output, config, resume, overwrite)
     previous = None if resume is None else _open_resume(resume, end)

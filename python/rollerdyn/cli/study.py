@@ -14,7 +14,7 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
-from ..study.plan import DEFAULT_MAX_WALL
+from ..limits import DEFAULT_MAX_WALL
 from .common import (
     console,
     default_config,

@@ -15,7 +15,6 @@ from rich.table import Table
 from rich.text import Text
 
 from ..paths import check_output_dir
-from ..sweep import SUMMARY_FILE, SweepError, build_grid, parse_set, sweep
 from .common import (
     check_detector,
     checked,
@@ -123,6 +122,8 @@ def sweep_command(
     written to summary.parquet and printed. A failed run keeps its partial result and its
     error in the summary, and the sweep goes on; the command then exits with status 1.
     """
+    from ..sweep import SUMMARY_FILE, SweepError, build_grid, sweep
+
     parameters = _parameters(sets)
     end = time_option("--t-end", t_end)
     load(config)  # a bad file: the same message and exit status as rollerdyn run
@@ -159,6 +160,8 @@ def sweep_command(
 
 def _parameters(sets: list[str]) -> dict[str, list[Any]]:
     """The --set options as {path: values}; exits with status 2 on a malformed one."""
+    from ..sweep import SweepError, parse_set
+
     parameters: dict[str, list[Any]] = {}
     try:
         for option in sets:

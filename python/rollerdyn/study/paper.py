@@ -20,9 +20,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..limits import DEFAULT_MAX_WALL
 from .findings import Finding, check_findings
 from .folder import prepare_folder
-from .plan import DEFAULT_LOADS, DEFAULT_MAX_WALL, Plan, build_plan
+from .plan import DEFAULT_LOADS, Plan, build_plan
 from .runs import StudyError, lock_folder, open_run, record
 from .schedule import Clock, check_scheduler, run_all, timing
 

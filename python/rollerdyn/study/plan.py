@@ -55,9 +55,6 @@ POINT_LAW, DISTRIBUTED_LAW = "point", "distributed"
 #: change").
 ROUNDOFF = 1e-10
 
-#: Wall-time cap of one run [s] (per invocation of the study).
-DEFAULT_MAX_WALL = 600.0
-
 
 @dataclass
 class Plan:
