@@ -371,3 +371,29 @@ def test_ctrl_c_in_the_terminal_stops_the_sweep_with_one_line(tmp_path):
     assert out.rstrip().endswith("rollerdyn: interrupted"), out
     frame = pd.read_parquet(tmp_path / "sw" / "summary.parquet")
     assert set(frame["status"]) == {"interrupted"}, frame
+
+
+def test_a_sweep_runs_from_a_thread_other_than_the_main_one(tmp_path):
+    # The local cluster's workers are spawned with Ctrl-C ignored, which Python can set
+    # only in the main thread: from another thread (a notebook's or an application's
+    # worker thread) the sweep runs as it is, and the main thread's handler stays as it was.
+    import signal
+    import threading
+
+    before = signal.getsignal(signal.SIGINT)
+    outcome: list = []
+
+    def work():
+        try:
+            frame = rollerdyn.sweep(
+                SHORT_DATA, {"operating.axial_load": ["0 N"]}, tmp_path, workers=1
+            )
+            outcome.append(list(frame["status"]))
+        except Exception as err:  # reported below, with its type
+            outcome.append(err)
+
+    thread = threading.Thread(target=work)
+    thread.start()
+    thread.join(timeout=300)
+    assert outcome == [["completed"]], outcome
+    assert signal.getsignal(signal.SIGINT) is before

@@ -561,8 +561,7 @@ def connect(scheduler: Any, workers: int, timeout: float):
         # The workers ignore Ctrl-C (the command handles it): SIGINT ignored while they are
         # spawned (a spawned process inherits that), and again by their preload for
         # workers a nanny restarts later.
-        previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
-        try:
+        with _ctrl_c_ignored():
             cluster = LocalCluster(
                 n_workers=workers,
                 threads_per_worker=1,
@@ -574,8 +573,6 @@ def connect(scheduler: Any, workers: int, timeout: float):
                 # failure is in its row of the summary.
                 silence_logs=logging.ERROR,
             )
-        finally:
-            signal.signal(signal.SIGINT, previous)
         return Client(cluster), cluster
     if isinstance(scheduler, Client):
         return scheduler, None
@@ -593,18 +590,29 @@ def disconnect(client: Any, cluster: Any, scheduler: Any) -> None:
     the workers take up to 5 s to stop (a worker in the middle of a run is killed after
     4 s), and a Ctrl-C that interrupted the closing would leave it to the interpreter's
     exit, which waited 12 s (measured)."""
-    import threading
-
-    main = threading.current_thread() is threading.main_thread()
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
-    try:
+    with _ctrl_c_ignored():
         if client is not scheduler:
             client.close()
         if cluster is not None:
             cluster.close()
+
+
+@contextlib.contextmanager
+def _ctrl_c_ignored():
+    """SIGINT ignored within the block, then its handler as before; nothing changes when
+    called outside the main thread (Python handles signals there only), where a Ctrl-C
+    reaches the main thread anyway."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
     finally:
-        if previous is not None:
-            signal.signal(signal.SIGINT, previous)
+        # None: a handler not installed from Python; Python's own is the nearest
+        signal.signal(signal.SIGINT, signal.default_int_handler if previous is None else previous)
 
 
 # Their names before they were shared, kept for the callers that still use them
