@@ -312,10 +312,15 @@ def test_cli_sweep_help_explains_units_and_defaults():
 
 def test_ctrl_c_keeps_the_summary_of_the_finished_runs(tmp_path):
     # Ctrl-C while runs are out (here raised by the progress report of the first finished
-    # run, as the main thread would get it): summary.parquet lists that run as finished
-    # and the others as interrupted; the interrupt still ends the sweep.
+    # run, as the main thread would get it): summary.parquet lists that run as finished,
+    # a run that finished while the worker stopped (up to 4 s; these runs take about one)
+    # as finished from its file, and the others as interrupted, without a file; the
+    # interrupt still ends the sweep.
+    first: list[int] = []
+
     def interrupt(done, total, row):
         if row is not None:
+            first.append(row["run"])
             raise KeyboardInterrupt
 
     with pytest.raises(KeyboardInterrupt):
@@ -328,20 +333,26 @@ def test_ctrl_c_keeps_the_summary_of_the_finished_runs(tmp_path):
         )
     frame = pd.read_parquet(tmp_path / "summary.parquet")
     assert list(frame["run"]) == [0, 1, 2]
+    assert frame["status"].iloc[first[0]] == "completed"
     finished = frame[frame["status"] == "completed"]
-    assert len(finished) == 1 and (tmp_path / finished["file"].iloc[0]).is_file()
+    assert all((tmp_path / f).is_file() for f in finished["file"])
+    assert finished["final_time [s]"].notna().all()
     rest = frame[frame["status"] != "completed"]
-    assert set(rest["status"]) == {"interrupted"} and len(rest) == 2
-    assert rest["error"].str.contains("Ctrl-C").all()
+    assert set(rest["status"]) <= {"interrupted"}
+    assert (rest["file"] == "").all() and rest["error"].str.contains("Ctrl-C").all()
+    assert {p.name for p in tmp_path.glob("run_*.nc")} == set(finished["file"])
 
 
-def test_ctrl_c_in_the_terminal_stops_the_sweep_with_one_line(tmp_path):
+@pytest.mark.parametrize("presses", [1, 2])
+def test_ctrl_c_in_the_terminal_stops_the_sweep_with_one_line(tmp_path, presses):
     # A terminal's Ctrl-C reaches the whole process group, the Dask workers too: the
     # workers ignore it (the command closes them), so the output is the command's one line,
-    # no worker's KeyboardInterrupt traceback, no Dask shutdown warning, and no
-    # "Exception ignored in Client.__del__" of a client xarray opened in a worker; the
-    # summary is written. The closing takes at most 5 s (Dask kills a busy worker after
-    # 4 s); 30 s allows for a loaded machine.
+    # no worker's KeyboardInterrupt traceback, no Dask message, and no "Exception ignored
+    # in Client.__del__" of a client xarray opened in a worker. The summary is written
+    # after the workers have stopped, also when Ctrl-C is pressed again meanwhile: it lists
+    # each run with its file or as interrupted without one, and no partial file is left.
+    # The closing takes at most 5 s (Dask kills a busy worker after 4 s); 30 s allows for
+    # a loaded machine.
     import os
     import signal
     import subprocess
@@ -362,6 +373,9 @@ def test_ctrl_c_in_the_terminal_stops_the_sweep_with_one_line(tmp_path):
     time.sleep(2.0)
     os.killpg(proc.pid, signal.SIGINT)
     sent = time.monotonic()
+    if presses == 2:
+        time.sleep(0.5)
+        os.killpg(proc.pid, signal.SIGINT)
     out, _ = proc.communicate(timeout=60)
     out = "".join(lines) + out
     assert time.monotonic() - sent < 30.0, out
@@ -369,8 +383,15 @@ def test_ctrl_c_in_the_terminal_stops_the_sweep_with_one_line(tmp_path):
     for noise in ("Traceback", "WARNING", "Exception ignored"):
         assert noise not in out, out
     assert out.rstrip().endswith("rollerdyn: interrupted"), out
-    frame = pd.read_parquet(tmp_path / "sw" / "summary.parquet")
-    assert set(frame["status"]) == {"interrupted"}, frame
+    folder = tmp_path / "sw"
+    frame = pd.read_parquet(folder / "summary.parquet")
+    assert set(frame["status"]) <= {"interrupted", "completed"}, frame
+    for status, file in zip(frame["status"], frame["file"], strict=True):
+        assert (status == "completed") == (file != ""), frame
+    listed = {f for f in frame["file"] if f}
+    on_disk = {p.name for p in folder.glob("run_*.nc")}
+    assert on_disk == listed, (on_disk, listed)
+    assert not list(folder.glob(".run_*")), list(folder.iterdir())
 
 
 def test_a_sweep_runs_from_a_thread_other_than_the_main_one(tmp_path):

@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 import os
+import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -607,6 +608,10 @@ COMPRESSION = {"compression": "gzip", "compression_opts": 1, "shuffle": True}
 COMPRESS_FROM = 64 * 1024
 
 
+#: Serialises :func:`write`'s global Dask setting between threads.
+_WRITE_LOCK = threading.Lock()
+
+
 def _check_free_space(ds: xr.Dataset, path: str) -> None:
     """Raises OSError (ENOSPC) if the disk of ``path`` has less room than the dataset's
     uncompressed size and 256 KiB: HDF5 that runs out of space while writing prints
@@ -646,8 +651,10 @@ def write(ds: xr.Dataset, path, compress: bool = True) -> None:
         # The synchronous scheduler: in a Dask worker (a sweep's or a study's run), xarray
         # would otherwise ask for the worker's client and open one to the scheduler, a
         # connection that outlives the cluster ("Exception ignored in Client.__del__"
-        # once the cluster is closed). A result is numpy data: nothing to schedule.
-        with dask.config.set(scheduler="synchronous"):
+        # once the cluster is closed). A result is numpy data: nothing to schedule. The
+        # setting is global: the lock keeps two threads' writes (a worker of several
+        # threads) from restoring each other's setting out of order.
+        with _WRITE_LOCK, dask.config.set(scheduler="synchronous"):
             ds.to_netcdf(tmp, engine="h5netcdf", encoding=encoding)
         os.replace(tmp, path)
     finally:

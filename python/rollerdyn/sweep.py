@@ -424,8 +424,14 @@ def sweep(
         raise SweepError(f"retries = {retries}: must be 0 or more")
     points = build_grid(config, parameters)
     out = Path(outdir).resolve()
+    # What writes the summary, loaded before the runs: a Ctrl-C must not land in its
+    # imports (a second of them) while the summary of an interrupted sweep is written.
+    import pandas  # noqa: F401
+    import pyarrow.parquet  # noqa: F401
+
     client, cluster = connect(scheduler, workers, connect_timeout)
     rows: dict[int, dict] = {}
+    closed = False
     try:
         out.mkdir(parents=True, exist_ok=True)
         for p in points:  # no stale result of an earlier sweep can pass for this one's
@@ -464,20 +470,61 @@ def sweep(
             if progress is not None:
                 progress(len(rows), total, rows[p.run])
     except KeyboardInterrupt:
-        # Ctrl-C: the summary still lists the finished runs (and the others as interrupted);
-        # a summary that cannot be written must not hide the interrupt
-        if out.is_dir():
-            with contextlib.suppress(OSError):
-                _summarize(
-                    out, points, rows, "interrupted", "KeyboardInterrupt (Ctrl-C): not finished"
-                )
+        # Ctrl-C (a further one is ignored meanwhile): the workers, which ignore it, are
+        # stopped first; then the summary lists the runs that finished, those that finished
+        # while the workers stopped among them (from their files), and the others as
+        # interrupted. A summary that cannot be written must not hide the interrupt.
+        with _ctrl_c_ignored():
+            disconnect(client, cluster, scheduler)
+            closed = True
+            if out.is_dir():
+                _remove_partial_files(out, points)
+                _rows_from_files(out, points, rows)
+                with contextlib.suppress(OSError):
+                    _summarize(
+                        out, points, rows, "interrupted", "KeyboardInterrupt (Ctrl-C): not finished"
+                    )
         raise
     finally:
-        disconnect(client, cluster, scheduler)
-    for p in points:  # what attempts killed while writing left behind
-        for partial in out.glob(f".{p.file}.*.partial"):
+        if not closed:
+            disconnect(client, cluster, scheduler)
+    with _ctrl_c_ignored():
+        _remove_partial_files(out, points)
+        return _summarize(out, points, rows)
+
+
+def _remove_partial_files(out: Path, points) -> None:
+    """Removes what attempts killed while writing left behind: ``.run_XXXX.nc.<pid>.partial``
+    (:func:`run_one`) and its own temporary ``...partial.tmp<pid>`` (:func:`simulation.write`)."""
+    for p in points:
+        for partial in out.glob(f".{p.file}.*.partial*"):
             partial.unlink(missing_ok=True)
-    return _summarize(out, points, rows)
+
+
+def _rows_from_files(out: Path, points, rows: dict[int, dict]) -> None:
+    """Rows for the points whose run wrote its file but returned no row (it finished while
+    an interrupted sweep stopped its workers), from that file; a file that cannot be read
+    is left to the interrupted rows."""
+    import xarray as xr
+
+    for p in points:
+        if p.run in rows or not (out / p.file).is_file():
+            continue
+        try:
+            with xr.open_dataset(out / p.file, engine="h5netcdf") as ds:
+                numbers = summarize(ds)
+                attrs = dict(ds.attrs)
+        except Exception:  # a damaged file: the point stays interrupted
+            continue
+        completed = int(attrs.get("completed", 0)) == 1
+        result = {
+            "status": "completed" if completed else "failed",
+            "error": "" if completed else str(attrs.get("error", "")),
+            **numbers,
+            "wall [s]": math.nan,
+            "file": p.file,
+        }
+        rows[p.run] = _row(p, result)
 
 
 def _summarize(out: Path, points, rows: dict[int, dict], status: str = "", error: str = ""):
@@ -568,10 +615,11 @@ def connect(scheduler: Any, workers: int, timeout: float):
                 processes=True,
                 dashboard_address=None,
                 preload=["rollerdyn._dask_worker"],
-                # Dask's warnings are not the user's: they are about its own shutdown
-                # ("Worker process still alive ... killing" after a Ctrl-C); a run's
+                # Dask's messages are not the user's: they are about its own shutdown
+                # ("Worker process still alive ... killing", a worker's "Failed to
+                # communicate with scheduler during heartbeat" after a Ctrl-C); a run's
                 # failure is in its row of the summary.
-                silence_logs=logging.ERROR,
+                silence_logs=logging.CRITICAL,
             )
         return Client(cluster), cluster
     if isinstance(scheduler, Client):
