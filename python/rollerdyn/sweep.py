@@ -431,7 +431,6 @@ def sweep(
 
     client, cluster = connect(scheduler, workers, connect_timeout)
     rows: dict[int, dict] = {}
-    closed = False
     try:
         out.mkdir(parents=True, exist_ok=True)
         for p in points:  # no stale result of an earlier sweep can pass for this one's
@@ -476,7 +475,6 @@ def sweep(
         # interrupted. A summary that cannot be written must not hide the interrupt.
         with _ctrl_c_ignored():
             disconnect(client, cluster, scheduler)
-            closed = True
             if out.is_dir():
                 _remove_partial_files(out, points)
                 _rows_from_files(out, points, rows)
@@ -486,8 +484,7 @@ def sweep(
                     )
         raise
     finally:
-        if not closed:
-            disconnect(client, cluster, scheduler)
+        disconnect(client, cluster, scheduler)  # a no-op once closed (Ctrl-C above)
     with _ctrl_c_ignored():
         _remove_partial_files(out, points)
         return _summarize(out, points, rows)
@@ -505,15 +502,14 @@ def _rows_from_files(out: Path, points, rows: dict[int, dict]) -> None:
     """Rows for the points whose run wrote its file but returned no row (it finished while
     an interrupted sweep stopped its workers), from that file; a file that cannot be read
     is left to the interrupted rows."""
-    import xarray as xr
+    from .report import open_result
 
     for p in points:
         if p.run in rows or not (out / p.file).is_file():
             continue
         try:
-            with xr.open_dataset(out / p.file, engine="h5netcdf") as ds:
-                numbers = summarize(ds)
-                attrs = dict(ds.attrs)
+            ds = open_result(out / p.file)  # in memory, the file closed
+            numbers, attrs = summarize(ds), ds.attrs
         except Exception:  # a damaged file: the point stays interrupted
             continue
         completed = int(attrs.get("completed", 0)) == 1
