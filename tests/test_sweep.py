@@ -351,7 +351,7 @@ def test_ctrl_c_in_the_terminal_stops_the_sweep_with_one_line(tmp_path, presses)
     # in Client.__del__" of a client xarray opened in a worker. The summary is written
     # after the workers have stopped, also when Ctrl-C is pressed again meanwhile: it lists
     # each run with its file or as interrupted without one, and no partial file is left.
-    # The closing takes at most 5 s (Dask kills a busy worker after 4 s); 30 s allows for
+    # The closing takes about 5 s (Dask kills a busy worker after 4 s); 30 s allows for
     # a loaded machine.
     import os
     import signal

@@ -631,7 +631,7 @@ def connect(scheduler: Any, workers: int, timeout: float):
 def disconnect(client: Any, cluster: Any, scheduler: Any) -> None:
     """Closes what :func:`connect` opened: the client unless it was the caller's
     ``scheduler``, and the local cluster. Ctrl-C is ignored meanwhile (in the main thread):
-    the workers take up to 5 s to stop (a worker in the middle of a run is killed after
+    the workers take about 5 s to stop (a worker in the middle of a run is killed after
     4 s), and a Ctrl-C that interrupted the closing would leave it to the interpreter's
     exit, which waited 12 s (measured)."""
     with _ctrl_c_ignored():
