@@ -807,3 +807,50 @@ def test_sigterm_stops_a_run_and_keeps_its_results(tmp_path):
         assert ds.attrs["completed"] == 0
         assert ds.sizes["time"] >= 2
         assert "SIGTERM" in ds.attrs["error"]
+
+
+def _torque_balance(rolling_resistance: str) -> tuple[float, float]:
+    """B1 at full load and 500 rpm from its quasi-static equilibrium, without gravity and
+    without the oil-air mixture (no external moment on the rollers), 60 ms: the mean
+    inner-ring torque over 20-60 ms and the mean of what the rings' torques leave
+    unbalanced, T_outer - T_inner - c_z F_r (the radial load acts on the inner ring's
+    centre c, which the bearing's friction shifts along z by about 0.07 um, so the
+    contacts' moment about the bearing axis is the torque about the ring's own axis plus
+    c_z F_r)."""
+    cfg = variant(
+        **{
+            "operating.gravity": "0 m/s^2",
+            "cavity.oil_fraction": 0.0,
+            "cavity.air_density": "0 kg/m^3",
+            "cavity.air_viscosity": "0 Pa*s",
+            "operating.load_ramp": None,
+            "operating.speed_ramp": None,
+            "solver.start": "equilibrium",
+            "operating.end_time": "0.06 s",
+            "solver.output_interval": "0.25 ms",
+            "surfaces.rolling_resistance": rolling_resistance,
+        }
+    )
+    steady = simulate(cfg).sel(time=slice(0.02, None))
+    inner = steady.frictional_torque.values
+    c_z = steady.ring_position.sel(xyz="z").values
+    unbalanced = steady.outer_ring_torque.values - inner - c_z * 5000.0
+    return float(inner.mean()), float(unbalanced.mean())
+
+
+def test_the_rings_torques_balance_with_the_balanced_rolling_resistance():
+    """shared/reference/model-notes.md: the bearing's frictional torque on the inner ring
+    against the outer ring's at steady state; with no external moment on the rollers their
+    difference is the roller set's angular momentum change (measured 1e-5 N m here). The
+    paper's rolling resistance (eq. 56, F_R R on each body as a pure moment) puts a moment
+    F_R (rho_ring - rho_roller) into each race contact, and the outer ring's torque exceeds
+    the inner ring's by 0.61 % (measured); with `surfaces.rolling_resistance = "balanced"`
+    (the force pair of the film's equilibrium added, docs/dynamics.md, "Torque balance")
+    0.03 % is left (measured; its origin is not identified, docs/dynamics.md). The bound
+    0.15 % lies between them with a factor of 4 to the paper's side and 5 to the
+    measurement. The inner ring's torque moves by 0.15 % (measured): at most 0.5 %."""
+    inner_paper, unbalanced_paper = _torque_balance("paper")
+    inner, unbalanced = _torque_balance("balanced")
+    assert unbalanced_paper > 4e-3 * inner_paper, (unbalanced_paper, inner_paper)
+    assert abs(unbalanced) < 1.5e-3 * inner, (unbalanced, inner)
+    assert abs(inner / inner_paper - 1.0) < 5e-3, (inner, inner_paper)

@@ -38,6 +38,7 @@ SECTIONS = (
 CHOICES = {
     "solver.detector": "semi-analytical, gradient or mesh",
     "surfaces.flange_law": "point or distributed",
+    "surfaces.rolling_resistance": "paper or balanced",
     "method": "tr-bdf2 or esdirk34",
     "start": "rest or equilibrium",
     **{f"operating.{h}.kind": "ramp or table" for h in HISTORIES},

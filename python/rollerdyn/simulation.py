@@ -233,6 +233,7 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
                 "smoothing_speed": s.boundary_friction.smoothing_speed,
             },
             "hysteresis_coefficient": s.hysteresis_coefficient,
+            "rolling_resistance": s.rolling_resistance,
             "damping_ratio": s.damping_ratio,
             "squeeze_film": {
                 "enabled": bool(sq.enabled),

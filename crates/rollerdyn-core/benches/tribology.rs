@@ -106,6 +106,7 @@ fn slice(c: &mut Criterion) {
         thermal: ThermalCorrection::new(-8e-4, 0.134),
         moes: Default::default(),
         hysteresis_coefficient: 0.007,
+        rolling_resistance: Default::default(),
         damping_ratio: 0.1,
         friction: true,
         film: rollerdyn_core::tribology::hydrodynamic::RigidFilm::OFF,

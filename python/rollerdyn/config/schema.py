@@ -456,7 +456,11 @@ class SurfacesConfig(SurfacesDerived, _Section):
     ``"point"`` (the paper's Hertz at the deepest point of the detected pairing) or
     ``"distributed"`` (not in the paper: the whole overlap over the roller end on a Winkler
     foundation with the surfaces' asperities, for ends that lie nearly flat on the flange;
-    docs/dynamics.md)."""
+    docs/dynamics.md). ``rolling_resistance``: how the rolling resistance of eqs. 55-57
+    acts on the two bodies of a race contact: ``"paper"`` (a moment against each body's
+    rolling) or ``"balanced"`` (not in the paper: the same moment about each body's axis and
+    the force pair that keeps the oil film in equilibrium, so that the contact conserves
+    angular momentum; docs/dynamics.md, "Torque balance")."""
 
     raceway: SurfacePairConfig
     flange: SurfacePairConfig
@@ -464,6 +468,7 @@ class SurfacesConfig(SurfacesDerived, _Section):
     roller_roller: SurfacePairConfig | None = None
     boundary_friction: BoundaryFrictionConfig
     hysteresis_coefficient: Number(ge=0.0)
+    rolling_resistance: Literal["paper", "balanced"] = "paper"
     damping_ratio: Number(ge=0.0, le=2.0) = 0.1
     squeeze_film: SqueezeFilmConfig = Field(default_factory=SqueezeFilmConfig)
     race_film: RaceFilmConfig = Field(default_factory=RaceFilmConfig)

@@ -8,6 +8,7 @@
 //! (docs/dynamics.md, "Contacts"): u_i = tangential part of
 //! (v_material,i − v_frame), sliding u_rel = u_B − u_A.
 
+use super::params::RollingResistance;
 use super::state::Kinematics;
 use crate::geometry::primitives::Vec3;
 use crate::numerics::smooth::{hyperbolic_ramp, smooth_max};
@@ -50,6 +51,8 @@ pub struct Tribology {
     pub moes: std::sync::Arc<MoesTable>,
     /// α_v of eq. 55.
     pub hysteresis_coefficient: f64,
+    /// How the rolling resistance acts on the two bodies.
+    pub rolling_resistance: RollingResistance,
     /// Damping ratio ζ.
     pub damping_ratio: f64,
     /// Tangential forces and rolling resistance on (false: frictionless, for checks).
@@ -227,26 +230,90 @@ impl Section<'_> {
         tangential_speeds(self.a, self.b, &self.location, &self.normal, &self.frame)
     }
 
-    /// Pure moments against the rolling of both bodies (surface speeds `u` along the
-    /// rolling direction), of the size `size(arm)` for a body whose centre is `arm` from
-    /// the contact, switched smoothly with the direction of rolling (tanh(u/v_s)).
+    /// Rolling resistance of both bodies (surface speeds `u` along the rolling
+    /// direction): the hysteresis couple `m_b` (eq. 55) and the EHL rolling force `f_r`
+    /// (eqs. 56, 57) per body, mixed by the boundary `share` (eqs. 53, 54), each switched
+    /// smoothly with its body's direction of rolling (tanh(u/v_s)); applied as the paper
+    /// does or balanced ([`RollingResistance`]).
     #[inline]
-    fn rolling_moments(
+    fn rolling_resistance(
         &self,
         out: &mut ContactForces,
         tri: &Tribology,
         (ua, ub): (f64, f64),
-        size: impl Fn(f64) -> f64,
+        share: f64,
+        (m_b, f_r): (f64, f64),
     ) {
         let v_s = tri.boundary.smoothing_speed;
-        for (body, u, moment) in [
-            (self.a, ua, &mut out.moment_a),
-            (self.b, ub, &mut out.moment_b),
-        ] {
-            let arm = (self.location - body.center).norm();
-            let axis = rolling_axis(body, &self.location, &self.rolling);
-            *moment = -(size(arm) * (u / v_s).tanh()) * axis;
+        if tri.rolling_resistance == RollingResistance::Paper {
+            // A moment against each body's rolling, of size m_b + F_R·|P − c|: the moment
+            // about c of a surface force F_R at P, without the force.
+            for (body, u, moment) in [
+                (self.a, ua, &mut out.moment_a),
+                (self.b, ub, &mut out.moment_b),
+            ] {
+                let arm = (self.location - body.center).norm();
+                let axis = rolling_axis(body, &self.location, &self.rolling);
+                let size = LoadSharing::mix_by_share(share, m_b, f_r * arm);
+                *moment = -(size * (u / v_s).tanh()) * axis;
+            }
+            return;
         }
+        let reaction = rolling_resistance_balanced(
+            self,
+            share * m_b * (ub / v_s).tanh(),
+            (1.0 - share) * f_r * (ua / v_s).tanh(),
+            (1.0 - share) * f_r * (ub / v_s).tanh(),
+        );
+        out.tangential += reaction.tangential;
+        out.moment_a = reaction.moment_a;
+        out.moment_b = reaction.moment_b;
+    }
+}
+
+/// Rolling resistance of a line-contact section that conserves momentum and angular
+/// momentum (not in the paper; docs/dynamics.md, "Torque balance"): the paper's resisting
+/// moments about each body's own axis, completed by the forces the oil film must exert to
+/// be in equilibrium.
+///
+/// * EHL (eq. 56): the inlet's shear opposes each surface's motion with F_A and F_B
+///   (signed along the rolling direction t) at P. The film's pressure acts normal to each
+///   cylinder, so its tangential resultants g_A, g_B pass through the bodies' axes, at
+///   Q_A = P − ρ_A n and Q_B = P + ρ_B n (ρ the signed distances from P to the axes along
+///   the normal n from A to B; negative for a concave outer raceway). A massless film in
+///   equilibrium needs g_A + g_B = F_A + F_B (forces) and ρ_A g_A = ρ_B g_B (moments about
+///   P), so g_B = (F_A + F_B)·ρ_A/(ρ_A + ρ_B). On B: −F_B t at P and g_B t at Q_B, that is
+///   the force (g_B − F_B) t at P and the couple ρ_B g_B (n × t); on A the opposite force
+///   and couple. About its own axis each body then feels F·ρ against its rolling, as in
+///   the paper, and the pair exerts no net force or moment.
+/// * Hysteresis (eq. 55): the normal force shifted towards the inlet, a collinear pair,
+///   so B's couple `hysteresis` (signed, about the axis [`rolling_axis`] of B) and its
+///   opposite on A.
+///
+/// `hysteresis` = m_b·tanh(u_B/v_s) (the boundary share included), `f_a`, `f_b` = F_R·
+/// tanh(u/v_s) of each surface. Returns the force on B (A gets the opposite) and the
+/// couples.
+pub fn rolling_resistance_balanced(
+    section: &Section,
+    hysteresis: f64,
+    f_a: f64,
+    f_b: f64,
+) -> ContactForces {
+    let (n, t, p) = (&section.normal, &section.rolling, &section.location);
+    // The vector from P to the nearest point of a body's axis.
+    let to_axis = |body: &Kinematics| {
+        let c = body.center - p;
+        c - c.dot(&body.axis) * body.axis
+    };
+    let (rho_a, rho_b) = (-to_axis(section.a).dot(n), to_axis(section.b).dot(n));
+    let g_b = (f_a + f_b) * rho_a / (rho_a + rho_b);
+    let hysteresis_couple = -hysteresis * rolling_axis(section.b, p, t);
+    let couple = rho_b * g_b * n.cross(t) + hysteresis_couple;
+    ContactForces {
+        tangential: (g_b - f_b) * t,
+        moment_a: -couple,
+        moment_b: couple,
+        ..Default::default()
     }
 }
 
@@ -317,9 +384,7 @@ pub fn line_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
     if kind.rolling_resistance {
         let m_b = hysteresis_moment(tri.hysteresis_coefficient, f_n, half_width);
         let f_r = ehl_rolling_force(kind.e_prime, kind.r_eff, length, tri.eta0, u0, f_n) * phi_th;
-        section.rolling_moments(&mut out, tri, (ua_r, ub_r), |arm| {
-            LoadSharing::mix_by_share(share, m_b, f_r * arm)
-        });
+        section.rolling_resistance(&mut out, tri, (ua_r, ub_r), share, (m_b, f_r));
     }
     out
 }
@@ -355,9 +420,7 @@ pub fn film_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
         return out;
     }
     out.tangential = -(scale * film.shear) * (ub - ua);
-    section.rolling_moments(&mut out, tri, (ua_r, ub_r), |arm| {
-        scale * film.rolling * arm
-    });
+    section.rolling_resistance(&mut out, tri, (ua_r, ub_r), 0.0, (0.0, scale * film.rolling));
     out
 }
 
@@ -530,6 +593,7 @@ impl Tribology {
             thermal: ThermalCorrection::new(-1e-3 * eta0, 0.134),
             moes: Default::default(),
             hysteresis_coefficient: 0.01,
+            rolling_resistance: RollingResistance::Paper,
             damping_ratio: 0.1,
             friction: true,
             film: RigidFilm {
@@ -544,6 +608,7 @@ impl Tribology {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
 
     fn tribology() -> Tribology {
         Tribology::b1_for_tests()
@@ -741,5 +806,132 @@ mod tests {
         // Deep in contact (δ ≥ σ) only the paper's laws act.
         let film = forces_at(0.5e-6, spin, film_slice);
         assert_eq!(film, ContactForces::default());
+    }
+
+    /// The moment about a body's own axis (through its centre `c`) of the force `f` at `p`
+    /// and the couple `m`.
+    fn axial_moment(body: &Kinematics, p: &Vec3, f: &Vec3, m: &Vec3) -> f64 {
+        ((p - body.center).cross(f) + m).dot(&body.axis)
+    }
+
+    /// The forces of one slice of B1's inner race (`line_slice`, no hysteresis) with the
+    /// roller rolling on the turning ring at δ = 2 µm, for each way of applying the
+    /// rolling resistance: (the slice's forces, ring, roller, P, n).
+    fn rolling_slice(
+        how: RollingResistance,
+    ) -> (ContactForces, Kinematics, Kinematics, Vec3, Vec3) {
+        let mut tri = tribology();
+        tri.hysteresis_coefficient = 0.0;
+        tri.rolling_resistance = how;
+        let penetration = 2e-6;
+        let spin = -52.0 * 10e-3 / 2.2475e-3;
+        let (kind, ring, roller, p) = inner_slice(penetration, spin);
+        let n = Vec3::y();
+        let section = Section {
+            a: &ring,
+            b: &roller,
+            normal: n,
+            location: p,
+            penetration,
+            length: 0.22e-3,
+            rolling: n.cross(&roller.axis).normalize(),
+            frame: roller.frame_velocity(&p),
+        };
+        (line_slice(&tri, &kind, &section), ring, roller, p, n)
+    }
+
+    /// The paper's rolling resistance (eq. 56: F_R·R on each body, as pure moments) does
+    /// not conserve angular momentum: on the inner race the two moments about the bearing
+    /// axis differ by F_R·(ρ_A − ρ_B), ρ the distances of P from the ring's and the
+    /// roller's axes. The balanced one keeps each body's moment about its own axis (ring
+    /// and roller alike, to round-off) and adds the force pair of the film's equilibrium,
+    /// F_R·(ρ_A − ρ_B)/(ρ_A + ρ_B) on the roller along the surfaces' motion (closed form of
+    /// [`rolling_resistance_balanced`] for pure rolling, F_A = F_B = F_R), so that the
+    /// pair's net moment vanishes. F_R is read off the paper's moment on the ring.
+    #[test]
+    fn balanced_rolling_resistance_keeps_each_moment_and_conserves_angular_momentum() {
+        let (paper, ring, roller, p, n) = rolling_slice(RollingResistance::Paper);
+        let (balanced, ..) = rolling_slice(RollingResistance::Balanced);
+        let (rho_a, rho_b) = (p.y, roller.center.y - p.y);
+        let f_r = paper.moment_a.x.abs() / (p - ring.center).norm();
+        assert!(f_r > 1e-4, "an EHL rolling force to check: {f_r} N");
+        for (body, sign) in [(&ring, -1.0), (&roller, 1.0)] {
+            let [m_paper, m_balanced] = [&paper, &balanced].map(|f| {
+                let m = if sign > 0.0 { f.moment_b } else { f.moment_a };
+                axial_moment(body, &p, &(sign * f.force_on_b(&n)), &m)
+            });
+            assert!(
+                (m_balanced - m_paper).abs() <= 1e-12 * m_paper.abs(),
+                "{m_balanced} vs {m_paper}"
+            );
+        }
+        let pair = balanced.tangential - paper.tangential;
+        let expected = f_r * (rho_a - rho_b) / (rho_a + rho_b);
+        let motion = ring.omega.cross(&(p - ring.center)).normalize();
+        assert!(
+            (pair.dot(&motion) - expected).abs() <= 1e-9 * f_r,
+            "{pair:?} vs {expected}"
+        );
+        // Net moment of the pair about the bearing axis: the forces act at one point, so
+        // only the couples count.
+        let net = |f: &ContactForces| (f.moment_a + f.moment_b).x;
+        let imbalance = f_r * (rho_a - rho_b);
+        assert!(
+            (net(&paper).abs() - imbalance).abs() <= 1e-9 * imbalance,
+            "{} vs {imbalance}",
+            net(&paper)
+        );
+        assert!(net(&balanced).abs() <= 1e-12 * imbalance, "{}", net(&balanced));
+    }
+
+    proptest! {
+        /// Any two bodies (a convex or a concave ring, or a second roller), any surface
+        /// speeds and rolling forces: the balanced rolling resistance gives each body the
+        /// moment F·ρ about its own axis of the shear F at P (F_A against A's motion, F_B
+        /// against B's), with no net force or moment on the pair.
+        #[test]
+        fn balanced_rolling_resistance_is_the_shear_moment_in_equilibrium(
+            rho_a in prop::sample::select(vec![-15e-3, -10e-3, 2.25e-3, 10e-3, 50e-3]),
+            rho_b in 1e-3..5e-3f64,
+            offset in -3e-3..3e-3f64,
+            f_a in -0.5..0.5f64,
+            f_b in -0.5..0.5f64,
+            hysteresis in -1e-4..1e-4f64,
+        ) {
+            let n = Vec3::y();
+            let p = Vec3::new(offset, 0.0, 0.0);
+            // A's axis at P − ρ_A n, B's at P + ρ_B n, both along x; the centres off P
+            // axially by different amounts.
+            let a = Kinematics {
+                center: Vec3::new(0.3e-3, -rho_a, 0.0),
+                ..Kinematics::fixed()
+            };
+            let b = Kinematics {
+                center: Vec3::new(-0.2e-3, rho_b, 0.0),
+                ..Kinematics::fixed()
+            };
+            let section = Section {
+                a: &a,
+                b: &b,
+                normal: n,
+                location: p,
+                penetration: 1e-6,
+                length: 1e-4,
+                rolling: n.cross(&b.axis),
+                frame: Vec3::zeros(),
+            };
+            let f = rolling_resistance_balanced(&section, hysteresis, f_a, f_b);
+            let t = section.rolling;
+            let scale = 1e-12 * (1.0 + rho_a.abs() + rho_b);
+            // A's shear −F_A t at P about its axis point P − ρ_A n, and B's.
+            let shear_a = (rho_a * n).cross(&(-f_a * t)).x;
+            let shear_b = (-rho_b * n).cross(&(-f_b * t)).x;
+            let hysteresis_b = -hysteresis * rolling_axis(&b, &p, &t).x;
+            let on_a = axial_moment(&a, &p, &(-f.tangential), &f.moment_a);
+            let on_b = axial_moment(&b, &p, &f.tangential, &f.moment_b);
+            prop_assert!((on_a - (shear_a - hysteresis_b)).abs() <= scale, "{on_a} vs {shear_a}");
+            prop_assert!((on_b - (shear_b + hysteresis_b)).abs() <= scale, "{on_b} vs {shear_b}");
+            prop_assert!((f.moment_a + f.moment_b).norm() <= scale);
+        }
     }
 }

@@ -25,4 +25,6 @@ pub mod statics;
 pub mod topology;
 
 pub use model::BearingModel;
-pub use params::{BearingParams, Detector, FlangeLaw, History, ModelOptions, SurfacePair};
+pub use params::{
+    BearingParams, Detector, FlangeLaw, History, ModelOptions, RollingResistance, SurfacePair,
+};

@@ -121,6 +121,7 @@ impl BearingModel {
             thermal: ThermalCorrection::new(params.viscosity_slope, params.thermal_conductivity),
             moes: Default::default(),
             hysteresis_coefficient: params.hysteresis_coefficient,
+            rolling_resistance: params.rolling_resistance,
             damping_ratio: params.damping_ratio,
             friction: params.options.friction,
             film: params.race_film,

@@ -213,6 +213,9 @@ pub struct BearingParams {
     pub boundary: BoundaryFriction,
     /// Hysteresis coefficient α_v (eq. 55).
     pub hysteresis_coefficient: f64,
+    /// How the rolling resistance (eqs. 55–57) acts on the two bodies of a contact
+    /// ([`RollingResistance`]).
+    pub rolling_resistance: RollingResistance,
     /// Damping ratio ζ of the normal contact damping [-].
     pub damping_ratio: f64,
     /// Gravity [m/s²] (B1: 9.81 m/s² along −y, a horizontal shaft).
@@ -234,6 +237,33 @@ pub struct BearingParams {
     pub squeeze_film: SqueezeFilm,
     /// The numerical settings ([`ModelOptions`]).
     pub options: ModelOptions,
+}
+
+/// How the rolling resistance of a line contact (eqs. 55–57) acts on its two bodies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum RollingResistance {
+    /// The paper's: a pure moment against each body's rolling, the EHL part F_R·R with R
+    /// the body's distance from the contact (eq. 56). The two moments do not cancel, so
+    /// the contact does not conserve angular momentum (docs/dynamics.md, "Torque balance").
+    #[default]
+    Paper,
+    /// Not in the paper: the same moment about each body's own axis, and the force pair the
+    /// oil film needs to be in force and moment equilibrium
+    /// ([`crate::bearing::forces::rolling_resistance_balanced`]).
+    Balanced,
+}
+
+impl RollingResistance {
+    /// Both, in the order the configuration lists them.
+    pub const ALL: [RollingResistance; 2] = [RollingResistance::Paper, RollingResistance::Balanced];
+
+    /// The name in the configuration (`surfaces.rolling_resistance`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            RollingResistance::Paper => "paper",
+            RollingResistance::Balanced => "balanced",
+        }
+    }
 }
 
 /// How a roller end–flange contact carries its load.

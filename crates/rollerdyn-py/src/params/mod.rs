@@ -144,6 +144,7 @@ fn to_core(p: ModelParameters, traction: &EhlTraction) -> PyResult<BearingParams
             smoothing_speed: s.boundary_friction.smoothing_speed,
         },
         hysteresis_coefficient: s.hysteresis_coefficient,
+        rolling_resistance: s.rolling_resistance,
         damping_ratio: s.damping_ratio,
         gravity: Vec3::from(op.gravity),
         race_film: RigidFilm {

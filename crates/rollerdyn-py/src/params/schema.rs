@@ -8,7 +8,7 @@
 
 use super::read::{choice, nested_with, section, Fields, Omittable, Param, Section};
 use pyo3::prelude::*;
-use rollerdyn_core::bearing::{Detector, FlangeLaw};
+use rollerdyn_core::bearing::{Detector, FlangeLaw, RollingResistance};
 use rollerdyn_core::dynamics::integrate::Method;
 
 section! {
@@ -111,6 +111,8 @@ section! {
         boundary_friction: BoundaryFriction,
         /// α_v (eq. 55).
         hysteresis_coefficient: f64,
+        /// How the rolling resistance acts on the two bodies of a contact.
+        rolling_resistance: RollingResistance,
         /// ζ of the normal contact damping.
         damping_ratio: f64,
         squeeze_film: SqueezeFilm,
@@ -248,6 +250,7 @@ macro_rules! named {
 named! {
     Detector => Detector::ALL.map(|d| (d.name(), d));
     FlangeLaw => FlangeLaw::ALL.map(|l| (l.name(), l));
+    RollingResistance => RollingResistance::ALL.map(|r| (r.name(), r));
     Method => [("tr-bdf2", Method::TrBdf2), ("esdirk34", Method::Esdirk34)];
     Shape => [("linear", Shape::Linear), ("cosine", Shape::Cosine)];
     Start => [("rest", Start::Rest), ("equilibrium", Start::Equilibrium)];

@@ -136,6 +136,7 @@ fn params(b: &Bearing) -> BearingParams {
             smoothing_speed: 1e-3,
         },
         hysteresis_coefficient: 0.007,
+        rolling_resistance: Default::default(),
         damping_ratio: 0.1,
         gravity: Vec3::new(0.0, -b.gravity, 0.0),
         race_film: RigidFilm::OFF,
