@@ -420,7 +420,13 @@ pub fn film_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
         return out;
     }
     out.tangential = -(scale * film.shear) * (ub - ua);
-    section.rolling_resistance(&mut out, tri, (ua_r, ub_r), 0.0, (0.0, scale * film.rolling));
+    section.rolling_resistance(
+        &mut out,
+        tri,
+        (ua_r, ub_r),
+        0.0,
+        (0.0, scale * film.rolling),
+    );
     out
 }
 
@@ -881,7 +887,11 @@ mod tests {
             "{} vs {imbalance}",
             net(&paper)
         );
-        assert!(net(&balanced).abs() <= 1e-12 * imbalance, "{}", net(&balanced));
+        assert!(
+            net(&balanced).abs() <= 1e-12 * imbalance,
+            "{}",
+            net(&balanced)
+        );
     }
 
     proptest! {
