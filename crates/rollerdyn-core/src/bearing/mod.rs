@@ -24,6 +24,11 @@ pub mod state;
 pub mod statics;
 pub mod topology;
 
+#[cfg(test)]
+mod conservation_tests;
+#[cfg(test)]
+pub(crate) mod test_b1;
+
 pub use model::BearingModel;
 pub use params::{
     BearingParams, Detector, FlangeLaw, History, ModelOptions, RollingResistance, SurfacePair,
