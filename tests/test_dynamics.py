@@ -853,14 +853,17 @@ def _created_angular_momentum(rolling_resistance: str) -> tuple[float, float]:
 
 
 def test_the_contacts_conserve_angular_momentum_with_the_balanced_rolling_resistance():
-    """shared/reference/model-notes.md: the frictional torque on the inner ring checked
+    """The brief's reference notes (shared/reference/model-notes.md, outside the repository):
+    the frictional torque on the inner ring checked
     against the outer ring's: what the rings' contacts put into the roller set is the
     roller set's rate of angular momentum (no other moment acts here). The paper's rolling
-    resistance (eq. 56, F_R R on each body as a pure moment) creates F_R (rho_ring -
-    rho_roller) in each race contact: measured 0.68 % of the torque; the bound 0.4 %. With
+    resistance (eq. 56, F_R R on each body as a pure moment) creates F_R (R_i - r) in each
+    inner race contact and F_R (R_o + r) in each outer: measured 0.68 % of the torque; the
+    bound 0.4 %. With
     `surfaces.rolling_resistance = "balanced"` (the force pair of the oil film's
     equilibrium added; docs/dynamics.md, "Torque balance of the rings") every contact
-    conserves angular momentum, so what is left is round-off of sums of a few hundred terms
+    conserves angular momentum, and the check then holds the roller set's equations of
+    motion to the rings' outputs: what is left is round-off of sums of a few hundred terms
     of about 1e-2 N m (1e-16 N m): bound 1e-9 of the torque (measured 2e-14). The Rust
     test `every_contact_conserves_momentum_and_angular_momentum` checks each contact."""
     inner, created = _created_angular_momentum("paper")

@@ -456,11 +456,12 @@ class SurfacesConfig(SurfacesDerived, _Section):
     ``"point"`` (the paper's Hertz at the deepest point of the detected pairing) or
     ``"distributed"`` (not in the paper: the whole overlap over the roller end on a Winkler
     foundation with the surfaces' asperities, for ends that lie nearly flat on the flange;
-    docs/dynamics.md). ``rolling_resistance``: how the rolling resistance of eqs. 55-57
-    acts on the two bodies of a race contact: ``"paper"`` (a moment against each body's
-    rolling) or ``"balanced"`` (not in the paper: the same moment about each body's axis and
-    the force pair that keeps the oil film in equilibrium, so that the contact conserves
-    angular momentum; docs/dynamics.md, "Torque balance")."""
+    docs/dynamics.md). ``rolling_resistance``: how the rolling resistance of the race
+    contacts (eqs. 55-57) and the films' rolling force in the line-contact gaps act on the two
+    bodies: ``"paper"`` (a pure moment against each body's rolling) or ``"balanced"`` (not in
+    the paper: the same moment about each body's axis and the force pair that keeps the oil
+    film in equilibrium, so that the contact conserves angular momentum; docs/dynamics.md,
+    "Torque balance of the rings")."""
 
     raceway: SurfacePairConfig
     flange: SurfacePairConfig

@@ -1,7 +1,11 @@
 //! Every contact conserves momentum and angular momentum: the wrenches it puts on its two
 //! bodies sum to zero force and to zero moment about any point (Newton's third law for the
-//! contact and the massless oil film in it). Checked on B1 (`test_b1`) loaded and
-//! rolling, with every oil film on, the velocities disturbed so that every contact slides.
+//! contact and the massless oil film in it). Checked on B1's geometry and loads with the
+//! simplified lubricant of `test_b1`, loaded and rolling, with every oil film on, the
+//! velocities disturbed so that every contact slides. With the balanced rolling resistance
+//! each contact applies its forces at one point and its couples in opposite pairs, so the
+//! check guards that bookkeeping (a force or couple added to one body only would fail it);
+//! with the paper's it shows the moment the race contacts create.
 
 use super::contacts::Wrench;
 use super::state::Kinematics;

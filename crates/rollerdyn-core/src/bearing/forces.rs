@@ -286,9 +286,11 @@ impl Section<'_> {
 ///   the force (g_B − F_B) t at P and the couple ρ_B g_B (n × t); on A the opposite force
 ///   and couple. About its own axis each body then feels F·ρ against its rolling, as in
 ///   the paper, and the pair exerts no net force or moment.
-/// * Hysteresis (eq. 55): the normal force shifted towards the inlet, a collinear pair,
-///   so B's couple `hysteresis` (signed, about the axis [`rolling_axis`] of B) and its
-///   opposite on A.
+/// * Hysteresis (eq. 55): the normal force shifted along t towards the inlet, a collinear
+///   pair, so a couple of size m_b about n × t (B's rolling axis) against B's rolling, and
+///   its opposite on A, for every slice. (The paper's form turns each body's couple about
+///   the axis of its [`rolling_axis`], which tilts for slices away from the body's centre:
+///   on B1's roller about 10 % less about its axis at the outermost slices.)
 ///
 /// `hysteresis` = m_b·tanh(u_B/v_s) (the boundary share included), `f_a`, `f_b` = F_R·
 /// tanh(u/v_s) of each surface. Returns the force on B (A gets the opposite) and the
@@ -307,7 +309,8 @@ pub fn rolling_resistance_balanced(
     };
     let (rho_a, rho_b) = (-to_axis(section.a).dot(n), to_axis(section.b).dot(n));
     let g_b = (f_a + f_b) * rho_a / (rho_a + rho_b);
-    let hysteresis_couple = -hysteresis * rolling_axis(section.b, p, t);
+    // n × t = −a_B for t = n × a_B: against B's spin, whose sign is that of u_B (ρ_B > 0).
+    let hysteresis_couple = hysteresis * n.cross(t);
     let couple = rho_b * g_b * n.cross(t) + hysteresis_couple;
     ContactForces {
         tangential: (g_b - f_b) * t,
@@ -322,7 +325,8 @@ pub fn rolling_resistance_balanced(
 /// surfaces the greater of Moes and ZEV, eqs. 39–44) with the thermal correction (eq. 47),
 /// EHL traction (sect. 3.2.1),
 /// boundary friction (eqs. 51, 52), mixed by eqs. 53, 54, and for race contacts rolling
-/// resistance (eqs. 55–57) as pure moments on both bodies against their rolling.
+/// resistance (eqs. 55–57) against both bodies' rolling: as pure moments (the paper's) or
+/// balanced by the film's force pair ([`RollingResistance`]).
 ///
 pub fn line_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> ContactForces {
     let Section {
@@ -392,8 +396,8 @@ pub fn line_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
 /// The oil film of one slice of a line contact across a gap or within the first σ of
 /// penetration ([`crate::tribology::hydrodynamic`]; not in the paper): Martin's load with
 /// the squeeze term, bounded below by zero (cavitation), along the normal; Couette shear
-/// against the sliding; and the film's rolling force on both bodies as a pure moment
-/// against their rolling, in the form of the EHL rolling resistance of [`line_slice`].
+/// against the sliding; and the film's rolling force against both bodies' rolling, applied
+/// as the EHL rolling resistance of [`line_slice`] is ([`RollingResistance`]).
 /// The mean surface speed is regularised as the EHL film's ([`Tribology::regularised`]).
 /// Zero where the film does not act ([`RigidFilm::gap_and_weight`]).
 pub fn film_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> ContactForces {
@@ -866,16 +870,19 @@ mod tests {
                 let m = if sign > 0.0 { f.moment_b } else { f.moment_a };
                 axial_moment(body, &p, &(sign * f.force_on_b(&n)), &m)
             });
+            // The same moment by two sequences of a dozen operations: round-off of about
+            // 1e-15 of it; bound 1e-12.
             assert!(
                 (m_balanced - m_paper).abs() <= 1e-12 * m_paper.abs(),
                 "{m_balanced} vs {m_paper}"
             );
         }
         let pair = balanced.tangential - paper.tangential;
+        // Closed form against the code's ρ from the axes: round-off only; bound 1e-12 F_R.
         let expected = f_r * (rho_a - rho_b) / (rho_a + rho_b);
         let motion = ring.omega.cross(&(p - ring.center)).normalize();
         assert!(
-            (pair.dot(&motion) - expected).abs() <= 1e-9 * f_r,
+            (pair.dot(&motion) - expected).abs() <= 1e-12 * f_r,
             "{pair:?} vs {expected}"
         );
         // Net moment of the pair about the bearing axis: the forces act at one point, so
@@ -932,11 +939,15 @@ mod tests {
             };
             let f = rolling_resistance_balanced(&section, hysteresis, f_a, f_b);
             let t = section.rolling;
-            let scale = 1e-12 * (1.0 + rho_a.abs() + rho_b);
+            // Moments of up to 0.5 N at 0.05 m plus the couple: 2.5e-2 N m through a few
+            // operations, round-off of about 1e-17 N m; bound 1e-14 N m.
+            let scale = 1e-14;
             // A's shear −F_A t at P about its axis point P − ρ_A n, and B's.
             let shear_a = (rho_a * n).cross(&(-f_a * t)).x;
             let shear_b = (-rho_b * n).cross(&(-f_b * t)).x;
-            let hysteresis_b = -hysteresis * rolling_axis(&b, &p, &t).x;
+            // The hysteresis couple against B's spin (sign of u_B, as `hysteresis`) and its
+            // opposite on A; B's spin axis is +x here.
+            let hysteresis_b = -hysteresis;
             let on_a = axial_moment(&a, &p, &(-f.tangential), &f.moment_a);
             let on_b = axial_moment(&b, &p, &f.tangential, &f.moment_b);
             prop_assert!((on_a - (shear_a - hysteresis_b)).abs() <= scale, "{on_a} vs {shear_a}");

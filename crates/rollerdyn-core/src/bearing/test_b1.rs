@@ -1,7 +1,8 @@
-//! B1 (`examples/b1.toml`) for the core's own tests, its parameters built as the Python
-//! front end builds them (`rollerdyn.simulation.model_parameters` with
-//! `rollerdyn.model.Model`), by the same core functions; the lubricant's films, drag and
-//! squeeze film are off (the quasi-static model has none; a test turns them on).
+//! B1 (`examples/b1.toml`) for the core's own tests: its geometry, materials, line-contact
+//! laws and loads built as the Python front end builds them
+//! (`rollerdyn.simulation.model_parameters` with `rollerdyn.model.Model`), by the same core
+//! functions; its lubricant and traction simplified (the quasi-static model uses neither),
+//! and the films, drag and squeeze film off (a test turns them on).
 
 use crate::bearing::{
     BearingModel, BearingParams, Detector, FlangeLaw, History, ModelOptions, SurfacePair,
