@@ -864,7 +864,7 @@ def test_the_contacts_conserve_angular_momentum_with_the_balanced_rolling_resist
     equilibrium added; docs/dynamics.md, "Torque balance of the rings") every contact
     conserves angular momentum, and the check then holds the roller set's equations of
     motion to the rings' outputs: what is left is round-off of sums of a few hundred terms
-    of about 1e-2 N m (1e-16 N m): bound 1e-9 of the torque (measured 2e-14). The Rust
+    of about 1e-2 N m (1e-16 N m): bound 1e-9 of the torque (measured 4e-15). The Rust
     test `every_contact_conserves_momentum_and_angular_momentum` checks each contact."""
     inner, created = _created_angular_momentum("paper")
     assert abs(created) > 4e-3 * inner, (created, inner)
