@@ -46,7 +46,8 @@ fn loaded_sliding_state(how: RollingResistance) -> (BearingModel, Vec<f64>) {
     for i in 0..model.layout.rollers {
         let s = model.layout.roller(i);
         let k = (i + 1) as f64;
-        // Velocities 5..10 (m/s, rad/s) plus disturbances that differ from roller to roller.
+        // The velocity (states 5-7, m/s) and angular velocity (8-10, rad/s), disturbed by
+        // 1 mm/s and 50 mrad/s amplitudes that differ from roller to roller.
         for (j, v) in y[s + 5..s + 11].iter_mut().enumerate() {
             *v += 1e-3 * ((k * 1.7 + j as f64 * 0.9).sin()) * if j < 3 { 1.0 } else { 50.0 };
         }
