@@ -839,8 +839,10 @@ def _created_angular_momentum(rolling_resistance: str) -> tuple[float, float]:
     into_rollers = inner - np.cross(y[0:3], contacts_on_ring)[0] - float(ds.outer_ring_torque[-1])
     m, i_a, i_t = cfg.roller_mass, cfg.roller_axial_inertia, cfg.roller_transverse_inertia
     rate = 0.0
-    for k in range(cfg.geometry.roller_count):
-        s = 6 + 11 * k  # the ring's 6 states (tilt locked), then each roller's 11
+    z = cfg.geometry.roller_count
+    ring_states = len(y) - 11 * z  # the ring's states come first, then each roller's 11
+    for k in range(z):
+        s = ring_states + 11 * k
         r, (t_y, t_z), w = y[s : s + 3], y[s + 3 : s + 5], y[s + 8 : s + 11]
         acc, w_dot = dy[s + 5 : s + 8], dy[s + 8 : s + 11]
         a = np.array([np.cos(t_y) * np.cos(t_z), np.cos(t_y) * np.sin(t_z), -np.sin(t_y)])

@@ -741,7 +741,16 @@ mod tests {
         roller_spin: f64,
         law: fn(&Tribology, &LineKind, &Section) -> ContactForces,
     ) -> ContactForces {
-        let tri = tribology();
+        forces_with(&tribology(), penetration, roller_spin, law)
+    }
+
+    /// [`forces_at`] with the tribology `tri`.
+    fn forces_with(
+        tri: &Tribology,
+        penetration: f64,
+        roller_spin: f64,
+        law: fn(&Tribology, &LineKind, &Section) -> ContactForces,
+    ) -> ContactForces {
         let (kind, ring, roller, p) = inner_slice(penetration, roller_spin);
         let n = Vec3::y();
         let section = Section {
@@ -754,7 +763,7 @@ mod tests {
             rolling: n.cross(&roller.axis).normalize(),
             frame: roller.frame_velocity(&p),
         };
-        law(&tri, &kind, &section)
+        law(tri, &kind, &section)
     }
 
     /// Film and EHL forces of one slice, as the model sums them.
@@ -833,21 +842,10 @@ mod tests {
         let mut tri = tribology();
         tri.hysteresis_coefficient = 0.0;
         tri.rolling_resistance = how;
-        let penetration = 2e-6;
-        let spin = -52.0 * 10e-3 / 2.2475e-3;
-        let (kind, ring, roller, p) = inner_slice(penetration, spin);
-        let n = Vec3::y();
-        let section = Section {
-            a: &ring,
-            b: &roller,
-            normal: n,
-            location: p,
-            penetration,
-            length: 0.22e-3,
-            rolling: n.cross(&roller.axis).normalize(),
-            frame: roller.frame_velocity(&p),
-        };
-        (line_slice(&tri, &kind, &section), ring, roller, p, n)
+        let (penetration, spin) = (2e-6, -52.0 * 10e-3 / 2.2475e-3);
+        let (_, ring, roller, p) = inner_slice(penetration, spin);
+        let forces = forces_with(&tri, penetration, spin, line_slice);
+        (forces, ring, roller, p, Vec3::y())
     }
 
     /// The paper's rolling resistance (eq. 56: F_R·R on each body, as pure moments) does
