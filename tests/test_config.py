@@ -155,6 +155,16 @@ def test_solver_defaults(raw: dict) -> None:
     assert (s.line_fit.load_min, s.line_fit.load_max, s.line_fit.samples) == (None, None, 64)
 
 
+def test_rolling_resistance_defaults_to_balanced_and_b1_keeps_the_papers(
+    b1: BearingConfig, raw: dict
+) -> None:
+    # The default conserves angular momentum in every contact (docs/dynamics.md, "Torque
+    # balance of the rings"); B1's example sets the paper's law for the paper's study.
+    assert b1.surfaces.rolling_resistance == "paper"
+    cfg = parse_config(mutate(raw, "surfaces.rolling_resistance", DEL))
+    assert cfg.surfaces.rolling_resistance == "balanced"
+
+
 def test_frozen(b1: BearingConfig) -> None:
     with pytest.raises(ValidationError):
         b1.geometry.roller_count = 18  # type: ignore[misc]

@@ -458,10 +458,11 @@ class SurfacesConfig(SurfacesDerived, _Section):
     foundation with the surfaces' asperities, for ends that lie nearly flat on the flange;
     docs/dynamics.md). ``rolling_resistance``: how the rolling resistance of the race
     contacts (eqs. 55-57) and the films' rolling force in the line-contact gaps act on the two
-    bodies: ``"paper"`` (a pure moment against each body's rolling) or ``"balanced"`` (not in
-    the paper: the same moment about each body's axis and the force pair that keeps the oil
-    film in equilibrium, so that the contact conserves angular momentum; docs/dynamics.md,
-    "Torque balance of the rings")."""
+    bodies: ``"balanced"`` (the default; not in the paper: the same moment about each body's
+    axis and the force pair that keeps the oil film in equilibrium, so that the contact
+    conserves angular momentum) or ``"paper"`` (eqs. 55-57: a pure moment against each
+    body's rolling, which creates angular momentum; B1's example keeps it for the paper's
+    study); docs/dynamics.md, "Torque balance of the rings"."""
 
     raceway: SurfacePairConfig
     flange: SurfacePairConfig
@@ -469,7 +470,7 @@ class SurfacesConfig(SurfacesDerived, _Section):
     roller_roller: SurfacePairConfig | None = None
     boundary_friction: BoundaryFrictionConfig
     hysteresis_coefficient: Number(ge=0.0)
-    rolling_resistance: Literal["paper", "balanced"] = "paper"
+    rolling_resistance: Literal["paper", "balanced"] = "balanced"
     damping_ratio: Number(ge=0.0, le=2.0) = 0.1
     squeeze_film: SqueezeFilmConfig = Field(default_factory=SqueezeFilmConfig)
     race_film: RaceFilmConfig = Field(default_factory=RaceFilmConfig)
