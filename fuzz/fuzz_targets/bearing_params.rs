@@ -2,14 +2,18 @@
 //! (`BearingParams::check`, run by `BearingModel::new`). Every field the check covers is
 //! drawn (roller count and slices, shapes through their validated constructors, raceway
 //! radii, plays, densities, ring mass and inertias, η₀, bands, damping, the three load and
-//! speed histories) plus the detector, pruning, mesh resolution, crowning and gravity;
+//! speed histories) plus the detector, pruning, mesh resolution, crowning, gravity, the
+//! flange law, the rolling resistance's form and the race film's suction limit;
 //! the tribology data are B1's (the Python config validates those). No panic anywhere; a
 //! model that builds and finds a start state must give finite rates f(t, y) at the start
 //! and at a perturbed state (rollers pushed into their contacts).
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
-use rollerdyn_core::bearing::{BearingModel, BearingParams, Detector, History, SurfacePair};
+use rollerdyn_core::bearing::{
+    BearingModel, BearingParams, Detector, FlangeLaw, History, ModelOptions, RollingResistance,
+    SurfacePair,
+};
 use rollerdyn_core::contact::border::BorderBands;
 use rollerdyn_core::dynamics::integrate::OdeSystem;
 use rollerdyn_core::geometry::end_flange::FlangeShape;
@@ -142,8 +146,17 @@ fn params(r: &mut Reader) -> Option<BearingParams> {
             smoothing_speed: 1e-3,
         },
         hysteresis_coefficient: 0.01,
+        flange_law: if r.flag() {
+            FlangeLaw::Point
+        } else {
+            FlangeLaw::Distributed
+        },
+        rolling_resistance: if r.flag() {
+            RollingResistance::Paper
+        } else {
+            RollingResistance::Balanced
+        },
         damping_ratio: r.range(0.0, 2.0),
-        friction: r.flag(),
         gravity: rollerdyn_core::geometry::primitives::Vec3::new(
             r.range(-100.0, 100.0),
             r.range(-100.0, 100.0),
@@ -152,6 +165,8 @@ fn params(r: &mut Reader) -> Option<BearingParams> {
         race_film: rollerdyn_core::tribology::hydrodynamic::RigidFilm {
             enabled: r.flag(),
             cutoff: r.log_range(1e-9, 1e-3),
+            // The configuration's range (surfaces.race_film.suction_limit).
+            suction_limit: r.range(0.0, 10e6),
         },
         mixture: rollerdyn_core::tribology::drag::Mixture::new(
             r.range(0.0, 1.0),
@@ -163,20 +178,23 @@ fn params(r: &mut Reader) -> Option<BearingParams> {
         radial_load: history(r, 1e4),
         axial_load: history(r, 1e3),
         inner_ring_speed: history(r, 1e3),
-        detector,
-        // Not the coarsest meshes: (3, 1) gave NaN rates at the start (finding 6).
-        mesh_resolution: (8 + (r.byte() % 16) as usize, 2 + (r.byte() % 4) as usize),
-        pruning: r.flag(),
-        border_bands: BorderBands {
-            roller_angle: r.range(0.0, 1e-3),
-            flange_length: r.range(0.0, 1e-4),
-        },
         // The configuration's ranges (surfaces.squeeze_film).
         squeeze_film: SqueezeFilm {
             enabled: r.flag(),
             half_width: r.log_range(1e-6, 10e-3),
             floor: r.log_range(1e-9, 100e-6),
             cutoff: r.log_range(1e-9, 1e-3),
+        },
+        options: ModelOptions {
+            detector,
+            // Not the coarsest meshes: (3, 1) gave NaN rates at the start (finding 6).
+            mesh_resolution: (8 + (r.byte() % 16) as usize, 2 + (r.byte() % 4) as usize),
+            pruning: r.flag(),
+            border_bands: BorderBands {
+                roller_angle: r.range(0.0, 1e-3),
+                flange_length: r.range(0.0, 1e-4),
+            },
+            friction: r.flag(),
         },
     })
 }

@@ -5,6 +5,7 @@
 use criterion::{criterion_group, criterion_main, Criterion};
 use rollerdyn_core::bearing::forces::{line_slice, LineKind, Section, Tribology};
 use rollerdyn_core::bearing::state::Kinematics;
+use rollerdyn_core::bearing::RollingResistance;
 use rollerdyn_core::geometry::primitives::Vec3;
 use rollerdyn_core::tribology::film::{thermal_correction, FilmInputs, ThermalCorrection};
 use rollerdyn_core::tribology::friction::{BoundaryFriction, LoadSharing};
@@ -106,7 +107,7 @@ fn slice(c: &mut Criterion) {
         thermal: ThermalCorrection::new(-8e-4, 0.134),
         moes: Default::default(),
         hysteresis_coefficient: 0.007,
-        rolling_resistance: Default::default(),
+        rolling_resistance: RollingResistance::Paper,
         damping_ratio: 0.1,
         friction: true,
         film: rollerdyn_core::tribology::hydrodynamic::RigidFilm::OFF,

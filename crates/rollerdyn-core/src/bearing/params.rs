@@ -245,11 +245,12 @@ pub enum RollingResistance {
     /// The paper's: a pure moment against each body's rolling, the EHL part F_R·R with R
     /// the body's distance from the contact (eq. 56). The two moments do not cancel, so
     /// the contact does not conserve angular momentum (docs/dynamics.md, "Torque balance").
-    #[default]
+    /// B1's example configuration keeps it for the paper's study.
     Paper,
-    /// Not in the paper: the same moment about each body's own axis, and the force pair the
-    /// oil film needs to be in force and moment equilibrium
+    /// Not in the paper, the default: the same moment about each body's own axis, and the
+    /// force pair the oil film needs to be in force and moment equilibrium
     /// ([`crate::bearing::forces::rolling_resistance_balanced`]).
+    #[default]
     Balanced,
 }
 

@@ -5,7 +5,8 @@
 //! and the films, drag and squeeze film off (a test turns them on).
 
 use crate::bearing::{
-    BearingModel, BearingParams, Detector, FlangeLaw, History, ModelOptions, SurfacePair,
+    BearingModel, BearingParams, Detector, FlangeLaw, History, ModelOptions, RollingResistance,
+    SurfacePair,
 };
 use crate::contact::border::BorderBands;
 use crate::geometry::end_flange::FlangeShape;
@@ -135,7 +136,7 @@ pub(crate) fn params(b: &Bearing) -> BearingParams {
             smoothing_speed: 1e-3,
         },
         hysteresis_coefficient: 0.007,
-        rolling_resistance: Default::default(),
+        rolling_resistance: RollingResistance::Paper,
         damping_ratio: 0.1,
         gravity: Vec3::new(0.0, -b.gravity, 0.0),
         race_film: RigidFilm::OFF,
