@@ -12,7 +12,7 @@
 use libfuzzer_sys::fuzz_target;
 use rollerdyn_core::bearing::{
     BearingModel, BearingParams, Detector, FlangeLaw, History, ModelOptions, RollingResistance,
-    SurfacePair,
+    SurfacePair, Workspace,
 };
 use rollerdyn_core::contact::border::BorderBands;
 use rollerdyn_core::dynamics::integrate::OdeSystem;
@@ -217,6 +217,8 @@ fuzz_target!(|data: &[u8]| {
         }
     };
     assert!(checked.is_ok(), "model built despite {checked:?}");
+    let workspace = Workspace::single(&model);
+    let model = model.system(&workspace);
     let Ok(y0) = model.initial_state() else {
         return;
     };

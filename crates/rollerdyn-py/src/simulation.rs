@@ -13,7 +13,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rollerdyn_core::bearing::profile::Profile;
 use rollerdyn_core::bearing::run::{run, Progress, Record, RunCheckpoint, RunOptions, RunOutput};
-use rollerdyn_core::bearing::BearingModel;
+use rollerdyn_core::bearing::{BearingModel, BearingSystem, Workspace};
 use rollerdyn_core::dynamics::integrate::{OdeSystem, Start, Stats};
 use std::ops::ControlFlow;
 use std::time::Instant;
@@ -27,14 +27,19 @@ fn equilibrium_state(
     t: f64,
 ) -> PyResult<Vec<f64>> {
     let model = BearingModel::new(bearing_params(params, &traction.inner)?).map_err(core_err)?;
-    model.equilibrium_state(t).map_err(core_err)
+    let workspace = Workspace::single(&model);
+    model
+        .system(&workspace)
+        .equilibrium_state(t)
+        .map_err(core_err)
 }
 
 /// Checks a parameter set and returns the initial state (or raises ValueError).
 #[pyfunction]
 fn initial_state(params: &Bound<'_, PyDict>, traction: &PyEhlTraction) -> PyResult<Vec<f64>> {
     let model = BearingModel::new(bearing_params(params, &traction.inner)?).map_err(core_err)?;
-    model.initial_state().map_err(core_err)
+    let workspace = Workspace::single(&model);
+    model.system(&workspace).initial_state().map_err(core_err)
 }
 
 /// The model of `params`, checked to have as many states as `y`.
@@ -44,11 +49,11 @@ fn model_for(
     y: &[f64],
 ) -> PyResult<BearingModel> {
     let model = BearingModel::new(bearing_params(params, &traction.inner)?).map_err(core_err)?;
-    if y.len() != model.len() {
+    if y.len() != model.layout.len() {
         return Err(PyValueError::new_err(format!(
             "y has {} states: the model has {}",
             y.len(),
-            model.len()
+            model.layout.len()
         )));
     }
     Ok(model)
@@ -63,6 +68,8 @@ fn model_rhs(
     y: Vec<f64>,
 ) -> PyResult<(Vec<f64>, Vec<f64>)> {
     let model = model_for(params, traction, &y)?;
+    let workspace = Workspace::single(&model);
+    let model = model.system(&workspace);
     let n = model.len();
     let mut dy = vec![0.0; n];
     model.rhs(t, &y, &mut dy);
@@ -86,13 +93,21 @@ fn model_timing<'py>(
     jacobian_repetitions: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
     let model = model_for(params, traction, &y)?;
-    timing(py, &model, t, &y, rhs_repetitions, jacobian_repetitions)
+    let workspace = Workspace::single(&model);
+    timing(
+        py,
+        &model.system(&workspace),
+        t,
+        &y,
+        rhs_repetitions,
+        jacobian_repetitions,
+    )
 }
 
 /// [`model_timing`] of a built model.
 fn timing<'py>(
     py: Python<'py>,
-    model: &BearingModel,
+    model: &BearingSystem<'_>,
     t: f64,
     y: &[f64],
     rhs_repetitions: usize,
@@ -148,7 +163,9 @@ fn model_energy(
     t: f64,
     y: Vec<f64>,
 ) -> PyResult<f64> {
-    Ok(model_for(params, traction, &y)?.energy(t, &y))
+    let model = model_for(params, traction, &y)?;
+    let workspace = Workspace::single(&model);
+    Ok(model.system(&workspace).energy(t, &y))
 }
 
 /// Runs the dynamic model. `progress(time, t_end, steps, rhs, jac, step, at_output)` is
@@ -172,16 +189,23 @@ fn simulate<'py>(
     checkpoint: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (opts, threads) = run_options(options)?;
-    let model = BearingModel::new(bearing_params(params, &traction.inner)?)
-        .and_then(|m| m.with_threads(threads.unwrap_or(1)))
-        .map_err(core_err)?;
-    run_model(py, &model, &opts, progress, start, checkpoint)
+    let model = BearingModel::new(bearing_params(params, &traction.inner)?).map_err(core_err)?;
+    let workspace = Workspace::new(&model, threads.unwrap_or(1)).map_err(core_err)?;
+    run_model(
+        py,
+        &model.system(&workspace),
+        &opts,
+        progress,
+        start,
+        checkpoint,
+    )
 }
 
-/// [`simulate`] with a built model (its threads as built; `options["threads"]` unused).
+/// [`simulate`] with a built model in its workspace (the workspace's threads;
+/// `options["threads"]` unused).
 fn run_model<'py>(
     py: Python<'py>,
-    model: &BearingModel,
+    model: &BearingSystem<'_>,
     opts: &RunOptions,
     progress: Option<Bound<'py, PyAny>>,
     start: Option<(f64, Vec<f64>, Option<f64>)>,
@@ -404,16 +428,23 @@ fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py,
 #[pyclass(name = "Model", module = "rollerdyn._core", frozen)]
 pub struct PyModel {
     pub(crate) model: BearingModel,
+    /// What the model's evaluations change (warm starts, profile) and its threads.
+    pub(crate) workspace: Workspace,
 }
 
 impl PyModel {
+    /// The model in its workspace.
+    pub(crate) fn system(&self) -> BearingSystem<'_> {
+        self.model.system(&self.workspace)
+    }
+
     /// `y` checked to be a state of this model.
     fn state<'a>(&self, y: &'a [f64]) -> PyResult<&'a [f64]> {
-        if y.len() != self.model.len() {
+        if y.len() != self.model.layout.len() {
             return Err(PyValueError::new_err(format!(
                 "y has {} states: the model has {}",
                 y.len(),
-                self.model.len()
+                self.model.layout.len()
             )));
         }
         Ok(y)
@@ -425,16 +456,16 @@ impl PyModel {
     #[new]
     #[pyo3(signature = (params, traction, threads=1))]
     fn new(params: &Bound<'_, PyDict>, traction: &PyEhlTraction, threads: usize) -> PyResult<Self> {
-        let model = BearingModel::new(bearing_params(params, &traction.inner)?)
-            .and_then(|m| m.with_threads(threads))
-            .map_err(core_err)?;
-        Ok(PyModel { model })
+        let model =
+            BearingModel::new(bearing_params(params, &traction.inner)?).map_err(core_err)?;
+        let workspace = Workspace::new(&model, threads).map_err(core_err)?;
+        Ok(PyModel { model, workspace })
     }
 
     /// Number of states.
     #[getter]
     fn states(&self) -> usize {
-        self.model.len()
+        self.model.layout.len()
     }
 
     /// Number of rollers.
@@ -445,19 +476,19 @@ impl PyModel {
 
     /// The state at rest on the pitch circle (`solver.start = "rest"`).
     fn initial_state(&self) -> PyResult<Vec<f64>> {
-        self.model.initial_state().map_err(core_err)
+        self.system().initial_state().map_err(core_err)
     }
 
     /// The quasi-static equilibrium state at time t (`solver.start = "equilibrium"`).
     fn equilibrium_state(&self, t: f64) -> PyResult<Vec<f64>> {
-        self.model.equilibrium_state(t).map_err(core_err)
+        self.system().equilibrium_state(t).map_err(core_err)
     }
 
     /// f(t, y).
     fn rhs(&self, t: f64, y: Vec<f64>) -> PyResult<Vec<f64>> {
         let y = self.state(&y)?;
         let mut dy = vec![0.0; y.len()];
-        self.model.rhs(t, y, &mut dy);
+        self.system().rhs(t, y, &mut dy);
         Ok(dy)
     }
 
@@ -466,13 +497,13 @@ impl PyModel {
         let y = self.state(&y)?;
         let n = y.len();
         let mut jac = nalgebra::DMatrix::zeros(n, n);
-        self.model.jacobian(t, y, &mut jac);
+        self.system().jacobian(t, y, &mut jac);
         Ok(jac.transpose().as_slice().to_vec())
     }
 
     /// Total mechanical energy at (t, y) [J].
     fn energy(&self, t: f64, y: Vec<f64>) -> PyResult<f64> {
-        Ok(self.model.energy(t, self.state(&y)?))
+        Ok(self.system().energy(t, self.state(&y)?))
     }
 
     /// Mean wall time of a right-hand side and a Jacobian at (t, y) (see `model_timing`).
@@ -485,10 +516,17 @@ impl PyModel {
         jacobian_repetitions: usize,
     ) -> PyResult<Bound<'py, PyDict>> {
         let y = self.state(&y)?;
-        timing(py, &self.model, t, y, rhs_repetitions, jacobian_repetitions)
+        timing(
+            py,
+            &self.system(),
+            t,
+            y,
+            rhs_repetitions,
+            jacobian_repetitions,
+        )
     }
 
-    /// A whole run, as `simulate` (on the model's threads).
+    /// A whole run, as `simulate` (on the threads of the model's workspace).
     #[pyo3(signature = (options, progress=None, start=None, checkpoint=None))]
     fn run<'py>(
         &self,
@@ -499,7 +537,7 @@ impl PyModel {
         checkpoint: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let (opts, _threads) = run_options(options)?;
-        run_model(py, &self.model, &opts, progress, start, checkpoint)
+        run_model(py, &self.system(), &opts, progress, start, checkpoint)
     }
 }
 

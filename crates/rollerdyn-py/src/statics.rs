@@ -109,7 +109,7 @@ pub(crate) fn statics<'py>(
     chain: bool,
     stiffness: bool,
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {
-    let model = &model.model;
+    let model = model.system();
     let mut last: Option<StaticSolution> = None;
     let mut out = Vec::with_capacity(cases.len());
     for c in &cases {

@@ -9,8 +9,8 @@
 
 use super::contacts::Wrench;
 use super::state::Kinematics;
-use super::test_b1::{params, B1};
-use super::{BearingModel, RollingResistance};
+use super::test_b1::{in_workspace, params, B1};
+use super::{BearingModel, RollingResistance, Workspace};
 use crate::geometry::primitives::Vec3;
 use crate::tribology::hydrodynamic::RigidFilm;
 use crate::tribology::squeeze::SqueezeFilm;
@@ -42,7 +42,7 @@ fn loaded_sliding_state(how: RollingResistance) -> (BearingModel, Vec<f64>) {
         cutoff: 20e-6,
     };
     let model = BearingModel::new(p).unwrap();
-    let mut y = model.equilibrium_state(0.0).unwrap();
+    let mut y = in_workspace(&model, |m| m.equilibrium_state(0.0)).unwrap();
     for i in 0..model.layout.rollers {
         let s = model.layout.roller(i);
         let k = (i + 1) as f64;
@@ -59,6 +59,8 @@ fn loaded_sliding_state(how: RollingResistance) -> (BearingModel, Vec<f64>) {
 /// (about the origin) a contact puts on its roller, for scale.
 fn largest_imbalance(how: RollingResistance) -> (f64, f64, f64, f64) {
     let (model, y) = loaded_sliding_state(how);
+    let workspace = Workspace::single(&model);
+    let model = model.system(&workspace);
     let kin = model.kinematics(0.0, &y);
     let fixed = Kinematics::fixed();
     let (mut force, mut moment, mut loads, mut moments) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);

@@ -14,9 +14,9 @@
 use super::detection::EndGeometry;
 use super::forces::ContactForces;
 use super::line_contacts::LineGeometry;
-use super::model::BearingModel;
 use super::state::{BearingKinematics, Kinematics};
 use super::topology::Element;
+use crate::bearing::workspace::BearingSystem;
 use crate::geometry::primitives::Vec3;
 
 /// A force and a moment about the body's centre.
@@ -63,7 +63,7 @@ pub struct ElementResult {
     /// Sum of the tangential forces on B [N].
     pub tangential: Vec3,
     /// Largest penetration [m] (−∞ if no pairing was valid; for a line contact whose bodies
-    /// are apart, an upper bound of it, below 0: see `BearingModel::penetration_bound`).
+    /// are apart, an upper bound of it, below 0: see `BearingSystem::penetration_bound`).
     pub penetration: f64,
     /// Roller end / flange: the active pairing (index in [`crate::contact::Pairing::ALL`]),
     /// if any overlaps.
@@ -107,14 +107,14 @@ pub(super) enum Geometry {
     /// A line contact: its slices' and film points' geometry.
     Line(LineGeometry),
     /// A line contact whose bodies are apart: the (negative) bound of its penetration,
-    /// [`BearingModel::penetration_bound`]; no slice computed.
+    /// [`BearingSystem::penetration_bound`]; no slice computed.
     Apart(f64),
     /// The detected roller end–flange contact, with its distributed overlap when the
     /// flange law is [`super::params::FlangeLaw::Distributed`].
     End(EndGeometry),
 }
 
-impl BearingModel {
+impl BearingSystem<'_> {
     /// The bodies A and B of `element` at `kin` (`fixed`: the outer ring).
     fn bodies<'a>(
         &self,
@@ -137,7 +137,7 @@ impl BearingModel {
         }
     }
 
-    /// Evaluates every contact, in the order of [`Self::elements`].
+    /// Evaluates every contact, in the order of [`BearingModel::elements`](super::BearingModel::elements).
     pub fn evaluate_all(&self, kin: &BearingKinematics) -> Vec<ElementResult> {
         let elements = &self.topology.elements;
         self.map(elements.len(), |e| self.evaluate(&elements[e], kin))
@@ -155,14 +155,15 @@ impl BearingModel {
             let end = self.roller_end(k, b);
             return Geometry::End(self.end_geometry(&end, &self.flange(k, a), i, k));
         };
-        let start = self.profiler.stopwatch();
+        let start = self.workspace.profiler.stopwatch();
         let bound = self.penetration_bound(line, a, b);
         let geometry = if self.is_apart(bound) {
             Geometry::Apart(bound)
         } else {
             Geometry::Line(self.line_geometry(line, a, b, bound))
         };
-        self.profiler
+        self.workspace
+            .profiler
             .spend_time(start, |pr, t| pr.line_contacts += t);
         geometry
     }

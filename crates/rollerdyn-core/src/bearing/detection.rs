@@ -12,10 +12,10 @@
 //! The detected contact's curvature is blended across patch borders ([`border::blend`]) so
 //! that the force is continuous in the pose.
 
-use super::model::BearingModel;
 use super::params::{BearingParams, Detector, FlangeLaw};
 use super::state::Kinematics;
 use super::topology::{end_slot, flange_side};
+use crate::bearing::workspace::BearingSystem;
 use crate::contact::distributed::{self, Asperities, DistributedOverlap};
 use crate::contact::gradient::{self, Unknowns};
 use crate::contact::mesh::{MeshDetector, MeshResolution};
@@ -51,7 +51,7 @@ impl WarmStarts {
     }
 }
 
-/// The position-dependent part of a roller end–flange contact ([`BearingModel::end_geometry`]).
+/// The position-dependent part of a roller end–flange contact (`BearingSystem::end_geometry`).
 #[derive(Debug, Clone, Copy)]
 pub struct EndGeometry {
     /// The detected contact (None: no valid pairing).
@@ -62,7 +62,7 @@ pub struct EndGeometry {
     pub foundation_modulus: f64,
 }
 
-impl BearingModel {
+impl BearingSystem<'_> {
     /// The end of `roller` that faces flange k.
     pub(super) fn roller_end(&self, k: usize, roller: &Kinematics) -> RollerEnd {
         RollerEnd::new(
@@ -104,9 +104,11 @@ impl BearingModel {
         let contact = self.end_contact(end, flange, roller, k);
         let overlap = match (self.params.flange_law, &contact) {
             (FlangeLaw::Distributed, Some(c)) => {
-                let start = self.profiler.stopwatch();
+                let start = self.workspace.profiler.stopwatch();
                 let overlap = self.overlap(end, flange, c, false);
-                self.profiler.spend_time(start, |pr, t| pr.detection += t);
+                self.workspace
+                    .profiler
+                    .spend_time(start, |pr, t| pr.detection += t);
                 overlap
             }
             _ => None,
@@ -165,7 +167,7 @@ impl BearingModel {
 
     /// The composite contact of roller i's end against flange k by the configured detector.
     fn detect(&self, end: &RollerEnd, flange: &Flange, roller: usize, k: usize) -> Option<Contact> {
-        let start = self.profiler.stopwatch();
+        let start = self.workspace.profiler.stopwatch();
         let options = &self.params.options;
         let found = match options.detector {
             Detector::SemiAnalytical if options.pruning => pruning::composite_within_bounds(
@@ -175,16 +177,18 @@ impl BearingModel {
                 self.params.squeeze_film.reach(),
             ),
             Detector::SemiAnalytical => semi_analytical::composite(end, flange),
-            Detector::Gradient => {
-                self.detect_by_gradient(end, flange, &mut self.warm_starts.slot(roller, k))
-            }
+            Detector::Gradient => self.detect_by_gradient(
+                end,
+                flange,
+                &mut self.workspace.warm_starts.slot(roller, k),
+            ),
             Detector::Mesh => {
                 let (around, along) = options.mesh_resolution;
                 let mesh = MeshDetector::new(end, flange, MeshResolution { around, along });
                 deepest(&mesh.detect())
             }
         };
-        self.profiler.count_detection(start);
+        self.workspace.profiler.count_detection(start);
         found
     }
 
@@ -239,7 +243,7 @@ impl BearingModel {
             let all = semi.get_or_insert_with(|| semi_analytical::detect(end, flange));
             if all[k].valid {
                 contacts.push(all[k]);
-                self.profiler.spend(|p| p.gradient_fallbacks += 1);
+                self.workspace.profiler.spend(|p| p.gradient_fallbacks += 1);
             }
         }
         deepest(&contacts)

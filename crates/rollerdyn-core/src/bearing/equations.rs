@@ -7,11 +7,11 @@
 
 use super::contacts::{ElementResult, Geometry, Wrench};
 use super::detection::EndGeometry;
-use super::model::BearingModel;
 use super::params::FlangeLaw;
 use super::state::ROLLER_STATES;
 use super::state::{ring_kinematics, roller_kinematics, BearingKinematics, Kinematics};
 use super::topology::{Body, Element};
+use crate::bearing::workspace::BearingSystem;
 use crate::dynamics::rigid::{
     angle_rates, angular_acceleration, angular_momentum, driven_transverse_acceleration,
 };
@@ -41,7 +41,7 @@ impl Loads {
     }
 }
 
-impl BearingModel {
+impl BearingSystem<'_> {
     /// Kinematics of all bodies: inner ring, then the rollers.
     pub fn kinematics(&self, t: f64, y: &[f64]) -> BearingKinematics {
         let spin = self.params.inner_ring_speed.at(t).0;

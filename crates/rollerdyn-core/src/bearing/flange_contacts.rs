@@ -9,14 +9,14 @@
 use super::contacts::ElementResult;
 use super::detection::EndGeometry;
 use super::forces::{end_flange, flange_friction, penetration_rate, ContactForces, FlangeLoad};
-use super::model::BearingModel;
 use super::state::Kinematics;
+use crate::bearing::workspace::BearingSystem;
 use crate::contact::distributed::DistributedOverlap;
 use crate::contact::{relative_radius, Contact, Pairing};
 use crate::tribology::foundation;
 use std::f64::consts::PI;
 
-impl BearingModel {
+impl BearingSystem<'_> {
     /// Evaluates the contact of roller i's end (`roller`) against flange k of `ring`.
     pub(super) fn flange_element(
         &self,
@@ -51,7 +51,7 @@ impl BearingModel {
         {
             return out;
         }
-        let start = self.profiler.stopwatch();
+        let start = self.workspace.profiler.stopwatch();
         let p = c.location();
         let squeeze_force = squeeze.damping(self.tribology.eta0, c.rx, c.ry, c.penetration)
             * penetration_rate(ring, roller, &p, &c.normal);
@@ -71,7 +71,8 @@ impl BearingModel {
         }
         f.normal += squeeze_force;
         out.add_forces(&f, &normal, &location, ring, roller);
-        self.profiler
+        self.workspace
+            .profiler
             .spend_time(start, |pr, t| pr.flange_forces += t);
         out
     }

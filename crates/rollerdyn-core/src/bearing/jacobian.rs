@@ -8,7 +8,7 @@
 //! the roller by −δ does: the ring's translation and velocity columns are assembled from
 //! the rollers' corresponding columns (their ring contacts' changes, negated) instead of
 //! evaluating every ring contact again; its tilt columns are differenced. The columns are
-//! computed apart, on the model's threads if it has any, and written in order: the
+//! computed apart, on the workspace's threads if it has any, and written in order: the
 //! numbers do not depend on the thread count.
 //!
 //! Also the per-state scales of the difference steps and of the integrator's absolute
@@ -16,9 +16,9 @@
 
 use super::contacts::{ElementResult, Geometry, Wrench};
 use super::equations::Loads;
-use super::model::BearingModel;
 use super::state::{ring_kinematics, roller_kinematics, BearingKinematics, ROLLER_STATES};
 use super::topology::Body;
+use crate::bearing::workspace::BearingSystem;
 use nalgebra::DMatrix;
 
 /// Per-state scale for the Jacobian's difference steps: lengths are measured in metres,
@@ -64,7 +64,7 @@ fn has_ring_twin(local: usize) -> bool {
     (0..6).any(|k| roller_twin(k) == Some(local))
 }
 
-impl BearingModel {
+impl BearingSystem<'_> {
     /// Absolute tolerances per state for a length tolerance `atol` [m]: lengths in m,
     /// angles by the roller radius, velocities as the speed that moves a body by `atol`
     /// within `time_scale` [s] (config `solver.atol_time_scale`).
@@ -106,7 +106,7 @@ impl BearingModel {
     }
 
     /// The Jacobian by per-body finite differences (see the module doc), its columns
-    /// computed apart (on the model's threads) and written in order.
+    /// computed apart (on the workspace's threads) and written in order.
     pub(super) fn structured_jacobian(&self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
         let kin = self.kinematics(t, y);
         let elements = &self.topology.elements;

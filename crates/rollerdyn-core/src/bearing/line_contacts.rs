@@ -9,14 +9,14 @@
 //! ([`film_slice`], [`crate::tribology::hydrodynamic`]), evaluated at 6 Gauss points along
 //! the roller rather than at the slices. A contact whose bodies are too far apart for any
 //! slice to touch or any film to act is recognised from a bound of its penetration
-//! (`BearingModel::penetration_bound`) without computing its slices.
+//! (`BearingSystem::penetration_bound`) without computing its slices.
 
 use super::contacts::ElementResult;
 use super::forces::{film_slice, line_slice, LineKind, Section};
-use super::model::BearingModel;
 use super::params::{BearingParams, SurfacePair};
 use super::state::Kinematics;
 use super::topology::LineContact;
+use crate::bearing::workspace::BearingSystem;
 use crate::geometry::primitives::Vec3;
 use crate::geometry::roller::MassProperties;
 use crate::numerics::quadrature::{mapped_table, GAUSS_LEGENDRE_6};
@@ -157,7 +157,7 @@ impl LineContacts {
     }
 }
 
-impl BearingModel {
+impl BearingSystem<'_> {
     /// Evaluates a line contact of kind `line` between bodies `a` and `b`.
     pub(super) fn line_element(
         &self,
@@ -298,7 +298,7 @@ impl BearingModel {
         b: &Kinematics,
         geometry: &LineGeometry,
     ) -> ElementResult {
-        let start = self.profiler.stopwatch();
+        let start = self.workspace.profiler.stopwatch();
         let mut out = ElementResult::untouched();
         for section in &geometry.slices {
             out.penetration = out.penetration.max(section.penetration);
@@ -315,7 +315,8 @@ impl BearingModel {
                 self.section_into(&mut out, line, a, b, section, Some(point.length));
             }
         }
-        self.profiler
+        self.workspace
+            .profiler
             .spend_time(start, |pr, t| pr.line_contacts += t);
         out
     }

@@ -23,6 +23,7 @@ pub mod run;
 pub mod state;
 pub mod statics;
 pub mod topology;
+pub mod workspace;
 
 #[cfg(test)]
 mod conservation_tests;
@@ -33,3 +34,4 @@ pub use model::BearingModel;
 pub use params::{
     BearingParams, Detector, FlangeLaw, History, ModelOptions, RollingResistance, SurfacePair,
 };
+pub use workspace::{BearingSystem, Workspace};

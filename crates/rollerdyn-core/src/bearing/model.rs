@@ -10,9 +10,11 @@
 //! roller, [`crate::tribology::hydrodynamic`]), the squeeze film at the flanges, the drag of
 //! the oil–air mixture on every roller ([`crate::tribology::drag`]) and gravity.
 //!
-//! This module holds the model itself ([`BearingModel`]: construction, threads, the start
-//! state, the [`OdeSystem`] it is to the integrator). A right-hand side passes through
-//! stages, each in a module of its own:
+//! This module holds the model itself ([`BearingModel`]: construction and what is fixed
+//! with it); [`super::workspace`] what its evaluations change and the
+//! [`OdeSystem`](crate::dynamics::integrate::OdeSystem)
+//! ([`BearingSystem`]) that joins the two for the integrator. A right-hand side passes
+//! through stages, each in a module of its own:
 //!
 //! 1. [`super::state`]: the bodies' kinematics read from the state vector;
 //! 2. [`super::topology`]: the contacts and the two bodies each one joins;
@@ -26,20 +28,17 @@
 //! per body. [`super::profile`] samples where the time goes.
 //!
 //! The contacts of a right-hand side and the columns of a Jacobian are computed apart, on
-//! the model's threads if it has any ([`BearingModel::with_threads`]), and summed in a fixed
-//! order: the numbers do not depend on the thread count.
+//! the workspace's threads if it has any ([`Workspace::new`]), and summed in a fixed order:
+//! the numbers do not depend on the thread count.
 
-use super::detection::{flange_of, WarmStarts};
+use super::detection::flange_of;
 use super::forces::{EllipseKind, Tribology};
 use super::line_contacts::LineContacts;
-use super::params::{BearingParams, Detector};
-use super::profile::Profiler;
+use super::params::BearingParams;
 use super::state::{Kinematics, Layout};
 use super::topology::Topology;
 use crate::contact::pruning::FlangeBounds;
-use crate::dynamics::integrate::OdeSystem;
 use crate::dynamics::rigid::axis_from_angles;
-use crate::dynamics::team::Team;
 use crate::error::{Error, Result};
 use crate::geometry::end_flange::face_contact_area;
 use crate::geometry::primitives::Vec3;
@@ -47,20 +46,20 @@ use crate::geometry::roller::MassProperties;
 use crate::numerics::quadrature::{mapped_table, GAUSS_LEGENDRE_4};
 use crate::tribology::film::ThermalCorrection;
 use crate::tribology::foundation::foundation_modulus;
-use nalgebra::DMatrix;
-use std::sync::Arc;
 
 pub use super::contacts::{ElementResult, Wrench};
 pub use super::equations::Loads;
 pub use super::profile::Profile;
 pub use super::state::BearingKinematics;
 pub use super::topology::{Body, Element, LineContact, FLANGE_NAMES};
+pub use super::workspace::{BearingSystem, Workspace};
 
 /// Points along the roller at which the drag of the oil–air mixture is evaluated
 /// (Gauss–Legendre; [`crate::tribology::drag`]).
 const DRAG_POINTS: [(f64, f64); 4] = GAUSS_LEGENDRE_4;
 
-/// The bearing model (immutable parameters plus the gradient method's warm starts).
+/// The bearing model: its parameters and what is derived from them once, immutable after
+/// [`BearingModel::new`] (what evaluations change lives in a [`Workspace`]).
 pub struct BearingModel {
     /// The parameters.
     pub params: BearingParams,
@@ -85,13 +84,6 @@ pub struct BearingModel {
     pub(super) locked_axis: Vec3,
     /// Pruning bounds of the four flanges (intrinsic, so computed once; [`FlangeBounds`]).
     pub(super) flange_bounds: [FlangeBounds; 4],
-    /// The gradient detector's warm starts, one slot per roller end and flange.
-    pub(super) warm_starts: WarmStarts,
-    /// The profile, one slot per thread that evaluates the model.
-    pub(super) profiler: Profiler,
-    /// The helper threads that evaluate contacts and Jacobian columns beside the calling
-    /// thread (None: the calling thread only); see [`Self::with_threads`] and [`Self::map`].
-    team: Option<Arc<Team>>,
 }
 
 impl BearingModel {
@@ -143,66 +135,13 @@ impl BearingModel {
             topology: Topology::new(z),
             flange_bounds,
             locked_axis: axis_from_angles(0.0, params.inner_ring_misalignment),
-            warm_starts: WarmStarts::new(z),
-            profiler: Profiler::single(),
-            team: None,
             params,
         })
     }
 
-    /// The model evaluating its contacts and Jacobian columns on `threads` threads (a
-    /// numerical setting: the results do not depend on it, bit for bit, since every
-    /// contact and column is computed alone and summed in a fixed order). The gradient
-    /// detector keeps one thread: its warm starts carry over from one evaluation to the
-    /// next, in an order that threads would change (the race hazard of paper sect. 5.4).
-    /// More threads than the cores this process may use are not started: the helpers spin
-    /// between jobs, and helpers without a core of their own would wait for the cores
-    /// (B1 to 0.05 s with 64 threads on 2 cores: 110 s against 2.4 s on 2).
-    pub fn with_threads(mut self, threads: usize) -> Result<Self> {
-        if threads == 0 {
-            return Err(Error::invalid("threads", threads, ">= 1"));
-        }
-        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-        let threads = threads.min(cores);
-        self.profiler = Profiler::for_threads(threads);
-        self.team = if threads > 1 && self.params.options.detector != Detector::Gradient {
-            // The calling thread works too (Self::map): threads − 1 helpers.
-            let team = Team::new(threads - 1)
-                .map_err(|e| Error::invalid("threads", threads, e.to_string()))?;
-            Some(Arc::new(team))
-        } else {
-            None
-        };
-        Ok(self)
-    }
-
-    /// Threads that evaluate the model (1: this thread only).
-    pub fn threads(&self) -> usize {
-        self.team.as_ref().map_or(1, |t| t.threads())
-    }
-
-    /// `f(0..n)` in order, on the model's threads if it has any ([`Team::map`]: the
-    /// calling thread starts at once and the helpers, awake within a run, join it; every
-    /// value is computed alone, so the result does not depend on the threads).
-    pub(super) fn map<T: Send + Sync>(
-        &self,
-        n: usize,
-        f: impl Fn(usize) -> T + Sync + Send,
-    ) -> Vec<T> {
-        match &self.team {
-            Some(team) => team.map(n, f),
-            None => (0..n).map(f).collect(),
-        }
-    }
-
-    /// All contacts, in the order of [`Self::evaluate_all`].
+    /// All contacts, in the order of [`BearingSystem::evaluate_all`].
     pub fn elements(&self) -> &[Element] {
         &self.topology.elements
-    }
-
-    /// Time spent so far, by kind of work.
-    pub fn profile(&self) -> Profile {
-        self.profiler.total()
     }
 
     /// Pitch radius [m].
@@ -219,7 +158,9 @@ impl BearingModel {
             .map(|i| std::f64::consts::PI + 2.0 * std::f64::consts::PI * i as f64 / z as f64)
             .collect()
     }
+}
 
+impl BearingSystem<'_> {
     /// The consistent start: rollers on the pitch circle, roller 0 at the bottom (−y, ψ = π, the
     /// centre of the load zone), axes along x, at rest; the inner ring centred. Nothing
     /// overlaps (checked).
@@ -244,27 +185,5 @@ impl BearingModel {
             }
         }
         Ok(y)
-    }
-}
-
-impl OdeSystem for BearingModel {
-    fn len(&self) -> usize {
-        self.layout.len()
-    }
-
-    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
-        let kin = self.kinematics(t, y);
-        let results = self.evaluate_all(&kin);
-        let loads = self.loads(&results);
-        self.rates(t, y, &kin, &loads, dy);
-    }
-
-    fn jacobian(&self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
-        self.structured_jacobian(t, y, jac);
-    }
-
-    /// Clears the gradient detector's warm starts (checkpoints restart from here).
-    fn restart(&self) {
-        self.warm_starts.clear();
     }
 }

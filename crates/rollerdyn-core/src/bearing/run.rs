@@ -3,11 +3,11 @@
 //! say when and where it happened.
 
 use super::contacts::ElementResult;
-use super::model::BearingModel;
 use super::params::FlangeLaw;
 use super::profile::Profile;
 use super::state::{azimuth, tilt_and_skew, Kinematics};
 use super::topology::{Element, FLANGE_NAMES};
+use super::workspace::BearingSystem;
 use crate::contact::Pairing;
 use crate::dynamics::integrate::{
     integrate, Checkpoint, Event, Method, Options, Start, Stats, StepControl,
@@ -23,10 +23,10 @@ pub struct RunOptions {
     /// Relative tolerance.
     pub rtol: f64,
     /// Absolute tolerance for lengths [m] (other states scaled, see
-    /// [`BearingModel::absolute_tolerances`]).
+    /// [`BearingSystem::absolute_tolerances`]).
     pub atol: f64,
     /// Time over which a velocity error moves a body by `atol` [s]: velocities are held to
-    /// atol / atol_time_scale (see [`BearingModel::absolute_tolerances`]).
+    /// atol / atol_time_scale (see [`BearingSystem::absolute_tolerances`]).
     pub atol_time_scale: f64,
     /// Δt_max [s].
     pub dt_max: f64,
@@ -41,7 +41,7 @@ pub struct RunOptions {
     /// Step-size control and Jacobian renewal of the solver.
     pub step_control: StepControl,
     /// Start (without a checkpoint) from the quasi-static equilibrium of the loads and speed
-    /// at t = 0 ([`BearingModel::equilibrium_state`]) instead of at rest on the pitch circle.
+    /// at t = 0 ([`BearingSystem::equilibrium_state`]) instead of at rest on the pitch circle.
     pub start_from_equilibrium: bool,
     /// The least mean step over [`crate::dynamics::integrate::STALL_WINDOW`] steps [s]
     /// before the run fails as stalled (0: never; see the integrator's `Options`).
@@ -262,36 +262,39 @@ pub struct Progress {
     pub at_output: bool,
 }
 
-/// Runs the model from `start` (or its consistent initial state at t = 0) to
+/// Runs the bearing (a model in its workspace) from `start` (or its consistent initial state at t = 0) to
 /// `options.t_end`. `progress` is called at every output time (and every
 /// [`PROGRESS_EVERY`] of wall time between them) and `checkpoint` at every
 /// checkpoint (with the records so far); either may stop the run. A start with a step
 /// continues from a checkpoint: its output at the start time is not repeated.
 pub fn run(
-    model: &BearingModel,
+    system: &BearingSystem<'_>,
     start: Option<Start>,
     options: &RunOptions,
     mut progress: impl FnMut(&Progress) -> ControlFlow<()>,
     mut checkpoint: impl FnMut(&RunCheckpoint, &[Record]) -> ControlFlow<()>,
 ) -> crate::Result<RunOutput> {
-    options.validate(model.layout.rollers, start.as_ref().map_or(0.0, |s| s.time))?;
+    options.validate(
+        system.layout.rollers,
+        start.as_ref().map_or(0.0, |s| s.time),
+    )?;
     let start = match start {
         Some(s) => s,
         None => {
-            model.check_point_law(options.t_end)?;
+            system.check_point_law(options.t_end)?;
             Start {
                 time: 0.0,
                 state: if options.start_from_equilibrium {
-                    model.equilibrium_state(0.0)?
+                    system.equilibrium_state(0.0)?
                 } else {
-                    model.initial_state()?
+                    system.initial_state()?
                 },
                 step: None,
             }
         }
     };
     let (t0, y0) = (start.time, &start.state);
-    let n = model.layout.len();
+    let n = system.layout.len();
     if y0.len() != n || !y0.iter().all(|v| v.is_finite()) || !t0.is_finite() {
         return Err(crate::Error::invalid(
             "start state",
@@ -308,7 +311,7 @@ pub fn run(
     }
     let settings = Options {
         rtol: options.rtol,
-        atol: model.absolute_tolerances(options.atol, options.atol_time_scale),
+        atol: system.absolute_tolerances(options.atol, options.atol_time_scale),
         dt_max: options.dt_max,
         dt_initial: options.dt_max.min(1e-6),
         output_interval: options.output_interval,
@@ -329,13 +332,13 @@ pub fn run(
             step: start.step.unwrap_or(f64::NAN),
             stats: Stats::default(),
         },
-        profile: model.profile(),
+        profile: system.profile(),
         records: 0,
     };
-    let outcome = integrate(model, &start, options.t_end, &settings, |event| {
+    let outcome = integrate(system, &start, options.t_end, &settings, |event| {
         let flow = match event {
             Event::Output { time, state, stats } => {
-                records.push(record(model, time, state));
+                records.push(record(system, time, state));
                 last = (time, state.to_vec());
                 reported = std::time::Instant::now();
                 progress(&Progress {
@@ -360,7 +363,7 @@ pub fn run(
             Event::Checkpoint(c) => {
                 let r = RunCheckpoint {
                     checkpoint: c.clone(),
-                    profile: model.profile(),
+                    profile: system.profile(),
                     records: records.len(),
                 };
                 let flow = checkpoint(&r, &records);
@@ -375,7 +378,7 @@ pub fn run(
         Ok(stats) => RunOutput {
             records,
             stats,
-            profile: model.profile(),
+            profile: system.profile(),
             final_state: last.1,
             final_time: last.0,
             error: None,
@@ -387,11 +390,11 @@ pub fn run(
                 "the integration failed at t = {:.6e} s: {}; {}",
                 failure.time,
                 failure.message,
-                diagnose(model, failure.time, &failure.state)
+                diagnose(system, failure.time, &failure.state)
             )),
             records,
             stats: *failure.stats,
-            profile: model.profile(),
+            profile: system.profile(),
             final_state: last.1,
             final_time: last.0,
             interrupted,
@@ -401,19 +404,19 @@ pub fn run(
 }
 
 /// Evaluates the outputs at (t, y).
-pub fn record(model: &BearingModel, t: f64, y: &[f64]) -> Record {
-    let kin = model.kinematics(t, y);
-    let results = model.evaluate_all(&kin);
-    let loads = model.loads(&results);
+pub fn record(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> Record {
+    let kin = system.kinematics(t, y);
+    let results = system.evaluate_all(&kin);
+    let loads = system.loads(&results);
     let ring = kin.inner_ring;
-    let layout = model.layout;
+    let layout = system.layout;
     let ring_tilt = if layout.tilt_free {
         (y[6], y[7])
     } else {
-        (0.0, model.params.inner_ring_misalignment)
+        (0.0, system.params.inner_ring_misalignment)
     };
     let mut rollers = vec![RollerRecord::default(); layout.rollers];
-    for (element, r) in model.elements().iter().zip(&results) {
+    for (element, r) in system.elements().iter().zip(&results) {
         fill(&mut rollers, element, r);
     }
     for (i, rec) in rollers.iter_mut().enumerate() {
@@ -423,17 +426,17 @@ pub fn record(model: &BearingModel, t: f64, y: &[f64]) -> Record {
         (rec.tilt, rec.skew) = tilt_and_skew(&k.center, &k.axis);
         rec.spin_speed = k.omega.dot(&k.axis);
         rec.orbital_speed = k.orbital_speed();
-        rec.srr_inner = slide_to_roll(model, &ring, k, true);
-        rec.srr_outer = slide_to_roll(model, &Kinematics::fixed(), k, false);
+        rec.srr_inner = slide_to_roll(system, &ring, k, true);
+        rec.srr_outer = slide_to_roll(system, &Kinematics::fixed(), k, false);
     }
     Record {
         time: t,
         ring_position: ring.center,
         ring_tilt,
-        ring_speed: model.params.inner_ring_speed.at(t).0,
+        ring_speed: system.params.inner_ring_speed.at(t).0,
         loads: (
-            model.params.radial_load.at(t).0,
-            model.params.axial_load.at(t).0,
+            system.params.radial_load.at(t).0,
+            system.params.axial_load.at(t).0,
         ),
         frictional_torque: -loads.inner_ring.moment.dot(&ring.axis),
         outer_ring_torque: loads.outer_ring.moment.x,
@@ -471,10 +474,15 @@ fn fill(rollers: &mut [RollerRecord], element: &Element, r: &ElementResult) {
 /// Kinematic slide-to-roll ratio (eq. 49) at the middle of a roller against a race:
 /// S = 2(u_roller − u_race)/(u_race + u_roller), rolling components relative to the
 /// contact frame; 0 where both surfaces stand still.
-fn slide_to_roll(model: &BearingModel, race: &Kinematics, roller: &Kinematics, inner: bool) -> f64 {
+fn slide_to_roll(
+    system: &BearingSystem<'_>,
+    race: &Kinematics,
+    roller: &Kinematics,
+    inner: bool,
+) -> f64 {
     let d = roller.center - race.center;
     let out = (d - d.dot(&race.axis) * race.axis).normalize();
-    let r = model.params.roller.radius;
+    let r = system.params.roller.radius;
     let (n, p) = if inner {
         (out, roller.center - out * r)
     } else {
@@ -494,16 +502,16 @@ fn slide_to_roll(model: &BearingModel, race: &Kinematics, roller: &Kinematics, i
 
 /// Says where a failed run went wrong: non-finite states, a roller that left the
 /// bearing, or the deepest contact and the body with the largest acceleration.
-pub fn diagnose(model: &BearingModel, t: f64, y: &[f64]) -> String {
-    let layout = model.layout;
+pub fn diagnose(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> String {
+    let layout = system.layout;
     if let Some(k) = y.iter().position(|v| !v.is_finite()) {
         return match layout.body_of(k) {
             None => format!("inner ring state {k} is not finite"),
             Some(i) => format!("roller {i} state {} is not finite", k - layout.roller(i)),
         };
     }
-    let kin = model.kinematics(t, y);
-    let p = &model.params;
+    let kin = system.kinematics(t, y);
+    let p = &system.params;
     for (i, k) in kin.rollers.iter().enumerate() {
         let rho = (k.center.y.powi(2) + k.center.z.powi(2)).sqrt();
         let radial_ok = rho > p.inner_raceway_radius && rho < p.outer_raceway_radius;
@@ -515,8 +523,8 @@ pub fn diagnose(model: &BearingModel, t: f64, y: &[f64]) -> String {
             );
         }
     }
-    let results = model.evaluate_all(&kin);
-    let (deepest, result) = model
+    let results = system.evaluate_all(&kin);
+    let (deepest, result) = system
         .elements()
         .iter()
         .zip(&results)
@@ -530,7 +538,7 @@ pub fn diagnose(model: &BearingModel, t: f64, y: &[f64]) -> String {
         "deepest contact: {name}, penetration {:.3e} m, normal force {:.3e} N{}",
         result.penetration,
         result.normal,
-        flat_end_hint(model, &results)
+        flat_end_hint(system, &results)
     )
 }
 
@@ -538,8 +546,8 @@ pub fn diagnose(model: &BearingModel, t: f64, y: &[f64]) -> String {
 /// sphere (SP-CO, SP-TO): there the nearly flat face lies almost parallel to the flange
 /// and the point contact jumps across it, which collapses the steps (docs/dynamics.md,
 /// "Why the steps collapse at 2000 N"). Empty otherwise.
-fn flat_end_hint(model: &BearingModel, results: &[ElementResult]) -> String {
-    if model.params.flange_law != FlangeLaw::Point {
+fn flat_end_hint(system: &BearingSystem<'_>, results: &[ElementResult]) -> String {
+    if system.params.flange_law != FlangeLaw::Point {
         return String::new();
     }
     let on_sphere = |pairing: usize| {
@@ -548,7 +556,7 @@ fn flat_end_hint(model: &BearingModel, results: &[ElementResult]) -> String {
             Pairing::SphereCone | Pairing::SphereRoot | Pairing::SphereRim
         )
     };
-    let mut ends: Vec<(f64, String)> = model
+    let mut ends: Vec<(f64, String)> = system
         .elements()
         .iter()
         .zip(results)

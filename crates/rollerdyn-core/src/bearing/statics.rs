@@ -14,11 +14,11 @@
 //! prescribed, the traction could only be balanced by slip, which is not an unknown here,
 //! and the run settles them within its first steps (tests/test_oil_and_threads.py).
 
-use super::model::BearingModel;
 use super::params::FlangeLaw;
 use super::quasi_static::{flange_loads, StaticCase, StaticSolution};
 use super::state::ROLLER_STATES;
 use super::topology::FLANGE_NAMES;
+use crate::bearing::workspace::BearingSystem;
 use crate::contact::Pairing;
 use crate::error::{Error, Result};
 use crate::geometry::primitives::Vec3;
@@ -28,7 +28,7 @@ const USE_DISTRIBUTED: &str = "the paper's point contact jumps across the flat e
     there and a run's steps collapse (docs/dynamics.md, \"Why the steps collapse at 2000 N\"); \
     use surfaces.flange_law = \"distributed\"";
 
-impl BearingModel {
+impl BearingSystem<'_> {
     /// The state of steady rolling at time `t` whose positions balance the normal forces
     /// (module doc), with the configuration's end–flange law. Where there is no
     /// equilibrium (a load larger than the bearing can carry) the error names the load
@@ -134,7 +134,7 @@ impl BearingModel {
 }
 
 /// Where the most loaded roller end of `solution` touches its flange with the end sphere
-/// ([`BearingModel::check_point_law`]): which end, its load and pairing.
+/// ([`BearingSystem::check_point_law`]): which end, its load and pairing.
 fn end_on_its_face(solution: &StaticSolution) -> Option<String> {
     let (i, k, load) = flange_loads(&solution.forces)
         .filter(|(_, _, x)| x.force > 0.0)

@@ -5,8 +5,8 @@
 //! and the films, drag and squeeze film off (a test turns them on).
 
 use crate::bearing::{
-    BearingModel, BearingParams, Detector, FlangeLaw, History, ModelOptions, RollingResistance,
-    SurfacePair,
+    BearingModel, BearingParams, BearingSystem, Detector, FlangeLaw, History, ModelOptions,
+    RollingResistance, SurfacePair, Workspace,
 };
 use crate::contact::border::BorderBands;
 use crate::geometry::end_flange::FlangeShape;
@@ -160,4 +160,10 @@ pub(crate) fn params(b: &Bearing) -> BearingParams {
 
 pub(crate) fn model(b: &Bearing) -> BearingModel {
     BearingModel::new(params(b)).unwrap()
+}
+
+/// `f` of `model` evaluated in a workspace of its own (one thread).
+pub(crate) fn in_workspace<R>(model: &BearingModel, f: impl FnOnce(BearingSystem<'_>) -> R) -> R {
+    let workspace = Workspace::single(model);
+    f(model.system(&workspace))
 }

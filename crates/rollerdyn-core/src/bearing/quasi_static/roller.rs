@@ -5,9 +5,10 @@
 //! centre.
 
 use crate::bearing::contacts::Wrench;
-use crate::bearing::model::{BearingModel, LineContact};
+use crate::bearing::model::LineContact;
 use crate::bearing::params::FlangeLaw;
 use crate::bearing::state::Kinematics;
+use crate::bearing::workspace::BearingSystem;
 use crate::contact::{border, pruning, Contact, Pairing};
 use crate::geometry::end_flange::{Flange, RollerEnd};
 use crate::geometry::primitives::Vec3;
@@ -110,7 +111,7 @@ pub fn flange_loads(forces: &[RollerForces]) -> impl Iterator<Item = (usize, usi
         .flat_map(|(i, f)| f.flanges.iter().enumerate().map(move |(k, x)| (i, k, x)))
 }
 
-impl BearingModel {
+impl BearingSystem<'_> {
     /// The normal forces of the contacts of a roller at `roller` (at rest) against the
     /// inner ring at `ring` and the fixed outer ring; with `details`, the slice loads too.
     pub(crate) fn quasi_static_roller(

@@ -7,9 +7,10 @@ use super::mirror::Mirror;
 use super::roller::{RollerForces, RollerPose, ROLLER_UNKNOWNS};
 use super::{RingTilt, StaticCase, StaticSolution};
 use crate::bearing::contacts::Wrench;
-use crate::bearing::model::{BearingModel, LineContact};
+use crate::bearing::model::LineContact;
 use crate::bearing::state::Kinematics;
 use crate::bearing::topology::FLANGE_NAMES;
+use crate::bearing::workspace::BearingSystem;
 use crate::dynamics::rigid::axis_from_angles;
 use crate::error::{Error, Result};
 use crate::geometry::primitives::Vec3;
@@ -48,7 +49,7 @@ const ANGLE_STEP: f64 = 1e-7;
 
 /// What stays fixed while the equilibrium of one case is sought.
 pub(super) struct Problem<'a> {
-    pub(super) model: &'a BearingModel,
+    pub(super) model: BearingSystem<'a>,
     pub(super) case: StaticCase,
     /// Roller azimuths [rad].
     pub(super) azimuths: Vec<f64>,
@@ -77,8 +78,8 @@ pub(super) struct Problem<'a> {
 }
 
 impl<'a> Problem<'a> {
-    pub(super) fn new(model: &'a BearingModel, case: &StaticCase) -> Self {
-        let p = &model.params;
+    pub(super) fn new(model: BearingSystem<'a>, case: &StaticCase) -> Self {
+        let p = &model.model.params;
         let pitch = model.pitch_radius();
         let r = p.roller.radius;
         let orbit = 0.5 * case.speed * (1.0 - r / pitch);
@@ -86,7 +87,7 @@ impl<'a> Problem<'a> {
         Self {
             model,
             case: *case,
-            mirror: Mirror::of(model, case, &azimuths),
+            mirror: Mirror::of(model.model, case, &azimuths),
             azimuths,
             pitch,
             orbit,
@@ -97,7 +98,7 @@ impl<'a> Problem<'a> {
             roller_jacobians: vec![None; model.layout.rollers],
             careful: false,
             reference_stiffness: {
-                let lines = &model.lines;
+                let lines = &model.model.lines;
                 let law = lines.kind(LineContact::InnerRace).law;
                 let force = lines.slices.len() as f64 * law.force(1e-6, lines.slice_length);
                 force / (law.k2 * 1e-6)
@@ -586,7 +587,7 @@ impl<'a> Problem<'a> {
     }
 }
 
-impl BearingModel {
+impl BearingSystem<'_> {
     /// The quasi-static equilibrium of `case` (module doc of [`super`]), from the unknowns
     /// of `start` (a neighbouring case's solution) or from the loads' contacts.
     pub fn statics(
@@ -595,7 +596,7 @@ impl BearingModel {
         start: Option<&StaticSolution>,
     ) -> Result<StaticSolution> {
         case.check()?;
-        let mut problem = Problem::new(self, case);
+        let mut problem = Problem::new(*self, case);
         let from = start.map(|s| unknowns_of(s, &problem));
         let (u, r, iterations) = problem.solve(from)?;
         let forces = problem.evaluate(&u, true);

@@ -4,10 +4,10 @@
 
 use super::solver::{unknowns_of, Problem, RING_UNKNOWNS};
 use super::StaticSolution;
-use crate::bearing::model::BearingModel;
+use crate::bearing::workspace::BearingSystem;
 use nalgebra::DVector;
 
-impl BearingModel {
+impl BearingSystem<'_> {
     /// The 5×5 stiffness matrix K at `solution`: rows the force (x, y, z) [N] and moment
     /// (about y, z) [N·m] that the ring needs, columns its displacement (x, y, z) [m] and
     /// tilt (θ_y, θ_z) [rad]. With the Jacobian J of the residual forces split into the
@@ -17,7 +17,7 @@ impl BearingModel {
     /// contact holds (an unloaded roller's axial position, or a loaded one's without flange
     /// contact) is taken as held, as friction would hold it ([`Problem::roller_block`]).
     pub fn stiffness(&self, solution: &StaticSolution) -> [[f64; RING_UNKNOWNS]; RING_UNKNOWNS] {
-        let mut problem = Problem::new(self, &solution.case);
+        let mut problem = Problem::new(*self, &solution.case);
         // Every column is perturbed, z and the tilt about y too: no mirror.
         problem.mirror = None;
         let u = unknowns_of(solution, &problem);

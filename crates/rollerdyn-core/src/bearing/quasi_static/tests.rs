@@ -4,8 +4,8 @@
 
 use super::solver::{Problem, RING_UNKNOWNS};
 use super::{RingTilt, StaticCase, FLANGE_PRESSURE_LIMIT, ROLLER_UNKNOWNS};
-use crate::bearing::test_b1::{model, params, Bearing, B1};
-use crate::bearing::{BearingModel, FlangeLaw};
+use crate::bearing::test_b1::{in_workspace, model, params, Bearing, B1};
+use crate::bearing::{BearingModel, BearingSystem, FlangeLaw, Workspace};
 use nalgebra::{DMatrix, Matrix2};
 
 /// A case at rest with the ring's tilt locked.
@@ -20,10 +20,10 @@ fn at_rest(radial_load: f64, axial_load: f64) -> StaticCase {
 }
 
 /// An equilibrium's unknowns (ring, then every roller's) solved as
-/// `BearingModel::statics` solves them, with or without the mirror, on the fast path
+/// `BearingSystem::statics` solves them, with or without the mirror, on the fast path
 /// (which must then succeed by itself) or the careful one from the start.
-fn unknowns(model: &BearingModel, case: &StaticCase, mirror: bool, careful: bool) -> Vec<f64> {
-    let mut problem = Problem::new(model, case);
+fn unknowns(model: &BearingSystem<'_>, case: &StaticCase, mirror: bool, careful: bool) -> Vec<f64> {
+    let mut problem = Problem::new(*model, case);
     assert!(
         problem.mirror.is_some(),
         "the case is symmetric about z = 0"
@@ -47,8 +47,8 @@ fn unknowns(model: &BearingModel, case: &StaticCase, mirror: bool, careful: bool
 /// τ and 1e-5 of its contact forces, the rule of `Problem::rollers_balanced`), so
 /// |δu_k| ≤ Σ_j |(J⁻¹)_kj| 2τ_j, in forces and arcs (moments and angles weighted by the
 /// roller radius, as the solver weighs them). Also checks that `u` is such a solution.
-fn bounds(model: &BearingModel, case: &StaticCase, u: &[f64]) -> Vec<f64> {
-    let mut problem = Problem::new(model, case);
+fn bounds(model: &BearingSystem<'_>, case: &StaticCase, u: &[f64]) -> Vec<f64> {
+    let mut problem = Problem::new(*model, case);
     problem.mirror = None;
     let forces = problem.evaluate(u, false);
     let r = problem.residual(u, &forces);
@@ -106,7 +106,7 @@ fn agree(a: &[f64], b: &[f64], bound: &[f64]) {
 }
 
 /// The elementwise larger of two solutions' bounds ([`bounds`]), each checked as a solution.
-fn both_bounds(model: &BearingModel, case: &StaticCase, a: &[f64], b: &[f64]) -> Vec<f64> {
+fn both_bounds(model: &BearingSystem<'_>, case: &StaticCase, a: &[f64], b: &[f64]) -> Vec<f64> {
     let (x, y) = (bounds(model, case, a), bounds(model, case, b));
     x.iter().zip(&y).map(|(p, q)| p.max(*q)).collect()
 }
@@ -120,7 +120,7 @@ fn fixture_gives_the_front_ends_b1_equilibrium() {
     // here checks the fixture: 0.05 µm is 0.1 % of the displacements, far below what a
     // wrong derived value (a law fitted over another range, another E', clearance or
     // play) moves them, and far above the solver's tolerance (1e-10 m, `bounds`).
-    let s = model(&B1).statics(&at_rest(5000.0, 1000.0), None).unwrap();
+    let s = in_workspace(&model(&B1), |m| m.statics(&at_rest(5000.0, 1000.0), None)).unwrap();
     assert!(
         (s.ring[0] - 48.664e-6).abs() < 0.05e-6,
         "x = {:e}",
@@ -144,6 +144,8 @@ fn mirror_changes_nothing_but_the_cost() {
     // 0.03–0.5 µrad). Measured: within 6e-4 of the bounds (the mirror is exact but for
     // rounding).
     let m = model(&B1);
+    let workspace = Workspace::single(&m);
+    let m = m.system(&workspace);
     let case = at_rest(5000.0, 1000.0);
     let mirrored = unknowns(&m, &case, true, false);
     let whole = unknowns(&m, &case, false, false);
@@ -161,6 +163,8 @@ fn careful_path_finds_the_fast_paths_equilibrium() {
     // equilibrium, within what the tolerance leaves open ([`bounds`]; measured: within a
     // tenth of the bounds, 3 pm on the ring, 15 nrad on the tilts).
     let m = model(&B1);
+    let workspace = Workspace::single(&m);
+    let m = m.system(&workspace);
     for case in [at_rest(5000.0, 1000.0), at_rest(2000.0, 300.0)] {
         let fast = unknowns(&m, &case, true, false);
         let careful = unknowns(&m, &case, true, true);
@@ -188,6 +192,8 @@ fn many_rollers_without_clearance_follow_stribeck() {
         gravity: 0.0,
     };
     let m = model(&bearing);
+    let workspace = Workspace::single(&m);
+    let m = m.system(&workspace);
     let s = m.statics(&at_rest(5000.0, 0.0), None).unwrap();
     let load: Vec<f64> = s
         .forces
@@ -242,6 +248,8 @@ fn stiffness_is_symmetric_where_the_contacts_derive_from_a_potential() {
     // rollers at the load zone's edge, which carry little of K: 1e-4 of the largest
     // diagonal (measured 6e-7).
     let m = model(&B1);
+    let workspace = Workspace::single(&m);
+    let m = m.system(&workspace);
     let r = m.params.roller.radius;
     let radial = m.statics(&at_rest(5000.0, 0.0), None).unwrap();
     let a = asymmetry(&m.stiffness(&radial), r);
@@ -269,6 +277,8 @@ fn radial_stiffness_is_the_difference_of_two_equilibria() {
     // counterpart is 1/(K⁻¹)_yy over x and y (z decoupled by the symmetry, tilt locked),
     // measured within 0.02 %.
     let m = model(&B1);
+    let workspace = Workspace::single(&m);
+    let m = m.system(&workspace);
     let a = m.statics(&at_rest(5000.0, 1000.0), None).unwrap();
     let b = m.statics(&at_rest(5010.0, 1000.0), Some(&a)).unwrap();
     let quotient = -10.0 / (b.ring[1] - a.ring[1]);
@@ -288,6 +298,8 @@ fn radial_stiffness_is_the_difference_of_two_equilibria() {
 #[test]
 fn loads_past_the_flanges_and_nan_are_refused() {
     let m = model(&B1);
+    let workspace = Workspace::single(&m);
+    let m = m.system(&workspace);
     // 10 kN axially: an elastic equilibrium exists, with the rollers tipped into the
     // flange rims at 15.6 GPa, past ISO 76's 4 GPa (FLANGE_PRESSURE_LIMIT).
     let e = m
@@ -328,6 +340,8 @@ fn a_sweeps_neighbour_that_leads_nowhere_is_dropped_for_the_guess() {
     // two agree within the solver's tolerance on the ring (`bounds`: 0.06–0.2 nm;
     // held to 1 nm).
     let m = model(&B1);
+    let workspace = Workspace::single(&m);
+    let m = m.system(&workspace);
     let turning = |axial| StaticCase {
         speed: 500.0 * std::f64::consts::PI / 30.0,
         ..at_rest(5000.0, axial)
@@ -361,11 +375,12 @@ fn the_distributed_law_carries_loads_at_which_the_point_law_has_no_equilibrium()
     // 2500 N within 1 % (the flange normals lie within the rollers' tilts, a few mrad, of
     // the axis, and the race slices of a tilted roller carry a little along it; measured
     // 0.002 %), and the ring balances the load to the solver's tolerance.
-    let point = model(&B1).statics(&at_rest(5000.0, 2500.0), None);
+    let point = in_workspace(&model(&B1), |m| m.statics(&at_rest(5000.0, 2500.0), None));
     assert!(point.is_err(), "{:?}", point.map(|s| s.ring));
-    let s = distributed_model()
-        .statics(&at_rest(5000.0, 2500.0), None)
-        .unwrap();
+    let s = in_workspace(&distributed_model(), |m| {
+        m.statics(&at_rest(5000.0, 2500.0), None)
+    })
+    .unwrap();
     let inner: f64 = super::flange_loads(&s.forces)
         .filter(|(_, k, _)| *k < 2)
         .map(|(_, _, l)| l.force)
@@ -387,6 +402,8 @@ fn the_distributed_laws_flange_pressure_refuses_the_rims_overload() {
     // `peak_pressure`) the statics refuse 3 kN (measured 4.4 GPa at the outer +x flange)
     // and 30 kN (11.5 GPa), and accept 2.5 kN (3.2 GPa).
     let m = distributed_model();
+    let workspace = Workspace::single(&m);
+    let m = m.system(&workspace);
     for axial in [3000.0, 30e3] {
         let e = m
             .statics(&at_rest(5000.0, axial), None)
@@ -411,6 +428,8 @@ fn with_the_distributed_law_the_stiffness_is_symmetric_under_axial_load() {
     // matches the energy's derivative within 0.12 %, contact/distributed/tests.rs):
     // held to 1e-3 of the largest diagonal (measured 6.6e-4 at 1 kN, 4.0e-4 at 2.5 kN).
     let m = distributed_model();
+    let workspace = Workspace::single(&m);
+    let m = m.system(&workspace);
     let r = m.params.roller.radius;
     for axial in [1000.0, 2500.0] {
         let s = m.statics(&at_rest(5000.0, axial), None).unwrap();
@@ -429,6 +448,8 @@ fn with_the_distributed_law_the_stiffness_is_symmetric_under_axial_load() {
 #[test]
 fn a_failed_runs_diagnosis_names_ends_on_their_end_sphere() {
     let m = model(&B1);
+    let workspace = Workspace::single(&m);
+    let m = m.system(&workspace);
     let diagnosis = |axial: f64| {
         let solution = m
             .statics(&at_rest(5000.0, axial), None)
