@@ -153,3 +153,108 @@ impl OdeSystem for BearingSystem<'_> {
         self.workspace.warm_starts.clear();
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bearing::test_b1::{params, B1};
+    use crate::bearing::BearingParams;
+
+    /// B1 with `detector`, and a state 20 ms into a run from its quasi-static equilibrium
+    /// at t = 0 (loaded, rolling; the rollers pressed against their flanges).
+    fn b1_in_motion(detector: Detector) -> (BearingModel, Vec<f64>) {
+        let mut p: BearingParams = params(&B1);
+        p.options.detector = detector;
+        let model = BearingModel::new(p).unwrap();
+        let workspace = Workspace::single(&model);
+        let y = model.system(&workspace).equilibrium_state(0.0).unwrap();
+        (model, y)
+    }
+
+    /// f(t, y) on `model` in `workspace`, three times in a row (the gradient detector's
+    /// warm starts carry over from one to the next).
+    fn rates(model: &BearingModel, workspace: &Workspace, y: &[f64]) -> Vec<Vec<f64>> {
+        let system = model.system(workspace);
+        (0..3)
+            .map(|_| {
+                let mut dy = vec![0.0; y.len()];
+                system.rhs(0.0, y, &mut dy);
+                dy
+            })
+            .collect()
+    }
+
+    /// The model is shared, the workspaces are not: one model evaluated on two threads at
+    /// once, at two states, each thread in its own workspace, gives bit for bit what each
+    /// state gives alone, for the semi-analytical detector and for the gradient detector
+    /// whose warm starts live in the workspace. (With one workspace shared by the two
+    /// threads, a thread's next evaluation would start from the other state's solutions:
+    /// the gradient detector's rates then differ in their last digits, checked below.)
+    #[test]
+    fn one_model_serves_two_threads_each_with_its_workspace() {
+        fn shared(_: &(impl Send + Sync)) {}
+        for detector in [Detector::SemiAnalytical, Detector::Gradient] {
+            let (model, y) = b1_in_motion(detector);
+            shared(&model);
+            // The second state: every roller 0.3 µm further out and 20 µrad more skewed.
+            let mut z = y.clone();
+            for i in 0..model.layout.rollers {
+                let s = model.layout.roller(i);
+                let r = (z[s + 1] * z[s + 1] + z[s + 2] * z[s + 2]).sqrt();
+                z[s + 1] *= 1.0 + 0.3e-6 / r;
+                z[s + 2] *= 1.0 + 0.3e-6 / r;
+                z[s + 4] += 20e-6;
+            }
+            let alone = |y: &[f64]| rates(&model, &Workspace::single(&model), y);
+            let (y_alone, z_alone) = (alone(&y), alone(&z));
+            let (a, b) = std::thread::scope(|s| {
+                let a = s.spawn(|| rates(&model, &Workspace::single(&model), &y));
+                let b = s.spawn(|| rates(&model, &Workspace::single(&model), &z));
+                (a.join().unwrap(), b.join().unwrap())
+            });
+            assert!(y_alone
+                .iter()
+                .chain(&z_alone)
+                .flatten()
+                .all(|v| v.is_finite()));
+            assert_eq!(a, y_alone, "{detector:?}");
+            assert_eq!(b, z_alone, "{detector:?}");
+            if detector == Detector::Gradient {
+                // The same evaluations in one shared workspace, interleaved: they differ.
+                let workspace = Workspace::single(&model);
+                let system = model.system(&workspace);
+                let mut interleaved = Vec::new();
+                for _ in 0..3 {
+                    for state in [&y, &z] {
+                        let mut dy = vec![0.0; y.len()];
+                        system.rhs(0.0, state, &mut dy);
+                        interleaved.push(dy);
+                    }
+                }
+                let ys: Vec<_> = interleaved.iter().step_by(2).cloned().collect();
+                assert_ne!(
+                    ys, y_alone,
+                    "the warm starts must matter to the last digits"
+                );
+            }
+        }
+    }
+    /// A workspace for more threads than the model has work for changes nothing either:
+    /// the contacts and Jacobian columns are computed apart and summed in a fixed order.
+    #[test]
+    fn the_threads_of_a_workspace_change_no_bit() {
+        let (model, y) = b1_in_motion(Detector::SemiAnalytical);
+        let n = y.len();
+        let evaluate = |threads: usize| {
+            let workspace = Workspace::new(&model, threads).unwrap();
+            let system = model.system(&workspace);
+            let mut dy = vec![0.0; n];
+            system.rhs(0.0, &y, &mut dy);
+            let mut jac = DMatrix::zeros(n, n);
+            system.jacobian(0.0, &y, &mut jac);
+            (dy, jac)
+        };
+        assert_eq!(evaluate(1), evaluate(2));
+        assert!(Workspace::new(&model, 0).is_err());
+    }
+}
