@@ -137,7 +137,8 @@ impl BearingSystem<'_> {
         }
     }
 
-    /// Evaluates every contact, in the order of [`BearingModel::elements`](super::BearingModel::elements).
+    /// Evaluates every contact, in the order of
+    /// [`BearingModel::elements`](super::BearingModel::elements).
     pub fn evaluate_all(&self, kin: &BearingKinematics) -> Vec<ElementResult> {
         let elements = &self.topology.elements;
         self.map(elements.len(), |e| self.evaluate(&elements[e], kin))

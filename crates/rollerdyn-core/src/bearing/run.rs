@@ -262,9 +262,9 @@ pub struct Progress {
     pub at_output: bool,
 }
 
-/// Runs the bearing (a model in its workspace) from `start` (or its consistent initial state at t = 0) to
-/// `options.t_end`. `progress` is called at every output time (and every
-/// [`PROGRESS_EVERY`] of wall time between them) and `checkpoint` at every
+/// Runs the bearing (a model in its workspace) from `start` (or its consistent initial
+/// state at t = 0) to `options.t_end`. `progress` is called at every output time (and
+/// every [`PROGRESS_EVERY`] of wall time between them) and `checkpoint` at every
 /// checkpoint (with the records so far); either may stop the run. A start with a step
 /// continues from a checkpoint: its output at the start time is not repeated.
 pub fn run(
