@@ -458,9 +458,10 @@ class SurfacesConfig(SurfacesDerived, _Section):
     foundation with the surfaces' asperities, for ends that lie nearly flat on the flange;
     docs/dynamics.md). ``rolling_resistance``: how the rolling resistance of the race
     contacts (eqs. 55-57) and the films' rolling force in the line-contact gaps act on the two
-    bodies: ``"balanced"`` (the default; not in the paper: the same moment about each body's
-    axis and the force pair that keeps the oil film in equilibrium, so that the contact
-    conserves angular momentum) or ``"paper"`` (eqs. 55-57: a pure moment against each
+    bodies: ``"balanced"`` (the default; not in the paper: in rolling the same moment about
+    each body's axis and the force pair that keeps the oil film in equilibrium, so that the
+    contact conserves angular momentum, the rolling force acting against the entrainment on
+    both surfaces) or ``"paper"`` (eqs. 55-57: a pure moment against each
     body's rolling, which creates angular momentum; B1's example keeps it for the paper's
     study); docs/dynamics.md, "Torque balance of the rings"."""
 

@@ -232,9 +232,19 @@ impl Section<'_> {
 
     /// Rolling resistance of both bodies (surface speeds `u` along the rolling
     /// direction): the hysteresis couple `m_b` (eq. 55) and the EHL rolling force `f_r`
-    /// (eqs. 56, 57) per body, mixed by the boundary `share` (eqs. 53, 54), each switched
-    /// smoothly with its body's direction of rolling (tanh(u/v_s)); applied as the paper
-    /// does or balanced ([`RollingResistance`]).
+    /// (eqs. 56, 57) per body, mixed by the boundary `share` (eqs. 53, 54); applied as the
+    /// paper does or balanced ([`RollingResistance`]).
+    ///
+    /// The paper's switches each body's moment smoothly with that body's direction of
+    /// rolling (tanh(u/v_s)). The balanced law turns the rolling force against the
+    /// entrainment, tanh(u_m/v_s) with u_m = (u_A + u_B)/2, on both surfaces: it is the
+    /// shear of the pressure flow, −(h/2)·∂p/∂x on each surface alike (from the velocity
+    /// profile behind the Reynolds equation: Hamrock, Schmid & Jacobson, Fundamentals of
+    /// Fluid Film Lubrication, 2nd ed. 2004, the chapter on the Reynolds equation), and the
+    /// pressure is built by the entrainment.
+    /// In rolling the two agree; a roller that skids on a turning race (u_B = 0) still
+    /// feels it, and counter-rotating neighbours (u_m = 0) do not. The hysteresis couple
+    /// stays with B's own rolling (its material's passage through the contact).
     #[inline]
     fn rolling_resistance(
         &self,
@@ -259,11 +269,12 @@ impl Section<'_> {
             }
             return;
         }
+        let pressure_flow_shear = (1.0 - share) * f_r * (0.5 * (ua + ub) / v_s).tanh();
         let reaction = rolling_resistance_balanced(
             self,
             share * m_b * (ub / v_s).tanh(),
-            (1.0 - share) * f_r * (ua / v_s).tanh(),
-            (1.0 - share) * f_r * (ub / v_s).tanh(),
+            pressure_flow_shear,
+            pressure_flow_shear,
         );
         out.tangential += reaction.tangential;
         out.moment_a = reaction.moment_a;
@@ -897,6 +908,66 @@ mod tests {
             "{}",
             net(&balanced)
         );
+    }
+
+    /// The balanced law's rolling force is the pressure flow's shear, the same −(h/2)·∂p/∂x
+    /// on both surfaces (Reynolds' velocity profile; Hamrock, Schmid & Jacobson 2004),
+    /// against the entrainment u_m = (u_A + u_B)/2 whatever each surface's own speed. On
+    /// B1's inner race section with a rolling force F: a roller that skids on the turning
+    /// race (u_B = 0) feels the moment of −F·t at P about its axis, as a rolling one does
+    /// (the paper's law, switched by the roller's own speed, gives it none); between
+    /// surfaces moving against each other at equal speeds (u_m = 0) no rolling force acts.
+    /// Round-off bound: 1e-12 of F·ρ.
+    #[test]
+    fn balanced_rolling_force_acts_against_the_entrainment_on_both_surfaces() {
+        let mut tri = tribology();
+        tri.rolling_resistance = RollingResistance::Balanced;
+        let (_, ring, roller, p) = inner_slice(2e-6, 0.0);
+        let n = Vec3::y();
+        let section = Section {
+            a: &ring,
+            b: &roller,
+            normal: n,
+            location: p,
+            penetration: 2e-6,
+            length: 0.22e-3,
+            rolling: n.cross(&roller.axis).normalize(),
+            frame: roller.frame_velocity(&p),
+        };
+        let t = section.rolling;
+        let f = 1e-3;
+        let u_race = 0.52;
+        let with = |u_roller: f64| {
+            let mut out = ContactForces::default();
+            section.rolling_resistance(&mut out, &tri, (u_race, u_roller), 0.0, (0.0, f));
+            out
+        };
+        let skid = with(0.0);
+        let expected = (p - roller.center).cross(&(-f * t)).dot(&roller.axis);
+        let on_roller = axial_moment(&roller, &p, &skid.force_on_b(&n), &skid.moment_b);
+        assert!(expected.abs() > 1e-6, "{expected}");
+        assert!(
+            (on_roller - expected).abs() <= 1e-12 * expected.abs(),
+            "{on_roller} vs {expected}"
+        );
+        // The ring feels the same shear at P about its own axis.
+        let on_ring = axial_moment(&ring, &p, &(-skid.force_on_b(&n)), &skid.moment_a);
+        let expected_ring = (p - ring.center).cross(&(-f * t)).dot(&ring.axis);
+        assert!(
+            (on_ring - expected_ring).abs() <= 1e-12 * expected_ring.abs(),
+            "{on_ring} vs {expected_ring}"
+        );
+        // The paper's law gives the skidding roller nothing.
+        let mut paper = tri.clone();
+        paper.rolling_resistance = RollingResistance::Paper;
+        let mut out = ContactForces::default();
+        section.rolling_resistance(&mut out, &paper, (u_race, 0.0), 0.0, (0.0, f));
+        assert_eq!(out.moment_b.dot(&roller.axis), 0.0);
+        // No entrainment, no rolling force.
+        let opposed = with(-u_race);
+        assert_eq!(opposed.tangential, Vec3::zeros());
+        assert_eq!(opposed.moment_a + opposed.moment_b, Vec3::zeros());
+        assert_eq!(opposed.moment_b, Vec3::zeros());
     }
 
     proptest! {

@@ -247,9 +247,10 @@ pub enum RollingResistance {
     /// the contact does not conserve angular momentum (docs/dynamics.md, "Torque balance").
     /// B1's example configuration keeps it for the paper's study.
     Paper,
-    /// Not in the paper, the default: the same moment about each body's own axis, and the
-    /// force pair the oil film needs to be in force and moment equilibrium
-    /// ([`crate::bearing::forces::rolling_resistance_balanced`]).
+    /// Not in the paper, the default: in rolling the same moment about each body's own
+    /// axis, and the force pair the oil film needs to be in force and moment equilibrium
+    /// ([`crate::bearing::forces::rolling_resistance_balanced`]); the rolling force turned
+    /// against the entrainment on both surfaces, as the pressure flow's shear is.
     #[default]
     Balanced,
 }
