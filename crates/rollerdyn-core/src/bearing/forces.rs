@@ -287,8 +287,9 @@ impl Section<'_> {
 /// moments about each body's own axis, completed by the forces the oil film must exert to
 /// be in equilibrium.
 ///
-/// * EHL (eq. 56): the inlet's shear opposes each surface's motion with F_A and F_B
-///   (signed along the rolling direction t) at P. The film's pressure acts normal to each
+/// * EHL (eq. 56): the inlet's shear acts on the surfaces with F_A and F_B (signed along
+///   the rolling direction t) at P; the model passes F_A = F_B, the pressure flow's shear
+///   against the entrainment ([`Section`]'s rolling resistance). The film's pressure acts normal to each
 ///   cylinder, so its tangential resultants g_A, g_B pass through the bodies' axes, at
 ///   Q_A = P − ρ_A n and Q_B = P + ρ_B n (ρ the signed distances from P to the axes along
 ///   the normal n from A to B; negative for a concave outer raceway). A massless film in
