@@ -13,7 +13,7 @@ cargo fmt --all -- --check
 cargo clippy --workspace --all-targets --quiet -- -D warnings
 # The fuzz targets (fuzz/, a workspace of its own that only cargo-fuzz builds and runs) must
 # keep compiling against the core: linted here, not run (docs/robustness.md).
-cargo clippy --manifest-path fuzz/Cargo.toml --bins --target-dir target --quiet -- -D warnings
+cargo clippy --manifest-path fuzz/Cargo.toml --locked --bins --target-dir target --quiet -- -D warnings
 # Property tests draw their cases from a fixed seed here, so that CI is deterministic;
 # run `cargo test` without PROPTEST_RNG_SEED to explore new random cases.
 PROPTEST_RNG_SEED="${PROPTEST_RNG_SEED:-20261122}" cargo test --workspace --quiet

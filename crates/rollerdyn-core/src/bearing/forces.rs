@@ -296,17 +296,17 @@ impl Section<'_> {
 ///   equilibrium needs g_A + g_B = F_A + F_B (forces) and ρ_A g_A = ρ_B g_B (moments about
 ///   P), so g_B = (F_A + F_B)·ρ_A/(ρ_A + ρ_B). On B: −F_B t at P and g_B t at Q_B, that is
 ///   the force (g_B − F_B) t at P and the couple ρ_B g_B (n × t); on A the opposite force
-///   and couple. About its own axis each body then feels F·ρ against its rolling, as in
-///   the paper, and the pair exerts no net force or moment.
+///   and couple. About its own axis each body then feels F·ρ (against its rolling when the
+///   surfaces roll together, as in the paper), and the pair exerts no net force or moment.
 /// * Hysteresis (eq. 55): the normal force shifted along t towards the inlet, a collinear
 ///   pair, so a couple of size m_b about n × t (B's rolling axis) against B's rolling, and
 ///   its opposite on A, for every slice. (The paper's form turns each body's couple about
 ///   the axis of its [`rolling_axis`], which tilts for slices away from the body's centre:
 ///   on B1's roller about 10 % less about its axis at the outermost slices.)
 ///
-/// `hysteresis` = m_b·tanh(u_B/v_s) (the boundary share included), `f_a`, `f_b` = F_R·
-/// tanh(u/v_s) of each surface. Returns the force on B (A gets the opposite) and the
-/// couples.
+/// `hysteresis` = m_b·tanh(u_B/v_s) (the boundary share included), `f_a`, `f_b` the shear
+/// on each surface along t (the model passes F_R·tanh(u_m/v_s) for both, u_m the
+/// entrainment speed). Returns the force on B (A gets the opposite) and the couples.
 pub fn rolling_resistance_balanced(
     section: &Section,
     hysteresis: f64,
@@ -337,8 +337,8 @@ pub fn rolling_resistance_balanced(
 /// surfaces the greater of Moes and ZEV, eqs. 39–44) with the thermal correction (eq. 47),
 /// EHL traction (sect. 3.2.1),
 /// boundary friction (eqs. 51, 52), mixed by eqs. 53, 54, and for race contacts rolling
-/// resistance (eqs. 55–57) against both bodies' rolling: as pure moments (the paper's) or
-/// balanced by the film's force pair ([`RollingResistance`]).
+/// resistance (eqs. 55–57): as pure moments against both bodies' rolling (the paper's) or
+/// against the entrainment, balanced by the film's force pair ([`RollingResistance`]).
 ///
 pub fn line_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> ContactForces {
     let Section {
@@ -408,8 +408,9 @@ pub fn line_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
 /// The oil film of one slice of a line contact across a gap or within the first σ of
 /// penetration ([`crate::tribology::hydrodynamic`]; not in the paper): Martin's load with
 /// the squeeze term, bounded below by zero (cavitation), along the normal; Couette shear
-/// against the sliding; and the film's rolling force against both bodies' rolling, applied
-/// as the EHL rolling resistance of [`line_slice`] is ([`RollingResistance`]).
+/// against the sliding; and the film's rolling force, applied as the EHL rolling resistance
+/// of [`line_slice`] is (the paper's law: against both bodies' rolling; the balanced one:
+/// against the entrainment; [`RollingResistance`]).
 /// The mean surface speed is regularised as the EHL film's ([`Tribology::regularised`]).
 /// Zero where the film does not act ([`RigidFilm::gap_and_weight`]).
 pub fn film_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> ContactForces {

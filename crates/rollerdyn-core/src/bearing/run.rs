@@ -147,7 +147,7 @@ pub fn record_bytes(rollers: usize) -> f64 {
 pub struct RunCheckpoint {
     /// The integrator's checkpoint (time, state, next step, counters of this run).
     pub checkpoint: Checkpoint,
-    /// The model's profile until the checkpoint.
+    /// The profile of the model's workspace until the checkpoint.
     pub profile: Profile,
     /// Number of records up to and including the checkpoint time.
     pub records: usize,

@@ -30,6 +30,18 @@ pub struct Workspace {
     /// The helper threads that evaluate contacts and Jacobian columns beside the calling
     /// thread (None: the calling thread only); see [`BearingSystem::map`].
     team: Option<Team>,
+    /// What it was built for: the roller count and whether the model's detector is the
+    /// gradient method (which must keep one thread); checked by [`BearingModel::system`].
+    built_for: (usize, bool),
+}
+
+/// The roller count and whether the detector is the gradient method: what a workspace
+/// must match.
+fn fingerprint(model: &BearingModel) -> (usize, bool) {
+    (
+        model.params.roller_count,
+        model.params.options.detector == Detector::Gradient,
+    )
 }
 
 impl Workspace {
@@ -39,6 +51,7 @@ impl Workspace {
             warm_starts: WarmStarts::new(model.params.roller_count),
             profiler: Profiler::single(),
             team: None,
+            built_for: fingerprint(model),
         }
     }
 
@@ -68,6 +81,7 @@ impl Workspace {
             warm_starts: WarmStarts::new(model.params.roller_count),
             profiler: Profiler::for_threads(threads),
             team,
+            built_for: fingerprint(model),
         })
     }
 
@@ -84,13 +98,13 @@ impl Workspace {
 
 /// A model with the workspace it is evaluated in: the bearing as an ODE system
 /// ([`OdeSystem`]) and the home of every evaluation (right-hand side, Jacobian, energy,
-/// statics). Cheap to copy: two references.
+/// statics). Cheap to copy: two references. Made only by [`BearingModel::system`].
 #[derive(Clone, Copy)]
 pub struct BearingSystem<'a> {
     /// The immutable model.
-    pub model: &'a BearingModel,
+    pub(crate) model: &'a BearingModel,
     /// What its evaluations change.
-    pub workspace: &'a Workspace,
+    pub(crate) workspace: &'a Workspace,
 }
 
 impl Deref for BearingSystem<'_> {
@@ -102,8 +116,16 @@ impl Deref for BearingSystem<'_> {
 }
 
 impl BearingModel {
-    /// This model evaluated in `workspace` (built for it: [`Workspace::new`]).
+    /// This model evaluated in `workspace`. Panics if the workspace was built for a model
+    /// with another roller count (its warm starts would not fit) or another kind of
+    /// detector (a gradient model must not run on helper threads): a programming error,
+    /// not a user's.
     pub fn system<'a>(&'a self, workspace: &'a Workspace) -> BearingSystem<'a> {
+        assert_eq!(
+            workspace.built_for,
+            fingerprint(self),
+            "a workspace built for another model (roller count, gradient detector)"
+        );
         BearingSystem {
             model: self,
             workspace,
@@ -160,8 +182,9 @@ mod tests {
     use crate::bearing::test_b1::{params, B1};
     use crate::bearing::BearingParams;
 
-    /// B1 with `detector`, and a state 20 ms into a run from its quasi-static equilibrium
-    /// at t = 0 (loaded, rolling; the rollers pressed against their flanges).
+    /// B1 with `detector`, and its quasi-static equilibrium state at full load and speed
+    /// (t = 0 of a run that starts from equilibrium: loaded, rolling, the rollers pressed
+    /// against their flanges).
     fn b1_in_motion(detector: Detector) -> (BearingModel, Vec<f64>) {
         let mut p: BearingParams = params(&B1);
         p.options.detector = detector;
@@ -239,8 +262,23 @@ mod tests {
             }
         }
     }
-    /// A workspace for more threads than the model has work for changes nothing either:
-    /// the contacts and Jacobian columns are computed apart and summed in a fixed order.
+    /// A workspace goes with the model it was built for: one built for the
+    /// semi-analytical detector (which may have helper threads) is refused by a model with
+    /// the gradient detector, whose warm starts must not be shared by threads.
+    #[test]
+    #[should_panic(expected = "a workspace built for another model")]
+    fn a_workspace_is_refused_by_another_kind_of_model() {
+        let semi = BearingModel::new(params(&B1)).unwrap();
+        let mut p = params(&B1);
+        p.options.detector = Detector::Gradient;
+        let gradient = BearingModel::new(p).unwrap();
+        let workspace = Workspace::new(&semi, 2).unwrap();
+        let _ = gradient.system(&workspace);
+    }
+
+    /// A workspace with two threads (on a machine with two cores or more) gives what one
+    /// thread gives, bit for bit: the contacts and Jacobian columns are computed apart and
+    /// summed in a fixed order.
     #[test]
     fn the_threads_of_a_workspace_change_no_bit() {
         let (model, y) = b1_in_motion(Detector::SemiAnalytical);
@@ -254,6 +292,12 @@ mod tests {
             system.jacobian(0.0, &y, &mut jac);
             (dy, jac)
         };
+        let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+        assert_eq!(
+            Workspace::new(&model, 2).unwrap().threads(),
+            cores.min(2),
+            "two threads where the machine has two cores"
+        );
         assert_eq!(evaluate(1), evaluate(2));
         assert!(Workspace::new(&model, 0).is_err());
     }

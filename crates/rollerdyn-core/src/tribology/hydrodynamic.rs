@@ -118,7 +118,8 @@ pub struct FilmLine {
     /// Couette force per unit length against the sliding of B on A, per unit sliding speed
     /// [N s/m²] (the force on B is −this·u_rel).
     pub shear: f64,
-    /// Rolling force per unit length on each surface against its rolling [N/m].
+    /// Rolling force per unit length on each surface, against the entrainment (the pressure
+    /// flow's shear) [N/m].
     pub rolling: f64,
 }
 
