@@ -757,6 +757,27 @@ mod tests {
         forces_with(&tribology(), penetration, roller_spin, law)
     }
 
+    /// The slice of [`inner_slice`]'s bodies at P: normal +y, 0.22 mm long, rolling
+    /// direction across the roller's axis.
+    fn inner_section<'a>(
+        ring: &'a Kinematics,
+        roller: &'a Kinematics,
+        p: Vec3,
+        penetration: f64,
+    ) -> Section<'a> {
+        let n = Vec3::y();
+        Section {
+            a: ring,
+            b: roller,
+            normal: n,
+            location: p,
+            penetration,
+            length: 0.22e-3,
+            rolling: n.cross(&roller.axis).normalize(),
+            frame: roller.frame_velocity(&p),
+        }
+    }
+
     /// [`forces_at`] with the tribology `tri`.
     fn forces_with(
         tri: &Tribology,
@@ -765,17 +786,7 @@ mod tests {
         law: fn(&Tribology, &LineKind, &Section) -> ContactForces,
     ) -> ContactForces {
         let (kind, ring, roller, p) = inner_slice(penetration, roller_spin);
-        let n = Vec3::y();
-        let section = Section {
-            a: &ring,
-            b: &roller,
-            normal: n,
-            location: p,
-            penetration,
-            length: 0.22e-3,
-            rolling: n.cross(&roller.axis).normalize(),
-            frame: roller.frame_velocity(&p),
-        };
+        let section = inner_section(&ring, &roller, p, penetration);
         law(tri, &kind, &section)
     }
 
@@ -926,16 +937,7 @@ mod tests {
         tri.rolling_resistance = RollingResistance::Balanced;
         let (_, ring, roller, p) = inner_slice(2e-6, 0.0);
         let n = Vec3::y();
-        let section = Section {
-            a: &ring,
-            b: &roller,
-            normal: n,
-            location: p,
-            penetration: 2e-6,
-            length: 0.22e-3,
-            rolling: n.cross(&roller.axis).normalize(),
-            frame: roller.frame_velocity(&p),
-        };
+        let section = inner_section(&ring, &roller, p, 2e-6);
         let t = section.rolling;
         let f = 1e-3;
         let u_race = 0.52;
