@@ -215,6 +215,7 @@ def test_the_core_checks_its_own_run_options(b1, option, value):
         "step_gain": 0.3,
         "jacobian_after_newton_failure": True,
         "jacobian_at_latest_iterate": True,
+        "partial_jacobians": 2,
         "checkpoint_interval": 0.1,
         "threads": 1,
         "start": "rest",

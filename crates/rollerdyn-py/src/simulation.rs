@@ -314,6 +314,7 @@ fn stats_dict<'py>(py: Python<'py>, s: &Stats, p: &Profile) -> PyResult<Bound<'p
         newton_failures,
         newton_iterations,
         linear_solver_setups,
+        partial_jacobians,
     );
     stats.set_item("detection_seconds", p.detection)?;
     stats.set_item("line_contact_seconds", p.line_contacts)?;

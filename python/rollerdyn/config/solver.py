@@ -74,6 +74,7 @@ class SolverConfig(_Section):
     step_gain: Number(gt=0.0, le=1.0) = 0.3
     jacobian_after_newton_failure: StrictBool = True
     jacobian_at_latest_iterate: StrictBool = True
+    partial_jacobians: Integer(ge=0, le=1000) = 2
     pruning: StrictBool = True
     mesh_around: Integer(ge=8, le=1024) = 64
     mesh_along: Integer(ge=2, le=256) = 16

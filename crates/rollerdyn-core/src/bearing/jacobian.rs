@@ -105,9 +105,14 @@ impl BearingSystem<'_> {
         }
     }
 
-    /// The Jacobian by per-body finite differences (see the module doc), its columns
-    /// computed apart (on the workspace's threads) and written in order.
-    pub(super) fn structured_jacobian(&self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
+    /// Evaluates every contact at (t, y) and hands `f` the linearisation point and the
+    /// rates there.
+    fn with_linearisation<R>(
+        &self,
+        t: f64,
+        y: &[f64],
+        f: impl FnOnce(&Linearisation, &[f64]) -> R,
+    ) -> R {
         let kin = self.kinematics(t, y);
         let elements = &self.topology.elements;
         let geometries = self.map(elements.len(), |e| self.geometry(&elements[e], &kin));
@@ -125,19 +130,81 @@ impl BearingSystem<'_> {
         };
         let mut f0 = vec![0.0; self.layout.len()];
         self.rates_with(t, y, &kin, &base.loads, |i| base.drags[i], &mut f0);
-        let m = self.layout.ring_states();
-        let rollers = self.map(y.len() - m, |j| self.jacobian_column(&base, &f0, m + j));
-        let ring = self.map(m, |k| match roller_twin(k) {
-            Some(local) => self.ring_column_from_rollers(&base, &f0, k, local, &rollers),
-            None => self.jacobian_column(&base, &f0, k).entries,
+        f(&base, &f0)
+    }
+
+    /// The Jacobian by per-body finite differences (see the module doc), its columns
+    /// computed apart (on the workspace's threads) and written in order.
+    pub(super) fn structured_jacobian(&self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
+        self.with_linearisation(t, y, |base, f0| {
+            let m = self.layout.ring_states();
+            let rollers = self.map(y.len() - m, |j| self.jacobian_column(base, f0, m + j));
+            let ring = self.map(m, |k| match roller_twin(k) {
+                Some(local) => self.ring_column_from_rollers(base, f0, k, local, &rollers),
+                None => self.jacobian_column(base, f0, k).entries,
+            });
+            jac.fill(0.0);
+            let entries = ring.iter().chain(rollers.iter().map(|c| &c.entries));
+            for (k, column) in entries.enumerate() {
+                for &(row, value) in column {
+                    jac[(row, k)] = value;
+                }
+            }
         });
-        jac.fill(0.0);
-        let entries = ring.iter().chain(rollers.iter().map(|c| &c.entries));
-        for (k, column) in entries.enumerate() {
-            for &(row, value) in column {
+    }
+
+    /// The rollers whose columns a partial renewal takes anew for a failed Newton
+    /// iteration whose largest updates were in `states`: their owners and the owners'
+    /// neighbours (a roller's rates depend on its neighbours' states through the
+    /// roller–roller contacts); `None` if one of the states is the inner ring's (its
+    /// contacts reach every roller: the whole Jacobian is renewed then).
+    fn rollers_to_renew(&self, states: &[usize]) -> Option<Vec<usize>> {
+        let z = self.layout.rollers;
+        let mut chosen = vec![false; z];
+        for &k in states {
+            let i = self.layout.body_of(k)?;
+            for j in [i + z - 1, i, i + 1] {
+                chosen[j % z] = true;
+            }
+        }
+        Some((0..z).filter(|&i| chosen[i]).collect())
+    }
+
+    /// Renews, at (t, y), the columns of the rollers that own `states` and of their
+    /// neighbours ([`Self::rollers_to_renew`]), and keeps the other columns of `jac` (a
+    /// Jacobian of a nearby state); `false` (and `jac` untouched) if a state is the inner
+    /// ring's. The columns renewed are computed as [`Self::structured_jacobian`] computes
+    /// them, so a column is the same whichever way it was renewed. Used after a failed
+    /// Newton iteration (`StepControl::partial_jacobians`): the failures at B1's full speed
+    /// come from single rollers, whose three rollers' columns cost about a tenth of a
+    /// whole Jacobian (with the right-hand side they are taken at).
+    pub(super) fn partial_structured_jacobian(
+        &self,
+        t: f64,
+        y: &[f64],
+        states: &[usize],
+        jac: &mut DMatrix<f64>,
+    ) -> bool {
+        let Some(rollers) = self.rollers_to_renew(states) else {
+            return false;
+        };
+        let columns: Vec<usize> = rollers
+            .iter()
+            .flat_map(|&i| (0..ROLLER_STATES).map(move |l| (i, l)))
+            .map(|(i, l)| self.layout.roller(i) + l)
+            .collect();
+        let computed = self.with_linearisation(t, y, |base, f0| {
+            self.map(columns.len(), |c| {
+                self.jacobian_column(base, f0, columns[c])
+            })
+        });
+        for (&k, column) in columns.iter().zip(&computed) {
+            jac.column_mut(k).fill(0.0);
+            for &(row, value) in &column.entries {
                 jac[(row, k)] = value;
             }
         }
+        true
     }
 
     /// Column k of the inner ring (a translation or a velocity, `local` the roller state

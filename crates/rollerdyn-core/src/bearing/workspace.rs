@@ -170,6 +170,16 @@ impl OdeSystem for BearingSystem<'_> {
         self.structured_jacobian(t, y, jac);
     }
 
+    fn partial_jacobian(
+        &self,
+        t: f64,
+        y: &[f64],
+        states: &[usize],
+        jac: &mut DMatrix<f64>,
+    ) -> bool {
+        self.partial_structured_jacobian(t, y, states, jac)
+    }
+
     /// Clears the gradient detector's warm starts (checkpoints restart from here).
     fn restart(&self) {
         self.workspace.warm_starts.clear();
@@ -262,6 +272,50 @@ mod tests {
             }
         }
     }
+    /// A partial renewal (`StepControl::partial_jacobians`) takes the columns of the
+    /// failing roller and its two neighbours as the whole Jacobian at the same state takes
+    /// them, bit for bit, and keeps every other column of the Jacobian it renews; a
+    /// failing inner-ring state is declined (the caller renews the whole).
+    #[test]
+    fn a_partial_renewal_takes_three_rollers_columns_as_the_whole_jacobian_does() {
+        let (model, y) = b1_in_motion(Detector::SemiAnalytical);
+        let workspace = Workspace::single(&model);
+        let system = model.system(&workspace);
+        let n = y.len();
+        // The state the failed iteration reached: roller 0 0.3 µm further out and
+        // 20 µrad more skewed, its skew rate 1 rad/s higher.
+        let mut z = y.clone();
+        let s = model.layout.roller(0);
+        z[s + 1] += 0.3e-6;
+        z[s + 4] += 20e-6;
+        z[s + 10] += 1.0;
+        let whole = |state: &[f64]| {
+            let mut jac = DMatrix::zeros(n, n);
+            system.jacobian(0.0, state, &mut jac);
+            jac
+        };
+        let (at_y, at_z) = (whole(&y), whole(&z));
+        let mut renewed = at_y.clone();
+        assert!(system.partial_jacobian(0.0, &z, &[s + 10, s + 4], &mut renewed));
+        let z_count = model.layout.rollers;
+        let renewed_rollers = [z_count - 1, 0, 1];
+        for k in 0..n {
+            let expected = match model.layout.body_of(k) {
+                Some(i) if renewed_rollers.contains(&i) => &at_z,
+                _ => &at_y,
+            };
+            assert_eq!(renewed.column(k), expected.column(k), "column {k}");
+        }
+        assert_ne!(
+            at_y.column(s + 4),
+            at_z.column(s + 4),
+            "the states differ there"
+        );
+        let mut declined = at_y.clone();
+        assert!(!system.partial_jacobian(0.0, &z, &[s + 4, 0], &mut declined));
+        assert_eq!(declined, at_y);
+    }
+
     /// A workspace goes with the model it was built for: one built for the
     /// semi-analytical detector (which may have helper threads) is refused by a model with
     /// the gradient detector, whose warm starts must not be shared by threads.

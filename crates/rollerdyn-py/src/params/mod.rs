@@ -56,6 +56,7 @@ pub(crate) fn run_options(d: &Bound<'_, PyDict>) -> PyResult<(RunOptions, Option
             gain: s.step_gain,
             jacobian_after_newton_failure: s.jacobian_after_newton_failure,
             jacobian_at_latest_iterate: s.jacobian_at_latest_iterate,
+            partial_jacobians: s.partial_jacobians,
         },
         checkpoint_interval: s.checkpoint_interval,
         start_from_equilibrium: s.start == Some(Start::Equilibrium),

@@ -205,6 +205,7 @@ section! {
         step_gain: f64,
         jacobian_after_newton_failure: bool,
         jacobian_at_latest_iterate: bool,
+        partial_jacobians: usize,
         /// None: no checkpoints.
         checkpoint_interval: Option<f64>,
         /// None: from rest.

@@ -508,3 +508,100 @@ fn a_run_whose_steps_collapse_fails_after_one_window() {
     let stats = integrate(&Chattering, &start, t_end, &opts, continue_).unwrap();
     assert!(stats.steps > STALL_WINDOW, "{}", stats.steps);
 }
+
+/// Two decoupled components: y₀ as [`Jump`]'s (its stiffness jumps at t = 1), y₁' =
+/// −1e4·(y₁ − cos t) − sin t (solution cos t for both). The system renews single columns
+/// when asked (`offer`) and records the states it was asked for.
+struct TwoParts {
+    offer: bool,
+    asked: std::cell::RefCell<Vec<Vec<usize>>>,
+}
+impl TwoParts {
+    fn column(t: f64, k: usize) -> f64 {
+        if k == 0 {
+            -Jump::lambda(t)
+        } else {
+            -1e4
+        }
+    }
+}
+impl OdeSystem for TwoParts {
+    fn len(&self) -> usize {
+        2
+    }
+    fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
+        for k in 0..2 {
+            dy[k] = Self::column(t, k) * (y[k] - t.cos()) - t.sin();
+        }
+    }
+    fn jacobian(&self, t: f64, _y: &[f64], jac: &mut DMatrix<f64>) {
+        jac.fill(0.0);
+        for k in 0..2 {
+            jac[(k, k)] = Self::column(t, k);
+        }
+    }
+    fn partial_jacobian(
+        &self,
+        t: f64,
+        _y: &[f64],
+        states: &[usize],
+        jac: &mut DMatrix<f64>,
+    ) -> bool {
+        if !self.offer {
+            return false;
+        }
+        self.asked.borrow_mut().push(states.to_vec());
+        for &k in states {
+            jac[(k, k)] = Self::column(t, k);
+        }
+        true
+    }
+}
+
+/// Partial renewals after a Newton failure: on [`TwoParts`] the step across t = 1 fails
+/// in y₀, the system is asked for y₀'s column (first alone), and the run ends on the
+/// solution as with whole renewals; a system that declines gets whole Jacobians, and
+/// `partial_jacobians = 0` asks for none.
+#[test]
+fn partial_jacobians_renew_the_columns_of_the_failing_states() {
+    let run = |offer: bool, limit: usize| {
+        let system = TwoParts {
+            offer,
+            asked: Default::default(),
+        };
+        let mut opts = options(Method::TrBdf2, None);
+        opts.step_control.partial_jacobians = limit;
+        let start = Start {
+            time: 0.0,
+            state: vec![1.0, 1.0],
+            step: None,
+        };
+        let mut last = vec![];
+        let stats = integrate(&system, &start, 2.0, &opts, |event| {
+            if let Event::Output { state, .. } = event {
+                last = state.to_vec();
+            }
+            ControlFlow::Continue(())
+        })
+        .unwrap();
+        for value in &last {
+            assert!(
+                (value - 2.0f64.cos()).abs() < 1e-7,
+                "{offer} {limit}: {last:?}"
+            );
+        }
+        (stats, system.asked.into_inner())
+    };
+    let (partial, asked) = run(true, 2);
+    assert!(partial.newton_failures > 0);
+    assert!(partial.partial_jacobians > 0 && partial.partial_jacobians == asked.len());
+    assert!(partial.partial_jacobians < partial.jacobian_evaluations);
+    // The first failure, at the jump, is y₀'s alone; the retries' updates of y₁ (whose
+    // columns never change) may reach a tenth of y₀'s and be renewed with it.
+    assert_eq!(asked[0], vec![0]);
+    assert!(asked.iter().all(|states| states.contains(&0)), "{asked:?}");
+    let (declined, asked) = run(false, 2);
+    assert_eq!((declined.partial_jacobians, asked.len()), (0, 0));
+    let (off, asked) = run(true, 0);
+    assert_eq!((off.partial_jacobians, asked.len()), (0, 0));
+}
