@@ -81,6 +81,9 @@ class CaseResult:
     newton_failures: int
     rhs: int
     jacobians: int
+    #: Of ``jacobians``, those renewed only in the failing rollers' columns
+    #: (``solver.partial_jacobians``).
+    partial_jacobians: int
     torque: float
     message: str = ""
 
@@ -122,6 +125,7 @@ def _refused(name: str, threads: int, target: float, start: float, err: Exceptio
         newton_failures=0,
         rhs=0,
         jacobians=0,
+        partial_jacobians=0,
         torque=float("nan"),
         message=" ".join(str(err).split()),
     )
@@ -173,6 +177,7 @@ def run_case(
         newton_failures=int(a.get("stats_newton_failures", 0)),
         rhs=int(a["stats_rhs_evaluations"]),
         jacobians=int(a["stats_jacobian_evaluations"]),
+        partial_jacobians=int(a.get("stats_partial_jacobians", 0)),
         torque=float(late.mean()) if late.size else float("nan"),
         message=message or ("" if a["completed"] else f"stopped after {max_wall:g} s of wall time"),
     )

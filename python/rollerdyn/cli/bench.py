@@ -85,8 +85,9 @@ def bench(
             "axial-500N, axial-2000N, axial-3000N, and distributed-NAME for NAME one of whole, "
             "free-tilt and the axial-* (the distributed end-flange law); 'default' (whole, "
             "full-speed-500rpm, full-speed-3000rpm, free-tilt, axial-0N) or 'all'. Prints "
-            "steps, Newton failures, right-hand "
-            "sides, wall time [s] and simulated seconds per wall second, and writes "
+            "steps, Newton failures, right-hand sides, Jacobians (of them partial: "
+            "solver.partial_jacobians), wall time [s] and simulated seconds per wall "
+            "second, and writes "
             "bench_cases.csv to --output.",
         ),
     ] = None,

@@ -185,7 +185,7 @@ def bench_cases(cfg, cases: str, thread_counts: list, max_wall: float, out: Path
         "rejected",
         "Newton failures",
         "rhs",
-        "Jacobians",
+        "Jacobians (partial)",
         "torque [N m]",
         "note",
     )
@@ -202,7 +202,7 @@ def bench_cases(cfg, cases: str, thread_counts: list, max_wall: float, out: Path
             str(r.rejected),
             str(r.newton_failures),
             str(r.rhs),
-            str(r.jacobians),
+            f"{r.jacobians} ({r.partial_jacobians})",
             f"{r.torque:.4g}",
             r.message,
         )

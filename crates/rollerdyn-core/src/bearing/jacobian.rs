@@ -7,7 +7,9 @@
 //! velocity only, so moving the inner ring by δ does to each of its contacts what moving
 //! the roller by −δ does: the ring's translation and velocity columns are assembled from
 //! the rollers' corresponding columns (their ring contacts' changes, negated) instead of
-//! evaluating every ring contact again; its tilt columns are differenced. The columns are
+//! evaluating every ring contact again; its tilt columns are differenced. After a failed
+//! Newton iteration the integrator may ask for the columns of a few rollers only
+//! (`partial_structured_jacobian`), computed as here. The columns are
 //! computed apart, on the workspace's threads if it has any, and written in order: the
 //! numbers do not depend on the thread count.
 //!
