@@ -99,8 +99,8 @@ pub struct StepControl {
     /// that its last update moved most ([`OdeSystem::partial_jacobian`]), at most this
     /// many times in a row before the whole Jacobian is renewed again; 0: always the
     /// whole. Needs `jacobian_at_latest_iterate` (the failed iterate is where the columns
-    /// are taken). The failures at B1's full speed come from single rollers (their tilt,
-    /// skew and spin rates), whose columns are a twelfth of the Jacobian's cost.
+    /// are taken). The failures at B1's full speed come from a few rollers (their tilt,
+    /// skew and spin rates), whose columns cost a part of the whole Jacobian.
     pub partial_jacobians: usize,
 }
 
