@@ -176,10 +176,12 @@ impl BearingSystem<'_> {
     /// neighbours ([`Self::rollers_to_renew`]), and keeps the other columns of `jac` (a
     /// Jacobian of a nearby state); `false` (and `jac` untouched) if a state is the inner
     /// ring's. The columns renewed are computed as [`Self::structured_jacobian`] computes
-    /// them, so a column is the same whichever way it was renewed. Used after a failed
-    /// Newton iteration (`StepControl::partial_jacobians`): the failures at B1's full speed
-    /// come from single rollers, whose three rollers' columns cost about a tenth of a
-    /// whole Jacobian (with the right-hand side they are taken at).
+    /// them, so a column is the same whichever way it was renewed (for the gradient
+    /// detector, whose warm starts remember earlier evaluations, up to those). Used after a
+    /// failed Newton iteration (`StepControl::partial_jacobians`): the failures at B1's
+    /// full speed come from a few rollers; a partial renewal there takes 6.5 of the 17
+    /// rollers on average and about half a whole Jacobian's time. The inner ring's
+    /// columns are kept too, with their entries in the renewed rollers' rows.
     pub(super) fn partial_structured_jacobian(
         &self,
         t: f64,
