@@ -61,6 +61,14 @@ fn roller_twin(k: usize) -> Option<usize> {
     }
 }
 
+/// Writes column k of `jac`: the (row, value) pairs, zero elsewhere.
+fn set_column(jac: &mut DMatrix<f64>, k: usize, entries: &[(usize, f64)]) {
+    jac.column_mut(k).fill(0.0);
+    for &(row, value) in entries {
+        jac[(row, k)] = value;
+    }
+}
+
 /// Whether a roller's state (local index) is the twin of an inner-ring state.
 fn has_ring_twin(local: usize) -> bool {
     (0..6).any(|k| roller_twin(k) == Some(local))
@@ -145,12 +153,9 @@ impl BearingSystem<'_> {
                 Some(local) => self.ring_column_from_rollers(base, f0, k, local, &rollers),
                 None => self.jacobian_column(base, f0, k).entries,
             });
-            jac.fill(0.0);
             let entries = ring.iter().chain(rollers.iter().map(|c| &c.entries));
             for (k, column) in entries.enumerate() {
-                for &(row, value) in column {
-                    jac[(row, k)] = value;
-                }
+                set_column(jac, k, column);
             }
         });
     }
@@ -203,10 +208,7 @@ impl BearingSystem<'_> {
             })
         });
         for (&k, column) in columns.iter().zip(&computed) {
-            jac.column_mut(k).fill(0.0);
-            for &(row, value) in &column.entries {
-                jac[(row, k)] = value;
-            }
+            set_column(jac, k, &column.entries);
         }
         true
     }
