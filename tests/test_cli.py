@@ -172,3 +172,10 @@ def test_run_checkpoint_interval_option(tmp_path):
     assert not_a_number.exit_code == 2 and "Traceback" not in not_a_number.output
     help_text = RUNNER.invoke(app, ["run", "--help"]).output
     assert "--checkpoint-interval" in help_text and "seconds" in help_text
+    # --save-interval: wall time between checkpoint writes, 0 allowed, nothing below
+    assert "--save-interval" in help_text
+    for bad in ("-1", "nan", "inf", "often"):
+        refused = RUNNER.invoke(app, [*args, "--overwrite", "--save-interval", bad])
+        assert refused.exit_code == 2, (bad, refused.output)
+        assert "--save-interval" in refused.output and "Traceback" not in refused.output
+        assert bad == "often" or "at least 0 s" in refused.output

@@ -496,6 +496,34 @@ def test_time_spent_saving_checkpoints_is_reported():
     assert ds.attrs["stats_total_seconds"] >= 0.05 * (len(saves) - 1)
 
 
+def test_checkpoint_saver_writes_the_first_then_one_per_save_interval(tmp_path):
+    """`CheckpointSaver` (`rollerdyn run --save-interval`, the studies): the first
+    checkpoint is written at once, a later one only once the interval of wall time has
+    passed since the end of the last write (a clock advanced by hand), each write a
+    complete file of that checkpoint; 0 writes every one; a negative or non-finite
+    interval is refused naming the rule."""
+    from rollerdyn.simulation import CheckpointSaver
+
+    now = [0.0]
+    path = tmp_path / "saved.nc"
+    saver = CheckpointSaver(path, 10.0, clock=lambda: now[0])
+    checkpoint = [xr.Dataset({"x": ("time", np.arange(k + 1.0))}) for k in range(4)]
+    assert saver(checkpoint[0]) and saver.writes == 1
+    now[0] = 9.99
+    assert not saver(checkpoint[1])
+    with xr.open_dataset(path, engine="h5netcdf") as held:
+        assert held.x.size == 1  # the file still holds the first checkpoint
+    now[0] = 10.0
+    assert saver(checkpoint[2]) and saver.writes == 2
+    with xr.open_dataset(path, engine="h5netcdf") as held:
+        assert held.x.size == 3
+    every = CheckpointSaver(tmp_path / "every.nc", 0.0, clock=lambda: 0.0)
+    assert all(every(ds) for ds in checkpoint) and every.writes == 4
+    for bad in (-1.0, math.nan, math.inf):
+        with pytest.raises(ValueError, match="at least 0 s"):
+            CheckpointSaver(path, bad)
+
+
 def test_gradient_detector_runs_resume_bit_for_bit():
     """The gradient detector keeps warm starts between calls; the restart at every
     checkpoint clears them, so its resumed runs are exact too. Also a run stopped before its

@@ -321,11 +321,13 @@ def parse_quantity(value: Any, fam: str | Family, *, si_numbers: bool = False) -
 SHORTEST_TIME = 1e-9
 
 
-def parse_time(value: Any, name: str) -> float:
-    """A finite time of at least 1 ns, in s, from a number of seconds, a number's text (``"0.05"``)
-    or a quantity (``"50 ms"``), for options such as ``--t-end`` and ``t_end=``; raises
-    :class:`ValueError` naming ``name``, the value and the rule."""
-    rule = "must be a time of at least 1 ns, e.g. 50 ms, 0.05 s or 0.05 (seconds)"
+def parse_time(value: Any, name: str, zero: bool = False) -> float:
+    """A finite time of at least 1 ns (``zero``: at least 0 s), in s, from a number of
+    seconds, a number's text (``"0.05"``) or a quantity (``"50 ms"``), for options such as
+    ``--t-end`` and ``t_end=``; raises :class:`ValueError` naming ``name``, the value and
+    the rule."""
+    least = "0 s" if zero else "1 ns"
+    rule = f"must be a time of at least {least}, e.g. 50 ms, 0.05 s or 0.05 (seconds)"
     if isinstance(value, bool) or not isinstance(value, int | float | str):
         raise ValueError(f"{name} = {value!r}: {rule}")
     try:
@@ -336,7 +338,7 @@ def parse_time(value: Any, name: str) -> float:
         except QuantityError as err:  # its first clause says what is wrong, then a hint
             reason = str(err).split("; ")[0]
             raise ValueError(f"{name} = {value!r}: {reason}; {rule}") from None
-    if not (math.isfinite(seconds) and seconds >= SHORTEST_TIME):
+    if not (math.isfinite(seconds) and seconds >= (0.0 if zero else SHORTEST_TIME)):
         raise ValueError(f"{name} = {value!r}: {rule}")
     return seconds
 

@@ -96,17 +96,17 @@ def checked(check, *args, **kwargs):
         raise refuse(err) from None
 
 
-def time_option(option: str, text: str | None) -> float | None:
+def time_option(option: str, text: str | None, zero: bool = False) -> float | None:
     """The value of a time option (``--t-end``) in s: ``"50 ms"``, ``"0.05 s"`` or a bare
     number of seconds (``"0.05"``); None stays None. Exits with status 2 naming the
     option, the value and the rule for anything but a finite time of at least 1 ns
-    (:func:`rollerdyn.units.parse_time`)."""
+    (``zero``: 0 s; :func:`rollerdyn.units.parse_time`)."""
     from ..units import parse_time
 
     if text is None:
         return None
     try:
-        return parse_time(text, option)
+        return parse_time(text, option, zero)
     except ValueError as err:
         raise refuse(err) from None
 

@@ -4,7 +4,7 @@ radial and axial loads, each point run on Dask until its outputs are steady
 largest flange force.
 
 The folder (default ``results/map``) holds ``study.json``, ``points/point_XXXX.nc`` (one
-result per grid point, written at every checkpoint), ``map.csv`` and ``map.parquet`` (one
+result per grid point, written at its checkpoints), ``map.csv`` and ``map.parquet`` (one
 row per point) and ``figures/`` (the maps, PNG and SVG). Invoked again it runs only what
 is missing, as ``rollerdyn study paper`` does.
 """

@@ -3,7 +3,7 @@ paper's findings checked on them, their figures and one HTML report.
 
 :func:`paper` does it all and returns a :class:`PaperStudy`. The folder (default
 ``results/study``) holds ``study.json`` (what study of which configuration), ``runs/``
-(one result file per run, written at every checkpoint), ``runs.csv`` (every run: status,
+(one result file per run, written at its checkpoints), ``runs.csv`` (every run: status,
 time reached, wall time, steps), ``findings.csv`` and ``findings.json``,
 ``runtime_study.csv`` (fig. 14), ``figures/`` (PNG and SVG) and ``report.html``.
 Invoked again on the same folder it runs only what is missing: finished runs are

@@ -3,10 +3,12 @@ about it (:func:`inspect_run`), and the task that runs it in a Dask worker
 (:func:`execute`): fresh, continued from its last checkpoint, or not at all when its file
 already holds it to its end time.
 
-A run writes its result file ``<name>.nc`` at every checkpoint (atomically, see
-:func:`rollerdyn.simulation.write`), so a worker killed mid-run loses at most one
-checkpoint interval; the next attempt (Dask's retry, or the next invocation of the study)
-continues from the file's last checkpoint with ``simulate(..., resume=...)``, bit for bit.
+A run writes its result file ``<name>.nc`` at its checkpoints (atomically, at most one
+every :data:`rollerdyn.simulation.SAVE_INTERVAL` of wall time: see
+:class:`rollerdyn.simulation.CheckpointSaver`), so a worker killed mid-run loses at most
+that and one checkpoint interval; the next attempt (Dask's retry, or the next invocation
+of the study) continues from the file's last checkpoint with ``simulate(..., resume=...)``,
+bit for bit.
 A run is stopped after ``max_wall`` seconds of wall time (per attempt): its file then holds
 everything up to its last output and the attribute ``study_stopped``; the next invocation
 continues it from its last checkpoint.
@@ -251,7 +253,7 @@ def execute(
     it returns (e.g. "steady at t = 0.12 s") ends the run at its next output as done: the
     file's attribute ``study_done`` keeps the text, and the run counts as finished."""
     from ..config import parse_config
-    from ..simulation import SimulationError, simulate, write
+    from ..simulation import CheckpointSaver, SimulationError, simulate, write
 
     path = Path(outdir) / spec.file
     started = time.monotonic()
@@ -274,8 +276,10 @@ def execute(
                 _post(topic, {"name": spec.name, "t": p.time, "t_end": p.t_end, "steps": p.steps})
             return bool(done) or now - started > max_wall
 
+        saver = CheckpointSaver(path)
+
         def checkpoint(partial) -> None:
-            write(partial, path, compress=False)  # the final write compresses
+            saver(partial)
             if stop_rule is not None and not done:
                 verdict = stop_rule(partial)
                 if verdict:
