@@ -115,8 +115,9 @@ impl BearingSystem<'_> {
         }
     }
 
-    /// Evaluates every contact at (t, y) and hands `f` the linearisation point and the
-    /// rates there.
+    /// Evaluates every contact at (t, y) (or takes the latest right-hand side's
+    /// evaluation there, [`Self::evaluation`]) and hands `f` the linearisation point and
+    /// the rates there.
     fn with_linearisation<R>(
         &self,
         t: f64,
@@ -124,23 +125,21 @@ impl BearingSystem<'_> {
         f: impl FnOnce(&Linearisation, &[f64]) -> R,
     ) -> R {
         let kin = self.kinematics(t, y);
-        let elements = &self.topology.elements;
-        let geometries = self.map(elements.len(), |e| self.geometry(&elements[e], &kin));
-        let results = self.map(elements.len(), |e| {
-            self.evaluate_at(&elements[e], &kin, &geometries[e])
-        });
+        let evaluation = self.evaluation(t, y, &kin);
         let base = Linearisation {
             t,
             y,
             kin: &kin,
-            geometries: &geometries,
-            loads: self.loads(&results),
-            results: &results,
+            geometries: &evaluation.geometries,
+            loads: self.loads(&evaluation.results),
+            results: &evaluation.results,
             drags: kin.rollers.iter().map(|r| self.roller_drag(r)).collect(),
         };
         let mut f0 = vec![0.0; self.layout.len()];
         self.rates_with(t, y, &kin, &base.loads, |i| base.drags[i], &mut f0);
-        f(&base, &f0)
+        let jacobian = f(&base, &f0);
+        self.remember(evaluation);
+        jacobian
     }
 
     /// The Jacobian by per-body finite differences (see the module doc), its columns

@@ -84,7 +84,13 @@ pub struct BearingModel {
     pub(super) locked_axis: Vec3,
     /// Pruning bounds of the four flanges (intrinsic, so computed once; [`FlangeBounds`]).
     pub(super) flange_bounds: [FlangeBounds; 4],
+    /// A number no other model built in this process has: a workspace's remembered
+    /// evaluation ([`Workspace`]) is reused only by the model that made it.
+    pub(super) id: u64,
 }
+
+/// The next [`BearingModel::id`].
+static NEXT_MODEL_ID: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
 impl BearingModel {
     /// Builds the model, refusing parameters that cannot be simulated.
@@ -136,6 +142,7 @@ impl BearingModel {
             flange_bounds,
             locked_axis: axis_from_angles(0.0, params.inner_ring_misalignment),
             params,
+            id: NEXT_MODEL_ID.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
         })
     }
 

@@ -9,15 +9,41 @@
 //! [`BearingSystem`]; what only reads the model (its parameters, layout, topology) is
 //! reached through it as on the model itself ([`std::ops::Deref`]).
 
+use super::contacts::{ElementResult, Geometry};
 use super::detection::WarmStarts;
 use super::model::BearingModel;
 use super::params::Detector;
 use super::profile::{Profile, Profiler};
+use super::state::BearingKinematics;
 use crate::dynamics::integrate::OdeSystem;
 use crate::dynamics::team::Team;
 use crate::error::{Error, Result};
 use nalgebra::DMatrix;
 use std::ops::Deref;
+use std::sync::{Mutex, PoisonError};
+
+/// Every contact evaluated at one state: what a Jacobian linearises about
+/// ([`BearingSystem::evaluation`]).
+pub(super) struct Evaluation {
+    /// The model that evaluated it ([`BearingModel::id`]).
+    model: u64,
+    /// The time and state.
+    t: f64,
+    y: Vec<f64>,
+    /// Each contact's geometry and result, in the order of the model's elements.
+    pub(super) geometries: Vec<Geometry>,
+    pub(super) results: Vec<ElementResult>,
+}
+
+impl std::fmt::Debug for Evaluation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Evaluation")
+            .field("model", &self.model)
+            .field("t", &self.t)
+            .field("contacts", &self.results.len())
+            .finish_non_exhaustive()
+    }
+}
 
 /// The data a model's evaluations change: the gradient detector's warm starts (one slot per
 /// roller end and flange), the profile (one slot per thread) and the helper threads.
@@ -33,6 +59,10 @@ pub struct Workspace {
     /// What it was built for: the roller count and whether the model's detector is the
     /// gradient method (which must keep one thread); checked by [`BearingModel::system`].
     built_for: (usize, bool),
+    /// The latest right-hand side's evaluation of every contact, which a Jacobian at the
+    /// same time and state takes as its base instead of evaluating it again
+    /// ([`BearingSystem::evaluation`]).
+    latest: Mutex<Option<Evaluation>>,
 }
 
 /// The roller count and whether the detector is the gradient method: what a workspace
@@ -52,6 +82,7 @@ impl Workspace {
             profiler: Profiler::single(),
             team: None,
             built_for: fingerprint(model),
+            latest: Mutex::new(None),
         }
     }
 
@@ -82,6 +113,7 @@ impl Workspace {
             profiler: Profiler::for_threads(threads),
             team,
             built_for: fingerprint(model),
+            latest: Mutex::new(None),
         })
     }
 
@@ -93,6 +125,11 @@ impl Workspace {
     /// Time spent so far, by kind of work.
     pub fn profile(&self) -> Profile {
         self.profiler.total()
+    }
+
+    /// The remembered evaluation.
+    fn latest(&self) -> std::sync::MutexGuard<'_, Option<Evaluation>> {
+        self.latest.lock().unwrap_or_else(PoisonError::into_inner)
     }
 }
 
@@ -152,6 +189,42 @@ impl BearingSystem<'_> {
     pub fn profile(&self) -> Profile {
         self.workspace.profile()
     }
+
+    /// Every contact's geometry and result at (t, y) (kinematics `kin`): the remembered
+    /// evaluation if it is this model's at the same t and y (taken out of the workspace:
+    /// give it back with [`Self::remember`]), else evaluated. A Jacobian is taken at the
+    /// latest right-hand side's state (`StepControl::jacobian_at_latest_iterate`), so its
+    /// base is that right-hand side's, one evaluation of every contact saved per Jacobian.
+    /// The same numbers either way: an evaluation depends on t and y only (the gradient
+    /// detector's, on its warm starts too: its base then keeps those of the right-hand
+    /// side's detections).
+    pub(super) fn evaluation(&self, t: f64, y: &[f64], kin: &BearingKinematics) -> Evaluation {
+        let remembered = self.workspace.latest().take();
+        if let Some(e) = remembered {
+            if e.model == self.id && e.t == t && e.y == y {
+                return e;
+            }
+        }
+        let elements = &self.topology.elements;
+        let evaluated = self.map(elements.len(), |e| {
+            let geometry = self.geometry(&elements[e], kin);
+            let result = self.evaluate_at(&elements[e], kin, &geometry);
+            (geometry, result)
+        });
+        let (geometries, results) = evaluated.into_iter().unzip();
+        Evaluation {
+            model: self.id,
+            t,
+            y: y.to_vec(),
+            geometries,
+            results,
+        }
+    }
+
+    /// Keeps `evaluation` for a Jacobian at its state ([`Self::evaluation`]).
+    pub(super) fn remember(&self, evaluation: Evaluation) {
+        *self.workspace.latest() = Some(evaluation);
+    }
 }
 
 impl OdeSystem for BearingSystem<'_> {
@@ -161,9 +234,10 @@ impl OdeSystem for BearingSystem<'_> {
 
     fn rhs(&self, t: f64, y: &[f64], dy: &mut [f64]) {
         let kin = self.kinematics(t, y);
-        let results = self.evaluate_all(&kin);
-        let loads = self.loads(&results);
+        let evaluation = self.evaluation(t, y, &kin);
+        let loads = self.loads(&evaluation.results);
         self.rates(t, y, &kin, &loads, dy);
+        self.remember(evaluation);
     }
 
     fn jacobian(&self, t: f64, y: &[f64], jac: &mut DMatrix<f64>) {
@@ -180,9 +254,11 @@ impl OdeSystem for BearingSystem<'_> {
         self.partial_structured_jacobian(t, y, states, jac)
     }
 
-    /// Clears the gradient detector's warm starts (checkpoints restart from here).
+    /// Clears the gradient detector's warm starts and the remembered evaluation
+    /// (checkpoints restart from here).
     fn restart(&self) {
         self.workspace.warm_starts.clear();
+        *self.workspace.latest() = None;
     }
 }
 
@@ -314,6 +390,56 @@ mod tests {
         let mut declined = at_y.clone();
         assert!(!system.partial_jacobian(0.0, &z, &[s + 4, 0], &mut declined));
         assert_eq!(declined, at_y);
+    }
+
+    /// A Jacobian at the latest right-hand side's time and state takes that right-hand
+    /// side's evaluation of every contact as its base: it equals the Jacobian computed
+    /// afresh bit for bit, with one right-hand side's detections fewer. At another time,
+    /// for another model in the same workspace (B1 without friction: other forces at the
+    /// same state) and after a checkpoint's restart it is not taken.
+    #[test]
+    fn a_jacobian_takes_the_latest_right_hand_sides_evaluation() {
+        let (model, y) = b1_in_motion(Detector::SemiAnalytical);
+        let n = y.len();
+        let jacobian = |system: &BearingSystem, t: f64| {
+            let mut jac = DMatrix::zeros(n, n);
+            system.jacobian(t, &y, &mut jac);
+            jac
+        };
+        let afresh = |m: &BearingModel, t: f64| {
+            let workspace = Workspace::single(m);
+            let jac = jacobian(&m.system(&workspace), t);
+            (jac, workspace.profile().detections)
+        };
+        let (expected, detections_afresh) = afresh(&model, 0.0);
+        let workspace = Workspace::single(&model);
+        let system = model.system(&workspace);
+        let detections = || workspace.profile().detections;
+        let rhs = |system: &BearingSystem| system.rhs(0.0, &y, &mut vec![0.0; n]);
+        rhs(&system);
+        let per_rhs = detections();
+        assert!(per_rhs > 0);
+        assert_eq!(jacobian(&system, 0.0), expected);
+        assert_eq!(detections() - per_rhs, detections_afresh - per_rhs);
+        // Another time: evaluated afresh.
+        rhs(&system);
+        let before = detections();
+        assert_eq!(jacobian(&system, 1e-3), afresh(&model, 1e-3).0);
+        assert_eq!(detections() - before, detections_afresh);
+        // Another model, the same workspace and state: its own evaluation.
+        let mut p = params(&B1);
+        p.options.friction = false;
+        let other = BearingModel::new(p).unwrap();
+        rhs(&system);
+        let frictionless = jacobian(&other.system(&workspace), 0.0);
+        assert_eq!(frictionless, afresh(&other, 0.0).0);
+        assert_ne!(frictionless, expected);
+        // A restart forgets it.
+        rhs(&system);
+        system.restart();
+        let before = detections();
+        assert_eq!(jacobian(&system, 0.0), expected);
+        assert_eq!(detections() - before, detections_afresh);
     }
 
     /// A workspace goes with the model it was built for: one built for the
