@@ -62,6 +62,11 @@ def test_bench_model_times_rhs_and_jacobian(tmp_path):
     assert result.exit_code == 0, result.output
     for row in ("right-hand side", "line contacts", "Jacobian", "193 states"):
         assert row in result.output
+    # every timed right-hand side evaluates the contacts (B1's 68 roller ends), none is
+    # taken from the one before at the same state
+    import re
+
+    assert re.search(r"\b68 detections per right-hand side", result.output), result.output
     junk = tmp_path / "junk.nc"
     junk.write_text("not netCDF")
     bad = RUNNER.invoke(app, ["bench", "model", "--state", str(junk)])

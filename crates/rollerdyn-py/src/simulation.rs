@@ -78,8 +78,9 @@ fn model_rhs(
     Ok((dy, jac.transpose().as_slice().to_vec()))
 }
 
-/// Times the model at (t, y) on this thread: `rhs_repetitions` right-hand sides, then
-/// `jacobian_repetitions` Jacobians (`rollerdyn bench model`). Returns the mean wall
+/// Times the model at (t, y) on this thread: `rhs_repetitions` right-hand sides, each
+/// evaluating every contact, then `jacobian_repetitions` Jacobians, each taking its base
+/// from the evaluation before at the same state as in a run (`rollerdyn bench model`). Returns the mean wall
 /// time of each [s] and the profile of the right-hand sides (detection, line
 /// contacts, flange forces [s per right-hand side]; sampled as in a run).
 #[pyfunction]
@@ -122,6 +123,8 @@ fn timing<'py>(
     let before = model.profile();
     let start = Instant::now();
     for _ in 0..rhs_n {
+        // each evaluated afresh, not taken from the one before at the same state
+        model.forget_evaluation();
         model.rhs(t, std::hint::black_box(&y), &mut dy);
     }
     let rhs = start.elapsed().as_secs_f64() / rhs_n as f64;

@@ -141,9 +141,11 @@ def bench(
     accuracy against the reference solver every 100th step. For statistically careful
     numbers use "cargo bench -p rollerdyn-core".
 
-    model: the mean time of one right-hand side (2 000 of them) and one Jacobian (200) at
-    the final state of --state, in µs, and the right-hand side's split into detection,
-    line contacts and flange forces.
+    model: the mean time of one right-hand side (2 000 of them, each evaluating every
+    contact) and one Jacobian (200, each taking its base evaluation from the one before at
+    the same state, as a run's Jacobian takes the latest right-hand side's) at the final
+    state of --state, in µs, and the right-hand side's split into detection, line contacts
+    and flange forces.
 
     mbs: the whole run (to --t-end) on one core with each detector: wall time, steps,
     right-hand-side and Jacobian evaluations, and where the time goes: detection, line

@@ -194,7 +194,8 @@ impl BearingSystem<'_> {
     /// evaluation if it is this model's at the same t and y (taken out of the workspace:
     /// give it back with [`Self::remember`]), else evaluated. A Jacobian is taken at the
     /// latest right-hand side's state (`StepControl::jacobian_at_latest_iterate`), so its
-    /// base is that right-hand side's, one evaluation of every contact saved per Jacobian.
+    /// base is that right-hand side's, one evaluation of every contact saved per Jacobian;
+    /// a right-hand side at the state of the one before takes it too.
     /// The same numbers either way: an evaluation depends on t and y only (the gradient
     /// detector's, on its warm starts too: its base then keeps those of the right-hand
     /// side's detections).
@@ -224,6 +225,13 @@ impl BearingSystem<'_> {
     /// Keeps `evaluation` for a Jacobian at its state ([`Self::evaluation`]).
     pub(super) fn remember(&self, evaluation: Evaluation) {
         *self.workspace.latest() = Some(evaluation);
+    }
+
+    /// Forgets the remembered evaluation, so that the next right-hand side or Jacobian
+    /// evaluates every contact (`rollerdyn bench model` times right-hand sides at one
+    /// state this way).
+    pub fn forget_evaluation(&self) {
+        *self.workspace.latest() = None;
     }
 }
 
@@ -258,7 +266,7 @@ impl OdeSystem for BearingSystem<'_> {
     /// (checkpoints restart from here).
     fn restart(&self) {
         self.workspace.warm_starts.clear();
-        *self.workspace.latest() = None;
+        self.forget_evaluation();
     }
 }
 
@@ -396,7 +404,8 @@ mod tests {
     /// side's evaluation of every contact as its base: it equals the Jacobian computed
     /// afresh bit for bit, with one right-hand side's detections fewer. At another time,
     /// for another model in the same workspace (B1 without friction: other forces at the
-    /// same state) and after a checkpoint's restart it is not taken.
+    /// same state) and after a checkpoint's restart it is not taken. A right-hand side at
+    /// the state of the one before takes it as well, unless it was forgotten.
     #[test]
     fn a_jacobian_takes_the_latest_right_hand_sides_evaluation() {
         let (model, y) = b1_in_motion(Detector::SemiAnalytical);
@@ -440,6 +449,15 @@ mod tests {
         let before = detections();
         assert_eq!(jacobian(&system, 0.0), expected);
         assert_eq!(detections() - before, detections_afresh);
+        // A right-hand side at the same state takes it too, unless it was forgotten.
+        let (mut first, mut again) = (vec![0.0; n], vec![0.0; n]);
+        system.rhs(0.0, &y, &mut first);
+        let before = detections();
+        system.rhs(0.0, &y, &mut again);
+        assert_eq!((again.clone(), detections()), (first.clone(), before));
+        system.forget_evaluation();
+        system.rhs(0.0, &y, &mut again);
+        assert_eq!((again, detections()), (first, before + per_rhs));
     }
 
     /// A workspace goes with the model it was built for: one built for the
