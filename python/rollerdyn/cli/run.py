@@ -79,9 +79,10 @@ def run(
         typer.Option(
             "--checkpoint-interval",
             help="Checkpoint interval in simulated time (not wall-clock time), with a unit "
-            "(100 ms) or a bare number of seconds (0.1): the result file is rewritten and "
-            "the solver restarted every TIME; at most this much simulated time is lost "
-            "after kill -9. Overrides solver.checkpoint_interval of the configuration "
+            "(100 ms) or a bare number of seconds (0.1): the solver restarts every TIME "
+            "and the result file is rewritten there (at most once per --save-interval of "
+            "wall time); after kill -9 the run continues from the last checkpoint "
+            "written. Overrides solver.checkpoint_interval of the configuration "
             "(default 100 ms). With --resume the default is the earlier run's interval, "
             "which a bit-for-bit continuation needs (another interval changes the result "
             "within the tolerances).",
