@@ -1,6 +1,6 @@
 //! What changes while a model is evaluated, kept apart from the model (as MuJoCo keeps
-//! `mjData` apart from `mjModel`): the gradient detector's warm starts, the profile and the
-//! helper threads. [`BearingModel`] is immutable once built and can be shared between
+//! `mjData` apart from `mjModel`): the gradient detector's warm starts, the profile, the
+//! helper threads and the latest evaluation of every contact. [`BearingModel`] is immutable once built and can be shared between
 //! threads and runs; a [`Workspace`] belongs to one run (or one quasi-static analysis) at a
 //! time, and [`BearingSystem`] joins the two into the ODE system the integrator drives.
 //!
@@ -46,7 +46,8 @@ impl std::fmt::Debug for Evaluation {
 }
 
 /// The data a model's evaluations change: the gradient detector's warm starts (one slot per
-/// roller end and flange), the profile (one slot per thread) and the helper threads.
+/// roller end and flange), the profile (one slot per thread), the helper threads and the
+/// latest right-hand side's evaluation.
 #[derive(Debug)]
 pub struct Workspace {
     /// The gradient detector's warm starts, one slot per roller end and flange.
