@@ -80,9 +80,9 @@ fn model_rhs(
 
 /// Times the model at (t, y) on this thread: `rhs_repetitions` right-hand sides, each
 /// evaluating every contact, then `jacobian_repetitions` Jacobians, each taking its base
-/// from the evaluation before at the same state as in a run (`rollerdyn bench model`). Returns the mean wall
-/// time of each [s] and the profile of the right-hand sides (detection, line
-/// contacts, flange forces [s per right-hand side]; sampled as in a run).
+/// from the evaluation before at the same state as in a run (`rollerdyn bench model`).
+/// Returns the mean wall time of each [s] and the profile of the right-hand sides
+/// (detection, line contacts, flange forces [s per right-hand side]; sampled as in a run).
 #[pyfunction]
 fn model_timing<'py>(
     py: Python<'py>,
