@@ -177,8 +177,30 @@ def test_run_checkpoint_interval_option(tmp_path):
     assert not_a_number.exit_code == 2 and "Traceback" not in not_a_number.output
     help_text = RUNNER.invoke(app, ["run", "--help"]).output
     assert "--checkpoint-interval" in help_text and "seconds" in help_text
-    # --save-interval: wall time between checkpoint writes, 0 allowed, nothing below
+    # --save-interval: wall time between checkpoint writes, 0 allowed, nothing below. The
+    # four checkpoints of a run to 0.4 ms every 0.1 ms are each written with 0, only the
+    # first with an hour; the final, compressed write comes on top.
     assert "--save-interval" in help_text
+    from rollerdyn import simulation
+
+    real_write = simulation.write
+    for every, expected in (("0", 4), ("1 h", 1)):
+        writes: list[bool] = []
+
+        def counting_write(ds, path, compress=True, writes=writes):
+            writes.append(compress)
+            real_write(ds, path, compress)
+
+        simulation.write = counting_write
+        try:
+            saved = RUNNER.invoke(
+                app,
+                [*args, "--overwrite", "--checkpoint-interval", "1e-4", "--save-interval", every],
+            )
+        finally:
+            simulation.write = real_write
+        assert saved.exit_code == 0, saved.output
+        assert writes.count(False) == expected and writes[-1], (every, writes)
     for bad in ("-1", "nan", "inf", "often"):
         refused = RUNNER.invoke(app, [*args, "--overwrite", "--save-interval", bad])
         assert refused.exit_code == 2, (bad, refused.output)

@@ -496,28 +496,36 @@ def test_time_spent_saving_checkpoints_is_reported():
     assert ds.attrs["stats_total_seconds"] >= 0.05 * (len(saves) - 1)
 
 
-def test_checkpoint_saver_writes_the_first_then_one_per_save_interval(tmp_path):
+def test_checkpoint_saver_writes_the_first_then_one_per_save_interval(tmp_path, monkeypatch):
     """`CheckpointSaver` (`rollerdyn run --save-interval`, the studies): the first
     checkpoint is written at once, a later one only once the interval of wall time has
-    passed since the end of the last write (a clock advanced by hand), each write a
-    complete file of that checkpoint; 0 writes every one; a negative or non-finite
-    interval is refused naming the rule."""
+    passed since the end of the last write (a clock advanced by hand, by 5 s in each
+    write), each write a complete file of that checkpoint; 0 writes every one; a negative
+    or non-finite interval is refused naming the rule."""
+    from rollerdyn import simulation
     from rollerdyn.simulation import CheckpointSaver
 
     now = [0.0]
+    real_write = simulation.write
+
+    def slow_write(ds, path, compress=True):
+        real_write(ds, path, compress)
+        now[0] += 5.0
+
+    monkeypatch.setattr(simulation, "write", slow_write)
     path = tmp_path / "saved.nc"
     saver = CheckpointSaver(path, 10.0, clock=lambda: now[0])
     checkpoint = [xr.Dataset({"x": ("time", np.arange(k + 1.0))}) for k in range(4)]
-    assert saver(checkpoint[0]) and saver.writes == 1
-    now[0] = 9.99
+    assert saver(checkpoint[0]) and saver.writes == 1 and now[0] == 5.0
+    now[0] = 14.99  # 10 s after the write's start, not after its end
     assert not saver(checkpoint[1])
     with xr.open_dataset(path, engine="h5netcdf") as held:
         assert held.x.size == 1  # the file still holds the first checkpoint
-    now[0] = 10.0
+    now[0] = 15.0
     assert saver(checkpoint[2]) and saver.writes == 2
     with xr.open_dataset(path, engine="h5netcdf") as held:
         assert held.x.size == 3
-    every = CheckpointSaver(tmp_path / "every.nc", 0.0, clock=lambda: 0.0)
+    every = CheckpointSaver(tmp_path / "every.nc", 0.0, clock=lambda: now[0])
     assert all(every(ds) for ds in checkpoint) and every.writes == 4
     for bad in (-1.0, math.nan, math.inf):
         with pytest.raises(ValueError, match="at least 0 s"):
@@ -636,9 +644,10 @@ def test_results_are_written_compressed_and_read_back_bit_for_bit(tmp_path):
 
 
 def test_kill_9_loses_at_most_a_checkpoint_interval_and_resume_finishes_the_run(tmp_path):
-    """Issue 6, point 4: `rollerdyn run` writes its result file at every checkpoint
-    (atomically); after kill -9 the file opens and holds the run up to its last checkpoint,
-    and `rollerdyn run --resume` finishes it, equal bit for bit to an uninterrupted run."""
+    """Issue 6, point 4: `rollerdyn run` writes its result file at its checkpoints
+    (atomically; the first at once, then at most one per --save-interval of wall time);
+    after kill -9 the file opens and holds the run up to its last checkpoint written, and
+    `rollerdyn run --resume` finishes it, equal bit for bit to an uninterrupted run."""
     import subprocess
     import sys
     import time

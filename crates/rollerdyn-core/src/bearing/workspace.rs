@@ -202,8 +202,14 @@ impl BearingSystem<'_> {
     /// side's detections).
     pub(super) fn evaluation(&self, t: f64, y: &[f64], kin: &BearingKinematics) -> Evaluation {
         let remembered = self.workspace.latest().take();
+        // The same bits (−0.0 is not 0.0 to every function of the state).
+        let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
         if let Some(e) = remembered {
-            if e.model == self.id && e.t == t && e.y == y {
+            if e.model == self.id
+                && same(e.t, t)
+                && e.y.len() == y.len()
+                && e.y.iter().zip(y).all(|(a, b)| same(*a, *b))
+            {
                 return e;
             }
         }
@@ -403,7 +409,7 @@ mod tests {
 
     /// A Jacobian at the latest right-hand side's time and state takes that right-hand
     /// side's evaluation of every contact as its base: it equals the Jacobian computed
-    /// afresh bit for bit, with one right-hand side's detections fewer. At another time,
+    /// afresh bit for bit, with one right-hand side's detections fewer. At another state,
     /// for another model in the same workspace (B1 without friction: other forces at the
     /// same state) and after a checkpoint's restart it is not taken. A right-hand side at
     /// the state of the one before takes it as well, unless it was forgotten.
@@ -431,11 +437,21 @@ mod tests {
         assert!(per_rhs > 0);
         assert_eq!(jacobian(&system, 0.0), expected);
         assert_eq!(detections() - per_rhs, detections_afresh - per_rhs);
-        // Another time: evaluated afresh.
+        // Another state, 1 nm away: evaluated afresh.
+        let mut z = y.clone();
+        z[model.layout.roller(0) + 1] += 1e-9;
         rhs(&system);
         let before = detections();
-        assert_eq!(jacobian(&system, 1e-3), afresh(&model, 1e-3).0);
+        let mut at_z = DMatrix::zeros(n, n);
+        system.jacobian(0.0, &z, &mut at_z);
         assert_eq!(detections() - before, detections_afresh);
+        let fresh_workspace = Workspace::single(&model);
+        let mut fresh_z = DMatrix::zeros(n, n);
+        model
+            .system(&fresh_workspace)
+            .jacobian(0.0, &z, &mut fresh_z);
+        assert_eq!(at_z, fresh_z);
+        assert_ne!(at_z, expected);
         // Another model, the same workspace and state: its own evaluation.
         let mut p = params(&B1);
         p.options.friction = false;
