@@ -126,15 +126,10 @@ impl BearingSystem<'_> {
         (kin.of(a, fixed), kin.of(b, fixed))
     }
 
-    /// Evaluates one contact.
+    /// Evaluates one contact: its geometry ([`Self::geometry`]), then its forces
+    /// ([`Self::evaluate_at`]).
     pub fn evaluate(&self, element: &Element, kin: &BearingKinematics) -> ElementResult {
-        let fixed = Kinematics::fixed();
-        let (a, b) = self.bodies(element, kin, &fixed);
-        match (*element, element.line()) {
-            (_, Some(line)) => self.line_element(line, a, b),
-            (Element::End(i, k), None) => self.flange_element(i, k, a, b),
-            _ => unreachable!("an element is a line contact or a roller end"),
-        }
+        self.evaluate_at(element, kin, &self.geometry(element, kin))
     }
 
     /// Evaluates every contact, in the order of

@@ -17,21 +17,9 @@ use crate::tribology::foundation;
 use std::f64::consts::PI;
 
 impl BearingSystem<'_> {
-    /// Evaluates the contact of roller i's end (`roller`) against flange k of `ring`.
-    pub(super) fn flange_element(
-        &self,
-        i: usize,
-        k: usize,
-        ring: &Kinematics,
-        roller: &Kinematics,
-    ) -> ElementResult {
-        let end = self.roller_end(k, roller);
-        let geometry = self.end_geometry(&end, &self.flange(k, ring), i, k);
-        self.flange_element_at(ring, roller, &geometry)
-    }
-
-    /// [`Self::flange_element`] with the contact's `geometry` given (detected at the same
-    /// positions): for Jacobian columns of velocities, which leave it unchanged.
+    /// The forces of a roller end (`roller`) against a flange of `ring` whose contact
+    /// `geometry` was detected at the same positions ([`Self::geometry`]; given apart for
+    /// Jacobian columns of velocities, which leave it unchanged).
     pub(super) fn flange_element_at(
         &self,
         ring: &Kinematics,

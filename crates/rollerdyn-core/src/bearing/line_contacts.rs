@@ -158,21 +158,6 @@ impl LineContacts {
 }
 
 impl BearingSystem<'_> {
-    /// Evaluates a line contact of kind `line` between bodies `a` and `b`.
-    pub(super) fn line_element(
-        &self,
-        line: LineContact,
-        a: &Kinematics,
-        b: &Kinematics,
-    ) -> ElementResult {
-        let bound = self.penetration_bound(line, a, b);
-        if self.is_apart(bound) {
-            return Self::apart(bound);
-        }
-        let geometry = self.line_geometry(line, a, b, bound);
-        self.line_forces(line, a, b, &geometry)
-    }
-
     /// The slices' and the film points' geometry of a line contact whose penetration is at
     /// most `bound` (no slice computed where it is negative: none touches).
     pub(super) fn line_geometry(
@@ -287,7 +272,7 @@ impl BearingSystem<'_> {
 
     /// The forces of a line contact of kind `line` from its slices' and film points'
     /// `geometry` ([`Self::line_geometry`]): the paper's laws per slice in contact, the oil
-    /// film at its quadrature points. Computed along the way by [`Self::line_element`], or
+    /// film at its quadrature points. Computed along the way by [`Self::evaluate`], or
     /// given (from the same positions) for Jacobian columns of velocities, which leave it
     /// unchanged. The penetration is the slices' largest, or the film points' where no
     /// slice was computed.

@@ -1,8 +1,9 @@
 //! What changes while a model is evaluated, kept apart from the model (as MuJoCo keeps
 //! `mjData` apart from `mjModel`): the gradient detector's warm starts, the profile, the
-//! helper threads and the latest evaluation of every contact. [`BearingModel`] is immutable once built and can be shared between
-//! threads and runs; a [`Workspace`] belongs to one run (or one quasi-static analysis) at a
-//! time, and [`BearingSystem`] joins the two into the ODE system the integrator drives.
+//! helper threads and the latest evaluation of every contact. [`BearingModel`] is
+//! immutable once built and can be shared between threads and runs; a [`Workspace`]
+//! belongs to one run (or one quasi-static analysis) at a time, and [`BearingSystem`]
+//! joins the two into the ODE system the integrator drives.
 //!
 //! Every stage of a right-hand side (`contacts`, `line_contacts`, `detection`,
 //! `flange_contacts`, `equations`, `jacobian`) and the quasi-static analysis are methods of
@@ -417,17 +418,17 @@ mod tests {
     fn a_jacobian_takes_the_latest_right_hand_sides_evaluation() {
         let (model, y) = b1_in_motion(Detector::SemiAnalytical);
         let n = y.len();
-        let jacobian = |system: &BearingSystem, t: f64| {
+        let jacobian = |system: &BearingSystem| {
             let mut jac = DMatrix::zeros(n, n);
-            system.jacobian(t, &y, &mut jac);
+            system.jacobian(0.0, &y, &mut jac);
             jac
         };
-        let afresh = |m: &BearingModel, t: f64| {
+        let afresh = |m: &BearingModel| {
             let workspace = Workspace::single(m);
-            let jac = jacobian(&m.system(&workspace), t);
+            let jac = jacobian(&m.system(&workspace));
             (jac, workspace.profile().detections)
         };
-        let (expected, detections_afresh) = afresh(&model, 0.0);
+        let (expected, detections_afresh) = afresh(&model);
         let workspace = Workspace::single(&model);
         let system = model.system(&workspace);
         let detections = || workspace.profile().detections;
@@ -435,7 +436,7 @@ mod tests {
         rhs(&system);
         let per_rhs = detections();
         assert!(per_rhs > 0);
-        assert_eq!(jacobian(&system, 0.0), expected);
+        assert_eq!(jacobian(&system), expected);
         assert_eq!(detections() - per_rhs, detections_afresh - per_rhs);
         // Another state, 1 nm away: evaluated afresh.
         let mut z = y.clone();
@@ -457,14 +458,14 @@ mod tests {
         p.options.friction = false;
         let other = BearingModel::new(p).unwrap();
         rhs(&system);
-        let frictionless = jacobian(&other.system(&workspace), 0.0);
-        assert_eq!(frictionless, afresh(&other, 0.0).0);
+        let frictionless = jacobian(&other.system(&workspace));
+        assert_eq!(frictionless, afresh(&other).0);
         assert_ne!(frictionless, expected);
         // A restart forgets it.
         rhs(&system);
         system.restart();
         let before = detections();
-        assert_eq!(jacobian(&system, 0.0), expected);
+        assert_eq!(jacobian(&system), expected);
         assert_eq!(detections() - before, detections_afresh);
         // A right-hand side at the same state takes it too, unless it was forgotten.
         let (mut first, mut again) = (vec![0.0; n], vec![0.0; n]);
