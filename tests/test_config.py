@@ -1111,3 +1111,15 @@ def test_stall_step_defaults_to_a_fraction_of_dt_max(b1: BearingConfig) -> None:
     assert off.solver.stall_step == 0.0
     fine = parse_config(mutate(data, "solver.dt_max", "1e-7 s"), si_numbers=True)
     assert fine.solver.stall_step == pytest.approx(5e-12, rel=1e-12)
+
+
+def test_an_unknown_key_that_starts_with_a_bracket_is_named():
+    """Found by `test_mutated_b1_loads_or_names_the_field`: a top-level key "<" (pydantic's
+    own location markers start with "<" too) was dropped from the location, and naming it
+    raised IndexError. It is named as any unknown key, beside the other problems."""
+    data = changed_b1({"name": math.nan, "<": []})
+    with pytest.raises(ConfigError) as err:
+        parse_config(data)
+    text = str(err.value)
+    assert "unknown key '<' in section '<top level>'" in text
+    assert "name: nan" in text

@@ -210,7 +210,11 @@ def problems_from(exc: ValidationError, data: Any) -> list[Problem]:
             add(loc, _show(err.get("input")), f"has moved to {new_place} ({why})")
             continue
         if typ == "extra_forbidden":
-            section, key = loc[:-1], loc[-1]
+            # the unknown key is the location's last part, even one that starts with "<"
+            # (which the filter above takes for pydantic's own markers)
+            key = err["loc"][-1]
+            section = loc[:-1] if loc and loc[-1] == key else loc
+            loc = (*section, key)
             model = _section_model(section)
             name = ".".join(map(str, section)) or "<top level>"
             rule = f"unknown key '{key}' in section '{name}'"
