@@ -347,11 +347,15 @@ impl<S: OdeSystem> Counters<'_, S> {
             self.stats.jacobian_evaluations += 1;
             self.stats.jacobian_seconds += start.elapsed().as_secs_f64();
         }
+        // diffsol assembles its Newton matrix column by column from unit vectors: the
+        // column is read from the contiguous column-major storage.
         let mut nonzero = v.iter().enumerate().filter(|(_, x)| **x != 0.0);
         match (nonzero.next(), nonzero.next()) {
             (None, _) => out.fill(0.0),
             (Some((j, &s)), None) => {
-                for (o, c) in out.iter_mut().zip(self.jac.column(j).iter()) {
+                let n = out.len();
+                let column = &self.jac.as_slice()[j * n..(j + 1) * n];
+                for (o, c) in out.iter_mut().zip(column) {
                     *o = s * c;
                 }
             }
