@@ -195,8 +195,12 @@ def problems_from(exc: ValidationError, data: Any) -> list[Problem]:
         seen.add((path, rule))
         out.append(Problem(path, value, rule))
 
+    def user_part(p: str | int) -> bool:
+        """Not one of pydantic's own location markers ("<wrapped>" and the like)."""
+        return not (isinstance(p, str) and p.startswith("<"))
+
     for err in exc.errors(include_url=False):
-        loc = tuple(p for p in err["loc"] if not (isinstance(p, str) and p.startswith("<")))
+        loc = tuple(filter(user_part, err["loc"]))
         typ = err["type"]
         if typ == "cross_field":
             for rel, shown, rule in err["ctx"]["problems"]:
@@ -211,9 +215,7 @@ def problems_from(exc: ValidationError, data: Any) -> list[Problem]:
             continue
         if typ == "extra_forbidden":
             # the unknown key is the location's last part, even one that starts with "<"
-            # (which the filter above takes for pydantic's own markers)
-            key = err["loc"][-1]
-            section = loc[:-1] if loc and loc[-1] == key else loc
+            section, key = tuple(filter(user_part, err["loc"][:-1])), err["loc"][-1]
             loc = (*section, key)
             model = _section_model(section)
             name = ".".join(map(str, section)) or "<top level>"
