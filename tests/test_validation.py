@@ -13,8 +13,6 @@ CASES = cases()
 def test_case(case):
     value = float(case.compute())
     assert math.isfinite(value), case.name
-    if case.report_only:
-        return
     if case.expected == 0.0:
         assert abs(value) <= case.rtol, f"{case.name}: {value} ({case.source}; {case.why})"
     else:

@@ -32,11 +32,9 @@ E_PRIME_STEEL = tri.effective_modulus(STEEL_E, STEEL_NU, STEEL_E, STEEL_NU)
 
 @dataclass(frozen=True)
 class Case:
-    """One validation case: |computed/expected - 1| <= rtol passes.
-
-    ``report_only`` cases show a known model error (e.g. the Brewe-Hamrock fit at high
-    ellipticity) and never fail.
-    """
+    """One validation case: |computed/expected - 1| <= rtol passes. A known model error
+    (e.g. the Brewe-Hamrock fit at high ellipticity) has its measured size as the limit,
+    rounded up, so that a change of it shows."""
 
     group: str
     name: str
@@ -45,7 +43,6 @@ class Case:
     compute: Callable[[], float]
     rtol: float
     why: str = ""
-    report_only: bool = False
 
 
 @dataclass(frozen=True)
@@ -61,9 +58,7 @@ class Result:
 
     @property
     def passed(self) -> bool:
-        return self.case.report_only or (
-            math.isfinite(self.computed) and self.relative_error <= self.case.rtol
-        )
+        return math.isfinite(self.computed) and self.relative_error <= self.case.rtol
 
 
 def default_config_path() -> Path:
@@ -131,18 +126,18 @@ def _hertz_cases() -> Iterator[Case]:
                     1e-4,
                     "published to 5 digits",
                 )
-    for alpha in (1.0, 10.0, 50.0, 200.0, 1000.0):
+    # The fit's known error (measured: 8.7, 0.63, 3.1, 9.5, 20.6 %) as the limit.
+    for alpha, limit in ((1.0, 0.10), (10.0, 0.01), (50.0, 0.04), (200.0, 0.11), (1000.0, 0.23)):
         yield Case(
             "Hertz point",
             f"Brewe-Hamrock force error at Ry/Rx = {alpha:g} (same penetration)",
-            "exact solution (report only)",
+            "exact solution (the fit's known error)",
             float(tri.hertz_point_force(1e-3, 1e-3 * alpha, E_PRIME_STEEL, 1e-6, "exact")),
             lambda a=alpha: tri.hertz_point_force(
                 1e-3, 1e-3 * a, E_PRIME_STEEL, 1e-6, "brewe_hamrock"
             ),
-            0.0,
-            "shows the fit's error where roller end/flange contacts reach high ratios",
-            report_only=True,
+            limit,
+            "the fit's error where roller end/flange contacts reach high ratios",
         )
     e_prime = tri.effective_modulus(207.5e9, 0.3, 207.5e9, 0.3)
     for key, expected in (
@@ -186,8 +181,9 @@ def _line_cases(cfg: BearingConfig, model: Model) -> Iterator[Case]:
         "PV (Palmgren, Harris & Kotzalas)",
         3.050e-6,
         lambda: _tripp(cfg, "inner", 1000.0 / 0.01),
-        0.10,
-        "different models; Palmgren has no radius dependence (few % expected)",
+        0.01,
+        "different models: Palmgren is radius-free, Tripp moves 5 % per doubling of the"
+        " raceway radius; at B1's inner race they agree to 0.3 %",
     )
     yield Case(
         "Line contact",
@@ -195,9 +191,9 @@ def _line_cases(cfg: BearingConfig, model: Model) -> Iterator[Case]:
         "PV (ISO/TS 16281 roller stiffness)",
         6.31e-6,
         lambda: _tripp(cfg, "inner", 1e5) + _tripp(cfg, "outer", 1e5),
-        0.0,
-        "radius-free fit vs Tripp at B1's small roller and thin outer ring (report only)",
-        report_only=True,
+        0.15,
+        "radius-free fit vs Tripp: inner +0.3 %, B1's thin outer ring (eq. 10) -19 %;"
+        " 12.5 % measured",
     )
     for kind in ("inner", "outer", "roller"):
         yield Case(
@@ -303,8 +299,8 @@ def _film_cases() -> Iterator[Case]:
         "Dowson & Toyoda (1979), HSJ",
         r * 3.06 * u**0.69 * g**0.56 * w**-0.10,
         lambda a=alpha, e0=eta0, r=r, u=u0, q=q: moes(a, e0, r, u, q),
-        0.15,
-        "two fits to different numerical solutions",
+        0.03,
+        "two fits to different numerical solutions (-4.4 ... +3.3 % over 0.3-3 m/s, 1e5-1e6 N/m)",
     )
     alpha, eta0, rx, u0, force = 2e-8, 0.04, 0.01, 2.0, 500.0
     for ratio in (1.0, 2.0, 5.0):
@@ -422,14 +418,17 @@ def _friction_cases() -> Iterator[Case]:
 
 
 def _geometry_cases(cfg: BearingConfig) -> Iterator[Case]:
+    g = cfg.geometry
     yield Case(
         "Geometry",
-        "B1 roller mass [kg]",
+        "B1 roller mass, sharp cylinder [kg]",
         "B1 (about 0.62 g)",
         0.62e-3,
-        lambda: cfg.roller_mass,
-        0.03,
-        "B1.md gives two digits; the edge rounding removes about 1.5 %",
+        lambda: (
+            math.pi * (g.roller_diameter / 2) ** 2 * g.roller.length * cfg.materials.roller.density
+        ),
+        0.01,
+        "B1.md gives two digits (0.6229 g); the edge tori take 1.8 % off (Pappus, next case)",
     )
     r, length, re = 2.2475e-3, 5e-3, 0.5e-3
     area = re * re * (1 - math.pi / 4)

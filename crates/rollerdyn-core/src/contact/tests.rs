@@ -894,3 +894,114 @@ fn blended_mesh_contact_has_finite_radii_with_sharp_bands() {
     );
     assert!(f.normal.is_finite() && f.normal > 0.0, "{f:?}");
 }
+
+/// Poses aimed at each of the six pairings (the random poses of
+/// [`semi_analytical_matches_reference`], tilted by up to 1°, reach the sphere–cone and
+/// root pairings almost never): a deterministic search over four families of poses keeps
+/// the first [`AIMED`] in which each pairing is valid and within 20 µm of touching
+/// (gap or overlap). Family 0: B1's range of radial offsets and tilts (±20 µm, ±5 mrad);
+/// 1: the roller end lowered or raised by up to 1 mm and tilted by up to 20 mrad (the
+/// flange roots, out of reach in a bearing); 2: the end face near parallel to the cone,
+/// which leans 1.92 mrad (0.11°) from the ring's plane: tilt ±1.92 ± 0.4 mrad, skew
+/// ±0.4 mrad (the end sphere's cap spans 0.35 mrad).
+fn poses_aimed_at_each_pairing() -> [Vec<(RollerEnd, Flange)>; 6] {
+    let mut state = 0x2545_f491_4f6c_dd1du64;
+    let mut uniform = move |lo: f64, hi: f64| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        lo + (hi - lo) * (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut found: [Vec<(RollerEnd, Flange)>; 6] = Default::default();
+    for draw in 0..300_000 {
+        if found.iter().all(|f| f.len() >= AIMED) {
+            break;
+        }
+        let (inner, plus_end) = (uniform(0.0, 1.0) < 0.5, uniform(0.0, 1.0) < 0.5);
+        let (psi, dx) = (uniform(-3.2, 3.2), uniform(-60e-6, 60e-6));
+        let (dr, tilt, skew) = match draw % 3 {
+            0 => (
+                uniform(-20e-6, 20e-6),
+                uniform(-5e-3, 5e-3),
+                uniform(-5e-3, 5e-3),
+            ),
+            1 => (
+                uniform(-1e-3, 1e-3),
+                uniform(-20e-3, 20e-3),
+                uniform(-1e-3, 1e-3),
+            ),
+            _ => {
+                let lean = if uniform(0.0, 1.0) < 0.5 {
+                    -1.92e-3
+                } else {
+                    1.92e-3
+                };
+                let tilt = lean + uniform(-0.4e-3, 0.4e-3);
+                (uniform(-20e-6, 20e-6), tilt, uniform(-0.4e-3, 0.4e-3))
+            }
+        };
+        let end = b1_end(plus_end, psi, dx, dr, tilt, skew);
+        let flange = b1_flange(inner, plus_end);
+        for (k, c) in semi_analytical::detect(&end, &flange).iter().enumerate() {
+            if c.valid && c.penetration > -20e-6 && found[k].len() < AIMED {
+                found[k].push((end, flange));
+            }
+        }
+    }
+    found
+}
+
+/// Poses kept per pairing by [`poses_aimed_at_each_pairing`].
+const AIMED: usize = 8;
+
+/// Semi-analytical against the reference on every one of the six pairings (P_m within
+/// 1 nm, δ within 0.1 nm or 1e-9 relative, as [`semi_analytical_matches_reference`]), on
+/// poses aimed at each; the search must find them all, so the comparison cannot silently
+/// lose a pairing. Koch's method (sect. 2.2), as a run uses it, warm-started from the
+/// solution moved by 1 µm (a step's motion), must converge to the same contact on every
+/// pose; from its cold start it is compared where it converges to a valid contact with
+/// opposite normals, which it does on every pose of the four pairings with a sphere or a
+/// cone (asserted) and on none of the two torus–torus pairings (measured: the cold start
+/// lands on another stationary point, paper fig. 2; runs fall back on the semi-analytical
+/// solution there, counted).
+#[test]
+fn every_pairing_matches_the_reference_on_poses_aimed_at_it() {
+    for (k, poses) in poses_aimed_at_each_pairing().iter().enumerate() {
+        let pairing = Pairing::ALL[k];
+        assert_eq!(poses.len(), AIMED, "{pairing:?}: poses found");
+        let mut koch_compared = 0;
+        for (end, flange) in poses {
+            let fast = semi_analytical::detect(end, flange)[k];
+            let slow = reference::detect(end, flange)[k];
+            assert_eq!(fast.valid, slow.valid, "{pairing:?} validity");
+            agree(&fast, &slow).unwrap_or_else(|e| panic!("{pairing:?}: {e}"));
+            let shift = Vec3::new(0.6e-6, -0.5e-6, 0.6e-6);
+            let (p1, p2) = (fast.p1 + shift, fast.p2 + shift);
+            let warm = [
+                p1.x,
+                p1.y,
+                p1.z,
+                p2.x,
+                p2.y,
+                p2.z,
+                1.0,
+                -(fast.p2 - fast.p1).dot(&fast.normal),
+            ];
+            let koch = gradient::detect_pairing(end, flange, k, Some(warm));
+            assert!(
+                koch.converged && koch.opposite_normals && koch.contact.valid,
+                "{pairing:?}: {koch:?}"
+            );
+            agree(&koch.contact, &fast).unwrap_or_else(|e| panic!("{pairing:?}, Koch warm: {e}"));
+            let cold = gradient::detect_pairing(end, flange, k, None);
+            if cold.converged && cold.opposite_normals && cold.contact.valid {
+                agree(&cold.contact, &fast)
+                    .unwrap_or_else(|e| panic!("{pairing:?}, Koch cold: {e}"));
+                koch_compared += 1;
+            }
+        }
+        if !matches!(pairing, Pairing::TorusRoot | Pairing::TorusRim) {
+            assert_eq!(koch_compared, AIMED, "{pairing:?}: Koch's cold start");
+        }
+    }
+}

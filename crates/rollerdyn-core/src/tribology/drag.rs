@@ -168,9 +168,11 @@ mod tests {
         assert!(f.norm() < 1e-18);
         let stokes = 4.0 * PI * m.viscosity * r * r * l * 100.0;
         assert!((moment.x + stokes).abs() < 1e-12 * stokes);
-        // A skew rate (about y) is opposed: the moment is against it, by Gauss quadrature of
-        // ∫ s·f(ω s) ds, exact for the piecewise power law within 1e-3 (checked by 2000
-        // midpoint sections).
+        // A skew rate (about y) is opposed: the moment is against it. The model takes
+        // ∫ s·f(ω s) ds by 4-point Gauss over the roller's stations; against 2000 midpoint
+        // sections it differs by 0.76 % (measured: the crossflow drag goes as |s|·s and
+        // |s|^(1/3)·s, not a polynomial where the crossflow speed passes through zero at
+        // the roller's centre), so 1e-2.
         let skew = Vec3::new(0.0, 50.0, 0.0);
         let (_, mk) = roller_drag(&m, r, l, &stations(l), &Vec3::x(), &Vec3::zeros(), &skew);
         let n = 2000;
@@ -183,7 +185,7 @@ mod tests {
             })
             .sum();
         assert!(mk.y < 0.0);
-        assert!((mk.y / brute - 1.0).abs() < 2e-2, "{} vs {brute}", mk.y);
+        assert!((mk.y / brute - 1.0).abs() < 1e-2, "{} vs {brute}", mk.y);
     }
 
     proptest! {

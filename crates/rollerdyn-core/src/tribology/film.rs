@@ -321,21 +321,24 @@ mod tests {
     fn moes_close_to_dowson_toyoda_in_ehl_regime() {
         // Dowson & Toyoda (1979) central film of a line contact:
         // H_c = 3.06 U^0.69 G^0.56 W^−0.10 (Dowson & Toyoda 1979, as quoted by Hamrock, Schmid & Jacobson 2004, ch. 21).
-        // Two different fits to numerical solutions: agreement within 15 %.
+        // Two different fits to numerical solutions: at u₀ = 0.3 … 3 m/s and q = 1e5 …
+        // 1e6 N/m (this contact's ranges) they differ by −4.4 … +3.3 %, here by 0.7 %
+        // (measured), so 3 %.
         let (alpha, eta0, r, u0, q) = (1.8e-8, 0.0165, 1.85e-3, 1.0, 3e5);
         let h = inputs(alpha, eta0).moes_line(r, u0, q);
         let u = eta0 * u0 / (E_PRIME * r);
         let w = q / (E_PRIME * r);
         let g = alpha * E_PRIME;
         let h_dt = r * 3.06 * u.powf(0.69) * g.powf(0.56) * w.powf(-0.10);
-        assert!(rel(h, h_dt) < 0.15, "Moes {h} vs Dowson–Toyoda {h_dt}");
+        assert!(rel(h, h_dt) < 0.03, "Moes {h} vs Dowson–Toyoda {h_dt}");
     }
 
     #[test]
     fn chittenden_close_to_hamrock_dowson() {
         // Hamrock & Dowson central film, entrainment along the minor axis (ξ = 90°):
         // H_c = 2.69 U^0.67 G^0.53 W^−0.067 (1 − 0.61 e^(−0.73 k)), k = a/b
-        // (published-values.md). Different fits: agreement within 10 % at moderate k.
+        // (published-values.md). Different fits: agreement within 10 % at moderate k
+        // (measured 4.9, 1.4 and 0.7 % at the three ratios).
         for ratio in [1.0, 2.0, 5.0] {
             let (alpha, eta0, rx, u0, force) = (2e-8, 0.04, 0.01, 2.0, 500.0);
             let ry = ratio * rx;

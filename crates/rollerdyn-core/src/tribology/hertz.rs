@@ -18,8 +18,10 @@ use crate::numerics::{elliptic::complete_elliptic_integrals, roots::brent};
 /// How the ellipticity and the elliptic integrals of a point contact are obtained.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum EllipticalMethod {
-    /// Brewe & Hamrock's curve fits (paper eqs. 6–8). Fast; about 3 % off at α_r = 1
-    /// and again for α_r above about 50 (see the validation table).
+    /// Brewe & Hamrock's curve fits (paper eqs. 6–8). Fast; κ about 3 % off at α_r = 1
+    /// and again at α_r = 50, more above; the force at a given penetration 8.7 % off at
+    /// α_r = 1, below 1 % from 5 to 20, 3 % at 50 and 21 % at 1000 (see the validation
+    /// table and the test `brewe_hamrock_error_grows_at_high_ratio`).
     #[default]
     BreweHamrock,
     /// Exact: κ solved from α_r = (κ²ℰ − ℱ)/(ℱ − ℰ) with ℱ = K(m), ℰ = E(m),
@@ -225,7 +227,6 @@ pub fn line_max_pressure(force: f64, half_width: f64, length: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::numerics::quadrature::integrate_converged;
     use proptest::prelude::*;
 
     fn rel(a: f64, b: f64) -> f64 {
@@ -296,30 +297,57 @@ mod tests {
             prop_assert!(rel(c.force(c.penetration(f)), f) < 1e-12);
         }
 
-        /// The integral of the Hertz pressure (eq. 12 with p₀ of eq. 13) over the ellipse
-        /// gives back the normal force; and the line pressure (eqs. 16, 17) over the strip.
+        /// Penetration and pressure agree as Johnson's closed forms tie them, which
+        /// eqs. 5 and 13–15 reach by other routes: for the ellipse δ = p₀·b·ℱ/E*
+        /// (Johnson, *Contact Mechanics*, eq. 3.38, E* = E'/2, ℱ = K(e) of the
+        /// eccentricity e = √(1 − b²/a²)), exactly for the exact ellipticity; for the line
+        /// p₀ = √(P E*/(π R)), P = F/l (Johnson eq. 4.45), from eqs. 17 and 18.
         #[test]
-        fn pressure_integrates_to_the_load(log_alpha in 0.0..3.0f64, f in 1.0..5000.0f64) {
-            let c = EllipticalContact::new(2e-3, 2e-3 * 10f64.powf(log_alpha), 2.3e11,
-                EllipticalMethod::BreweHamrock);
+        fn penetration_and_pressure_as_johnson_ties_them(log_alpha in 0.0..3.0f64, f in 1.0..5000.0f64) {
+            let e_prime = 2.3e11;
+            let c = EllipticalContact::new(2e-3, 2e-3 * 10f64.powf(log_alpha), e_prime,
+                EllipticalMethod::Exact);
             let s = c.at_force(f);
-            // ∫∫ p dA = p0 · 2πab/3 for a semi-ellipsoid.
-            let total = s.max_pressure * 2.0 * std::f64::consts::PI * s.semi_major * s.semi_minor / 3.0;
-            prop_assert!(rel(total, f) < 1e-12);
-            let a = line_half_width(f, 2.5e-4, 1.3e-3, 2.3e11);
-            let p0 = line_max_pressure(f, a, 2.5e-4);
-            let line = 2.5e-4 * integrate_converged(-a, a, 1e-12, |x| p0 * (1.0 - (x / a).powi(2)).max(0.0).sqrt());
-            prop_assert!(rel(line, f) < 1e-7);
+            let johnson = s.max_pressure * s.semi_minor * s.ellipticity.first_kind / (0.5 * e_prime);
+            // Round-off only (measured 2e-16 at α_r = 1, 2, 10, 100): the elliptic
+            // integrals and κ are solved to 1e-15.
+            prop_assert!(rel(s.penetration, johnson) < 1e-12, "{} vs {johnson}", s.penetration);
+            let (length, r) = (2.5e-4, 1.3e-3);
+            let a = line_half_width(f, length, r, e_prime);
+            let p0 = line_max_pressure(f, a, length);
+            let closed = (f / length * 0.5 * e_prime / (std::f64::consts::PI * r)).sqrt();
+            prop_assert!(rel(p0, closed) < 1e-14, "{p0} vs {closed}");
         }
     }
 
+    /// The fit's force at a given penetration against the exact solution (the validation
+    /// table reports it): off by 8.7 % at α_r = 1 (κ 3.4 %, ℰ 1.7 %, ℱ −2.7 %), below 1 %
+    /// from 5 to 20, then growing with α_r: 3.1, 9.5 and 20.6 % at 50, 200 and 1000 (all
+    /// measured). The bounds keep each within a quarter of its value.
     #[test]
     fn brewe_hamrock_error_grows_at_high_ratio() {
-        // The fit's error, reported in the validation table; here only that it is what
-        // the published note says: about 3 % near α_r = 1 (in ℰ), small near 10.
-        let fit = Ellipticity::brewe_hamrock(1.0);
-        assert!((rel(fit.second_kind, std::f64::consts::FRAC_PI_2) - 0.0167).abs() < 0.001);
-        let (f10, e10) = (Ellipticity::brewe_hamrock(10.0), Ellipticity::exact(10.0));
-        assert!(rel(f10.kappa, e10.kappa) < 0.01);
+        let force_error = |alpha: f64| {
+            let at =
+                |method| EllipticalContact::new(1e-3, 1e-3 * alpha, 2.3e11, method).force(1e-6);
+            at(EllipticalMethod::BreweHamrock) / at(EllipticalMethod::Exact) - 1.0
+        };
+        assert!(
+            (0.08..0.095).contains(&force_error(1.0)),
+            "{}",
+            force_error(1.0)
+        );
+        for alpha in [5.0, 10.0, 20.0] {
+            assert!(
+                force_error(alpha).abs() < 0.01,
+                "α={alpha}: {}",
+                force_error(alpha)
+            );
+        }
+        let high = [50.0, 200.0, 1000.0].map(force_error);
+        assert!(
+            high[0] > 0.023 && high[0] < high[1] && high[1] < high[2],
+            "{high:?}"
+        );
+        assert!((0.15..0.26).contains(&high[2]), "{high:?}");
     }
 }

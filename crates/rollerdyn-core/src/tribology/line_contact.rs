@@ -296,11 +296,13 @@ mod tests {
     fn tripp_is_close_to_palmgren() {
         // Palmgren (Harris & Kotzalas, Rolling Bearing Analysis, 5th ed., eq. 6.40):
         // δ = 3.84e-5 Q^0.9 / l^0.8 (mm, N): Q = 1000 N, l = 10 mm → 3.050 µm for one
-        // roller–raceway contact. Palmgren is radius-free, Tripp is not: at B1's radii the
-        // two models differ by a few per cent (published-values.md), so allow 10 %.
+        // roller–raceway contact. Palmgren is radius-free, Tripp is not: Tripp's δ moves by
+        // about 5 % per doubling of the raceway radius (−4.5 % at 5 mm, +5.7 % at 20 mm),
+        // and at B1's inner race (10 mm) the two agree to 0.28 % (measured), so 1 % holds
+        // B1's radii.
         let q = 1000.0 / 0.01;
         let d = b1_inner().deflection(q);
-        assert!((d / 3.050e-6 - 1.0).abs() < 0.10, "Tripp inner δ = {d}");
+        assert!((d / 3.050e-6 - 1.0).abs() < 0.01, "Tripp inner δ = {d}");
     }
 
     #[test]
