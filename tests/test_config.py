@@ -678,9 +678,9 @@ BAD = [
     (
         "opening angle too big",
         "geometry.flange.opening_angle",
-        "95 deg",
+        "15 deg",
         "geometry.flange.opening_angle",
-        "must be >= 0 and < 90 deg",
+        "must be >= 0 and < 10 deg",  # the core's rule (geometry/end_flange.rs)
     ),
     (
         "negative LSS at p=0",

@@ -455,3 +455,117 @@ def test_no_markup_left_in_the_commands():
         name = path.relative_to(package)
         assert not re.search(r"\[/?(red|green|bold)\]", source), name
         assert not re.search(r"(?<![.\w])escape\(", source), name  # html.escape is fine
+
+
+# ------------------------------------------------- E: an adversarial pass (2026-11-28)
+
+
+def test_statics_outputs_are_checked_before_the_work(tmp_path):
+    """-o and --plot naming one file would leave only the plot (the netCDF lost); a --plot
+    extension matplotlib cannot write failed with a traceback after the whole analysis."""
+    same = tmp_path / "st.png"
+    res = invoke("statics", B1, "-o", same, "--plot", same, code=2)
+    one_line_saying(res.output, "-o", "--plot", "the same file")
+    for name, what in (("st.txt", ".txt is not an image format"), ("st", "no extension")):
+        res = invoke("statics", B1, "--plot", tmp_path / name, code=2)
+        one_line_saying(res.output, "--plot", what, ".png")
+    assert not any(tmp_path.iterdir())
+
+
+def test_statics_moments_take_a_torque_unit():
+    """--set moment_z takes "0.1 N*m" (the help promises units) and refuses a force."""
+    from rollerdyn.statics import parse_range
+
+    assert parse_range("moment_z", "0.1 N*m") == [pytest.approx(0.1)]
+    assert parse_range("moment_z", "0:10 N*m:3") == [0.0, 5.0, 10.0]
+    assert parse_range("moment_y", "0.25") == [0.25]
+    res = invoke("statics", B1, "--set", "moment_z=1 N", code=2)
+    one_line_saying(res.output, "moment_z", "expected a torque", "got a force")
+    res = invoke("statics", B1, "--set", "operating.radial_load=3000,,7000", code=2)
+    one_line_saying(res.output, "an empty value")
+
+
+def test_bench_cases_refuse_t_end(tmp_path):
+    """The cases run to their own ends; --t-end with --cases was ignored without a word."""
+    res = invoke("bench", "mbs", "--cases", "axial-0N", "--t-end", "1 ms", "-o", tmp_path, code=2)
+    one_line_saying(res.output, "--t-end", "--cases", "own end")
+
+
+def test_cost_checks_cover_checkpoints_and_every_sweep_point(tmp_path):
+    """A checkpoint interval of 1 ns crawled for 100 s before it stalled; a sweep point's
+    result size was refused only inside the cluster, advising a --force sweep lacks."""
+    res = invoke(
+        "run",
+        B1,
+        "-o",
+        tmp_path / "r.nc",
+        "--t-end",
+        "2 ms",
+        "--checkpoint-interval",
+        "1 ns",
+        code=2,
+    )
+    one_line_saying(res.output, "solver.checkpoint_interval", "checkpoints", "longer interval")
+    res = invoke(
+        "sweep",
+        B1,
+        "--set",
+        "solver.output_interval=1 ns",
+        "-o",
+        tmp_path / "sw",
+        "--t-end",
+        "1 ms",
+        code=2,
+    )
+    line = one_line_saying(res.output, "solver.output_interval", "GB")
+    assert "--force" not in line
+    assert not (tmp_path / "sw").exists()
+
+
+def test_map_grid_is_capped(tmp_path):
+    """100 000 speeds validated silently for over a minute before any run."""
+    res = invoke("study", "map", B1, "-o", tmp_path / "m", "--speed", "1000:3000:100000", code=2)
+    one_line_saying(res.output, "--speed", "at most 10000")
+    res = invoke(
+        "study",
+        "map",
+        B1,
+        "-o",
+        tmp_path / "m",
+        "--speed",
+        "1000:3000:200",
+        "--axial-load",
+        "0:1000:100",
+        code=2,
+    )
+    one_line_saying(res.output, "20000 grid points", "at most 10000")
+
+
+def test_config_rules_match_the_core(tmp_path):
+    """An opening angle of 15° passed `check` and failed every command after it (the core
+    allows < 10°); a byte-order mark at the file's start was malformed TOML."""
+    wide = b1_file_with(tmp_path, 'opening_angle = "0.11 deg"', 'opening_angle = "15 deg"')
+    res = invoke("check", wide, code=2)
+    one_line_saying(res.output, "geometry.flange.opening_angle", "< 10 deg")
+    bom = tmp_path / "bom.toml"
+    bom.write_bytes(b"\xef\xbb\xbf" + B1.read_bytes())
+    invoke("check", bom, code=0)
+
+
+def test_statics_result_is_named_as_such_by_plot(tmp_path):
+    from rollerdyn.statics import statics
+
+    path = tmp_path / "st.nc"
+    statics(load_b1()).to_netcdf(path, engine="h5netcdf")
+    for command in ("plot", "report"):
+        res = invoke(command, path, "-o", tmp_path / f"out_{command}", code=2)
+        one_line_saying(res.output, "quasi-static result", "rollerdyn run")
+
+
+def test_resume_refuses_a_result_with_other_rollers(tmp_path, result):
+    """A result cut to 5 of 17 rollers was continued and padded with NaN."""
+    cut = tmp_path / "cut.nc"
+    with xr.open_dataset(result, engine="h5netcdf") as ds:
+        ds.load().isel(roller=slice(0, 5)).to_netcdf(cut, engine="h5netcdf")
+    res = invoke("run", B1, "-o", cut, "--t-end", "3 ms", "--resume", cut, code=2)
+    one_line_saying(res.output, "5 rollers", "17")

@@ -102,6 +102,11 @@ def open_result(path: Path, required: tuple[str, ...] = REQUIRED) -> xr.Dataset:
             f"{path}: not a rollerdyn result (cannot be read as netCDF: {reason})"
         ) from None
     missing = [v for v in required if v not in ds]
+    if missing and "inner_slice_load" in ds and "time" not in ds.dims:
+        raise ReportError(
+            f"{path}: is a quasi-static result (rollerdyn statics); this needs a dynamic "
+            "run's result (rollerdyn run)"
+        )
     if missing or "final_time_s" not in ds.attrs:
         what = _listed(missing) if missing else "attribute final_time_s"
         raise ReportError(f"{path}: not a rollerdyn result (missing {what})")

@@ -75,6 +75,10 @@ MAX_RESULT_BYTES = 2e9
 #: Least number of steps (t_end / dt_max) above which a run is refused unless forced
 #: (B1's whole run takes about 50 000 steps).
 MAX_MIN_STEPS = 1e8
+#: Checkpoints (t_end / checkpoint_interval) above which a run is refused unless forced:
+#: each restarts the integrator with a fresh step size (B1's whole run takes 13 at the
+#: default 100 ms; at 1 ns a 2 ms run took 100 s of wall time to stall).
+MAX_CHECKPOINTS = 1e5
 
 
 def estimated_cost(config: BearingConfig, t_end: float, t_start: float = 0.0) -> dict:
@@ -88,27 +92,40 @@ def estimated_cost(config: BearingConfig, t_end: float, t_start: float = 0.0) ->
         "outputs": outputs,
         "bytes": outputs * per_output,
         "min_steps": span / config.solver.dt_max,
+        "checkpoints": span / config.solver.checkpoint_interval,
     }
 
 
-def check_cost(config: BearingConfig, t_end: float, t_start: float = 0.0) -> None:
+def check_cost(
+    config: BearingConfig,
+    t_end: float,
+    t_start: float = 0.0,
+    remedy: str = ", or force the run (--force, force=True)",
+) -> None:
     """Raises ValueError, with the estimate, if a run would be far beyond a normal one
     (see :data:`MAX_RESULT_BYTES`, :data:`MAX_MIN_STEPS`); ``force=True`` of
-    :func:`simulate` skips this check (the core still refuses what it cannot hold)."""
+    :func:`simulate` skips this check (the core still refuses what it cannot hold).
+    ``remedy`` ends the advice (where forcing is not offered, pass "")."""
     cost = estimated_cost(config, t_end, t_start)
     s = config.solver
     if cost["bytes"] > MAX_RESULT_BYTES:
         raise ValueError(
             f"solver.output_interval = {s.output_interval:g} s: {cost['outputs']:.3g} outputs "
             f"to t = {t_end:g} s would take {cost['bytes'] / 1e9:.3g} GB of results (more than "
-            f"{MAX_RESULT_BYTES / 1e9:g} GB); choose a longer interval, or force the run "
-            "(--force, force=True)"
+            f"{MAX_RESULT_BYTES / 1e9:g} GB); choose a longer interval{remedy}"
         )
     if cost["min_steps"] > MAX_MIN_STEPS:
         raise ValueError(
             f"solver.dt_max = {s.dt_max:g} s: the run to t = {t_end:g} s takes at least "
             f"{cost['min_steps']:.3g} steps (more than {MAX_MIN_STEPS:.0e}; B1 takes about "
-            "5e4); choose a larger dt_max, or force the run (--force, force=True)"
+            f"5e4); choose a larger dt_max{remedy}"
+        )
+    if cost["checkpoints"] > MAX_CHECKPOINTS:
+        raise ValueError(
+            f"solver.checkpoint_interval = {s.checkpoint_interval:g} s: the run to "
+            f"t = {t_end:g} s would stop for {cost['checkpoints']:.3g} checkpoints (more than "
+            f"{MAX_CHECKPOINTS:.0e}; each restarts the integrator); choose a longer "
+            f"interval{remedy}"
         )
 
 
@@ -543,6 +560,12 @@ def _resume_point(previous: xr.Dataset, config: BearingConfig, detector: str, en
                 "a run can only be continued with the same configuration and detector"
             )
     check_same_configuration(previous.attrs, config)
+    z = config.geometry.roller_count
+    if previous.sizes.get("roller", z) != z:
+        raise ValueError(
+            f"resume: the earlier result holds {previous.sizes['roller']} rollers, its "
+            f"configuration {z}: the file was changed after its run"
+        )
     if "final_state" not in previous:
         raise ValueError("resume: the earlier result has no final_state to continue from")
     t_final = float(previous.attrs["final_time_s"])

@@ -40,12 +40,11 @@ STATIC_FIELDS: dict[str, tuple[str, str]] = {
     "operating.axial_load": ("axial_load", "force"),
     "operating.inner_ring_speed": ("speed", "angular velocity"),
     "inner_ring.misalignment": ("misalignment", "angle"),
-    "moment_y": ("moment_y", ""),
-    "moment_z": ("moment_z", ""),
+    "moment_y": ("moment_y", "torque"),
+    "moment_z": ("moment_z", "torque"),
 }
 """What a statics sweep can vary: the load case (path -> (case field, unit family)). Other
-configuration values change the model; sweep them with ``rollerdyn sweep``. Moments
-(no unit family) are bare numbers in N*m."""
+configuration values change the model; sweep them with ``rollerdyn sweep``."""
 
 DEFAULT_CONTAMINATION = 0.5
 """ISO 281 contamination factor e_C by default: "normal cleanliness" (ISO 281:2007, table 15,
@@ -234,10 +233,12 @@ def parse_range(path: str, text: str) -> list[float]:
         return list(np.linspace(a, b, n))
     if len(parts) != 1:
         raise StaticsError(f"--set {path}={text}: expected START:STOP:COUNT or a comma list")
-    values = [value(v) for v in text.split(",") if v.strip()]
-    if not values:
+    items = text.split(",")
+    if not text.strip():
         raise StaticsError(f"--set {path}={text}: no value given")
-    return values
+    if not all(v.strip() for v in items):
+        raise StaticsError(f"--set {path}={text}: an empty value (two commas, or one at an end)")
+    return [value(v) for v in items]
 
 
 def statics_sweep(

@@ -230,14 +230,20 @@ def _source(config: Any) -> tuple[dict, bool, str | None]:
 
     path = Path(config)
     load_config(path)  # the same clean ConfigError as `rollerdyn run` for a bad file
-    return tomllib.loads(path.read_text(encoding="utf-8")), False, str(path)
+    return tomllib.loads(path.read_text(encoding="utf-8-sig")), False, str(path)
 
 
 def build_grid(
-    config: str | Path | Mapping | BearingConfig, parameters: Mapping[str, Sequence[Any]]
+    config: str | Path | Mapping | BearingConfig,
+    parameters: Mapping[str, Sequence[Any]],
+    t_end: float | None = None,
 ) -> list[GridPoint]:
     """Every grid point of the cartesian product of ``parameters`` (the last path varies
-    fastest), each validated; raises :class:`SweepError` listing every point that fails."""
+    fastest), each validated, also for the cost of its run to ``t_end`` (default: its
+    configuration's end; :func:`rollerdyn.simulation.check_cost`); raises
+    :class:`SweepError` listing every point that fails."""
+    from .simulation import check_cost
+
     data, si_numbers, source = _source(config)
     paths = list(parameters)
     for path in paths:
@@ -257,6 +263,11 @@ def build_grid(
                 swept = " (--set " + prob.path + ")" if prob.path in values else ""
                 lines.append(f"  {prob}{swept}")
             failures.append(f"run {run} ({label}):\n" + ("\n".join(lines) or f"  {err}"))
+            continue
+        try:
+            check_cost(cfg, cfg.end_time if t_end is None else t_end, remedy="")
+        except ValueError as err:
+            failures.append(f"run {run} ({label}):\n  {err}")
             continue
         si = {p: _si_value(cfg, p) for p in paths}
         points.append(GridPoint(run, values, si, point_data, si_numbers))
@@ -422,7 +433,7 @@ def sweep(
         raise SweepError(f"workers = {workers}: must be at least 1")
     if retries < 0:
         raise SweepError(f"retries = {retries}: must be 0 or more")
-    points = build_grid(config, parameters)
+    points = build_grid(config, parameters, t_end)
     out = Path(outdir).resolve()
     # What writes the summary, loaded before the runs: a Ctrl-C must not land in its
     # imports (a second of them) while the summary of an interrupted sweep is written.

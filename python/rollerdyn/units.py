@@ -108,6 +108,7 @@ FAMILIES: dict[str, Family] = _families(
     Family("time", "[time]", "s", "0.5 s"),
     Family("force", "[force]", "N", "5000 N"),
     Family("force per length", "[force] / [length]", "N/m", "1000 N/mm"),
+    Family("torque", "[energy]", "N*m", "0.1 N*m"),
     Family("pressure", "[pressure]", "Pa", "210 GPa"),
     Family("pressure per temperature", "[pressure] / [temperature]", "Pa/K", "2.9862 bar/K"),
     Family("inverse temperature", "1 / [temperature]", "1/K", "3.0115e-4 1/K"),
@@ -273,6 +274,11 @@ def parse_quantity(value: Any, fam: str | Family, *, si_numbers: bool = False) -
         text, unit_text = m.group("num"), m.group("unit").strip().replace("·", "*")
         if not unit_text:
             raise QuantityError(f"a number without a unit is ambiguous; {hint}")
+        if "," in unit_text:
+            raise QuantityError(
+                f"{value.strip()!r}: one number and its unit (no thousands separators, no "
+                f"lists); {hint}"
+            )
         if not _plain_exponents(unit_text):
             raise QuantityError(
                 f"unit {unit_text!r}: an exponent must be a plain number (at most three "
@@ -327,7 +333,7 @@ def parse_time(value: Any, name: str, zero: bool = False) -> float:
     ``--t-end`` and ``t_end=``; raises :class:`ValueError` naming ``name``, the value and
     the rule."""
     least = "0 s" if zero else "1 ns"
-    rule = f"must be a time of at least {least}, e.g. 50 ms, 0.05 s or 0.05 (seconds)"
+    rule = f"must be a finite time of at least {least}, e.g. 50 ms, 0.05 s or 0.05 (seconds)"
     if isinstance(value, bool) or not isinstance(value, int | float | str):
         raise ValueError(f"{name} = {value!r}: {rule}")
     try:
@@ -338,14 +344,20 @@ def parse_time(value: Any, name: str, zero: bool = False) -> float:
         except QuantityError as err:  # its first clause says what is wrong, then a hint
             reason = str(err).split("; ")[0]
             raise ValueError(f"{name} = {value!r}: {reason}; {rule}") from None
-    if not (math.isfinite(seconds) and seconds >= (0.0 if zero else SHORTEST_TIME)):
+    if not math.isfinite(seconds):
+        raise ValueError(f"{name} = {value!r}: is not finite; {rule}")
+    if not seconds >= (0.0 if zero else SHORTEST_TIME):
         raise ValueError(f"{name} = {value!r}: {rule}")
     return seconds
 
 
 def _pint_reason(exc: Exception) -> str:
-    msg = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-    return msg[:120]
+    """Why a unit text failed: pint's own words for a name it does not know, else that the
+    text is no unit expression (pint's other failures speak of its parser's internals)."""
+    if isinstance(exc, pint.errors.UndefinedUnitError):
+        msg = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        return msg[:120]
+    return "not a product or quotient of units with plain exponents, e.g. N*m or m/s^2"
 
 
 def format_si(value: float, fam: str | Family) -> str:

@@ -54,7 +54,7 @@ def bench(
             "--t-end",
             help="mbs: simulated end time, with a unit as in the configuration (50 ms, "
             "0.05 s) or a bare number of seconds (default: the configuration's, 1.288 s "
-            "for B1).",
+            "for B1). Not with --cases, whose cases run to their own ends.",
             metavar="TIME",
         ),
     ] = None,
@@ -162,6 +162,12 @@ def bench(
     end = time_option("--t-end", t_end)
     dt_max_values = None if sweep_dt_max is None else _dt_max_values(sweep_dt_max)
     thread_counts = _thread_counts(threads)
+    if cases is not None and t_end is not None:
+        raise refuse(
+            f"--t-end {t_end} with --cases: each case runs to its own end (the whole run, or "
+            "0.1 s at full speed); --t-end sets the end of mbs's detector comparison and of "
+            "--sweep-dt-max"
+        )
     if target == "mbs" and (cases is not None or dt_max_values is not None):
         checked(check_output_dir, output, "-o")
     cfg = load(config if config is not None else default_config())

@@ -11,7 +11,7 @@ from typing import Annotated
 import typer
 from rich.table import Table
 
-from ..paths import check_output_file
+from ..paths import check_output_file, same_file
 from .common import checked, console, error, load, refuse, say
 
 
@@ -68,6 +68,10 @@ def statics_command(
 
     if not 0.0 <= contamination <= 1.0:
         raise refuse(f"--contamination = {contamination}: must lie in [0, 1] (ISO 281 e_C)")
+    if output is not None and plot is not None and same_file(output, plot):
+        raise refuse(f"-o {output} and --plot {plot} name the same file; give two files")
+    if plot is not None:
+        _check_image_format(plot)
     for option, path in (("-o", output), ("--plot", plot)):
         if path is not None:
             checked(
@@ -117,6 +121,20 @@ def statics_command(
     except OSError as err:  # checked before the work; a disk that filled up since
         error(f"rollerdyn statics: could not write the result ({err.strerror or err})")
         raise typer.Exit(1) from None
+
+
+def _check_image_format(path: Path) -> None:
+    """Refuses a --plot file whose extension matplotlib cannot write, before any work."""
+    from matplotlib.figure import Figure
+
+    formats = Figure().canvas.get_supported_filetypes()
+    suffix = path.suffix.lower().removeprefix(".")
+    if suffix not in formats:
+        what = "has no extension"
+        if suffix:
+            what = f".{suffix} is not an image format matplotlib writes"
+        names = ", ".join("." + f for f in sorted(formats))
+        raise refuse(f"--plot {path}: {what}; use one of {names}")
 
 
 def _print_case(ds) -> None:

@@ -137,7 +137,7 @@ def sweep_command(
         hint="; pass --overwrite to replace them, or choose another folder",
     )
     with refusing(SweepError, output):
-        build_grid(config, parameters)  # validate every grid point before the cluster starts
+        build_grid(config, parameters, end)  # every grid point before the cluster starts
         with _sweep_progress(console, scheduler) as progress:
             frame = sweep(
                 config,

@@ -26,7 +26,7 @@ def load_config(path: str | Path) -> BearingConfig:
     if not p.is_file():
         raise ConfigError(f"{p}: not a file", source=str(p))
     try:
-        text = p.read_bytes().decode("utf-8")
+        text = p.read_bytes().decode("utf-8-sig")  # a byte-order mark is not TOML
     except UnicodeDecodeError as exc:
         raise ConfigError(
             f"{p}: not UTF-8 text ({exc.reason} at byte {exc.start})", source=str(p)

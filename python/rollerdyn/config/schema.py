@@ -103,7 +103,7 @@ class RollerConfig(RollerDerived, _Section):
 class FlangeConfig(_Section):
     """``[geometry.flange]``: a cone between a root torus (at the raceway) and a rim torus."""
 
-    opening_angle: Quantity("angle", ge=0.0, lt="90 deg", example="0.11 deg")
+    opening_angle: Quantity("angle", ge=0.0, lt="10 deg", example="0.11 deg")
     height: Quantity("length", positive=True, example="1.1 mm")
     root_radius: Quantity("length", positive=True, example="0.2 mm")
     rim_radius: Quantity("length", positive=True, example="0.3 mm")

@@ -46,6 +46,11 @@ OUTPUTS = (
 )
 
 
+#: Most grid points of a map: each is a dynamic run of seconds to minutes (and the
+#: points' folders are numbered with four digits).
+MAX_MAP_POINTS = 10_000
+
+
 def parse_range(
     text: str | Sequence[float] | float,
     option: str,
@@ -95,6 +100,11 @@ def parse_range(
             a, b = value(parts[0]), value(parts[1])
             if n < 1:
                 raise StudyError(f"{option} {text!r}: empty range ({n} points); n must be >= 1")
+            if n > MAX_MAP_POINTS:
+                raise StudyError(
+                    f"{option} {text!r}: {n} points; a map has at most {MAX_MAP_POINTS} (each "
+                    "point is a dynamic run)"
+                )
             if a > b:
                 raise StudyError(
                     f"{option} {text!r}: reversed range (a = {parts[0].strip()} > b = "
@@ -221,6 +231,13 @@ def operating_map(
         "force",
         "N",
     )
+    total = len(speeds) * len(radial) * len(axial)
+    if total > MAX_MAP_POINTS:
+        raise StudyError(
+            f"--speed, --radial-load, --axial-load: {len(speeds)} x {len(radial)} x "
+            f"{len(axial)} = {total} grid points; a map has at most {MAX_MAP_POINTS} (each "
+            "point is a dynamic run of seconds to minutes)"
+        )
     workers = default_workers() if workers is None else workers
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise StudyError(f"--workers = {workers!r}: must be a whole number >= 1")

@@ -551,11 +551,13 @@ impl<'a> Problem<'a> {
             ),
             format!(
                 "no quasi-static equilibrium: reached {:.0} % of the load; at the next level the \
-                 residual is {:.3e} on {} (tolerance {:.1e} N); the bearing may not carry this load",
+                 residual is {:.3e} on {} (tolerance {:.1e} {}); the bearing may not carry this \
+                 load",
                 100.0 * reached,
                 r[worst],
                 self.unknown_name(worst),
-                self.tolerance()
+                self.tolerance() * self.weight(worst),
+                if self.is_angle(worst) { "N m" } else { "N" },
             ),
         )
     }
