@@ -624,8 +624,8 @@ mod tests {
     #[test]
     fn newtonian_isoviscous_limit_is_closed_form() {
         // With no pressure dependence (z → 0 makes η = η₀), no shear thinning (τ₀ → ∞)
-        // and no limit (τ_L → ∞): F = η₀ (u/h)·(area) = η₀ u/h · πal/2 ... for the line
-        // the area is 2al, for the ellipse πab.
+        // and no limit (τ_L → ∞) the shear stress is η₀ u/h everywhere in the contact, so
+        // F = η₀ (u/h)·(area): the area 2al for the line, πab for the ellipse.
         let t = EhlTraction::new(
             Roelands {
                 z: 1e-300,
