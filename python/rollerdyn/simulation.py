@@ -103,7 +103,8 @@ def check_cost(
     remedy: str = ", or force the run (--force, force=True)",
 ) -> None:
     """Raises ValueError, with the estimate, if a run would be far beyond a normal one
-    (see :data:`MAX_RESULT_BYTES`, :data:`MAX_MIN_STEPS`); ``force=True`` of
+    (see :data:`MAX_RESULT_BYTES`, :data:`MAX_MIN_STEPS`, :data:`MAX_CHECKPOINTS`);
+    ``force=True`` of
     :func:`simulate` skips this check (the core still refuses what it cannot hold).
     ``remedy`` ends the advice (where forcing is not offered, pass "")."""
     cost = estimated_cost(config, t_end, t_start)

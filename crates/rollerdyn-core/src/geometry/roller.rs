@@ -187,8 +187,9 @@ mod tests {
     fn b1_roller_mass() {
         // B1.md: "Roller mass with these values: about 0.62 g", two digits of the sharp
         // cylinder's 0.6229 g; the edge tori take off 2·2π·centroid·area of it (Pappus, the
-        // test above: 1.82 %), and the 5 m end spheres 0.9e-4 more (their 0.3 µm sagitta
-        // over the face lowers the ends): 0.98177 × 0.99991 of the sharp cylinder.
+        // test above: 1.815 %), and the 5 m end spheres 0.9e-4 more (their 0.3 µm sagitta
+        // over the face lowers the ends): 0.98185 × 0.99991 = 0.98177 of the sharp
+        // cylinder. The window holds that and not the flat-ended 0.98185.
         let (r_big, l, r) = (4.495e-3 / 2.0, 5e-3, 0.5e-3);
         let sharp = PI * r_big * r_big * l * 7850.0;
         assert!((sharp - 0.62e-3).abs() < 0.005e-3, "{sharp}");
