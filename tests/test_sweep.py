@@ -83,6 +83,22 @@ def test_set_values_are_read_as_in_toml():
         parse_set("operating.axial_load")
 
 
+def test_set_takes_ranges_a_b_n():
+    """A:B:N as `statics` and `study map` take it: N values from A to B in their unit."""
+    assert parse_set("operating.axial_load=0 N:1000 N:3")[1] == ["0 N", "500 N", "1000 N"]
+    assert parse_set("operating.axial_load=0.5 N:1.5 N:3")[1] == ["0.5 N", "1.0 N", "1.5 N"]
+    assert parse_set("geometry.roller.slices=10:20:3")[1] == [10, 15, 20]
+    assert parse_set("solver.rtol=1e-6:1e-5:2")[1] == [1e-6, 1e-5]
+    for bad, rule in (
+        ("operating.axial_load=0 N:1 kN:3", "same unit"),
+        ("operating.axial_load=0 N:1000 N:0", "N must be 2"),
+        ("operating.axial_load=0 N:1000 N:100000", "N must be 2"),
+        ("operating.axial_load=0 N:1e999 N:2", "finite"),
+    ):
+        with pytest.raises(SweepError, match=rule):
+            parse_set(bad)
+
+
 def test_grid_is_the_cartesian_product_validated_up_front():
     grid = build_grid(
         SHORT_DATA,

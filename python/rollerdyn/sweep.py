@@ -22,6 +22,7 @@ import itertools
 import logging
 import math
 import os
+import re
 import signal
 import time
 import tomllib
@@ -135,7 +136,46 @@ def parse_set(option: str) -> tuple[str, list[Any]]:
     texts = split_values(values)
     if any(not t for t in texts):
         raise SweepError(f"--set {path}={values}: an empty value (two commas, or none given)")
+    if len(texts) == 1 and _RANGE.match(texts[0]):
+        return path, range_values(path, texts[0])
     return path, [toml_value(t) for t in texts]
+
+
+#: ``A:B:N``: N evenly spaced values from A to B, each a number with or without a unit.
+_RANGE = re.compile(r"^\s*([^:\[\]{}\"']+):([^:\[\]{}\"']+):\s*([0-9]+)\s*$")
+_NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
+
+#: Most values one A:B:N range of a sweep gives (each value is at least one run).
+MAX_RANGE_VALUES = 10_000
+
+
+def range_values(path: str, text: str) -> list[Any]:
+    """The values of ``A:B:N`` in ``--set PATH=A:B:N``: N evenly spaced from A to B, in A's
+    and B's unit (which must be the same text), as strings such as ``"500 N"``; bare
+    numbers stay numbers (integers where A, B and the spacing are whole)."""
+    m = _RANGE.match(text)
+    assert m is not None
+    first, last = (_NUMBER_UNIT.match(part) for part in m.groups()[:2])
+    n = int(m.group(3))
+    if first is None or last is None:
+        raise SweepError(f"--set {path}={text}: A:B:N needs a number (with its unit) at both ends")
+    (a, unit_a), (b, unit_b) = first.groups(), last.groups()
+    if unit_a != unit_b:
+        raise SweepError(
+            f"--set {path}={text}: the ends of A:B:N take the same unit ({unit_a!r} and {unit_b!r})"
+        )
+    if not 1 <= n <= MAX_RANGE_VALUES or (n == 1 and float(a) != float(b)):
+        raise SweepError(
+            f"--set {path}={text}: N must be 2 ... {MAX_RANGE_VALUES} (or 1 with A = B)"
+        )
+    lo, hi = float(a), float(b)
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        raise SweepError(f"--set {path}={text}: the ends must be finite")
+    values = [lo + (hi - lo) * i / (n - 1) for i in range(n)] if n > 1 else [lo]
+    whole = all(v == int(v) for v in values) and "." not in a + b and "e" not in (a + b).lower()
+    if not unit_a:
+        return [int(v) for v in values] if whole else values
+    return [f"{int(v) if whole else repr(v)} {unit_a}" for v in values]
 
 
 def _show(value: Any) -> str:

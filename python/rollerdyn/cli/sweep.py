@@ -53,8 +53,9 @@ def sweep_command(
             '("500 N", "3000 rpm", "80 degC"); bare numbers (0.3, 20) and true/false '
             "are numbers and booleans, valid only for dimensionless fields (a bare 500 "
             "for a force is refused: no unit); anything else is a string. Commas inside "
-            "quotes, [arrays] or {inline tables} do not split. Repeat --set for more "
-            "paths: the runs are the full grid (cartesian product).",
+            "quotes, [arrays] or {inline tables} do not split. A:B:N gives N values from "
+            'A to B evenly, in their unit ("0 N:1000 N:5"; bare numbers stay numbers). '
+            "Repeat --set for more paths: the runs are the full grid (cartesian product).",
         ),
     ],
     output: Annotated[
