@@ -195,7 +195,7 @@ def _dt_max_values(text: str) -> list[float]:
         values = []
     if not values or not all(v > 0.0 and math.isfinite(v) for v in values):
         raise refuse(
-            f"--sweep-dt-max = {text!r}: must be comma-separated positive times in s, "
+            f"--sweep-dt-max = {text!r}: must be comma-separated positive finite times in s, "
             "e.g. 1e-5,3e-5,1e-4"
         )
     return sorted(values)

@@ -89,7 +89,7 @@ def _numbers(text: str | None, option: str, unit: str) -> list[float] | None:
             f"{option} = {text!r}: must be comma-separated numbers in {unit} (or none)"
         ) from None
     if not values or not all(math.isfinite(v) for v in values):
-        raise refuse(f"{option} = {text!r}: must be comma-separated numbers in {unit}")
+        raise refuse(f"{option} = {text!r}: must be comma-separated finite numbers in {unit}")
     return values
 
 
