@@ -58,6 +58,34 @@ def test_core_errors_are_value_errors_not_panics():
         ),
         (lambda: tri.elliptic_integrals(1.5), "m1 = 1.5"),
         (lambda: tri.boundary_share(np.inf, 2.3, 0.97), "film_ratio = inf"),
+        # an adversarial pass of the Python API (2026-11-28): these gave NaN, inf, negative
+        # forces or shares above one
+        (lambda: tri.hertz_point(None, 2e-3, 2.3e11, 100.0, "exact"), "r1 = None"),
+        (lambda: tri.effective_modulus(-2e11, 0.3, 2.1e11, 0.3), "e1 = -2"),
+        (lambda: tri.effective_modulus(2e11, 0.3, 2.1e11, 1.0), "nu2 = 1.0"),
+        (lambda: tri.roelands_viscosity(1e8, 0.01, 6.31e-5, 1.96e8, 0.6), "p_p = 196"),
+        (lambda: tri.roelands_viscosity(-3e8, 0.01, 6.31e-5, -1.96e8, 0.6), "pressure = -3"),
+        (lambda: tri.vogel_viscosity(100.0, 5e-5, 1000.0, 150.0), "temperature = 100.0"),
+        (lambda: tri.boundary_share(0.5, -1.0, 1.0), "b = -1.0"),
+        (lambda: tri.line_power_law_force(1e-6, 0.01, -1e9, 1.1), "k1 = -1"),
+        (
+            lambda: _core.EhlTraction(
+                eta0=0.0165, z=0.62, tau0=5e6, n=0.5, chi=np.nan, p_star=1.5e9, tau_l0=1.2e8
+            ),
+            "chi = NaN",
+        ),
+        (
+            lambda: _core.EhlTraction(
+                eta0=0.0165, z=0.62, tau0=5e6, n=0.5, chi=0.08, p_star=1.5e9, tau_l0=1.2e8, p_p=0
+            ),
+            "p_p = 0",
+        ),
+        (
+            lambda: _core.fit_line_power_law(
+                2e-3, "convex", 1e-2, 2e-3, 2e11, 0.3, 2e11, 0.3, 1e4, 1e6, 10**12
+            ),
+            "samples",
+        ),
     ],
 )
 def test_bad_arguments_are_refused_naming_the_argument(call, named):

@@ -22,6 +22,7 @@ The names the result shares with the core (pairings, flanges, detectors) are tho
 from __future__ import annotations
 
 import math
+import numbers
 import os
 import threading
 import time
@@ -485,13 +486,14 @@ def simulate(
     step-size history: equal to within the integration tolerance.)
     """
     config = as_config(config)
-    det = detector or config.solver.detector
+    det = config.solver.detector if detector is None else detector
     if det not in DETECTORS:
         raise ValueError(f"detector = {det!r}: must be one of {', '.join(DETECTORS)}")
     end = config.end_time if t_end is None else parse_time(t_end, "t_end")
     threads = default_threads() if threads is None else threads
-    if isinstance(threads, bool) or not isinstance(threads, int) or threads < 1:
+    if isinstance(threads, bool) or not isinstance(threads, numbers.Integral) or threads < 1:
         raise ValueError(f"threads = {threads!r}: must be a whole number >= 1")
+    threads = int(threads)
     start = None
     if resume is not None:
         start = _resume_point(resume, config, det, end)
@@ -553,6 +555,13 @@ def default_threads() -> int:
 def _resume_point(previous: xr.Dataset, config: BearingConfig, detector: str, end: float):
     """(t, y, h) to continue ``previous`` from, after checking that it fits ``config``: its
     last checkpoint (h None if that is the run's fresh start), else its final state."""
+    if not isinstance(previous, xr.Dataset):
+        raise TypeError(
+            "resume: expected the xarray Dataset of an earlier run (what simulate returned, "
+            f"or xarray.open_dataset of its file), got {type(previous).__name__}"
+        )
+    if "final_time_s" not in previous.attrs:
+        raise ValueError("resume: the Dataset is not a rollerdyn result (no final_time_s)")
     for key, expected in (("bearing", config.name), ("detector", detector)):
         found = previous.attrs.get(key)
         if found != expected:
@@ -575,6 +584,15 @@ def _resume_point(previous: xr.Dataset, config: BearingConfig, detector: str, en
             f"resume: t_end = {end} s must lie after the earlier run's end, t = {t_final} s"
         )
     t0, step, state = resume_state(previous)
+    if not (math.isfinite(t0) and 0.0 <= t0 <= t_final):
+        raise ValueError(
+            f"resume: the earlier result's checkpoint time {t0} s must lie in [0, {t_final}] s"
+        )
+    longest = max(t_final, config.solver.dt_max)
+    if step is not None and not (math.isfinite(step) and 0.0 < step <= longest):
+        raise ValueError(
+            f"resume: the earlier result's checkpoint step {step} s must lie in (0, {longest}] s"
+        )
     return t0, [float(v) for v in state], step
 
 

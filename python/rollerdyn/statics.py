@@ -132,14 +132,12 @@ def statics(
     ramps). A ``moment`` (N*m about y and z) frees the ring's tilt; a ``misalignment`` (rad)
     prescribes it. Raises :class:`StaticsError` when the bearing has no equilibrium for it."""
     cfg = as_config(config)
-    case = _case_with(
-        config_case(cfg),
-        radial_load=radial_load,
-        axial_load=axial_load,
-        speed=speed,
-        misalignment=misalignment,
-        moment=moment,
-    )
+    given = {"radial_load": radial_load, "axial_load": axial_load, "speed": speed}
+    given["misalignment"] = misalignment
+    case = _case_with(config_case(cfg), moment=moment, **given)
+    for path, (field, _) in STATIC_FIELDS.items():
+        if given.get(field) is not None:
+            check_range(cfg, path, "", [getattr(case, field)], label=f"{field} = {given[field]!r}")
     (result,) = _solve(cfg, [case], stiffness=True)
     if isinstance(result, str):
         raise StaticsError(result)
@@ -148,14 +146,27 @@ def statics(
     return ds
 
 
+def _number(name: str, value: Any) -> float:
+    """``value`` as a float, or :class:`StaticsError` naming ``name`` (SI numbers only)."""
+    if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+        raise StaticsError(
+            f"{name} = {value!r}: must be a number in SI units (N, rad/s, rad, N*m); units "
+            "are read by the command line's --set"
+        )
+    return float(value)
+
+
 def _case_with(case: StaticCase, *, moment=None, **values) -> StaticCase:
-    changes = {k: float(v) for k, v in values.items() if v is not None}
+    changes = {k: _number(k, v) for k, v in values.items() if v is not None}
     for name, value in changes.items():
         if not math.isfinite(value):
             raise StaticsError(f"{name} = {value}: must be finite")
     case = replace(case, **changes)
     if moment is not None:
-        my, mz = (float(v) for v in moment)
+        pair = list(moment) if isinstance(moment, list | tuple | np.ndarray) else []
+        if len(pair) != 2:
+            raise StaticsError(f"moment = {moment!r}: must be a pair (about y, about z) in N*m")
+        my, mz = (_number("moment", v) for v in pair)
         if not (math.isfinite(my) and math.isfinite(mz)):
             raise StaticsError(f"moment = ({my}, {mz}) N*m: must be finite")
         case = replace(case, moment_y=my, moment_z=mz)
@@ -173,11 +184,13 @@ def _check_path(path: str) -> None:
         )
 
 
-def check_range(cfg: BearingConfig, path: str, text: str, values: Sequence[float]) -> None:
+def check_range(
+    cfg: BearingConfig, path: str, text: str, values: Sequence[float], label: str = ""
+) -> None:
     """The configuration's rules for the load case's fields, on the values of a sweep
     option (``--set path=text``): loads up to the configuration's load limit (radial ones not
     negative), speeds up to its pitch-circle speed, misalignments within 1 deg. Raises
-    :class:`StaticsError` naming the option, the value and the rule."""
+    :class:`StaticsError` naming the option (or ``label``), the value and the rule."""
     from .config.base import MAX_MISALIGNMENT_DEG, MAX_PITCH_SPEED
 
     limit = cfg.load_limit
@@ -193,7 +206,7 @@ def check_range(cfg: BearingConfig, path: str, text: str, values: Sequence[float
             rule = f"must lie within +-{MAX_MISALIGNMENT_DEG:g} deg, as inner_ring.misalignment"
         else:
             continue
-        raise StaticsError(f"--set {path}={text}: {v:.6g} (SI) {rule}")
+        raise StaticsError(f"{label or f'--set {path}={text}'}: {v:.6g} (SI) {rule}")
 
 
 def parse_range(path: str, text: str) -> list[float]:
@@ -254,8 +267,13 @@ def statics_sweep(
     coordinate per swept path. A case without equilibrium keeps NaN values and its message in
     ``error``; the others are solved, each from its neighbour's solution."""
     cfg = as_config(config)
-    for path in grid:
+    for path, values in grid.items():
         _check_path(path)
+        if isinstance(values, str | bytes) or not isinstance(values, Sequence | np.ndarray):
+            raise StaticsError(f"grid[{path!r}] = {values!r}: must be a list of SI numbers")
+        numbers = [_number(f"grid[{path!r}]", v) for v in values]
+        if STATIC_FIELDS[path][1] != "torque":
+            check_range(cfg, path, "", numbers, label=f"grid[{path!r}]")
     base = config_case(cfg)
     paths = list(grid)
     combos = list(itertools.product(*(grid[p] for p in paths)))

@@ -125,6 +125,8 @@ def toml_value(text: str) -> Any:
 def parse_set(option: str) -> tuple[str, list[Any]]:
     """``"operating.axial_load=0 N,500 N"`` -> ``("operating.axial_load", ["0 N", "500 N"])``
     (values read by :func:`toml_value`)."""
+    if not isinstance(option, str):
+        raise SweepError(f"--set {option!r}: expected a string PATH=VALUE[,VALUE...]")
     path, sep, values = option.partition("=")
     path = path.strip()
     parts = path.split(".")
@@ -284,6 +286,11 @@ def build_grid(
     :class:`SweepError` listing every point that fails."""
     from .simulation import check_cost
 
+    if not isinstance(parameters, Mapping):
+        raise SweepError(
+            f"parameters = {parameters!r}: expected a mapping of paths to lists of values, "
+            "e.g. {'operating.axial_load': ['0 N', '500 N']}"
+        )
     data, si_numbers, source = _source(config)
     paths = list(parameters)
     for path in paths:

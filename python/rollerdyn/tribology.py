@@ -58,7 +58,7 @@ _RULES: dict[str, tuple[str, Callable[[np.ndarray], np.ndarray]]] = {
             "r1", "r2", "rx", "ry", "r_eff", "length", "e_prime", "e1", "e2", "eta0",
             "viscosity", "radius_ratio", "roller_radius", "counter_radius",
             "temperature", "k", "eta_p", "tau0", "n", "half_width", "thermal_conductivity",
-            "smoothing_speed", "s0",
+            "smoothing_speed", "s0", "k1", "k2", "b", "c",
         ),
         _POSITIVE,
     ),
@@ -70,6 +70,7 @@ _RULES: dict[str, tuple[str, Callable[[np.ndarray], np.ndarray]]] = {
         _NONNEGATIVE,
     ),
     "m1": ("must lie in [0, 1]", lambda x: np.isfinite(x) & (x >= 0.0) & (x <= 1.0)),
+    "p_p": ("must be negative and finite (eq. 19's pole)", lambda x: np.isfinite(x) & (x < 0.0)),
     "nu1": ("must lie in (-1, 0.5)", lambda x: (x > -1.0) & (x < 0.5)),
     "nu2": ("must lie in (-1, 0.5)", lambda x: (x > -1.0) & (x < 0.5)),
 }  # fmt: skip
@@ -77,7 +78,11 @@ _RULES: dict[str, tuple[str, Callable[[np.ndarray], np.ndarray]]] = {
 
 def _check(name: str, value: Any) -> None:
     """Raises ValueError naming ``name`` if a numeric ``value`` breaks its rule."""
-    if isinstance(value, str) or value is None:
+    if isinstance(value, str):
+        return
+    if value is None:
+        if name in _RULES:
+            raise ValueError(f"{name} = None: must be a number or an array of numbers")
         return
     try:
         x = np.asarray(value, dtype=float)
@@ -130,6 +135,8 @@ def _vectorize(core: Callable[..., Any]) -> Callable[..., Any]:
 
 def effective_modulus(e1: float, nu1: float, e2: float, nu2: float) -> float:
     """E' = 2/((1 - nu1^2)/E1 + (1 - nu2^2)/E2) (paper, nomenclature), Pa."""
+    for name, value in (("e1", e1), ("nu1", nu1), ("e2", e2), ("nu2", nu2)):
+        _check(name, value)
     return _core.effective_modulus(e1, nu1, e2, nu2)
 
 
@@ -140,8 +147,47 @@ hertz_point_force = _vectorize(_core.hertz_point_force)
 hertz_line = _vectorize(_core.hertz_line)
 tripp_deflection = _vectorize(_core.tripp_deflection)
 line_power_law_force = _vectorize(_core.line_power_law_force)
-vogel_viscosity = _vectorize(_core.vogel_viscosity)
-roelands_viscosity = _vectorize(_core.roelands_viscosity)
+
+
+def _above_pole(core: Callable[..., Any], value: str, pole: str, rule: str, below):
+    """``core`` (a :func:`_vectorize` wrapper) refusing values of argument ``value`` at or
+    past the pole that ``below(value, pole)`` marks (True where it is broken)."""
+    signature = inspect.signature(core)
+
+    @functools.wraps(core)
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        try:
+            bound = signature.bind(*args, **kwargs)
+        except TypeError as err:
+            raise TypeError(f"{core.__name__}{signature}: {err}") from None
+        for name, given in bound.arguments.items():  # each argument's own rule first
+            _check(name, given)
+        x, p = bound.arguments.get(value), bound.arguments.get(pole)
+        if x is not None and p is not None and not isinstance(x, str) and not isinstance(p, str):
+            with np.errstate(invalid="ignore"):
+                bad = below(np.asarray(x, dtype=float), np.asarray(p, dtype=float))
+            if np.any(bad):
+                first = np.broadcast_to(np.asarray(x, dtype=float), np.shape(bad))[bad].flat[0]
+                raise ValueError(f"{value} = {float(first)!r}: {rule}")
+        return core(*args, **kwargs)
+
+    return wrapper
+
+
+vogel_viscosity = _above_pole(
+    _vectorize(_core.vogel_viscosity),
+    "temperature",
+    "c",
+    "must lie above Vogel's pole, 273.15 K - c (eq. 20)",
+    lambda t, c: t - 273.15 + c <= 0.0,
+)
+roelands_viscosity = _above_pole(
+    _vectorize(_core.roelands_viscosity),
+    "pressure",
+    "p_p",
+    "must lie above p_p, the pole of eq. 19",
+    lambda p, p_p: p <= p_p,
+)
 dicke_viscosity = _vectorize(_core.dicke_viscosity)
 carreau_shear_stress = _vectorize(_core.carreau_shear_stress)
 line_films = _vectorize(_core.line_films)

@@ -332,22 +332,25 @@ def parse_time(value: Any, name: str, zero: bool = False) -> float:
     seconds, a number's text (``"0.05"``) or a quantity (``"50 ms"``), for options such as
     ``--t-end`` and ``t_end=``; raises :class:`ValueError` naming ``name``, the value and
     the rule."""
+    shown = repr(value) if len(repr(value)) <= 40 else repr(value)[:37] + "..."
     least = "0 s" if zero else "1 ns"
     rule = f"must be a finite time of at least {least}, e.g. 50 ms, 0.05 s or 0.05 (seconds)"
     if isinstance(value, bool) or not isinstance(value, int | float | str):
-        raise ValueError(f"{name} = {value!r}: {rule}")
+        raise ValueError(f"{name} = {shown}: {rule}")
     try:
         seconds = float(value)
+    except OverflowError:  # an int beyond any float
+        seconds = math.inf
     except ValueError:
         try:
             seconds = parse_quantity(value.strip(), "time")
         except QuantityError as err:  # its first clause says what is wrong, then a hint
             reason = str(err).split("; ")[0]
-            raise ValueError(f"{name} = {value!r}: {reason}; {rule}") from None
+            raise ValueError(f"{name} = {shown}: {reason}; {rule}") from None
     if not math.isfinite(seconds):
-        raise ValueError(f"{name} = {value!r}: is not finite; {rule}")
+        raise ValueError(f"{name} = {shown}: is not finite; {rule}")
     if not seconds >= (0.0 if zero else SHORTEST_TIME):
-        raise ValueError(f"{name} = {value!r}: {rule}")
+        raise ValueError(f"{name} = {shown}: {rule}")
     return seconds
 
 

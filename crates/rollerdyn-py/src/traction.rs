@@ -40,12 +40,25 @@ elementwise! {
                 ("tau0", tau0),
                 ("eta_p", eta_p),
                 ("lss_smoothing", lss_smoothing),
+                ("z", z),
+                ("p_star", p_star),
+                ("tau_l0", tau_l0),
             ] {
                 if !(v.is_finite() && v > 0.0) {
                     return Err(PyValueError::new_err(format!(
                         "{name} = {v}: must be finite and positive"
                     )));
                 }
+            }
+            if !(chi.is_finite() && chi >= 0.0) {
+                return Err(PyValueError::new_err(format!(
+                    "chi = {chi}: must be finite and >= 0"
+                )));
+            }
+            if !(p_p.is_finite() && p_p < 0.0) {
+                return Err(PyValueError::new_err(format!(
+                    "p_p = {p_p}: must be finite and negative (the pole of eq. 19)"
+                )));
             }
             if !(n > 0.0 && n <= 1.0) {
                 return Err(PyValueError::new_err(format!(

@@ -7,9 +7,13 @@
 
 /// K(m) and E(m) from the complementary parameter m₁ = 1 − m, 0 < m₁ ≤ 1.
 ///
-/// Returns (K, E). For m₁ → 0, K diverges logarithmically; m₁ must be positive.
+/// Returns (K, E). For m₁ → 0, K diverges logarithmically; at m₁ = 0 exactly (K, E) =
+/// (∞, 1), the limit (DLMF 19.6.1; the iteration would spoil E there).
 pub fn complete_elliptic_integrals(m1: f64) -> (f64, f64) {
-    debug_assert!(m1 > 0.0 && m1 <= 1.0);
+    debug_assert!((0.0..=1.0).contains(&m1));
+    if m1 == 0.0 {
+        return (f64::INFINITY, 1.0);
+    }
     let m = 1.0 - m1;
     let mut a = 1.0_f64;
     let mut b = m1.sqrt();

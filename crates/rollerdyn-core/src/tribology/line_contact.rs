@@ -192,6 +192,13 @@ impl LinePowerLaw {
         q_max: f64,
         samples: usize,
     ) -> Result<(Self, FitReport)> {
+        if !(2..=10_000).contains(&samples) {
+            return Err(Error::InvalidParameter {
+                name: "line fit samples",
+                value: samples as f64,
+                rule: "must lie in 2 ..= 10000",
+            });
+        }
         require_positive("line fit load_min", q_min)?;
         if q_max.partial_cmp(&q_min) != Some(std::cmp::Ordering::Greater) || !q_max.is_finite() {
             return Err(Error::InvalidParameter {
