@@ -569,3 +569,16 @@ def test_resume_refuses_a_result_with_other_rollers(tmp_path, result):
         ds.load().isel(roller=slice(0, 5)).to_netcdf(cut, engine="h5netcdf")
     res = invoke("run", B1, "-o", cut, "--t-end", "3 ms", "--resume", cut, code=2)
     one_line_saying(res.output, "5 rollers", "17")
+
+
+def test_resume_from_a_state_outside_the_bearing_fails_at_once(result):
+    """A checkpoint state set to 1.0 throughout (the ring 1.7 m off centre) made the solver
+    shrink its steps inside one attempt for ever, deaf to Ctrl-C; it is refused at the
+    start, naming the body."""
+    from rollerdyn.simulation import simulate
+
+    with xr.open_dataset(result, engine="h5netcdf") as ds:
+        tampered = ds.load()
+    tampered["checkpoint_state"].values[:] = 1.0
+    with pytest.raises(ValueError, match="inside the bearing: the inner ring left the bearing"):
+        simulate(load_b1(), t_end=0.003, resume=tampered, threads=1)

@@ -302,6 +302,15 @@ pub fn run(
             format!("must be {n} finite values, the state of this model (same rollers and ring tilt mode)"),
         ));
     }
+    if let Some(outside) = left_the_bearing(system, t0, y0) {
+        // A start outside the bearing (a tampered checkpoint) has no step the solver could
+        // take: it would shrink its steps for ever inside one attempt.
+        return Err(crate::Error::invalid(
+            "start state",
+            format!("t = {t0}"),
+            format!("must place every body inside the bearing: {outside}"),
+        ));
+    }
     if let Some(h) = start.step.filter(|h| !(h.is_finite() && *h > 0.0)) {
         return Err(crate::Error::invalid(
             "start step",
@@ -510,19 +519,10 @@ pub fn diagnose(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> String {
             Some(i) => format!("roller {i} state {} is not finite", k - layout.roller(i)),
         };
     }
-    let kin = system.kinematics(t, y);
-    let p = &system.params;
-    for (i, k) in kin.rollers.iter().enumerate() {
-        let rho = (k.center.y.powi(2) + k.center.z.powi(2)).sqrt();
-        let radial_ok = rho > p.inner_raceway_radius && rho < p.outer_raceway_radius;
-        let axial_ok = k.center.x.abs() < p.roller.length;
-        if !(radial_ok && axial_ok) || k.axis.x.abs() < 0.9 {
-            return format!(
-                "roller {i} left the bearing (centre at x = {:.3e} m, radius {:.3e} m; raceways {:.3e}..{:.3e} m; axis {:?})",
-                k.center.x, rho, p.inner_raceway_radius, p.outer_raceway_radius, k.axis.as_slice()
-            );
-        }
+    if let Some(outside) = left_the_bearing(system, t, y) {
+        return outside;
     }
+    let kin = system.kinematics(t, y);
     let results = system.evaluate_all(&kin);
     let (deepest, result) = system
         .elements()
@@ -540,6 +540,36 @@ pub fn diagnose(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> String {
         result.normal,
         flat_end_hint(system, &results)
     )
+}
+
+/// Which body, if any, lies outside the bearing in state `y` at `t`: a roller whose centre
+/// is not between the raceways or is an axial roller length off the middle, or whose axis
+/// leans by more than 25° from the bearing's; the inner ring displaced by more than a
+/// roller radius.
+fn left_the_bearing(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> Option<String> {
+    let kin = system.kinematics(t, y);
+    let p = &system.params;
+    let ring = kin.inner_ring.center;
+    if ring.norm() > p.roller.radius {
+        return Some(format!(
+            "the inner ring left the bearing (centre displaced by {:.3e} m, more than the \
+             roller radius {:.3e} m)",
+            ring.norm(),
+            p.roller.radius
+        ));
+    }
+    for (i, k) in kin.rollers.iter().enumerate() {
+        let rho = (k.center.y.powi(2) + k.center.z.powi(2)).sqrt();
+        let radial_ok = rho > p.inner_raceway_radius && rho < p.outer_raceway_radius;
+        let axial_ok = k.center.x.abs() < p.roller.length;
+        if !(radial_ok && axial_ok) || k.axis.x.abs() < 0.9 {
+            return Some(format!(
+                "roller {i} left the bearing (centre at x = {:.3e} m, radius {:.3e} m; raceways {:.3e}..{:.3e} m; axis {:?})",
+                k.center.x, rho, p.inner_raceway_radius, p.outer_raceway_radius, k.axis.as_slice()
+            ));
+        }
+    }
+    None
 }
 
 /// With the point law, a note on the roller ends that press a flange with their end
