@@ -101,14 +101,14 @@ class EhlTraction:
     ) -> _Array: ...
     def ellipse_force_tensor(
         self,
-        max_pressure: _Array,
-        semi_major: _Array,
-        semi_minor: _Array,
-        sliding_speed: _Array,
-        film: _Array,
-        across: _Array,
-        along: _Array,
-    ) -> Any: ...
+        max_pressure: float,
+        semi_major: float,
+        semi_minor: float,
+        sliding_speed: float,
+        film: float,
+        across: int,
+        along: int,
+    ) -> float: ...
     def limiting_shear_stress(self, pressure: _Array) -> _Array: ...
     def line_force(
         self,
