@@ -145,3 +145,15 @@ def test_circle_distance_kinds_and_bad_input():
         _core.circle_circle_distance((0, 0, 0), (0, 0, 1), -1.0, (1, 0, 0), (0, 0, 1), 1.0)
     with pytest.raises(ValueError, match="finite"):
         _core.circle_circle_distance((np.nan, 0, 0), (0, 0, 1), 1.0, (1, 0, 0), (0, 0, 1), 1.0)
+
+
+def test_core_helpers_refuse_what_they_cannot_use():
+    """An adversarial pass (2026-11-28): a zero circle normal and a NaN temperature went
+    through as answers."""
+    with pytest.raises(ValueError, match=r"normal1 = \[0.0, 0.0, 0.0\]: must be a direction"):
+        _core.circle_circle_distance((0, 0, 0), (0, 0, 0), 1.0, (0, 0, 2), (0, 0, 1), 1.0)
+    with pytest.raises(ValueError, match="temperature = NaN: must be finite and positive"):
+        _core.fit_roelands_z(
+            0.0165, np.nan, 6.31e-5, -1.96e8, 3.3e7, 2.99e5, 4.4e-3, 3e-4, "initial_slope", 1e9
+        )
+    assert tri.elliptic_integrals(0.0) == (np.inf, 1.0)  # K(m = 1) diverges, E(m = 1) = 1

@@ -139,6 +139,13 @@ fn circle_circle_distance(
             "circle centres and normals must be finite and radii finite and positive",
         ));
     }
+    for (name, n) in [("normal1", normal1), ("normal2", normal2)] {
+        if Vec3::from(n).norm() < 1e-12 {
+            return Err(PyValueError::new_err(format!(
+                "{name} = {n:?}: must be a direction (a vector of length above 1e-12)"
+            )));
+        }
+    }
     let c1 = Circle3 {
         center: Vec3::from(center1),
         normal: Vec3::from(normal1),

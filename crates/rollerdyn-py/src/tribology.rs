@@ -6,6 +6,7 @@
 //! reshape); scalars are model parameters.
 
 use crate::convert::{add_functions, choose, core_err, elementwise, set_fields};
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{IntoPyDict, PyDict};
 use rollerdyn_core::numerics::elliptic::complete_elliptic_integrals;
@@ -255,6 +256,26 @@ fn fit_roelands_z(
         ],
         |other| format!("z_fit = {other:?}: must be \"initial_slope\" or \"least_squares\""),
     )?;
+    for (name, v, ok) in [
+        ("temperature", temperature, temperature > 0.0),
+        ("eta_p", eta_p, eta_p > 0.0),
+        ("p_p", p_p, p_p < 0.0),
+        ("a1", a1, true),
+        ("a2", a2, true),
+        ("b1", b1, true),
+        ("b2", b2, true),
+    ] {
+        if !(v.is_finite() && ok) {
+            return Err(PyValueError::new_err(format!(
+                "{name} = {v}: must be finite{}",
+                match name {
+                    "temperature" | "eta_p" => " and positive",
+                    "p_p" => " and negative",
+                    _ => "",
+                }
+            )));
+        }
+    }
     let r = Roelands { eta_p, p_p, z: 0.6 };
     lubricant::fit_roelands_z(&r, &Dicke { a1, a2, b1, b2 }, eta0, temperature, m, p_max)
         .map_err(core_err)
