@@ -157,3 +157,5 @@ def test_core_helpers_refuse_what_they_cannot_use():
             0.0165, np.nan, 6.31e-5, -1.96e8, 3.3e7, 2.99e5, 4.4e-3, 3e-4, "initial_slope", 1e9
         )
     assert tri.elliptic_integrals(0.0) == (np.inf, 1.0)  # K(m = 1) diverges, E(m = 1) = 1
+    with pytest.raises(ValueError, match="beyond the range of Tripp's solution"):
+        tri.tripp_deflection(3e10, 2.2475e-3, "convex", 1e-2, 0, 2.1e11, 0.3, 2.1e11, 0.3)

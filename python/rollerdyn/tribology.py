@@ -145,7 +145,26 @@ ellipticity = _vectorize(_core.ellipticity)
 hertz_point = _vectorize(_core.hertz_point)
 hertz_point_force = _vectorize(_core.hertz_point_force)
 hertz_line = _vectorize(_core.hertz_line)
-tripp_deflection = _vectorize(_core.tripp_deflection)
+_tripp_deflection = _vectorize(_core.tripp_deflection)
+
+
+@functools.wraps(_tripp_deflection)
+def tripp_deflection(*args: Any, **kwargs: Any) -> Any:
+    deflection = _tripp_deflection(*args, **kwargs)
+    bound = inspect.signature(_tripp_deflection).bind(*args, **kwargs)
+    load = np.broadcast_to(
+        np.asarray(bound.arguments["load_per_length"], float), np.shape(deflection)
+    )
+    beyond = (np.asarray(deflection) <= 0.0) & (load > 0.0)
+    if np.any(beyond):
+        raise ValueError(
+            f"load_per_length = {float(load[beyond].flat[0]) if load.ndim else float(load)!r}: "
+            "beyond the range of Tripp's solution (eqs. 9, 10; its logarithms turn the "
+            "deflection negative where the contact's half-width nears the radii)"
+        )
+    return deflection
+
+
 line_power_law_force = _vectorize(_core.line_power_law_force)
 
 
