@@ -132,8 +132,9 @@ def statics(
     ramps). A ``moment`` (N*m about y and z) frees the ring's tilt; a ``misalignment`` (rad)
     prescribes it. Raises :class:`StaticsError` when the bearing has no equilibrium for it."""
     cfg = as_config(config)
-    given = {"radial_load": radial_load, "axial_load": axial_load, "speed": speed}
-    given["misalignment"] = misalignment
+    given = dict(
+        radial_load=radial_load, axial_load=axial_load, speed=speed, misalignment=misalignment
+    )
     case = _case_with(config_case(cfg), moment=moment, **given)
     for path, (field, _) in STATIC_FIELDS.items():
         if given.get(field) is not None:

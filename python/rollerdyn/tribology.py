@@ -89,17 +89,30 @@ def _check(name: str, value: Any) -> None:
     except (TypeError, ValueError):
         raise ValueError(f"{name} = {value!r}: must be a number or an array of numbers") from None
     rule, ok = _RULES.get(name, _FINITE)
-    bad = ~ok(x)
+    _refuse_where(name, x, ~ok(x), rule)
+
+
+def _refuse_where(name: str, x: np.ndarray, bad: np.ndarray, rule: str) -> None:
+    """Raises ValueError naming ``name``, the first value of ``x`` where ``bad`` holds (the
+    two broadcast together) and ``rule``; nothing if ``bad`` holds nowhere."""
     if np.any(bad):
-        first = float(x[bad].flat[0]) if x.ndim else float(x)
-        raise ValueError(f"{name} = {first!r}: {rule}")
+        first = np.broadcast_to(x, np.shape(bad))[bad].flat[0] if np.ndim(bad) else x
+        raise ValueError(f"{name} = {float(first)!r}: {rule}")
 
 
-def _vectorize(core: Callable[..., Any]) -> Callable[..., Any]:
+#: A rule across arguments (or on the result): the argument it names, the rule, and where
+#: it is broken, from the arguments as float arrays (and the result).
+_Across = tuple[str, str, Callable[..., np.ndarray]]
+
+
+def _vectorize(
+    core: Callable[..., Any], before: tuple[_Across, ...] = (), after: tuple[_Across, ...] = ()
+) -> Callable[..., Any]:
     """Wrap an elementwise core function, whose first arguments (as many as the core's
     ``ARRAY_ARGUMENTS`` says) are equal-length 1-D arrays: the arguments are checked
-    (:data:`_RULES`, by name), broadcast, and the result takes the broadcast shape. The
-    wrapper has the core function's signature and docstring."""
+    (:data:`_RULES`, by name, then the rules ``before`` across them), broadcast, and the
+    result takes the broadcast shape (and is checked by the rules ``after``). The wrapper
+    has the core function's signature and docstring."""
     n_arrays = _core.ARRAY_ARGUMENTS[core.__name__]
     signature = inspect.signature(core)
     names = list(signature.parameters)
@@ -112,6 +125,14 @@ def _vectorize(core: Callable[..., Any]) -> Callable[..., Any]:
             raise TypeError(f"{core.__name__}{signature}: {err}") from None
         for name, value in bound.arguments.items():
             _check(name, value)
+        numeric = {
+            n: np.asarray(v, dtype=float)
+            for n, v in bound.arguments.items()
+            if v is not None and not isinstance(v, str)
+        }
+        for name, rule, broken in before:
+            with np.errstate(invalid="ignore"):
+                _refuse_where(name, numeric[name], broken(**numeric), rule)
         values = [bound.arguments[n] for n in names if n in bound.arguments]
         arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in values[:n_arrays]))
         shape = arrays[0].shape
@@ -127,7 +148,10 @@ def _vectorize(core: Callable[..., Any]) -> Callable[..., Any]:
                 return {k: reshape(v) for k, v in x.items()}
             return x
 
-        return reshape(result)
+        out = reshape(result)
+        for name, rule, broken in after:
+            _refuse_where(name, numeric[name], broken(out, **numeric), rule)
+        return out
 
     wrapper.__signature__ = signature
     return wrapper
@@ -145,67 +169,41 @@ ellipticity = _vectorize(_core.ellipticity)
 hertz_point = _vectorize(_core.hertz_point)
 hertz_point_force = _vectorize(_core.hertz_point_force)
 hertz_line = _vectorize(_core.hertz_line)
-_tripp_deflection = _vectorize(_core.tripp_deflection)
-
-
-@functools.wraps(_tripp_deflection)
-def tripp_deflection(*args: Any, **kwargs: Any) -> Any:
-    deflection = _tripp_deflection(*args, **kwargs)
-    bound = inspect.signature(_tripp_deflection).bind(*args, **kwargs)
-    load = np.broadcast_to(
-        np.asarray(bound.arguments["load_per_length"], float), np.shape(deflection)
-    )
-    beyond = (np.asarray(deflection) <= 0.0) & (load > 0.0)
-    if np.any(beyond):
-        raise ValueError(
-            f"load_per_length = {float(load[beyond].flat[0]) if load.ndim else float(load)!r}: "
+tripp_deflection = _vectorize(
+    _core.tripp_deflection,
+    after=(
+        (
+            "load_per_length",
             "beyond the range of Tripp's solution (eqs. 9, 10; its logarithms turn the "
-            "deflection negative where the contact's half-width nears the radii)"
-        )
-    return deflection
-
-
+            "deflection negative where the contact's half-width nears the radii)",
+            lambda deflection, load_per_length, **_: (
+                (np.asarray(deflection) <= 0.0) & (load_per_length > 0.0)
+            ),
+        ),
+    ),
+)
 line_power_law_force = _vectorize(_core.line_power_law_force)
 
 
-def _above_pole(core: Callable[..., Any], value: str, pole: str, rule: str, below):
-    """``core`` (a :func:`_vectorize` wrapper) refusing values of argument ``value`` at or
-    past the pole that ``below(value, pole)`` marks (True where it is broken)."""
-    signature = inspect.signature(core)
-
-    @functools.wraps(core)
-    def wrapper(*args: Any, **kwargs: Any) -> Any:
-        try:
-            bound = signature.bind(*args, **kwargs)
-        except TypeError as err:
-            raise TypeError(f"{core.__name__}{signature}: {err}") from None
-        for name, given in bound.arguments.items():  # each argument's own rule first
-            _check(name, given)
-        x, p = bound.arguments.get(value), bound.arguments.get(pole)
-        if x is not None and p is not None and not isinstance(x, str) and not isinstance(p, str):
-            with np.errstate(invalid="ignore"):
-                bad = below(np.asarray(x, dtype=float), np.asarray(p, dtype=float))
-            if np.any(bad):
-                first = np.broadcast_to(np.asarray(x, dtype=float), np.shape(bad))[bad].flat[0]
-                raise ValueError(f"{value} = {float(first)!r}: {rule}")
-        return core(*args, **kwargs)
-
-    return wrapper
-
-
-vogel_viscosity = _above_pole(
-    _vectorize(_core.vogel_viscosity),
-    "temperature",
-    "c",
-    "must lie above Vogel's pole, 273.15 K - c (eq. 20)",
-    lambda t, c: t - 273.15 + c <= 0.0,
+vogel_viscosity = _vectorize(
+    _core.vogel_viscosity,
+    before=(
+        (
+            "temperature",
+            "must lie above Vogel's pole, 273.15 K - c (eq. 20)",
+            lambda temperature, c, **_: temperature - 273.15 + c <= 0.0,
+        ),
+    ),
 )
-roelands_viscosity = _above_pole(
-    _vectorize(_core.roelands_viscosity),
-    "pressure",
-    "p_p",
-    "must lie above p_p, the pole of eq. 19",
-    lambda p, p_p: p <= p_p,
+roelands_viscosity = _vectorize(
+    _core.roelands_viscosity,
+    before=(
+        (
+            "pressure",
+            "must lie above p_p, the pole of eq. 19",
+            lambda pressure, p_p, **_: pressure <= p_p,
+        ),
+    ),
 )
 dicke_viscosity = _vectorize(_core.dicke_viscosity)
 carreau_shear_stress = _vectorize(_core.carreau_shear_stress)

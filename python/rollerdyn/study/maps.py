@@ -100,11 +100,6 @@ def parse_range(
             a, b = value(parts[0]), value(parts[1])
             if n < 1:
                 raise StudyError(f"{option} {text!r}: empty range ({n} points); n must be >= 1")
-            if n > MAX_MAP_POINTS:
-                raise StudyError(
-                    f"{option} {text!r}: {n} points; a map has at most {MAX_MAP_POINTS} (each "
-                    "point is a dynamic run)"
-                )
             if a > b:
                 raise StudyError(
                     f"{option} {text!r}: reversed range (a = {parts[0].strip()} > b = "
