@@ -338,6 +338,22 @@ def test_a_failed_run_keeps_its_results_and_says_when_and_where():
     _ = SimulationError
 
 
+def test_only_true_from_the_progress_callback_stops_a_run():
+    """``progress`` stops a run by returning True, Python's or numpy's; any other value lets
+    it go on (a callback that returned its truthy list of times once stopped the run at its
+    first report). 10 ms of the run with loads at rest."""
+    cfg = variant(**{**STATIC, "solver.dt_max": "1e-3 s", "operating.end_time": "0.01 s"})
+    seen: list = []
+    whole = simulate(cfg, threads=1, progress=lambda p: seen.append(p.time) or seen)
+    assert whole.attrs["completed"] == 1 and whole.sizes["time"] == 11
+    for true in (True, np.bool_(True)):
+        stopped = simulate(
+            cfg, threads=1, progress=lambda p, true=true: true if p.time >= 0.003 else 1
+        )
+        assert stopped.attrs["completed"] == 0
+        assert float(stopped.time[-1]) == pytest.approx(0.003)
+
+
 def test_structured_jacobian_matches_central_differences_of_the_whole_rhs():
     """The per-body finite-difference Jacobian against central differences of the full
     right-hand side, at a loaded, rolling, perturbed state (every kind of contact active)."""

@@ -336,6 +336,13 @@ def test_the_core_model_is_built_once_and_answers_as_the_functions_do(b1):
     assert model.energy(0.0, y) == _core.model_energy(params, traction, 0.0, y)
     with pytest.raises(ValueError, match="states"):
         model.rhs(0.0, y[:-1])
+    # counts are checked by name (PyO3 alone said "can't convert negative int to unsigned")
+    with pytest.raises(ValueError, match="threads = -1: must be a whole number in 1"):
+        _core.Model(params, traction, -1)
+    with pytest.raises(ValueError, match="rhs_repetitions = 0"):
+        model.timing(0.0, y, 0, 1)
+    with pytest.raises(ValueError, match="jacobian_repetitions = -2"):
+        model.timing(0.0, y, 1, -2)
 
 
 def test_a_full_disk_is_refused_before_hdf5_writes(tmp_path, monkeypatch):

@@ -6,6 +6,9 @@ import pytest
 from rollerdyn import _core
 from rollerdyn import tribology as tri
 
+#: A traction model with valid arguments (the values of the error test below).
+TRACTION = dict(eta0=0.01, z=0.6, tau0=5e6, n=0.5, chi=0.08, p_star=1e9, tau_l0=8e7)
+
 
 def test_broadcasting_and_scalars():
     out = tri.hertz_point(
@@ -41,6 +44,29 @@ def test_core_errors_are_value_errors_not_panics():
         )
     with pytest.raises(ValueError, match="load_max"):
         _core.fit_line_power_law(2e-3, "convex", 1e-2, 2e-3, 2e11, 0.3, 2e11, 0.3, 1e5, 1e4, 64)
+
+
+@pytest.mark.parametrize(
+    ("call", "named"),
+    [
+        (lambda t: _core.EhlTraction(**TRACTION, nodes=-1), "nodes = -1: must be a whole"),
+        (lambda t: t.ellipse_force_tensor(1e9, 3e-4, 1e-4, 0.05, 2e-7, -3, 8), "across = -3"),
+        (lambda t: t.ellipse_force_tensor(1e9, 3e-4, 1e-4, 0.05, 2e-7, 8, 0), "along = 0"),
+        (lambda t: t.time_per_evaluation(-5), "repetitions = -5"),
+        (
+            lambda t: _core.fit_line_power_law(
+                2e-3, "convex", 1e-2, 2e-3, 2e11, 0.3, 2e11, 0.3, 1e4, 1e5, -64
+            ),
+            r"samples = -64: must be a whole number in 2\.\.=10000",
+        ),
+    ],
+)
+def test_negative_counts_are_refused_by_name(call, named):
+    """A negative count names its argument and range, not PyO3's "can't convert negative int
+    to unsigned" (found by an adversarial pass over the Python API)."""
+    traction = _core.EhlTraction(**TRACTION)
+    with pytest.raises(ValueError, match=named):
+        call(traction)
 
 
 @pytest.mark.parametrize(

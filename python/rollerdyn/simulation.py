@@ -472,7 +472,8 @@ def simulate(
     all cores; at most the cores this process may use; the gradient detector always uses
     one). The result does not depend on it, bit for bit. ``progress(Progress)`` is called
     at every output time and every 0.2 s of wall time between them (``Progress.at_output``
-    tells which); returning True stops the run (the Dataset then ends at the last output). Raises
+    tells which); returning True stops the run (the Dataset then ends at the last output),
+    any other value (None, False, a number, a list) lets it go on. Raises
     :class:`SimulationError` (with the partial Dataset) if the integration fails.
 
     ``checkpoint(ds)`` is called at every checkpoint (every ``solver.checkpoint_interval``
@@ -506,7 +507,10 @@ def simulate(
     def callback(t, t_end_, steps, rhs, jac, step, at_output):
         if progress is None:
             return False
-        return bool(progress(Progress(t, t_end_, steps, rhs, jac, step, at_output)))
+        # Only True (Python's or numpy's) stops; any other value, e.g. a count a callback
+        # returns by accident, lets the run go on.
+        stop = progress(Progress(t, t_end_, steps, rhs, jac, step, at_output))
+        return isinstance(stop, (bool, np.bool_)) and bool(stop)
 
     saving = {"seconds": 0.0}
 

@@ -1,7 +1,7 @@
 //! Bindings of roller end–flange contact detection (core `contact`, paper sect. 2): the
 //! detection benchmark on a roller's trajectory and Eberly's circle–circle distance.
 
-use crate::convert::{core_err, set_fields};
+use crate::convert::{core_err, count, set_fields, MAX_REPETITIONS};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -30,17 +30,17 @@ fn contact_benchmark<'py>(
     raceway_radius: f64,
     pitch_radius: f64,
     axial_play: f64,
-    steps: usize,
+    steps: i64,
     step: f64,
     push: f64,
     wobble: f64,
-    reference_every: usize,
-    mesh_every: usize,
+    reference_every: i64,
+    mesh_every: i64,
     mesh_resolutions: Vec<(usize, usize)>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    if steps == 0 {
-        return Err(PyValueError::new_err("steps = 0: must be at least 1"));
-    }
+    let steps = count("steps", steps, 1..=MAX_REPETITIONS)?;
+    let reference_every = count("reference_every", reference_every, 0..=MAX_REPETITIONS)?;
+    let mesh_every = count("mesh_every", mesh_every, 0..=MAX_REPETITIONS)?;
     let shape = RollerShape::new(
         0.5 * roller_diameter,
         roller_length,

@@ -3,6 +3,8 @@
 //! one-line description), core errors as `ValueError`, named choices, dicts filled from a
 //! struct's fields and the registration of a module's functions.
 
+use std::ops::RangeInclusive;
+
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -12,6 +14,24 @@ use pyo3::types::PyDict;
 pub(crate) type Array<'py> = Bound<'py, PyArray1<f64>>;
 /// A float64 array argument.
 pub(crate) type In<'py> = PyReadonlyArray1<'py, f64>;
+
+/// A count argument (a Python int) named `name`, which must lie in `range`; a `ValueError`
+/// naming it, its value and the range otherwise (PyO3's own conversion to an unsigned
+/// integer says only "can't convert negative int to unsigned").
+pub(crate) fn count(name: &str, value: i64, range: RangeInclusive<usize>) -> PyResult<usize> {
+    match usize::try_from(value) {
+        Ok(v) if range.contains(&v) => Ok(v),
+        _ => Err(PyValueError::new_err(format!(
+            "{name} = {value}: must be a whole number in {}..={}",
+            range.start(),
+            range.end()
+        ))),
+    }
+}
+
+/// Most right-hand sides, Jacobians or trajectory steps a timing call takes (a count above it
+/// is a mistake, not a benchmark).
+pub(crate) const MAX_REPETITIONS: usize = 1_000_000_000;
 
 /// A core error as a `ValueError` carrying the core's message (quantity, value, rule).
 pub(crate) fn core_err(e: rollerdyn_core::Error) -> PyErr {

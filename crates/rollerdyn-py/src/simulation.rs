@@ -4,7 +4,7 @@
 //! timing and energy at one state (for tests and `rollerdyn bench model`). The results of
 //! a run come back as a dict of flat arrays (`rollerdyn.simulation` shapes them).
 
-use crate::convert::{core_err, set_fields};
+use crate::convert::{core_err, count, set_fields, MAX_REPETITIONS};
 use crate::params::{bearing_params, run_options};
 use crate::traction::PyEhlTraction;
 use numpy::PyArray1;
@@ -90,9 +90,11 @@ fn model_timing<'py>(
     traction: &PyEhlTraction,
     t: f64,
     y: Vec<f64>,
-    rhs_repetitions: usize,
-    jacobian_repetitions: usize,
+    rhs_repetitions: i64,
+    jacobian_repetitions: i64,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let (rhs_repetitions, jacobian_repetitions) =
+        repetitions(rhs_repetitions, jacobian_repetitions)?;
     let model = model_for(params, traction, &y)?;
     let workspace = Workspace::single(&model);
     timing(
@@ -103,6 +105,18 @@ fn model_timing<'py>(
         rhs_repetitions,
         jacobian_repetitions,
     )
+}
+
+/// Most threads a model may be asked for (the workspace takes at most the cores; a count
+/// above this is a mistake).
+const MAX_THREADS: usize = 1 << 20;
+
+/// The timing calls' counts: at least one right-hand side, any number of Jacobians.
+fn repetitions(rhs: i64, jacobian: i64) -> PyResult<(usize, usize)> {
+    Ok((
+        count("rhs_repetitions", rhs, 1..=MAX_REPETITIONS)?,
+        count("jacobian_repetitions", jacobian, 0..=MAX_REPETITIONS)?,
+    ))
 }
 
 /// [`model_timing`] of a built model.
@@ -116,7 +130,7 @@ fn timing<'py>(
 ) -> PyResult<Bound<'py, PyDict>> {
     let y = y.to_vec();
     let n = model.len();
-    let (rhs_n, jac_n) = (rhs_repetitions.max(1), jacobian_repetitions);
+    let (rhs_n, jac_n) = (rhs_repetitions, jacobian_repetitions);
     let mut dy = vec![0.0; n];
     let mut jac = nalgebra::DMatrix::zeros(n, n);
     model.rhs(t, &y, &mut dy); // warm-up (and the gradient detector's warm starts)
@@ -459,7 +473,8 @@ impl PyModel {
 impl PyModel {
     #[new]
     #[pyo3(signature = (params, traction, threads=1))]
-    fn new(params: &Bound<'_, PyDict>, traction: &PyEhlTraction, threads: usize) -> PyResult<Self> {
+    fn new(params: &Bound<'_, PyDict>, traction: &PyEhlTraction, threads: i64) -> PyResult<Self> {
+        let threads = count("threads", threads, 1..=MAX_THREADS)?;
         let model =
             BearingModel::new(bearing_params(params, &traction.inner)?).map_err(core_err)?;
         let workspace = Workspace::new(&model, threads).map_err(core_err)?;
@@ -516,9 +531,11 @@ impl PyModel {
         py: Python<'py>,
         t: f64,
         y: Vec<f64>,
-        rhs_repetitions: usize,
-        jacobian_repetitions: usize,
+        rhs_repetitions: i64,
+        jacobian_repetitions: i64,
     ) -> PyResult<Bound<'py, PyDict>> {
+        let (rhs_repetitions, jacobian_repetitions) =
+            repetitions(rhs_repetitions, jacobian_repetitions)?;
         let y = self.state(&y)?;
         timing(
             py,

@@ -2,11 +2,15 @@
 //! `rollerdyn._core.EhlTraction` (core `tribology::traction`, paper sect. 3.2.1: Roelands
 //! eq. 19, Carreau eq. 21, the limiting shear stress eq. 50).
 
-use crate::convert::elementwise;
+use crate::convert::{count, elementwise, MAX_REPETITIONS};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rollerdyn_core::tribology::lubricant::{Carreau, Roelands};
 use rollerdyn_core::tribology::traction::{EhlTraction, LimitingShearStress, TableGrid};
+
+/// Most nodes across or along an ellipse of `ellipse_force_tensor` (the paper's scheme
+/// converges with tens; a count above it is a mistake, not a quadrature).
+const MAX_ELLIPSE_NODES: usize = 10_000;
 
 /// The EHL traction model of one lubricant at one temperature (paper sect. 3.2.1).
 #[pyclass(name = "EhlTraction", module = "rollerdyn._core")]
@@ -32,7 +36,7 @@ elementwise! {
             lss_smoothing: f64,
             eta_p: f64,
             p_p: f64,
-            nodes: usize,
+            nodes: i64,
             tabulated: bool,
         ) -> PyResult<Self> {
             for (name, v) in [
@@ -65,11 +69,7 @@ elementwise! {
                     "n = {n}: must lie in (0, 1]"
                 )));
             }
-            if !(1..=200).contains(&nodes) {
-                return Err(PyValueError::new_err(format!(
-                    "nodes = {nodes}: must lie in 1..=200"
-                )));
-            }
+            let nodes = count("nodes", nodes, 1..=200)?;
             let lss = LimitingShearStress {
                 chi,
                 p_star,
@@ -98,12 +98,11 @@ elementwise! {
             semi_minor: f64,
             sliding_speed: f64,
             film: f64,
-            across: usize,
-            along: usize,
+            across: i64,
+            along: i64,
         ) -> PyResult<f64> {
-            if across == 0 || along == 0 {
-                return Err(PyValueError::new_err("across and along must be at least 1"));
-            }
+            let across = count("across", across, 1..=MAX_ELLIPSE_NODES)?;
+            let along = count("along", along, 1..=MAX_ELLIPSE_NODES)?;
             Ok(self.inner.ellipse_force_tensor(
                 max_pressure,
                 semi_major,
@@ -117,15 +116,15 @@ elementwise! {
 
         /// Nanoseconds per line-slice and per ellipse traction evaluation, timed over
         /// `repetitions` evaluations on B1-like contacts (for `rollerdyn bench`).
-        fn time_per_evaluation(&self, repetitions: usize) -> (f64, f64) {
-            let reps = repetitions.max(1);
+        fn time_per_evaluation(&self, repetitions: i64) -> PyResult<(f64, f64)> {
+            let reps = count("repetitions", repetitions, 1..=MAX_REPETITIONS)?;
             let line = nanoseconds_per_call(reps, |p0, du| {
                 self.inner.line_force(p0, 1.2e-4, 2.5e-4, 0.01 + du, 2e-7)
             });
             let ellipse = nanoseconds_per_call(reps, |p0, du| {
                 self.inner.ellipse_force(p0, 3e-4, 1e-4, 0.05 + du, 2e-7)
             });
-            (line, ellipse)
+            Ok((line, ellipse))
         }
     }
 

@@ -5,7 +5,7 @@
 //! arrays of equal length (the Python wrappers in `rollerdyn.tribology` broadcast and
 //! reshape); scalars are model parameters.
 
-use crate::convert::{add_functions, choose, core_err, elementwise, set_fields};
+use crate::convert::{add_functions, choose, core_err, count, elementwise, set_fields};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{IntoPyDict, PyDict};
@@ -214,8 +214,9 @@ fn fit_line_power_law<'py>(
     nu2: f64,
     load_min: f64,
     load_max: f64,
-    samples: usize,
+    samples: i64,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let samples = count("samples", samples, LinePowerLaw::SAMPLES)?;
     let roller = elastic(e1, nu1);
     let counter = elastic(e2, nu2);
     let c = tripp_contact(

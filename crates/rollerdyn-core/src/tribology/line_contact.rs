@@ -182,6 +182,9 @@ impl LinePowerLaw {
         (self.k1 * force / length).powf(self.k2)
     }
 
+    /// The sample counts [`Self::fit`] takes.
+    pub const SAMPLES: std::ops::RangeInclusive<usize> = 2..=10_000;
+
     /// Fits k₁, k₂ to Tripp over loads per unit length in [q_min, q_max] (log-spaced
     /// samples), minimising the largest relative force error: a least-squares line in
     /// (ln δ, ln q), then Lawson's iteratively reweighted least squares towards the
@@ -192,7 +195,7 @@ impl LinePowerLaw {
         q_max: f64,
         samples: usize,
     ) -> Result<(Self, FitReport)> {
-        if !(2..=10_000).contains(&samples) {
+        if !Self::SAMPLES.contains(&samples) {
             return Err(Error::InvalidParameter {
                 name: "line fit samples",
                 value: samples as f64,
