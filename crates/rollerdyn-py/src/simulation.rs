@@ -93,8 +93,6 @@ fn model_timing<'py>(
     rhs_repetitions: i64,
     jacobian_repetitions: i64,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let (rhs_repetitions, jacobian_repetitions) =
-        repetitions(rhs_repetitions, jacobian_repetitions)?;
     let model = model_for(params, traction, &y)?;
     let workspace = Workspace::single(&model);
     timing(
@@ -111,26 +109,24 @@ fn model_timing<'py>(
 /// above this is a mistake).
 const MAX_THREADS: usize = 1 << 20;
 
-/// The timing calls' counts: at least one right-hand side, any number of Jacobians.
-fn repetitions(rhs: i64, jacobian: i64) -> PyResult<(usize, usize)> {
-    Ok((
-        count("rhs_repetitions", rhs, 1..=MAX_REPETITIONS)?,
-        count("jacobian_repetitions", jacobian, 0..=MAX_REPETITIONS)?,
-    ))
-}
-
-/// [`model_timing`] of a built model.
+/// [`model_timing`] of a built model: at least one right-hand side, any number of
+/// Jacobians.
 fn timing<'py>(
     py: Python<'py>,
     model: &BearingSystem<'_>,
     t: f64,
     y: &[f64],
-    rhs_repetitions: usize,
-    jacobian_repetitions: usize,
+    rhs_repetitions: i64,
+    jacobian_repetitions: i64,
 ) -> PyResult<Bound<'py, PyDict>> {
+    let rhs_n = count("rhs_repetitions", rhs_repetitions, 1..=MAX_REPETITIONS)?;
+    let jac_n = count(
+        "jacobian_repetitions",
+        jacobian_repetitions,
+        0..=MAX_REPETITIONS,
+    )?;
     let y = y.to_vec();
     let n = model.len();
-    let (rhs_n, jac_n) = (rhs_repetitions, jacobian_repetitions);
     let mut dy = vec![0.0; n];
     let mut jac = nalgebra::DMatrix::zeros(n, n);
     model.rhs(t, &y, &mut dy); // warm-up (and the gradient detector's warm starts)
@@ -534,8 +530,6 @@ impl PyModel {
         rhs_repetitions: i64,
         jacobian_repetitions: i64,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let (rhs_repetitions, jacobian_repetitions) =
-            repetitions(rhs_repetitions, jacobian_repetitions)?;
         let y = self.state(&y)?;
         timing(
             py,
