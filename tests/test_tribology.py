@@ -8,6 +8,22 @@ from rollerdyn import tribology as tri
 
 #: A traction model with valid arguments (the values of the error test below).
 TRACTION = dict(eta0=0.01, z=0.6, tau0=5e6, n=0.5, chi=0.08, p_star=1e9, tau_l0=8e7)
+# B1's roller end and inner flange (examples/b1.toml), one trajectory step.
+CONTACT_BENCHMARK = dict(
+    roller_diameter=4.495e-3,
+    roller_length=5e-3,
+    edge_radius=0.5e-3,
+    end_face_radius=5.0,
+    opening_angle=1.92e-3,
+    flange_height=1.1e-3,
+    root_radius=0.2e-3,
+    rim_radius=0.3e-3,
+    raceway_radius=10e-3,
+    pitch_radius=12.25e-3,
+    axial_play=20e-6,
+    steps=1,
+    mesh_every=1,
+)
 
 
 def test_broadcasting_and_scalars():
@@ -58,6 +74,16 @@ def test_core_errors_are_value_errors_not_panics():
                 2e-3, "convex", 1e-2, 2e-3, 2e11, 0.3, 2e11, 0.3, 1e4, 1e5, -64
             ),
             r"samples = -64: must be a whole number in 2\.\.=10000",
+        ),
+        (
+            lambda t: _core.contact_benchmark(**CONTACT_BENCHMARK, mesh_resolutions=[(32, -8)]),
+            r"mesh_resolutions\[0\]\.along = -8: must be a whole number in 1\.\.=4096",
+        ),
+        (
+            lambda t: _core.contact_benchmark(
+                **CONTACT_BENCHMARK, mesh_resolutions=[(8, 2), (10**6, 2)]
+            ),
+            r"mesh_resolutions\[1\]\.around = 1000000",
         ),
     ],
 )

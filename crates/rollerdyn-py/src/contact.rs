@@ -12,6 +12,10 @@ use rollerdyn_core::geometry::end_flange::{Flange, FlangePlacement, FlangeShape}
 use rollerdyn_core::geometry::primitives::Vec3;
 use rollerdyn_core::geometry::roller::RollerShape;
 
+/// Most segments of a mesh along either direction: (4096, 4096) already meshes each figure
+/// with 16.8 million vertices (the benchmark's finest is (128, 32)).
+const MAX_MESH_SEGMENTS: usize = 4096;
+
 /// Roller end / flange detection benchmark on a roller's trajectory against one inner-ring
 /// flange (see core `contact::benchmark`). Lengths in m, angles in rad.
 #[pyfunction]
@@ -36,7 +40,7 @@ fn contact_benchmark<'py>(
     wobble: f64,
     reference_every: i64,
     mesh_every: i64,
-    mesh_resolutions: Vec<(usize, usize)>,
+    mesh_resolutions: Vec<(i64, i64)>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let steps = count("steps", steps, 1..=MAX_REPETITIONS)?;
     let reference_every = count("reference_every", reference_every, 0..=MAX_REPETITIONS)?;
@@ -91,11 +95,18 @@ fn contact_benchmark<'py>(
         semi_max_penetration_error,
         reference_checks,
     );
-    if mesh_every > 0 && !mesh_resolutions.is_empty() {
-        let resolutions: Vec<MeshResolution> = mesh_resolutions
-            .iter()
-            .map(|&(around, along)| MeshResolution { around, along })
-            .collect();
+    let resolutions = mesh_resolutions
+        .iter()
+        .enumerate()
+        .map(|(k, &(around, along))| {
+            let name = |part: &str| format!("mesh_resolutions[{k}].{part}");
+            Ok(MeshResolution {
+                around: count(&name("around"), around, 3..=MAX_MESH_SEGMENTS)?,
+                along: count(&name("along"), along, 1..=MAX_MESH_SEGMENTS)?,
+            })
+        })
+        .collect::<PyResult<Vec<_>>>()?;
+    if mesh_every > 0 && !resolutions.is_empty() {
         let points =
             py.detach(|| mesh_study(&shape, &flange, &trajectory, mesh_every, &resolutions));
         let rows: Vec<(usize, usize, f64, f64, usize)> = points
