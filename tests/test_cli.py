@@ -206,3 +206,14 @@ def test_run_checkpoint_interval_option(tmp_path):
         assert refused.exit_code == 2, (bad, refused.output)
         assert "--save-interval" in refused.output and "Traceback" not in refused.output
         assert bad == "often" or "at least 0 s" in refused.output
+
+
+def test_the_run_line_gives_a_short_runs_wall_time_in_significant_digits():
+    """`rollerdyn run`'s closing line gave a 12 ms integration as "0.0 s wall", beside a
+    progress line of 0.7 s (the model's construction included): three significant digits
+    below 10 s, tenths above."""
+    from rollerdyn.cli.run import _seconds
+
+    assert _seconds(0.0118) == "0.0118 s"
+    assert _seconds(3.14159) == "3.14 s"
+    assert _seconds(46.43) == "46.4 s"

@@ -277,9 +277,16 @@ def _run_line(output: Path, ds) -> str:
         f"wrote {output}: {ds.sizes['time']} outputs to t = {st['final_time_s']:.6g} s; "
         f"{st['stats_steps']} steps ({st.get('stats_error_test_failures', 0)} rejected), "
         f"{st['stats_rhs_evaluations']} right-hand sides, "
-        f"{st['stats_jacobian_evaluations']} Jacobians, {st['stats_total_seconds']:.1f} s wall "
+        f"{st['stats_jacobian_evaluations']} Jacobians, "
+        f"{_seconds(st['stats_total_seconds'])} of wall time integrating "
         f"on {st.get('threads', 1)} thread(s)"
     )
+
+
+def _seconds(wall: float) -> str:
+    """A wall time as text: three significant digits below 10 s (a short run's 0.013 s
+    is not "0.0 s"), tenths above."""
+    return f"{wall:.3g} s" if wall < 10 else f"{wall:.1f} s"
 
 
 def _rate(simulated: float, wall: float) -> str:
