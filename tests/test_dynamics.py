@@ -770,8 +770,9 @@ def test_paper_findings_torus_cone_dominates_in_the_load_zone_without_tilt():
 def test_paper_findings_other_pairings_appear_with_inner_ring_tilt():
     """Paper sect. 5.2, figs. 8, 9: "If tilting of the inner ring is allowed, then other
     contact pairs occur more often", the tilt being about z, perpendicular to the axial and
-    the radial load. Here the tilt is prescribed (inner_ring.misalignment; the free tilt is
-    too slow to run, docs/dynamics.md): with 0.05 deg (the start's limit is about 0.07 deg,
+    the radial load. Here the tilt is prescribed (inner_ring.misalignment; with the paper's
+    point law the free tilt stalls in the load ramp, docs/dynamics.md, "Free inner ring
+    tilt"): with 0.05 deg (the start's limit is about 0.07 deg,
     where the flanges reach the rollers), in the load zone of the same rolling variant as
     the test above, at least 10 % of the inner ring's flange contacts use another pairing
     than TO-CO (measured: 42 %, SP-CO and SP-TO(rim) at the flange the tilt presses on),
