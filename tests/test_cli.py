@@ -73,6 +73,25 @@ def test_bench_model_times_rhs_and_jacobian(tmp_path):
     assert bad.exit_code == 2 and "--state" in bad.output and "Traceback" not in bad.output
 
 
+def test_bench_thread_counts_are_capped_at_the_cores_and_not_repeated(monkeypatch, capsys):
+    # On a machine whose process may use 2 cores, "--threads 1,4,all,2" runs each case on
+    # 1 and 2 threads once each (a run never uses more threads than cores), and says that
+    # the 4 was capped; bad counts are refused by name.
+    import rollerdyn.simulation
+    from rollerdyn.cli.bench import _thread_counts
+
+    monkeypatch.setattr(rollerdyn.simulation, "default_threads", lambda: 2)
+    assert _thread_counts("1,4,all,2") == [1, 2]
+    assert "--threads 4: this process may use 2 core(s); runs on 2" in capsys.readouterr().err
+    assert _thread_counts("2,1") == [2, 1]
+    assert capsys.readouterr().err == ""
+    import typer
+
+    with pytest.raises(typer.Exit) as refused:
+        _thread_counts("1,0")
+    assert refused.value.exit_code == 2
+
+
 def test_bench_refuses_unknown_target():
     result = RUNNER.invoke(app, ["bench", "everything"])
     assert result.exit_code == 2

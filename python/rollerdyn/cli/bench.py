@@ -96,7 +96,8 @@ def bench(
         typer.Option(
             "--threads",
             help="mbs --cases: thread counts to run each case on, comma-separated (e.g. 1,2); "
-            "'all' for all cores. Default 1.",
+            "'all' for all cores; a count above the cores this process may use runs on "
+            "those. Default 1.",
         ),
     ] = "1",
     max_wall: Annotated[
@@ -202,18 +203,29 @@ def _dt_max_values(text: str) -> list[float]:
 
 
 def _thread_counts(text: str) -> list[int]:
-    """``--threads`` of ``bench``: comma-separated counts or 'all'."""
+    """``--threads`` of ``bench``: comma-separated counts or 'all', each capped at the cores
+    this process may use (as the run caps them), without repeats; a capped count is named
+    on stderr."""
     from ..simulation import default_threads
 
-    counts = []
+    cores = default_threads()
+    counts: list[int] = []
     for part in text.split(","):
         part = part.strip()
         if part == "all":
-            counts.append(default_threads())
+            count = cores
         elif part.isdigit() and int(part) >= 1:
-            counts.append(int(part))
+            count = int(part)
         else:
             raise refuse(
                 f"--threads = {text!r}: must be comma-separated whole numbers >= 1 or 'all'"
             )
+        if count > cores:
+            typer.echo(
+                f"--threads {count}: this process may use {cores} core(s); runs on {cores}",
+                err=True,
+            )
+            count = cores
+        if count not in counts:
+            counts.append(count)
     return counts
