@@ -713,6 +713,23 @@ def test_cli_refuses_bad_input_naming_the_option(tmp_path, study):
     assert sorted((p.name, p.stat().st_mtime_ns) for p in out.rglob("*")) == before
 
 
+def test_map_ramp_is_refused_without_short_ramps(tmp_path):
+    # --ramp only shapes the short ramps; with the default start (equilibrium) it would be
+    # ignored, so it is refused naming the start, and with --start short-ramps it is taken
+    _refused(
+        ["study", "map", str(B1), "--speed", "500", "--ramp", "10 ms"]
+        + ["-o", str(tmp_path / "m")],
+        "--ramp 10 ms: sets the short ramps of --start short-ramps",
+        "--start equilibrium",
+    )
+    _refused(
+        ["study", "map", str(B1), "--speed", "500", "--start", "short-ramps", "--ramp", "-1"]
+        + ["-o", str(tmp_path / "m")],
+        "--ramp",
+    )
+    assert not (tmp_path / "m").exists()
+
+
 def test_cli_study_paper_short_version_and_its_rerun(tmp_path, client):
     address = client.scheduler_info()["address"]
     args = [
@@ -766,6 +783,12 @@ def test_cli_help_explains_units_and_defaults():
     map_help = RUNNER.invoke(app, ["study", "map", "--help"]).output
     for text in ("rpm", "in N", "--tol", "N*m", "default: results/map", "0.02", "a:b:n"):
         assert text in map_help, text
+    # a point starts from equilibrium unless told otherwise, from the command line and from
+    # Python alike (docs/study.md: about half the wall time of short ramps when loaded)
+    assert "Default: equilibrium" in " ".join(map_help.split())
+    import inspect
+
+    assert inspect.signature(operating_map).parameters["start"].default == "equilibrium"
 
 
 def test_no_study_file_is_over_700_lines():

@@ -275,14 +275,20 @@ def map_command(
         str,
         typer.Option(
             "--start",
-            help="How each point starts: short-ramps (loads over 0 ... --ramp, speed over "
-            "--ramp ... 2 --ramp), equilibrium (full load and speed from t = 0, from the "
-            "quasi-static equilibrium) or config (the configuration's own ramps).",
+            help="How each point starts: equilibrium (full load and speed from t = 0, from "
+            "the quasi-static equilibrium: about half the wall time of short ramps for a "
+            "loaded point), short-ramps (loads over 0 ... --ramp, speed over --ramp ... 2 "
+            "--ramp) or config (the configuration's own ramps). Default: equilibrium.",
         ),
-    ] = "short-ramps",
+    ] = "equilibrium",
     ramp: Annotated[
-        str, typer.Option("--ramp", help="Length of each short ramp.", metavar="TIME")
-    ] = "20 ms",
+        str | None,
+        typer.Option(
+            "--ramp",
+            help="Length of each short ramp, with --start short-ramps only. Default: 20 ms.",
+            metavar="TIME",
+        ),
+    ] = None,
     window: Annotated[
         str,
         typer.Option(
@@ -329,7 +335,13 @@ def map_command(
     """
     from ..study import operating_map
 
-    ramp_s = time_option("--ramp", ramp)
+    if ramp is not None and start != "short-ramps":
+        raise refuse(
+            f"--ramp {ramp}: sets the short ramps of --start short-ramps; the points start "
+            f"as --start {start} says (the default is equilibrium: full load and speed from "
+            "t = 0)"
+        )
+    ramp_s = time_option("--ramp", "20 ms" if ramp is None else ramp)
     window_s = time_option("--window", window)
     max_time_s = time_option("--max-time", max_time)
     load(config)

@@ -26,10 +26,11 @@ from .steady import SteadyRule, epicyclic_factor, window_length, window_outputs
 
 RPM = 2.0 * math.pi / 60.0
 
-#: How a grid point starts: "short-ramps" (loads over 0 ... --ramp, speed over --ramp ...
-#: 2 --ramp, cosine), "equilibrium" (full load and speed from t = 0, from the
-#: quasi-static equilibrium, solver.start) or "config" (the configuration's own ramps).
-STARTS = ("short-ramps", "equilibrium", "config")
+#: How a grid point starts: "equilibrium" (full load and speed from t = 0, from the
+#: quasi-static equilibrium, solver.start; the default), "short-ramps" (loads over 0 ...
+#: --ramp, speed over --ramp ... 2 --ramp, cosine) or "config" (the configuration's own
+#: ramps).
+STARTS = ("equilibrium", "short-ramps", "config")
 
 #: The configuration paths the grid sets, and their options.
 OPTIONS = {
@@ -169,7 +170,7 @@ def operating_map(
     speed: Any,
     radial_load: Any = None,
     axial_load: Any = None,
-    start: str = "short-ramps",
+    start: str = "equilibrium",
     ramp: float = 0.02,
     window: float = 0.01,
     tol: float = 0.02,
