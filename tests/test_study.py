@@ -639,6 +639,23 @@ def test_map_point_stops_when_steady(tmp_path, client):
     )
     assert (tmp_path / "map" / "map.csv").is_file()
     assert {p.name for p in (tmp_path / "map" / "figures").iterdir()} >= {"map_torque.png"}
+    # a worker stopped while writing the point's file (Ctrl-C) leaves point_0000.nc.tmp<pid>
+    # beside it; the next invocation reuses the point and removes what the dead writer left
+    stale = tmp_path / "map" / "points" / "point_0000.nc.tmp999999999"
+    stale.write_bytes(b"half a netCDF file")
+    again = operating_map(
+        B1,
+        tmp_path / "map",
+        speed="3000",
+        axial_load="0",
+        start="equilibrium",
+        window=0.001,
+        tol=0.5,
+        max_time=0.03,
+        scheduler=client,
+    )
+    assert again.points.iloc[0]["steady at [s]"] == steady_at
+    assert not stale.exists()
 
 
 # --------------------------------------------------------------------------- command line

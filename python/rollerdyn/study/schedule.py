@@ -123,13 +123,19 @@ def run_all(
     "reused"}`` once, ``{"kind": "update", "name", "t", "t_end", "steps"}`` from the runs
     (about once a second each), ``{"kind": "done", "name", "record"}`` as each ends.
     ``retries``: how many more times Dask runs a task whose worker died. ``stop_rules``:
-    {name: rule} handed to :func:`.runs.execute` (a run ends early when its rule says)."""
+    {name: rule} handed to :func:`.runs.execute` (a run ends early when its rule says).
+    First it removes the temporary files a killed writer left beside the runs' files
+    (:func:`rollerdyn.paths.remove_stale_temporaries`)."""
     from distributed import as_completed
 
+    from ..paths import remove_stale_temporaries
     from ..sweep import disconnect
     from .runs import record
 
     outdir = Path(outdir)
+    for spec in specs:
+        # what a worker stopped while writing a run's file left beside it (Ctrl-C, kill -9)
+        remove_stale_temporaries(outdir / spec.file)
     pending, found = pending_runs(specs, outdir)
     records: dict[str, dict] = {}
     waiting = {s.name for s in pending}
