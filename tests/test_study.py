@@ -732,7 +732,8 @@ def test_cli_refuses_bad_input_naming_the_option(tmp_path, study):
 
 def test_map_ramp_is_refused_without_short_ramps(tmp_path):
     # --ramp only shapes the short ramps; with the default start (equilibrium) it would be
-    # ignored, so it is refused naming the start, and with --start short-ramps it is taken
+    # ignored, so it is refused naming the start; with --start short-ramps it is read (a
+    # bad one refused as such)
     _refused(
         ["study", "map", str(B1), "--speed", "500", "--ramp", "10 ms"]
         + ["-o", str(tmp_path / "m")],

@@ -186,7 +186,8 @@ def operating_map(
 
     ``speed`` [rpm], ``radial_load`` and ``axial_load`` [N]: ``"a:b:n"``, ``"v1,v2"``, a
     number or a list (see :func:`parse_range`); loads default to the configuration's.
-    ``start``: one of :data:`STARTS`; ``ramp`` [s]: the short ramps' length. ``window``
+    ``start``: one of :data:`STARTS`; ``ramp`` [s]: the short ramps' length (read only
+    with ``start="short-ramps"``; the command line refuses ``--ramp`` otherwise). ``window``
     [s], ``tol`` [1]: the steadiness criterion; ``max_time`` [s]: simulated time at which
     a point that is not steady ends; ``max_wall`` [s]: wall-time cap per point and
     invocation. Other arguments as in :func:`rollerdyn.study.paper`."""
