@@ -803,7 +803,7 @@ def test_cli_help_explains_units_and_defaults():
         assert text in map_help, text
     # a point starts from equilibrium unless told otherwise, from the command line and from
     # Python alike (docs/study.md: about half the wall time of short ramps when loaded)
-    assert "Default: equilibrium" in " ".join(map_help.split())
+    assert "[default: equilibrium]" in " ".join(map_help.split())
     import inspect
 
     assert inspect.signature(operating_map).parameters["start"].default == "equilibrium"

@@ -278,7 +278,7 @@ def map_command(
             help="How each point starts: equilibrium (full load and speed from t = 0, from "
             "the quasi-static equilibrium: about half the wall time of short ramps for a "
             "loaded point), short-ramps (loads over 0 ... --ramp, speed over --ramp ... 2 "
-            "--ramp) or config (the configuration's own ramps). Default: equilibrium.",
+            "--ramp) or config (the configuration's own ramps).",
         ),
     ] = "equilibrium",
     ramp: Annotated[
