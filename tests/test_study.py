@@ -658,6 +658,50 @@ def test_map_point_stops_when_steady(tmp_path, client):
     assert not stale.exists()
 
 
+def test_equilibrium_refusal_names_why_a_point_has_no_equilibrium():
+    # B1 with the free inner-ring tilt and the distributed law at 1000 N: the statics tilt
+    # the ring until one roller end presses its flange past ISO 76's 4 GPa, so there is no
+    # equilibrium to start from (measured: 4.2 GPa at roller 14), though the dynamic run
+    # from short ramps reaches a steady state with 155 N flange forces (docs/study.md);
+    # the locked ring has one
+    from rollerdyn.model import Model
+    from rollerdyn.study.maps import RPM, equilibrium_refusal, point_config
+
+    free = variant(**{"inner_ring.tilt": "free", "surfaces.flange_law": "distributed"})
+    traction = Model(free).traction_model(tabulated=False)
+    point, _ = point_config(free, 1000 * RPM, 5000.0, 1000.0, "equilibrium", 0.02)
+    reason = equilibrium_refusal(point, traction)
+    assert reason is not None and "cannot carry" in reason and "ISO 76" in reason, reason
+    assert not reason.startswith("solver.start")
+    locked, _ = point_config(load_b1(), 1000 * RPM, 5000.0, 1000.0, "equilibrium", 0.02)
+    assert equilibrium_refusal(locked, traction) is None
+
+
+def test_map_point_without_equilibrium_starts_from_short_ramps(tmp_path, client, monkeypatch):
+    # a point the statics cannot start (here by decree, for speed) runs from the short
+    # ramps instead of failing, and its row's start says so and why
+    import rollerdyn.study.maps as maps
+
+    monkeypatch.setattr(maps, "equilibrium_refusal", lambda variant, traction: "a reason")
+    result = operating_map(
+        B1,
+        tmp_path / "map",
+        speed="3000",
+        axial_load="0",
+        ramp=0.002,
+        window=0.001,
+        tol=0.5,
+        max_time=0.04,
+        max_wall=60,
+        scheduler=client,
+    )
+    row = result.points.iloc[0]
+    assert row["start"] == f"{maps.FALLBACK} (a reason)"
+    assert row["status"] in ("steady", "not steady") and row["reached [s]"] > 0.004
+    with xr.open_dataset(tmp_path / "map" / "points" / "point_0000.nc", engine="h5netcdf") as f:
+        assert float(f.radial_load.values[0]) < 1.0  # loads ramped up from 0, not at once
+
+
 # --------------------------------------------------------------------------- command line
 
 

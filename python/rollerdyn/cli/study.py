@@ -559,9 +559,14 @@ def _print_runs(frame, title: str) -> None:
 
 def _print_map(frame, title: str) -> None:
     def status(row) -> str:
-        if row["status"] in ("steady", "not steady"):
-            return row["status"]
-        return row["note"] or row["status"]
+        text = row["status"] if row["status"] in ("steady", "not steady") else None
+        text = text or row["note"] or row["status"]
+        from ..study.maps import FALLBACK
+
+        if str(row.get("start", "")).startswith(FALLBACK):
+            # no equilibrium at t = 0: the point ran from short ramps (docs/study.md)
+            text = f"{text} (from short ramps: no equilibrium)"
+        return text
 
     _print_frame(frame, title, _MAP_COLUMNS, status)
 

@@ -163,6 +163,25 @@ def point_config(cfg, speed: float, radial: float, axial: float, start: str, ram
     return variant, settle
 
 
+def equilibrium_refusal(variant, traction) -> str | None:
+    """Why ``variant`` has no quasi-static equilibrium at t = 0 (the start of
+    ``solver.start = "equilibrium"``: the core's message, without its prefix), or None if
+    it has one. ``traction``: any traction model of the configuration (the equilibrium
+    does not evaluate it)."""
+    from .. import _core
+    from ..simulation import model_parameters
+
+    try:
+        _core.equilibrium_state(model_parameters(variant, variant.solver.detector), traction, 0.0)
+    except ValueError as err:
+        return str(err).removeprefix("solver.start = equilibrium: ").strip()
+    return None
+
+
+#: The start a grid point falls back to when it has no equilibrium (column ``start``).
+FALLBACK = "short-ramps: no equilibrium at t = 0"
+
+
 def operating_map(
     config: Any,
     outdir: str | os.PathLike = "results/map",
@@ -186,14 +205,17 @@ def operating_map(
 
     ``speed`` [rpm], ``radial_load`` and ``axial_load`` [N]: ``"a:b:n"``, ``"v1,v2"``, a
     number or a list (see :func:`parse_range`); loads default to the configuration's.
-    ``start``: one of :data:`STARTS`; ``ramp`` [s]: the short ramps' length (read only
-    with ``start="short-ramps"``; the command line refuses ``--ramp`` otherwise). ``window``
+    ``start``: one of :data:`STARTS`; a point without a quasi-static equilibrium at t = 0
+    (:func:`equilibrium_refusal`) starts from short ramps instead, and its row's ``start``
+    says so and why (:data:`FALLBACK`). ``ramp`` [s]: the short ramps' length (read only
+    with short ramps; the command line refuses ``--ramp`` otherwise). ``window``
     [s], ``tol`` [1]: the steadiness criterion; ``max_time`` [s]: simulated time at which
     a point that is not steady ends; ``max_wall`` [s]: wall-time cap per point and
     invocation. Other arguments as in :func:`rollerdyn.study.paper`."""
     import pandas as pd
 
     from ..config import ConfigError
+    from ..model import Model
     from ..simulation import as_config
     from .folder import prepare_folder
     from .map_figures import write_maps
@@ -242,10 +264,21 @@ def operating_map(
     factor = epicyclic_factor(g.roller_diameter, g.pitch_diameter)
     specs, rules, grid = [], {}, []
     problems = []
+    traction = None
     for i, (w, fr, fa) in enumerate(itertools.product(speeds, radial, axial)):
         label = f"{w / RPM:g} rpm, F_r = {fr:g} N, F_a = {fa:g} N"
         try:
             variant, settle = point_config(cfg, w, fr, fa, start, ramp)
+            started = start
+            if start == "equilibrium":
+                if traction is None:
+                    traction = Model(cfg).traction_model(tabulated=False)
+                refusal = equilibrium_refusal(variant, traction)
+                if refusal is not None:
+                    # a point without an equilibrium (e.g. the free tilt's, whose rollers
+                    # the statics press past ISO 76) runs from short ramps instead
+                    variant, settle = point_config(cfg, w, fr, fa, "short-ramps", ramp)
+                    started = f"{FALLBACK} ({refusal})"
         except ConfigError as err:
             for prob in err.problems or ():
                 option = OPTIONS.get(prob.path)
@@ -262,7 +295,12 @@ def operating_map(
         sol = variant.solver.model_copy(update={"checkpoint_interval": win})
         variant = variant.model_copy(update={"solver": sol})
         name = f"point_{i:04d}"
-        meta = {"speed [rpm]": w / RPM, "radial_load [N]": fr, "axial_load [N]": fa}
+        meta = {
+            "speed [rpm]": w / RPM,
+            "radial_load [N]": fr,
+            "axial_load [N]": fa,
+            "start": started,
+        }
         spec = RunSpec(
             name,
             label,
@@ -363,4 +401,11 @@ def point_row(spec: RunSpec, ds, rec: dict, rule: SteadyRule) -> dict:
     return row
 
 
-__all__ = ["MapStudy", "operating_map", "parse_range", "point_row", "record"]
+__all__ = [
+    "MapStudy",
+    "equilibrium_refusal",
+    "operating_map",
+    "parse_range",
+    "point_row",
+    "record",
+]
