@@ -692,7 +692,6 @@ def test_map_point_without_equilibrium_starts_from_short_ramps(tmp_path, client,
         window=0.001,
         tol=0.5,
         max_time=0.04,
-        max_wall=60,
         scheduler=client,
     )
     row = result.points.iloc[0]
