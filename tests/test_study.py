@@ -599,17 +599,20 @@ def test_ranges_are_read_and_refused_by_option():
 
 
 def test_map_point_stops_when_steady(tmp_path, client):
-    result = operating_map(
-        B1,
-        tmp_path / "map",
-        speed="3000",
-        axial_load="0",
-        start="equilibrium",
-        window=0.001,
-        tol=0.5,
-        max_time=0.03,
-        scheduler=client,
-    )
+    def run_map():
+        return operating_map(
+            B1,
+            tmp_path / "map",
+            speed="3000",
+            axial_load="0",
+            start="equilibrium",
+            window=0.001,
+            tol=0.5,
+            max_time=0.03,
+            scheduler=client,
+        )
+
+    result = run_map()
     row = result.points.iloc[0]
     assert row["speed [rpm]"] == pytest.approx(3000.0) and row["axial_load [N]"] == 0.0
     window = row["window [s]"]
@@ -643,17 +646,7 @@ def test_map_point_stops_when_steady(tmp_path, client):
     # beside it; the next invocation reuses the point and removes what the dead writer left
     stale = tmp_path / "map" / "points" / "point_0000.nc.tmp999999999"
     stale.write_bytes(b"half a netCDF file")
-    again = operating_map(
-        B1,
-        tmp_path / "map",
-        speed="3000",
-        axial_load="0",
-        start="equilibrium",
-        window=0.001,
-        tol=0.5,
-        max_time=0.03,
-        scheduler=client,
-    )
+    again = run_map()
     assert again.points.iloc[0]["steady at [s]"] == steady_at
     assert not stale.exists()
 
