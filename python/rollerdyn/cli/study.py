@@ -558,11 +558,11 @@ def _print_runs(frame, title: str) -> None:
 
 
 def _print_map(frame, title: str) -> None:
+    from ..study.maps import FALLBACK
+
     def status(row) -> str:
         text = row["status"] if row["status"] in ("steady", "not steady") else None
         text = text or row["note"] or row["status"]
-        from ..study.maps import FALLBACK
-
         if str(row.get("start", "")).startswith(FALLBACK):
             # no equilibrium at t = 0: the point ran from short ramps (docs/study.md)
             text = f"{text} (from short ramps: no equilibrium)"

@@ -264,15 +264,14 @@ def operating_map(
     factor = epicyclic_factor(g.roller_diameter, g.pitch_diameter)
     specs, rules, grid = [], {}, []
     problems = []
-    traction = None
+    # the equilibrium does not evaluate the traction: its untabulated model, built at once
+    traction = Model(cfg).traction_model(tabulated=False) if start == "equilibrium" else None
     for i, (w, fr, fa) in enumerate(itertools.product(speeds, radial, axial)):
         label = f"{w / RPM:g} rpm, F_r = {fr:g} N, F_a = {fa:g} N"
         try:
             variant, settle = point_config(cfg, w, fr, fa, start, ramp)
             started = start
-            if start == "equilibrium":
-                if traction is None:
-                    traction = Model(cfg).traction_model(tabulated=False)
+            if traction is not None:
                 refusal = equilibrium_refusal(variant, traction)
                 if refusal is not None:
                     # a point without an equilibrium (e.g. the free tilt's, whose rollers
