@@ -631,6 +631,9 @@ def test_map_point_stops_when_steady(tmp_path, client):
     assert rule(ds) == ds.attrs["study_done"]
     assert float(ds.time[-1]) < steady_at + 2e-3  # stopped at the next output, not at 0.03 s
     t = ds.time.values
+    # each window is sampled by at least OUTPUTS_PER_WINDOW = 100 outputs (B1's 1 ms would
+    # give about 6 here): the spacing of the outputs, to round-off
+    assert np.diff(t).max() <= window / 100 * (1 + 1e-9)
     last = (t > steady_at - window + 1e-12) & (t <= steady_at + 1e-12)
     assert row["torque [N*m]"] == pytest.approx(float(ds.frictional_torque.values[last].mean()))
     loss = 1 - ds.orbital_speed.values[last].mean() / (
@@ -649,6 +652,24 @@ def test_map_point_stops_when_steady(tmp_path, client):
     again = run_map()
     assert again.points.iloc[0]["steady at [s]"] == steady_at
     assert not stale.exists()
+
+
+def test_map_points_are_sampled_a_hundred_times_a_window():
+    # 1 ms outputs sample the spiky torque of an unloaded B1 ten times in a 10 ms window,
+    # and the window means scatter by 6 % (docs/study.md, "How often a point is sampled");
+    # a point's outputs come at most every W / 100, a finer interval of the configuration
+    # is kept, and the checkpoints are the windows' ends
+    from rollerdyn.study.maps import OUTPUTS_PER_WINDOW, windowed
+
+    b1 = load_b1()
+    assert b1.solver.output_interval == pytest.approx(1e-3)
+    point = windowed(b1, 0.01)
+    assert OUTPUTS_PER_WINDOW == 100
+    assert point.solver.output_interval == pytest.approx(1e-4, rel=1e-12)
+    assert point.solver.checkpoint_interval == 0.01
+    fine = windowed(variant(**{"solver.output_interval": "20 us"}), 0.01)
+    assert fine.solver.output_interval == pytest.approx(2e-5, rel=1e-12)
+    assert b1.solver.output_interval == pytest.approx(1e-3)  # the configuration unchanged
 
 
 def test_equilibrium_refusal_names_why_a_point_has_no_equilibrium():

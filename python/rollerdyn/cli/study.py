@@ -294,7 +294,8 @@ def map_command(
         typer.Option(
             "--window",
             help="Least window W of the steadiness criterion; W is at least two roller "
-            "passing periods (docs/study.md).",
+            "passing periods, and each point writes an output at least every W/100 "
+            "(docs/study.md).",
             metavar="TIME",
         ),
     ] = "10 ms",

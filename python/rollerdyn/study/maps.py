@@ -47,6 +47,14 @@ OUTPUTS = (
 )
 
 
+#: Least number of outputs in a window W of the steadiness criterion: each point's
+#: ``solver.output_interval`` is at most W / 100. The friction torque of an unloaded B1
+#: (0 N axial) loses its correlation within 0.1-0.2 ms; sampled every 1 ms (B1's own
+#: interval, 10 samples in a 10 ms window) its window means scattered by 6 % at 3000 rpm
+#: and the point never became steady at --tol 0.02; sampled every 0.1 ms, by 1.1 %
+#: (docs/study.md, "How often a point is sampled").
+OUTPUTS_PER_WINDOW = 100
+
 #: Most grid points of a map: each is a dynamic run of seconds to minutes (and the
 #: points' folders are numbered with four digits).
 MAX_MAP_POINTS = 10_000
@@ -161,6 +169,19 @@ def point_config(cfg, speed: float, radial: float, axial: float, start: str, ram
     op = variant.operating
     settle = max(op.speed_history_end, 0.0 if op.load_ramp is None else op.load_ramp.end)
     return variant, settle
+
+
+def windowed(variant, window: float):
+    """``variant`` with its checkpoints every ``window`` W [s] (the steadiness criterion's
+    windows end at them) and its outputs at most every W / :data:`OUTPUTS_PER_WINDOW`
+    (a finer ``solver.output_interval`` of the configuration is kept)."""
+    sol = variant.solver.model_copy(
+        update={
+            "checkpoint_interval": window,
+            "output_interval": min(variant.solver.output_interval, window / OUTPUTS_PER_WINDOW),
+        }
+    )
+    return variant.model_copy(update={"solver": sol})
 
 
 def equilibrium_refusal(variant, traction) -> str | None:
@@ -291,8 +312,7 @@ def operating_map(
                 f"--max-time = {max_time:g} s: too short for point {i} ({label}): the ramps "
                 f"end at {settle:g} s and three windows of {win:.4g} s must follow"
             )
-        sol = variant.solver.model_copy(update={"checkpoint_interval": win})
-        variant = variant.model_copy(update={"solver": sol})
+        variant = windowed(variant, win)
         name = f"point_{i:04d}"
         meta = {
             "speed [rpm]": w / RPM,
