@@ -307,6 +307,18 @@ def test_the_wall_time_cap_stops_a_run_and_says_so(tmp_path):
         inspect_run(other, attrs)
 
 
+def test_a_failed_runs_note_is_the_refusal_itself_or_names_the_fault():
+    # a refusal of the input (ValueError: the core's and the configuration's checks name
+    # the field, the value and the rule) is shown as its message alone; any other
+    # exception keeps its class, which says what kind of fault to report
+    from rollerdyn.simulation import failure_note
+
+    refusal = "surfaces.flange_law = point: the most loaded roller end lies on its end face"
+    assert failure_note(ValueError(refusal)) == refusal
+    assert failure_note(KeyError("roller")) == "KeyError: 'roller'"
+    assert failure_note(RuntimeError("worker lost")) == "RuntimeError: worker lost"
+
+
 def test_a_run_whose_worker_was_lost_keeps_what_its_file_holds(tmp_path):
     spec = _spec(0.003)
     lost = RuntimeError("worker lost")

@@ -451,6 +451,13 @@ def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
     return ds
 
 
+def failure_note(err: BaseException) -> str:
+    """Why a run failed, for its table: the message alone of a refusal of its input (a
+    ``ValueError``, which the core and the configuration raise naming the field, the value
+    and the rule), else the exception's class and message (a fault to be reported)."""
+    return str(err) if isinstance(err, ValueError) else f"{type(err).__name__}: {err}"
+
+
 def simulate(
     config: BearingConfig | str | os.PathLike,
     t_end: float | None = None,

@@ -390,7 +390,7 @@ def run_one(
     place (atomic on one file system), so a run killed while writing leaves no partial
     ``outdir/file`` and a run executed twice (a retry after a lost worker) leaves one
     complete file, the same either way."""
-    from .simulation import SimulationError, simulate, write
+    from .simulation import SimulationError, failure_note, simulate, write
 
     start = time.perf_counter()
     status, error, written = "completed", "", ""
@@ -412,7 +412,7 @@ def run_one(
             partial.unlink(missing_ok=True)
         written = file
     except Exception as err:  # a run's failure must not stop the sweep
-        status, error = "failed", f"{type(err).__name__}: {err}"
+        status, error = "failed", failure_note(err)
     return {
         "status": status,
         "error": error,
@@ -516,9 +516,11 @@ def sweep(
             try:
                 result = fut.result()
             except Exception as err:  # workers lost more often than retried: this run only
+                from .simulation import failure_note
+
                 result = {
                     "status": "failed",
-                    "error": f"{type(err).__name__}: {err}",
+                    "error": failure_note(err),
                     **_empty_numbers(),
                     "wall [s]": math.nan,
                     "file": p.file if (out / p.file).is_file() else "",

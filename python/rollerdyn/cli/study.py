@@ -432,7 +432,7 @@ class _Lines:
             self.done += 1
             rec = event["record"]
             say(
-                f"{self.title}: {event['name']} {rec.get('note') or rec['status']}; "
+                f"{self.title}: {event['name']} {_run_status(rec)}; "
                 f"{self.done} of {self.total} done ({wall:.1f} s)"
             )
 
@@ -488,7 +488,7 @@ def _progress(title: str, scheduler: str | None):
                     bar.update(
                         task,
                         completed=rec.get("reached [s]", 0.0),
-                        what=plain(rec.get("note") or rec["status"]),
+                        what=plain(_run_status(rec)),
                     )
                     bar.stop_task(task)
                 bar.advance(overall)
@@ -554,8 +554,17 @@ def _print_frame(frame, title: str, columns, status_text) -> None:
     console.print(table)
 
 
+def _run_status(row) -> str:
+    """A row's status cell: its note (a failure's reason is prefixed "failed: ") or its
+    status."""
+    note = row.get("note") or ""
+    if row["status"] == "failed" and note:
+        return f"failed: {note}"
+    return note or row["status"]
+
+
 def _print_runs(frame, title: str) -> None:
-    _print_frame(frame, title, _RUN_COLUMNS, lambda row: row.get("note") or row["status"])
+    _print_frame(frame, title, _RUN_COLUMNS, _run_status)
 
 
 def _print_map(frame, title: str) -> None:
@@ -563,7 +572,7 @@ def _print_map(frame, title: str) -> None:
 
     def status(row) -> str:
         text = row["status"] if row["status"] in ("steady", "not steady") else None
-        text = text or row["note"] or row["status"]
+        text = text or _run_status(row)
         if str(row.get("start", "")).startswith(FALLBACK):
             # no equilibrium at t = 0: the point ran from short ramps (docs/study.md)
             text = f"{text} (from short ramps: no equilibrium)"

@@ -205,7 +205,9 @@ def lost_record(spec: RunSpec, outdir: Path, err: BaseException) -> dict:
     """The record of a run whose task never returned (its workers died more often than
     Dask retried it): what its file holds, if it has one (a run killed after a checkpoint
     is not finished, and the next invocation continues it), else RUN_FAILED."""
-    why = f"{type(err).__name__}: {err}"
+    from ..simulation import failure_note
+
+    why = failure_note(err)
     try:
         attrs = read_attrs(Path(outdir) / spec.file)
     except StudyError:
@@ -317,8 +319,10 @@ def execute(
         rec.update(status=RUN_FAILED, note=str(err))
         return rec
     except Exception as err:  # a run's failure must not stop the study
+        from ..simulation import failure_note
+
         rec = record(spec, None, "ran")
-        rec.update(status=RUN_FAILED, note=f"{type(err).__name__}: {err}")
+        rec.update(status=RUN_FAILED, note=failure_note(err))
         if path.exists():
             rec["file"] = spec.file
         return rec
