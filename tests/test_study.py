@@ -817,6 +817,21 @@ def test_map_ramp_is_refused_without_short_ramps(tmp_path):
     assert not (tmp_path / "m").exists()
 
 
+def test_map_whose_point_files_would_be_too_large_is_refused_before_any_run(tmp_path):
+    # 100 s at 3000 rpm: W = 10 ms, an output every 0.1 ms, 1e6 outputs of about 6.6 kB
+    # (B1's result per output) would exceed simulation.MAX_RESULT_BYTES = 2 GB; the map
+    # refuses at planning, naming its own options (not solver.output_interval, which the
+    # map sets), and creates no folder
+    _refused(
+        ["study", "map", str(B1), "--speed", "3000", "--axial-load", "1000"]
+        + ["--max-time", "100 s", "-o", str(tmp_path / "m")],
+        "--max-time = 100 s: too long for point 0",
+        "1e+06 outputs",
+        "choose a shorter --max-time or a longer --window",
+    )
+    assert not (tmp_path / "m").exists()
+
+
 def test_cli_study_paper_short_version_and_its_rerun(tmp_path, client):
     address = client.scheduler_info()["address"]
     args = [

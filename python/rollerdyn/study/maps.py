@@ -184,6 +184,23 @@ def windowed(variant, window: float):
     return variant.model_copy(update={"solver": sol})
 
 
+def result_size_refusal(variant, max_time: float, window: float) -> str | None:
+    """Why a point's result file run to ``max_time`` [s] would be too large (its outputs
+    every W / :data:`OUTPUTS_PER_WINDOW`, above ``simulation.MAX_RESULT_BYTES``), naming
+    the map's options that decide it; None when it is not."""
+    from ..simulation import MAX_RESULT_BYTES, estimated_cost
+
+    cost = estimated_cost(variant, max_time)
+    if cost["bytes"] <= MAX_RESULT_BYTES:
+        return None
+    return (
+        f"{cost['outputs']:.3g} outputs (one every "
+        f"{variant.solver.output_interval:.3g} s, at least {OUTPUTS_PER_WINDOW} a window of "
+        f"{window:.4g} s) would take {cost['bytes'] / 1e9:.3g} GB of results (more than "
+        f"{MAX_RESULT_BYTES / 1e9:g} GB); choose a shorter --max-time or a longer --window"
+    )
+
+
 def equilibrium_refusal(variant, traction) -> str | None:
     """Why ``variant`` has no quasi-static equilibrium at t = 0 (the start of
     ``solver.start = "equilibrium"``: the core's message, without its prefix), or None if
@@ -313,6 +330,11 @@ def operating_map(
                 f"end at {settle:g} s and three windows of {win:.4g} s must follow"
             )
         variant = windowed(variant, win)
+        size = result_size_refusal(variant, max_time, win)
+        if size:
+            raise StudyError(
+                f"--max-time = {max_time:g} s: too long for point {i} ({label}): {size}"
+            )
         name = f"point_{i:04d}"
         meta = {
             "speed [rpm]": w / RPM,
