@@ -827,7 +827,15 @@ def test_map_whose_point_files_would_be_too_large_is_refused_before_any_run(tmp_
         + ["--max-time", "100 s", "-o", str(tmp_path / "m")],
         "--max-time = 100 s: too long for point 0",
         "1e+06 outputs",
-        "choose a shorter --max-time or a longer --window",
+        "choose a longer --window or a shorter --max-time",
+    )
+    # the configuration's own finer interval is kept, and then it is what the line names
+    fine = b1_file_with(tmp_path, 'output_interval = "1e-3 s"', 'output_interval = "1 us"')
+    _refused(
+        ["study", "map", str(fine), "--speed", "3000", "--axial-load", "1000"]
+        + ["--max-time", "1 s", "-o", str(tmp_path / "m")],
+        "1e+06 outputs (one every 1e-06 s: the configuration's solver.output_interval)",
+        "choose a solver.output_interval of up to 0.0001 s or a shorter --max-time",
     )
     assert not (tmp_path / "m").exists()
 

@@ -193,11 +193,17 @@ def result_size_refusal(variant, max_time: float, window: float) -> str | None:
     cost = estimated_cost(variant, max_time)
     if cost["bytes"] <= MAX_RESULT_BYTES:
         return None
+    interval = variant.solver.output_interval
+    if interval < window / OUTPUTS_PER_WINDOW * (1 - 1e-9):  # the configuration's own
+        why = "the configuration's solver.output_interval"
+        remedy = f"choose a solver.output_interval of up to {window / OUTPUTS_PER_WINDOW:.3g} s"
+    else:
+        why = f"{OUTPUTS_PER_WINDOW} a window of {window:.4g} s"
+        remedy = "choose a longer --window"
     return (
-        f"{cost['outputs']:.3g} outputs (one every "
-        f"{variant.solver.output_interval:.3g} s, at least {OUTPUTS_PER_WINDOW} a window of "
-        f"{window:.4g} s) would take {cost['bytes'] / 1e9:.3g} GB of results (more than "
-        f"{MAX_RESULT_BYTES / 1e9:g} GB); choose a shorter --max-time or a longer --window"
+        f"{cost['outputs']:.3g} outputs (one every {interval:.3g} s: {why}) would take "
+        f"{cost['bytes'] / 1e9:.3g} GB of results (more than {MAX_RESULT_BYTES / 1e9:g} GB); "
+        f"{remedy} or a shorter --max-time"
     )
 
 
