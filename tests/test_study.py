@@ -666,6 +666,58 @@ def test_map_point_stops_when_steady(tmp_path, client):
     assert not stale.exists()
 
 
+def _map_frame(rows):
+    import pandas as pd
+
+    keys = ("speed [rpm]", "radial_load [N]", "axial_load [N]", "status", "torque [N*m]")
+    frame = pd.DataFrame([dict(zip(keys, r, strict=True)) for r in rows])
+    frame["speed loss [1]"] = frame["torque [N*m]"] * 0.01
+    frame["max flange force [N]"] = frame["torque [N*m]"] * 500
+    return frame
+
+
+def _drawn_maps(frame, tmp_path, monkeypatch) -> list:
+    """The torque figure's axes that ``write_maps`` draws for ``frame``."""
+    import rollerdyn.plots as plots
+    from rollerdyn.study.map_figures import write_maps
+
+    figures = []
+    monkeypatch.setattr(plots, "save_figure", lambda fig, out, name: figures.append(fig) or [])
+    write_maps(frame, tmp_path, "B1")
+    return figures[0].axes
+
+
+def test_map_figures_cross_points_not_steady_and_label_points_without_a_value(
+    tmp_path, monkeypatch
+):
+    # a not-steady point has a value and gets a red cross; a failed point has none and
+    # is labelled with its status in its blank cell (not crossed as if it were unsteady)
+    grid = _map_frame(
+        [
+            (500.0, 5000.0, 0.0, "steady", 0.005),
+            (500.0, 5000.0, 1000.0, "not steady", 0.30),
+            (2000.0, 5000.0, 0.0, "steady", 0.012),
+            (2000.0, 5000.0, 1000.0, "failed", math.nan),
+        ]
+    )
+    ax = _drawn_maps(grid, tmp_path, monkeypatch)[0]
+    crosses = [line for line in ax.lines if line.get_marker() == "x"]
+    assert [(float(c.get_xdata()[0]), float(c.get_ydata()[0])) for c in crosses] == [(0, 1)]
+    labels = [(t.get_text(), t.get_position()) for t in ax.texts]
+    assert labels == [("failed", (1, 1))]
+    # one swept quantity: a line; the failed point is a labelled dotted line at its value
+    line = _map_frame(
+        [
+            (500.0, 5000.0, 0.0, "steady", 0.005),
+            (500.0, 5000.0, 1000.0, "not steady", 0.30),
+            (500.0, 5000.0, 2000.0, "failed", math.nan),
+        ]
+    )
+    ax = _drawn_maps(line, tmp_path, monkeypatch)[0]
+    assert [t.get_text() for t in ax.get_legend().get_texts()] == ["map point", "not steady"]
+    assert [t.get_text() for t in ax.texts] == ["failed"]
+
+
 def test_map_points_are_sampled_a_hundred_times_a_window():
     # 1 ms outputs sample the spiky torque of an unloaded B1 ten times in a 10 ms window,
     # and the window means scatter by 6 % (docs/study.md, "How often a point is sampled");

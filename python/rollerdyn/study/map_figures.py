@@ -1,8 +1,9 @@
 """The maps of ``rollerdyn study map`` (matplotlib, PNG and SVG): one figure per output
 (friction torque, roller-set speed loss, largest flange force). With two or three swept
 quantities, a colour map over the two with the most values (one panel per value of the
-third); with one, a line over it. Points that are not steady are marked with a cross,
-points without a value are left blank.
+third); with one, a line over it. Points that are not steady are marked with a cross;
+points without a value (failed, or stopped before a whole window after the ramps) are
+left blank and labelled with their status.
 """
 
 from __future__ import annotations
@@ -60,18 +61,34 @@ def write_maps(frame, out: Path, name: str) -> list[Path]:
                 ax.set_xticks(range(len(sizes[x])), [f"{s:g}" for s in sizes[x]])
                 ax.set_yticks(range(len(sizes[y])), [f"{s:g}" for s in sizes[y]])
                 for _, row in sub.iterrows():
-                    if row["status"] != STEADY:
-                        ax.plot(sizes[x].index(row[x]), sizes[y].index(row[y]), "rx", ms=10, mew=2)
+                    at = sizes[x].index(row[x]), sizes[y].index(row[y])
+                    if not np.isfinite(float(row[column])):
+                        # no value (failed, or stopped before a window after the ramps)
+                        ax.text(*at, row["status"], ha="center", va="center", color="0.35")
+                    elif row["status"] != STEADY:
+                        ax.plot(*at, "rx", ms=10, mew=2)
                 ax.set(xlabel=labels[x], ylabel=labels[y], title=f"{labels[panel]} = {v:g}")
             fig.suptitle(f"{name}: {title} at steady state (x: not steady)")
         else:
             x = varying[0] if varying else AXES[0][0]
             fig, ax = plt.subplots(figsize=(7, 4.2))
             rows = frame.sort_values(x)
-            ax.plot(rows[x], rows[column], "o-", label="steady")
-            bad = rows[rows["status"] != STEADY]
+            ax.plot(rows[x], rows[column], "o-", label="map point")
+            valued = np.isfinite(rows[column].astype(float))
+            bad = rows[(rows["status"] != STEADY) & valued]
             if len(bad):
                 ax.plot(bad[x], bad[column], "rx", ms=10, mew=2, label="not steady")
+            for _, row in rows[~valued].iterrows():
+                ax.axvline(row[x], color="0.6", ls=":")
+                ax.annotate(
+                    row["status"],
+                    (row[x], 0.02),
+                    xycoords=("data", "axes fraction"),
+                    rotation=90,
+                    color="0.35",
+                    ha="right",
+                    va="bottom",
+                )
             ax.set(xlabel=labels[x], ylabel=f"{title} [{unit}]", title=f"{name}: {title}")
             ax.legend()
         written += save_figure(fig, out, f"map_{short}")
