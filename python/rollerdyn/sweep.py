@@ -472,6 +472,8 @@ def sweep(
     """
     from distributed import as_completed
 
+    from .simulation import failure_note
+
     if detector is not None and detector not in DETECTORS:
         raise SweepError(f"detector = {detector!r}: must be {', '.join(DETECTORS)}")
     if t_end is not None and not (t_end >= SHORTEST_TIME and math.isfinite(t_end)):
@@ -516,8 +518,6 @@ def sweep(
             try:
                 result = fut.result()
             except Exception as err:  # workers lost more often than retried: this run only
-                from .simulation import failure_note
-
                 result = {
                     "status": "failed",
                     "error": failure_note(err),

@@ -571,8 +571,8 @@ def _print_map(frame, title: str) -> None:
     from ..study.maps import FALLBACK
 
     def status(row) -> str:
-        text = row["status"] if row["status"] in ("steady", "not steady") else None
-        text = text or _run_status(row)
+        steady = row["status"] in ("steady", "not steady")
+        text = row["status"] if steady else _run_status(row)
         if str(row.get("start", "")).startswith(FALLBACK):
             # no equilibrium at t = 0: the point ran from short ramps (docs/study.md)
             text = f"{text} (from short ramps: no equilibrium)"

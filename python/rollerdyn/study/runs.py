@@ -255,7 +255,7 @@ def execute(
     it returns (e.g. "steady at t = 0.12 s") ends the run at its next output as done: the
     file's attribute ``study_done`` keeps the text, and the run counts as finished."""
     from ..config import parse_config
-    from ..simulation import CheckpointSaver, SimulationError, simulate, write
+    from ..simulation import CheckpointSaver, SimulationError, failure_note, simulate, write
 
     path = Path(outdir) / spec.file
     started = time.monotonic()
@@ -319,8 +319,6 @@ def execute(
         rec.update(status=RUN_FAILED, note=str(err))
         return rec
     except Exception as err:  # a run's failure must not stop the study
-        from ..simulation import failure_note
-
         rec = record(spec, None, "ran")
         rec.update(status=RUN_FAILED, note=failure_note(err))
         if path.exists():
