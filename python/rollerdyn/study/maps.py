@@ -198,7 +198,7 @@ def result_size_refusal(variant, max_time: float, window: float) -> str | None:
         why = "the configuration's solver.output_interval"
         remedy = f"choose a solver.output_interval of up to {window / OUTPUTS_PER_WINDOW:.3g} s"
     else:
-        why = f"{OUTPUTS_PER_WINDOW} a window of {window:.4g} s"
+        why = f"{OUTPUTS_PER_WINDOW} per window of {window:.4g} s"
         remedy = "choose a longer --window"
     return (
         f"{cost['outputs']:.3g} outputs (one every {interval:.3g} s: {why}) would take "
