@@ -218,7 +218,7 @@ impl BearingSystem<'_> {
                 (Geometry::Line(geometry), Some(line)) => {
                     let law = &self.lines.kind(line).law;
                     let e = 1.0 / law.k2 + 1.0;
-                    for section in &geometry.slices {
+                    for section in geometry.slices() {
                         let delta = section.penetration;
                         if delta > 0.0 {
                             energy += self.lines.slice_length / law.k1 * delta.powf(e) / e;

@@ -50,12 +50,24 @@ pub(super) struct SectionGeometry {
 }
 
 /// The geometry of a line contact at one pose: per slice (none when no slice can touch)
-/// and per film point (none without the film).
+/// and per film point (none without the film), in one allocation.
 pub(super) struct LineGeometry {
+    /// The slices' sections, then the film points'.
+    sections: Vec<SectionGeometry>,
+    /// How many of `sections` are slices.
+    slice_count: usize,
+}
+
+impl LineGeometry {
     /// At the slice centres ([`LineContacts::slices`]).
-    pub(super) slices: Vec<SectionGeometry>,
+    pub(super) fn slices(&self) -> &[SectionGeometry] {
+        &self.sections[..self.slice_count]
+    }
+
     /// At the film's quadrature points ([`LineContacts::film_points`]).
-    pub(super) film: Vec<SectionGeometry>,
+    pub(super) fn film(&self) -> &[SectionGeometry] {
+        &self.sections[self.slice_count..]
+    }
 }
 
 /// What the line contacts of a bearing share: the data of each kind and the stations
@@ -168,17 +180,16 @@ impl BearingSystem<'_> {
         bound: f64,
     ) -> LineGeometry {
         let at = |station: &Station| self.slice_geometry(line, a, b, station.s, station.radius);
-        let slices = if bound > 0.0 {
-            self.lines.slices.iter().map(at).collect()
+        let slices: &[Station] = if bound > 0.0 { &self.lines.slices } else { &[] };
+        let film: &[Station] = if self.tribology.film.enabled {
+            &self.lines.film_points
         } else {
-            Vec::new()
+            &[]
         };
-        let film = if self.tribology.film.enabled {
-            self.lines.film_points.iter().map(at).collect()
-        } else {
-            Vec::new()
-        };
-        LineGeometry { slices, film }
+        LineGeometry {
+            sections: slices.iter().chain(film).map(at).collect(),
+            slice_count: slices.len(),
+        }
     }
 
     /// Geometry (eqs. 2, 3) of the section at `s` along roller `b` (radius `radius`, for
@@ -285,15 +296,15 @@ impl BearingSystem<'_> {
     ) -> ElementResult {
         let start = self.workspace.profiler.stopwatch();
         let mut out = ElementResult::untouched();
-        for section in &geometry.slices {
+        for section in geometry.slices() {
             out.penetration = out.penetration.max(section.penetration);
             if section.penetration > 0.0 {
                 self.section_into(&mut out, line, a, b, section, None);
             }
         }
         let roughness = self.lines.kind(line).roughness;
-        for (section, point) in geometry.film.iter().zip(&self.lines.film_points) {
-            if geometry.slices.is_empty() {
+        for (section, point) in geometry.film().iter().zip(&self.lines.film_points) {
+            if geometry.slices().is_empty() {
                 out.penetration = out.penetration.max(section.penetration);
             }
             if self.tribology.film.acts(section.penetration, roughness) {

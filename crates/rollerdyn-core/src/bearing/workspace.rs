@@ -215,12 +215,16 @@ impl BearingSystem<'_> {
             }
         }
         let elements = &self.topology.elements;
-        let evaluated = self.map(elements.len(), |e| {
+        let evaluate = |e: usize| {
             let geometry = self.geometry(&elements[e], kin);
             let result = self.evaluate_at(&elements[e], kin, &geometry);
             (geometry, result)
-        });
-        let (geometries, results) = evaluated.into_iter().unzip();
+        };
+        let (geometries, results) = match &self.workspace.team {
+            Some(team) => team.map(elements.len(), evaluate).into_iter().unzip(),
+            // One thread: straight into the two lists, without a list of pairs to split.
+            None => (0..elements.len()).map(evaluate).unzip(),
+        };
         Evaluation {
             model: self.id,
             t,
