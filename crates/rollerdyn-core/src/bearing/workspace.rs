@@ -220,9 +220,9 @@ impl BearingSystem<'_> {
             let result = self.evaluate_at(&elements[e], kin, &geometry);
             (geometry, result)
         };
+        // Straight into the two lists, without a list of pairs to split.
         let (geometries, results) = match &self.workspace.team {
-            Some(team) => team.map(elements.len(), evaluate).into_iter().unzip(),
-            // One thread: straight into the two lists, without a list of pairs to split.
+            Some(team) => team.map_pairs(elements.len(), evaluate),
             None => (0..elements.len()).map(evaluate).unzip(),
         };
         Evaluation {
