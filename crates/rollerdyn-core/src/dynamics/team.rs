@@ -137,8 +137,8 @@ impl Team {
 
     /// `f(0..n)` in order, as [`Team::map`], with each pair's halves in two lists: every
     /// value is written once, by the thread that computed it, straight into its place in
-    /// its list, so a map of large values is not copied from cells into a list and then
-    /// split (on B1 a right-hand side's contacts, about 80 kB, twice).
+    /// its list, so a map of large values (a right-hand side's contact geometries and
+    /// results) is not copied from cells into a list and then split.
     pub fn map_pairs<A: Send, B: Send>(
         &self,
         n: usize,
@@ -409,9 +409,9 @@ mod tests {
         });
     }
 
-    /// `map_pairs` gives `map`'s values split in two lists, whatever the team's size, for
-    /// values that own memory too (dropped once each: no double free under the
-    /// allocator's checks in debug builds).
+    /// `map_pairs` gives `map`'s values split in two lists, whatever the team's size, also
+    /// for values that own memory (each dropped once: the allocator aborts on a double
+    /// free).
     #[test]
     fn map_pairs_splits_every_index_in_order() {
         for helpers in [0, 1, 3] {
