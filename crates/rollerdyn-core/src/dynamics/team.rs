@@ -16,7 +16,7 @@
 use std::cell::Cell;
 use std::mem::{ManuallyDrop, MaybeUninit};
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
-use std::sync::{Arc, Condvar, Mutex, OnceLock, PoisonError, TryLockError};
+use std::sync::{Arc, Condvar, Mutex, PoisonError, TryLockError};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
@@ -110,35 +110,28 @@ impl Team {
     }
 
     /// `f(0..n)` in order. The caller starts on the first index at once; helpers join as
-    /// they take the job, each taking the next index not yet taken; every value is stored
-    /// at its index, so the result does not depend on the threads. `f` must not panic (the
-    /// model's evaluations do not): a panic on the caller's thread unwinds from here once
-    /// the helpers are done; one on a helper leaves its index empty and panics here.
-    pub fn map<T: Send + Sync>(&self, n: usize, f: impl Fn(usize) -> T + Sync) -> Vec<T> {
+    /// they take the job, each taking the next index not yet taken; every value is written
+    /// once, by the thread that computed it, straight into its place in the list, so the
+    /// result does not depend on the threads. `f` must not panic (the model's evaluations
+    /// do not): a panic on the caller's thread unwinds from here once the helpers are done;
+    /// one on a helper leaves its index unwritten and panics here.
+    pub fn map<T: Send>(&self, n: usize, f: impl Fn(usize) -> T + Sync) -> Vec<T> {
         if n < 2 {
             return (0..n).map(f).collect();
         }
-        let next = AtomicUsize::new(0);
-        let values: Vec<OnceLock<T>> = (0..n).map(|_| OnceLock::new()).collect();
-        let work = || loop {
-            let i = next.fetch_add(1, Ordering::Relaxed);
-            if i >= n {
-                break;
-            }
-            // Each index is taken once, so its cell is empty.
-            let _ = values[i].set(f(i));
-        };
-        self.run(&work);
-        values
-            .into_iter()
-            .map(|v| v.into_inner().expect("every index was taken and computed"))
-            .collect()
+        let mut values = uninitialised::<T>(n);
+        let slots = Slots(values.as_mut_ptr());
+        // SAFETY: `share` hands each index of 0..n to one thread, once, while `values`
+        // lives; it returns only when every index was computed, so all are written.
+        unsafe {
+            self.share(n, |i| slots.write(i, f(i)));
+            initialised(values)
+        }
     }
 
-    /// `f(0..n)` in order, as [`Team::map`], with each pair's halves in two lists: every
-    /// value is written once, by the thread that computed it, straight into its place in
-    /// its list, so a map of large values (a right-hand side's contact geometries and
-    /// results) is not copied from cells into a list and then split.
+    /// `f(0..n)` in order, as [`Team::map`], with each pair's halves in two lists, written
+    /// straight into their places, so a map of large values (a right-hand side's contact
+    /// geometries and results) is not split into two lists afterwards.
     pub fn map_pairs<A: Send, B: Send>(
         &self,
         n: usize,
@@ -147,34 +140,39 @@ impl Team {
         if n < 2 {
             return (0..n).map(f).unzip();
         }
-        let mut firsts = uninitialised::<A>(n);
-        let mut seconds = uninitialised::<B>(n);
+        let (mut firsts, mut seconds) = (uninitialised::<A>(n), uninitialised::<B>(n));
         let (to_firsts, to_seconds) = (Slots(firsts.as_mut_ptr()), Slots(seconds.as_mut_ptr()));
-        let written: Vec<AtomicBool> = (0..n).map(|_| AtomicBool::new(false)).collect();
+        // SAFETY: as in `map`, for both lists.
+        unsafe {
+            self.share(n, |i| {
+                let (a, b) = f(i);
+                to_firsts.write(i, a);
+                to_seconds.write(i, b);
+            });
+            (initialised(firsts), initialised(seconds))
+        }
+    }
+
+    /// Calls `f` once for each index of 0..n, shared among the caller and the helpers (each
+    /// thread takes the next index not yet taken); panics unless every call returned. (A
+    /// value written before such a panic is leaked, never read: safe.)
+    fn share(&self, n: usize, f: impl Fn(usize) + Sync) {
         let next = AtomicUsize::new(0);
+        let done = AtomicUsize::new(0);
         let work = || loop {
             let i = next.fetch_add(1, Ordering::Relaxed);
             if i >= n {
                 break;
             }
-            let (a, b) = f(i);
-            // SAFETY: index i is taken by this thread alone (the counter hands each index
-            // out once) and lies within both lists, which outlive the job (`run` returns
-            // only when every helper that took it is done).
-            unsafe {
-                to_firsts.write(i, a);
-                to_seconds.write(i, b);
-            }
-            written[i].store(true, Ordering::Release);
+            f(i);
+            done.fetch_add(1, Ordering::Release);
         };
         self.run(&work);
-        assert!(
-            written.iter().all(|w| w.load(Ordering::Acquire)),
+        assert_eq!(
+            done.load(Ordering::Acquire),
+            n,
             "every index was taken and computed"
         );
-        // SAFETY: every element of both lists was written (checked just above). (A
-        // missing one panics before this, leaking the values written: safe.)
-        unsafe { (initialised(firsts), initialised(seconds)) }
     }
 
     /// Runs `work` on the caller and on every helper that takes it before the caller is
@@ -238,8 +236,8 @@ unsafe fn initialised<T>(values: Vec<MaybeUninit<T>>) -> Vec<T> {
 /// The start of a list whose elements threads write at distinct indices.
 struct Slots<T>(*mut MaybeUninit<T>);
 
-// SAFETY: the threads of one job write distinct elements only (`Team::map_pairs`), and the
-// values are Send.
+// SAFETY: the threads of one job write distinct elements only (`Team::share` hands out
+// each index once), and the values are Send.
 unsafe impl<T: Send> Sync for Slots<T> {}
 
 impl<T> Slots<T> {
