@@ -187,6 +187,19 @@ impl BearingSystem<'_> {
         }
     }
 
+    /// [`Self::map`] with each pair's halves in two lists ([`Team::map_pairs`]: written
+    /// straight into their places, without a list of pairs to split).
+    pub(super) fn map_pairs<A: Send, B: Send>(
+        &self,
+        n: usize,
+        f: impl Fn(usize) -> (A, B) + Sync + Send,
+    ) -> (Vec<A>, Vec<B>) {
+        match &self.workspace.team {
+            Some(team) => team.map_pairs(n, f),
+            None => (0..n).map(f).unzip(),
+        }
+    }
+
     /// Time spent so far, by kind of work.
     pub fn profile(&self) -> Profile {
         self.workspace.profile()
@@ -220,11 +233,7 @@ impl BearingSystem<'_> {
             let result = self.evaluate_at(&elements[e], kin, &geometry);
             (geometry, result)
         };
-        // Straight into the two lists, without a list of pairs to split.
-        let (geometries, results) = match &self.workspace.team {
-            Some(team) => team.map_pairs(elements.len(), evaluate),
-            None => (0..elements.len()).map(evaluate).unzip(),
-        };
+        let (geometries, results) = self.map_pairs(elements.len(), evaluate);
         Evaluation {
             model: self.id,
             t,

@@ -424,22 +424,12 @@ mod tests {
         }
     }
 
-    /// A panic in `map_pairs`' `f` comes out of it and the team works on afterwards.
-    #[test]
-    fn a_panic_in_map_pairs_leaves_the_team_working() {
-        let team = Team::new(1).expect("threads");
+    /// Twenty times: `failing` panics, and `working` runs normally afterwards.
+    fn panics_leave_the_team_working(failing: impl Fn(), working: impl Fn()) {
         for _ in 0..20 {
-            let failed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                team.map_pairs(64, |i| {
-                    assert!(i != 40, "index 40 fails");
-                    (i, vec![i])
-                })
-            }));
+            let failed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(&failing));
             assert!(failed.is_err());
-            assert_eq!(
-                team.map_pairs(3, |i| (i, 2 * i)),
-                (vec![0, 1, 2], vec![0, 2, 4])
-            );
+            working();
         }
     }
 
@@ -448,15 +438,34 @@ mod tests {
     #[test]
     fn a_panic_in_a_map_leaves_the_team_working() {
         let team = Team::new(1).expect("threads");
-        for _ in 0..20 {
-            let failed = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        panics_leave_the_team_working(
+            || {
                 team.map(64, |i| {
                     assert!(i != 40, "index 40 fails");
                     i
-                })
-            }));
-            assert!(failed.is_err());
-            assert_eq!(team.map(6, |i| 2 * i), vec![0, 2, 4, 6, 8, 10]);
-        }
+                });
+            },
+            || assert_eq!(team.map(6, |i| 2 * i), vec![0, 2, 4, 6, 8, 10]),
+        );
+    }
+
+    /// A panic in `map_pairs`' `f` comes out of it and the team works on afterwards.
+    #[test]
+    fn a_panic_in_map_pairs_leaves_the_team_working() {
+        let team = Team::new(1).expect("threads");
+        panics_leave_the_team_working(
+            || {
+                team.map_pairs(64, |i| {
+                    assert!(i != 40, "index 40 fails");
+                    (i, vec![i])
+                });
+            },
+            || {
+                assert_eq!(
+                    team.map_pairs(3, |i| (i, 2 * i)),
+                    (vec![0, 1, 2], vec![0, 2, 4])
+                )
+            },
+        );
     }
 }
