@@ -239,3 +239,31 @@ def test_the_run_line_gives_a_short_runs_wall_time_in_significant_digits():
     assert _seconds(0.0118) == "0.0118 s"
     assert _seconds(3.14159) == "3.14 s"
     assert _seconds(46.43) == "46.4 s"
+
+
+def test_ctrl_c_stops_the_whole_benchmark(monkeypatch):
+    """Ctrl-C in one of `bench mbs`' runs (the detector comparison or a case) stops the
+    benchmark: the interruption is not taken for a run that ended early, after which the
+    next run would start and a table compare an interrupted run with a finished one."""
+    import xarray as xr
+
+    import rollerdyn.bench_cases
+    import rollerdyn.simulation
+    from rollerdyn import load_config
+    from rollerdyn.cli.bench_targets import _mbs_runs
+    from rollerdyn.simulation import SimulationInterrupted
+
+    calls = []
+
+    def interrupted(*args, **kwargs):
+        calls.append(kwargs.get("detector"))
+        raise SimulationInterrupted("KeyboardInterrupt", xr.Dataset())
+
+    monkeypatch.setattr(rollerdyn.simulation, "simulate", interrupted)
+    monkeypatch.setattr(rollerdyn.bench_cases, "simulate", interrupted)
+    cfg = load_config(B1)
+    with pytest.raises(KeyboardInterrupt):
+        _mbs_runs(cfg, 1e-3)
+    assert calls == ["semi-analytical"]
+    with pytest.raises(KeyboardInterrupt):
+        rollerdyn.bench_cases.run_case(cfg, "axial-0N", 10.0)

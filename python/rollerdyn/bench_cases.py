@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from .config import BearingConfig, parse_config
-from .simulation import Progress, SimulationError, simulate
+from .simulation import Progress, SimulationError, SimulationInterrupted, simulate
 from .sweep import _changed
 
 #: Loads over 0 ... 20 ms, speed over 20 ... 40 ms, end at 0.1 s: full speed fast.
@@ -159,6 +159,8 @@ def run_case(
     message = ""
     try:
         ds = simulate(variant, progress=callback, threads=threads)
+    except SimulationInterrupted:
+        raise  # Ctrl-C stops the benchmark, not only this case
     except SimulationError as err:
         ds, message = err.dataset, str(err).splitlines()[0]
     except ValueError as err:  # refused before the first step (e.g. no equilibrium)

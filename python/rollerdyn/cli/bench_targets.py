@@ -74,13 +74,15 @@ def _mbs_runs(cfg, t_end: float | None, label: str = "") -> list:
     """(detector, attrs) of one whole run with each detector, each on one thread (the
     gradient detector's runs always are: ``simulate``), so that the two are compared as
     the paper compares them and as the tables say."""
-    from ..simulation import SimulationError, simulate
+    from ..simulation import SimulationError, SimulationInterrupted, simulate
 
     rows = []
     for detector in (SEMI_ANALYTICAL, GRADIENT):
         with console.status(Text(f"running {cfg.name}{label} with the {detector} detector...")):
             try:
                 ds = simulate(cfg, t_end=t_end, detector=detector, threads=1)
+            except SimulationInterrupted:
+                raise  # Ctrl-C stops the benchmark, not only this run
             except SimulationError as err:
                 ds = err.dataset
         rows.append((detector, ds.attrs))
