@@ -11,6 +11,7 @@
 //! takes the same path from there and so equals the uninterrupted run bit for bit.
 
 use super::sparse_lu::SparseSkipLu;
+use diffsol::ode_solver::OdeSolverStatistics;
 use diffsol::{NalgebraMat, OdeBuilder, OdeSolverMethod, OdeSolverStopReason, Vector};
 use nalgebra::DMatrix;
 use std::cell::RefCell;
@@ -248,7 +249,63 @@ const FAILED_ITERATE_DISTANCE: f64 = 1.0;
 /// least this fraction of the largest are the ones renewed.
 const CULPRIT_FRACTION: f64 = 0.1;
 
-impl<S: OdeSystem> Counters<'_, S> {
+impl<'s, S: OdeSystem> Counters<'s, S> {
+    /// The counters of a run of `system` with `options`, nothing counted yet.
+    fn new(system: &'s S, options: &Options) -> Self {
+        let n = system.len();
+        let control = &options.step_control;
+        Self {
+            system,
+            stats: Stats::default(),
+            key: Vec::with_capacity(n),
+            key_t: f64::NAN,
+            key_rhs: 0,
+            jac: DMatrix::zeros(n, n),
+            at_latest_iterate: control.jacobian_at_latest_iterate,
+            latest: Vec::with_capacity(n),
+            latest_t: f64::NAN,
+            previous: Vec::with_capacity(n),
+            atol: if options.atol.len() == n {
+                options.atol.clone()
+            } else {
+                vec![options.atol.first().copied().unwrap_or(0.0); n]
+            },
+            rtol: options.rtol,
+            partial_limit: if control.jacobian_at_latest_iterate {
+                control.partial_jacobians
+            } else {
+                0
+            },
+            partial_streak: 0,
+            jac_valid: false,
+        }
+    }
+
+    /// Forgets the Jacobian and the iterates (a segment starts with a fresh solver, as a
+    /// run resumed there does); keeps the counts.
+    fn start_segment(&mut self) {
+        self.key.clear();
+        self.key_t = f64::NAN;
+        self.latest.clear();
+        self.previous.clear();
+        self.partial_streak = 0;
+        self.jac_valid = false;
+    }
+
+    /// Counts an accepted step and takes diffsol's counters of this segment, `solver`, on
+    /// top of those of the earlier segments, `before`.
+    fn record_solver(&mut self, before: &Stats, solver: &OdeSolverStatistics) {
+        let stats = &mut self.stats;
+        stats.steps += 1;
+        stats.error_test_failures =
+            before.error_test_failures + solver.number_of_error_test_failures;
+        stats.newton_failures = before.newton_failures + solver.number_of_nonlinear_solver_fails;
+        stats.newton_iterations =
+            before.newton_iterations + solver.number_of_nonlinear_solver_iterations;
+        stats.linear_solver_setups =
+            before.linear_solver_setups + solver.number_of_linear_solver_setups;
+    }
+
     fn rhs(&mut self, t: f64, y: &[f64], dy: &mut [f64]) {
         self.latest_t = t;
         std::mem::swap(&mut self.previous, &mut self.latest);
@@ -294,6 +351,51 @@ impl<S: OdeSystem> Counters<'_, S> {
             .collect()
     }
 
+    /// Computes the Jacobian named by diffsol at (t, y): at the latest iterate instead with
+    /// [`StepControl::jacobian_at_latest_iterate`] (unless that gives a non-finite one),
+    /// and there only in the failing states' columns where
+    /// [`StepControl::partial_jacobians`] allows ([`Self::failed_iteration_culprits`]).
+    fn renew_jacobian(&mut self, t: f64, y: &[f64]) {
+        let start = Instant::now();
+        let mut done = false;
+        if self.at_latest_iterate && self.latest.len() == y.len() {
+            let latest = std::mem::take(&mut self.latest);
+            let may_be_partial = self.partial_streak < self.partial_limit && self.jac_valid;
+            let culprits = if may_be_partial {
+                self.failed_iteration_culprits(&latest, y)
+            } else {
+                Vec::new()
+            };
+            let partial = !culprits.is_empty()
+                && self
+                    .system
+                    .partial_jacobian(self.latest_t, &latest, &culprits, &mut self.jac);
+            if !partial {
+                self.system.jacobian(self.latest_t, &latest, &mut self.jac);
+            }
+            self.latest = latest;
+            // An iterate far enough off to give a non-finite Jacobian: the named state's.
+            done = self.jac.iter().all(|v| v.is_finite());
+            if done && partial {
+                self.partial_streak += 1;
+                self.stats.partial_jacobians += 1;
+            } else {
+                self.partial_streak = 0;
+            }
+        }
+        if !done {
+            self.partial_streak = 0;
+            self.system.jacobian(t, y, &mut self.jac);
+        }
+        self.jac_valid = true;
+        self.key.clear();
+        self.key.extend_from_slice(y);
+        self.key_t = t;
+        self.key_rhs = self.stats.rhs_evaluations;
+        self.stats.jacobian_evaluations += 1;
+        self.stats.jacobian_seconds += start.elapsed().as_secs_f64();
+    }
+
     /// J·v. diffsol assembles its Newton matrix column by column from products with unit
     /// vectors (and asks for them only when it renews the Jacobian); the Jacobian is
     /// computed once per (t, y) and the columns are read off. With
@@ -305,47 +407,7 @@ impl<S: OdeSystem> Counters<'_, S> {
     fn jac_mul(&mut self, t: f64, y: &[f64], v: &[f64], out: &mut [f64]) {
         let moved = self.at_latest_iterate && self.stats.rhs_evaluations != self.key_rhs;
         if moved || t != self.key_t || self.key.as_slice() != y {
-            let start = Instant::now();
-            let mut done = false;
-            if self.at_latest_iterate && self.latest.len() == y.len() {
-                let latest = std::mem::take(&mut self.latest);
-                let may_be_partial = self.partial_streak < self.partial_limit && self.jac_valid;
-                let culprits = if may_be_partial {
-                    self.failed_iteration_culprits(&latest, y)
-                } else {
-                    Vec::new()
-                };
-                let partial = !culprits.is_empty()
-                    && self.system.partial_jacobian(
-                        self.latest_t,
-                        &latest,
-                        &culprits,
-                        &mut self.jac,
-                    );
-                if !partial {
-                    self.system.jacobian(self.latest_t, &latest, &mut self.jac);
-                }
-                self.latest = latest;
-                // An iterate far enough off to give a non-finite Jacobian: the named state's.
-                done = self.jac.iter().all(|v| v.is_finite());
-                if done && partial {
-                    self.partial_streak += 1;
-                    self.stats.partial_jacobians += 1;
-                } else {
-                    self.partial_streak = 0;
-                }
-            }
-            if !done {
-                self.partial_streak = 0;
-                self.system.jacobian(t, y, &mut self.jac);
-            }
-            self.jac_valid = true;
-            self.key.clear();
-            self.key.extend_from_slice(y);
-            self.key_t = t;
-            self.key_rhs = self.stats.rhs_evaluations;
-            self.stats.jacobian_evaluations += 1;
-            self.stats.jacobian_seconds += start.elapsed().as_secs_f64();
+            self.renew_jacobian(t, y);
         }
         // diffsol assembles its Newton matrix column by column from unit vectors: the
         // column is read from the contiguous column-major storage.
@@ -459,54 +521,14 @@ pub fn integrate<S: OdeSystem>(
     options: &Options,
     mut events: impl FnMut(Event) -> ControlFlow<()>,
 ) -> Result<Stats, Failure> {
-    let n = system.len();
-    let wall = Instant::now();
-    let counters = RefCell::new(Counters {
-        system,
-        stats: Stats::default(),
-        key: Vec::with_capacity(n),
-        key_t: f64::NAN,
-        key_rhs: 0,
-        jac: DMatrix::zeros(n, n),
-        at_latest_iterate: options.step_control.jacobian_at_latest_iterate,
-        latest: Vec::with_capacity(n),
-        latest_t: f64::NAN,
-        previous: Vec::with_capacity(n),
-        atol: if options.atol.len() == n {
-            options.atol.clone()
-        } else {
-            vec![options.atol.first().copied().unwrap_or(0.0); n]
-        },
-        rtol: options.rtol,
-        partial_limit: if options.step_control.jacobian_at_latest_iterate {
-            options.step_control.partial_jacobians
-        } else {
-            0
-        },
-        partial_streak: 0,
-        jac_valid: false,
-    });
-    let fail = |time: f64, message: String, state: Vec<f64>, c: &RefCell<Counters<S>>| {
-        let mut stats = c.borrow().stats;
-        stats.total_seconds = wall.elapsed().as_secs_f64();
-        stats.t_reached = time;
-        Failure {
-            time,
-            message,
-            stats: Box::new(stats),
-            state,
-        }
-    };
-    let report = |c: &RefCell<Counters<S>>, t: f64, h: f64| {
-        let mut s = c.borrow().stats;
-        s.total_seconds = wall.elapsed().as_secs_f64();
-        s.t_reached = t;
-        s.last_step = h;
-        s
+    let counters = RefCell::new(Counters::new(system, options));
+    let run = Run {
+        counters: &counters,
+        wall: Instant::now(),
     };
     let (mut t, mut y, mut h) = (start.time, start.state.clone(), start.step);
     if h.is_none() {
-        let stats = report(&counters, t, 0.0);
+        let stats = run.stats(t, 0.0);
         let event = Event::Output {
             time: t,
             state: &y,
@@ -516,32 +538,180 @@ pub fn integrate<S: OdeSystem>(
             return Ok(stats);
         }
     }
-    let origin = options.origin;
-    let next_output = |k: usize| (origin + k as f64 * options.output_interval).min(t_end);
-    let mut k = first_after(origin, options.output_interval, t);
-    let mut ended = t >= t_end;
-    // The start of the current window of STALL_WINDOW steps: (steps taken, time). A run
-    // resumed from a checkpoint starts a window there.
-    let mut window = (counters.borrow().stats.steps, t);
+    let mut outputs = OutputGrid::new(options, t_end, t);
+    // A run resumed from a checkpoint starts a window of the stall check there.
+    let mut stall = StallWatch {
+        steps: counters.borrow().stats.steps,
+        time: t,
+    };
     loop {
         // One segment: from (t, y, h) with a fresh solver to the next checkpoint or t_end.
         let checkpoint = options
             .checkpoint_interval
-            .map(|dt| origin + first_after(origin, dt, t) as f64 * dt)
+            .map(|dt| options.origin + first_after(options.origin, dt, t) as f64 * dt)
             .filter(|&tc| tc <= t_end + slack(t_end));
-        let stop = checkpoint.unwrap_or(t_end);
         system.restart();
-        {
-            // The Jacobian cache must not carry over: the run resumed here has none.
-            let mut c = counters.borrow_mut();
-            c.key.clear();
-            c.key_t = f64::NAN;
-            c.latest.clear();
-            c.previous.clear();
-            c.partial_streak = 0;
-            c.jac_valid = false;
+        // The Jacobian cache must not carry over: the run resumed here has none.
+        counters.borrow_mut().start_segment();
+        let segment = Segment {
+            run: &run,
+            options,
+            stop: checkpoint.unwrap_or(t_end),
+        };
+        match segment.integrate((t, &y, h), &mut outputs, &mut stall, &mut events)? {
+            SegmentEnd::Stopped(stats) => return Ok(stats),
+            SegmentEnd::Reached { time, state, step } => (t, y, h) = (time, state, Some(step)),
         }
-        let y_init = y.clone();
+        let stats = run.stats(t, h.unwrap_or(0.0));
+        if checkpoint.is_none() {
+            return Ok(stats);
+        }
+        let reached = Checkpoint {
+            time: t,
+            state: y.clone(),
+            step: h.unwrap_or(0.0),
+            stats,
+        };
+        if events(Event::Checkpoint(&reached)).is_break() || t >= t_end - slack(t_end) {
+            return Ok(stats);
+        }
+    }
+}
+
+/// The counters of one integration and its wall clock: what it reports, and how it fails.
+struct Run<'c, 's, S: OdeSystem> {
+    counters: &'c RefCell<Counters<'s, S>>,
+    wall: Instant,
+}
+
+impl<S: OdeSystem> Run<'_, '_, S> {
+    /// The counters so far, at time `t` with the last step `h`.
+    fn stats(&self, t: f64, h: f64) -> Stats {
+        let mut s = self.counters.borrow().stats;
+        s.total_seconds = self.wall.elapsed().as_secs_f64();
+        s.t_reached = t;
+        s.last_step = h;
+        s
+    }
+
+    /// The run's failure at time `t`, with the last accepted `state`.
+    fn failure(&self, time: f64, message: String, state: Vec<f64>) -> Failure {
+        let mut stats = self.counters.borrow().stats;
+        stats.total_seconds = self.wall.elapsed().as_secs_f64();
+        stats.t_reached = time;
+        Failure {
+            time,
+            message,
+            stats: Box::new(stats),
+            state,
+        }
+    }
+}
+
+/// The output times origin + k·Δt_out (the last one t_end) and how far they were
+/// delivered.
+struct OutputGrid {
+    origin: f64,
+    interval: f64,
+    t_end: f64,
+    /// The index k of the next output.
+    next: usize,
+    /// The output at t_end was delivered.
+    ended: bool,
+}
+
+impl OutputGrid {
+    /// The grid of `options` for a run to `t_end` that has reached `t` (its outputs up to
+    /// `t` delivered).
+    fn new(options: &Options, t_end: f64, t: f64) -> Self {
+        Self {
+            origin: options.origin,
+            interval: options.output_interval,
+            t_end,
+            next: first_after(options.origin, options.output_interval, t),
+            ended: t >= t_end,
+        }
+    }
+
+    /// The next output time, if the solver's time `t` has passed it.
+    fn due(&self, t: f64) -> Option<f64> {
+        let next = (self.origin + self.next as f64 * self.interval).min(self.t_end);
+        (!self.ended && next <= t + slack(t)).then_some(next)
+    }
+
+    /// The output at `time` ([`Self::due`]) was delivered.
+    fn delivered(&mut self, time: f64) {
+        self.ended = time >= self.t_end;
+        self.next += 1;
+    }
+}
+
+/// The start of the current window of [`STALL_WINDOW`] steps: steps taken and time.
+struct StallWatch {
+    steps: usize,
+    time: f64,
+}
+
+impl StallWatch {
+    /// After `steps` steps at time `t`: the error message if the last [`STALL_WINDOW`]
+    /// steps advanced the time by less than `min_mean_step` each on average; a new window
+    /// starts at the end of each.
+    fn check(&mut self, steps: usize, t: f64, min_mean_step: f64) -> Result<(), String> {
+        if steps < self.steps + STALL_WINDOW {
+            return Ok(());
+        }
+        let mean = (t - self.time) / (steps - self.steps) as f64;
+        if mean < min_mean_step {
+            return Err(format!(
+                "the steps collapsed: the last {} steps advanced the time by {:.3e} s \
+                 (a mean step of {mean:.3e} s, below min_mean_step = {:.3e} s; 0 turns \
+                 this stop off)",
+                steps - self.steps,
+                t - self.time,
+                min_mean_step
+            ));
+        }
+        *self = StallWatch { steps, time: t };
+        Ok(())
+    }
+}
+
+/// One segment of an integration: a fresh solver from (t, y, h) to `stop` (a checkpoint
+/// or t_end).
+struct Segment<'r, 'c, 's, S: OdeSystem> {
+    run: &'r Run<'c, 's, S>,
+    options: &'r Options,
+    stop: f64,
+}
+
+/// How a segment ended.
+enum SegmentEnd {
+    /// The events stopped the run.
+    Stopped(Stats),
+    /// It reached its stop: the time, state and next step there.
+    Reached {
+        time: f64,
+        state: Vec<f64>,
+        step: f64,
+    },
+}
+
+impl<S: OdeSystem> Segment<'_, '_, '_, S> {
+    /// Integrates from `(t, y, h)` (`h` None: diffsol's first step) to the stop, delivering
+    /// the outputs it passes and reporting every step to `events`.
+    fn integrate(
+        &self,
+        (t, y, h): (f64, &[f64], Option<f64>),
+        outputs: &mut OutputGrid,
+        stall: &mut StallWatch,
+        events: &mut impl FnMut(Event) -> ControlFlow<()>,
+    ) -> Result<SegmentEnd, Failure> {
+        let (run, options) = (self.run, self.options);
+        let counters = run.counters;
+        let fail = |time: f64, e: &dyn std::fmt::Display, state: Vec<f64>| {
+            run.failure(time, e.to_string(), state)
+        };
+        let y_init = y.to_vec();
         let mut problem = OdeBuilder::<NalgebraMat<f64>>::new()
             .t0(t)
             .h0(options.dt_initial.min(options.dt_max))
@@ -555,10 +725,10 @@ pub fn integrate<S: OdeSystem>(
             )
             .init(
                 move |_p: &[f64], _t: f64, y: &mut [f64]| y.copy_from_slice(&y_init),
-                n,
+                y.len(),
             )
             .build()
-            .map_err(|e| fail(t, e.to_string(), y.clone(), &counters))?;
+            .map_err(|e| fail(t, &e, y.to_vec()))?;
         // diffsol counts Newton failures over the whole run and gives up after 50 by
         // default; a long run with contacts opening and closing has many, each handled by a
         // Jacobian update or a smaller step. The run fails when the step size collapses.
@@ -569,12 +739,12 @@ pub fn integrate<S: OdeSystem>(
             Method::TrBdf2 => problem.tr_bdf2::<SparseSkipLu>().map(Solver::TrBdf2),
             Method::Esdirk34 => problem.esdirk34::<SparseSkipLu>().map(Solver::Esdirk34),
         };
-        let mut solver = solver.map_err(|e| fail(t, e.to_string(), y.clone(), &counters))?;
+        let mut solver = solver.map_err(|e| fail(t, &e, y.to_vec()))?;
         if let Some(h) = h {
             on!(&mut solver, s => *s.state_mut().h = h);
         }
-        if let Err(e) = on!(&mut solver, s => s.set_stop_time(stop)) {
-            return Err(fail(t, e.to_string(), y, &counters));
+        if let Err(e) = on!(&mut solver, s => s.set_stop_time(self.stop)) {
+            return Err(fail(t, &e, y.to_vec()));
         }
         // diffsol's counters of the earlier segments.
         let before = counters.borrow().stats;
@@ -585,121 +755,65 @@ pub fn integrate<S: OdeSystem>(
                     *s.state_mut().h = options.dt_max;
                 }
             });
-            let reason = match on!(&mut solver, s => s.step()) {
-                Ok(r) => r,
-                Err(e) => {
-                    let (t, y) = on!(&solver, s => (s.state().t, s.state().y.clone_as_vec()));
-                    return Err(fail(t, e.to_string(), y, &counters));
-                }
-            };
-            {
-                let solver_stats = on!(&solver, s => s.get_statistics().clone());
-                let stats = &mut counters.borrow_mut().stats;
-                stats.steps += 1;
-                stats.error_test_failures =
-                    before.error_test_failures + solver_stats.number_of_error_test_failures;
-                stats.newton_failures =
-                    before.newton_failures + solver_stats.number_of_nonlinear_solver_fails;
-                stats.newton_iterations =
-                    before.newton_iterations + solver_stats.number_of_nonlinear_solver_iterations;
-                stats.linear_solver_setups =
-                    before.linear_solver_setups + solver_stats.number_of_linear_solver_setups;
-            }
-            t = on!(&solver, s => s.state().t);
+            let reason = on!(&mut solver, s => s.step());
+            let state = || on!(&solver, s => s.state().y.clone_as_vec());
+            let t = on!(&solver, s => s.state().t);
+            let reason = reason.map_err(|e| fail(t, &e, state()))?;
+            counters
+                .borrow_mut()
+                .record_solver(&before, on!(&solver, s => s.get_statistics()));
             let step = on!(&solver, s => s.state().h);
             if !step.is_finite() {
                 // The next step would loop in the solver for ever (its Newton failures are
                 // not limited): end here with an error instead.
-                let y = on!(&solver, s => s.state().y.clone_as_vec());
-                return Err(fail(
-                    t,
-                    format!("the step size became {step}"),
-                    y,
-                    &counters,
-                ));
+                let message = format!("the step size became {step}");
+                return Err(run.failure(t, message, state()));
             }
             let taken = counters.borrow().stats.steps;
-            if taken >= window.0 + STALL_WINDOW {
-                let mean = (t - window.1) / (taken - window.0) as f64;
-                if mean < options.min_mean_step {
-                    let y = on!(&solver, s => s.state().y.clone_as_vec());
-                    let message = format!(
-                        "the steps collapsed: the last {} steps advanced the time by {:.3e} s \
-                         (a mean step of {mean:.3e} s, below min_mean_step = {:.3e} s; 0 turns \
-                         this stop off)",
-                        taken - window.0,
-                        t - window.1,
-                        options.min_mean_step
-                    );
-                    return Err(fail(t, message, y, &counters));
-                }
-                window = (taken, t);
-            }
-            let stats = report(&counters, t, step);
+            let checked = stall.check(taken, t, options.min_mean_step);
+            checked.map_err(|message| run.failure(t, message, state()))?;
+            let stats = run.stats(t, step);
             if events(Event::Step {
                 time: t,
                 stats: &stats,
             })
             .is_break()
             {
-                return Ok(stats);
+                return Ok(SegmentEnd::Stopped(stats));
             }
-            while !ended && next_output(k) <= t + slack(t) {
-                let to = next_output(k);
-                let y = match on!(&solver, s => s.interpolate(to.min(t))) {
-                    Ok(y) => y.clone_as_vec(),
-                    Err(e) => {
-                        return Err(fail(
-                            t,
-                            e.to_string(),
-                            on!(&solver, s => s.state().y.clone_as_vec()),
-                            &counters,
-                        ))
-                    }
-                };
+            let interpolate = |to: f64| on!(&solver, s => s.interpolate(to.min(t)));
+            while let Some(to) = outputs.due(t) {
+                let y = interpolate(to)
+                    .map_err(|e| fail(t, &e, state()))?
+                    .clone_as_vec();
                 if !y.iter().all(|v| v.is_finite()) {
-                    return Err(fail(
-                        t,
-                        "the state is no longer finite (NaN or infinity)".into(),
-                        on!(&solver, s => s.state().y.clone_as_vec()),
-                        &counters,
-                    ));
+                    let message = "the state is no longer finite (NaN or infinity)".into();
+                    return Err(run.failure(t, message, state()));
                 }
-                let stats = report(&counters, t, step);
+                let stats = run.stats(t, step);
                 let event = Event::Output {
                     time: to,
                     state: &y,
                     stats: &stats,
                 };
                 if events(event).is_break() {
-                    return Ok(stats);
+                    return Ok(SegmentEnd::Stopped(stats));
                 }
-                ended = to >= t_end;
-                k += 1;
+                outputs.delivered(to);
             }
             // A step cut to land on the stop can fall short of it by round-off (B1 with the
             // free tilt: at 0.2 s − 7.5e-15 s, after a step of 7.6e-15 s); the rest would
             // be a step below MIN_STEP, so the stop counts as reached, and the next segment
             // starts from the step before the sliver.
+            let stop = self.stop;
             if matches!(reason, OdeSolverStopReason::TstopReached) || t >= stop - slack(stop) {
-                y = on!(&solver, s => s.state().y.clone_as_vec());
-                h = Some(if step < STEP_SLIVER { last_step } else { step });
-                break;
+                return Ok(SegmentEnd::Reached {
+                    time: t,
+                    state: state(),
+                    step: if step < STEP_SLIVER { last_step } else { step },
+                });
             }
             last_step = step;
-        }
-        let stats = report(&counters, t, h.unwrap_or(0.0));
-        if checkpoint.is_none() {
-            return Ok(stats);
-        }
-        let reached = Checkpoint {
-            time: t,
-            state: y.clone(),
-            step: h.unwrap_or(0.0),
-            stats,
-        };
-        if events(Event::Checkpoint(&reached)).is_break() || t >= t_end - slack(t_end) {
-            return Ok(stats);
         }
     }
 }
