@@ -256,18 +256,40 @@ def operating_map(
     [s], ``tol`` [1]: the steadiness criterion; ``max_time`` [s]: simulated time at which
     a point that is not steady ends; ``max_wall`` [s]: wall-time cap per point and
     invocation. Other arguments as in :func:`rollerdyn.study.paper`."""
-    import pandas as pd
-
-    from ..config import ConfigError
-    from ..model import Model
     from ..simulation import as_config
-    from .folder import prepare_folder
-    from .map_figures import write_maps
     from .paper import _source_name, default_workers
-    from .schedule import Clock, check_scheduler, run_all, timing
+    from .schedule import Clock, check_scheduler
 
     clock = Clock()
     cfg = as_config(config)
+    _check_map_settings(start, ramp, window, tol, max_time, max_wall)
+    speeds, radial, axial = _map_axes(cfg, speed, radial_load, axial_load)
+    workers = default_workers() if workers is None else workers
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise StudyError(f"--workers = {workers!r}: must be a whole number >= 1")
+    grid, rules = _map_points(cfg, (speeds, radial, axial), start, ramp, window, tol, max_time)
+    check_scheduler(scheduler)
+    settings = {"start": start, "ramp": ramp, "window": window, "tol": tol, "max_time": max_time}
+    run = {"max_wall": float(max_wall), "scheduler": scheduler, "workers": workers}
+    return _run_map(
+        cfg,
+        Path(outdir),
+        grid,
+        rules,
+        settings,
+        run,
+        overwrite,
+        progress,
+        clock,
+        source=_source_name(config),
+    )
+
+
+def _check_map_settings(
+    start: str, ramp: float, window: float, tol: float, max_time: float, max_wall: float
+) -> None:
+    """Refuses a start that is not one of :data:`STARTS` and settings that are not positive
+    numbers (``tol`` below 1; ``ramp`` read only with short ramps)."""
     if start not in STARTS:
         raise StudyError(f"--start = {start!r}: must be {', '.join(STARTS)}")
     for name, value, ok in (
@@ -280,6 +302,11 @@ def operating_map(
         if not ok:
             below = " below 1" if name == "--tol" else ""
             raise StudyError(f"{name} = {value!r}: must be a positive number{below}")
+
+
+def _map_axes(cfg: Any, speed: Any, radial_load: Any, axial_load: Any):
+    """The map's speeds [rad/s], radial and axial loads [N] (the loads by default the
+    configuration's final ones), at most :data:`MAX_MAP_POINTS` points in all."""
     speeds = parse_range(speed, "--speed", "angular velocity", "rpm", positive=True)
     own = cfg.operating
     radial = parse_range(
@@ -301,27 +328,25 @@ def operating_map(
             f"{len(axial)} = {total} grid points; a map has at most {MAX_MAP_POINTS} (each "
             "point is a dynamic run of seconds to minutes)"
         )
-    workers = default_workers() if workers is None else workers
-    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
-        raise StudyError(f"--workers = {workers!r}: must be a whole number >= 1")
+    return speeds, radial, axial
+
+
+def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time):
+    """The runs of the grid ``axes`` (speeds, radial loads, axial loads): a list of (run,
+    settling time, window) and the steadiness rule of each run by name. Every point is
+    validated before any runs: the points that fail are named together."""
+    from ..config import ConfigError
+    from ..model import Model
+
     g = cfg.geometry
     factor = epicyclic_factor(g.roller_diameter, g.pitch_diameter)
-    specs, rules, grid = [], {}, []
-    problems = []
+    rules, grid, problems = {}, [], []
     # the equilibrium does not evaluate the traction: its untabulated model, built at once
     traction = Model(cfg).traction_model(tabulated=False) if start == "equilibrium" else None
-    for i, (w, fr, fa) in enumerate(itertools.product(speeds, radial, axial)):
+    for i, (w, fr, fa) in enumerate(itertools.product(*axes)):
         label = f"{w / RPM:g} rpm, F_r = {fr:g} N, F_a = {fa:g} N"
         try:
-            variant, settle = point_config(cfg, w, fr, fa, start, ramp)
-            started = start
-            if traction is not None:
-                refusal = equilibrium_refusal(variant, traction)
-                if refusal is not None:
-                    # a point without an equilibrium (e.g. the free tilt's, whose rollers
-                    # the statics press past ISO 76) runs from short ramps instead
-                    variant, settle = point_config(cfg, w, fr, fa, "short-ramps", ramp)
-                    started = f"{FALLBACK} ({refusal})"
+            variant, settle, started = _point_start(cfg, (w, fr, fa), start, ramp, traction)
         except ConfigError as err:
             for prob in err.problems or ():
                 option = OPTIONS.get(prob.path)
@@ -341,13 +366,13 @@ def operating_map(
             raise StudyError(
                 f"--max-time = {max_time:g} s: too long for point {i} ({label}): {size}"
             )
-        name = f"point_{i:04d}"
         meta = {
             "speed [rpm]": w / RPM,
             "radial_load [N]": fr,
             "axial_load [N]": fa,
             "start": started,
         }
+        name = f"point_{i:04d}"
         spec = RunSpec(
             name,
             label,
@@ -357,7 +382,6 @@ def operating_map(
             config_hash(variant),
             meta=meta,
         )
-        specs.append(spec)
         rules[name] = SteadyRule(settle, win, tol, factor)
         grid.append((spec, settle, win))
     if problems:
@@ -365,38 +389,51 @@ def operating_map(
             f"invalid map: {len(problems)} grid point(s) fail validation (no run was started): "
             + "; ".join(problems)
         )
-    check_scheduler(scheduler)
-    settings = {"start": start, "ramp": ramp, "window": window, "tol": tol, "max_time": max_time}
-    out = prepare_folder(
-        Path(outdir),
-        "map",
-        cfg,
-        overwrite=overwrite,
-        source=_source_name(config),
-        settings=settings,
-    )
+    return grid, rules
+
+
+def _point_start(cfg: Any, point, start: str, ramp: float, traction):
+    """The configuration of one grid point (speed, radial load, axial load), its settling
+    time and how it starts: from ``start``, or from short ramps (:data:`FALLBACK`, with the
+    reason) where ``traction`` is given and the point has no quasi-static equilibrium
+    (:func:`equilibrium_refusal`; e.g. the free tilt's, whose rollers the statics press past
+    ISO 76)."""
+    variant, settle = point_config(cfg, *point, start, ramp)
+    if traction is not None:
+        refusal = equilibrium_refusal(variant, traction)
+        if refusal is not None:
+            variant, settle = point_config(cfg, *point, "short-ramps", ramp)
+            return variant, settle, f"{FALLBACK} ({refusal})"
+    return variant, settle, start
+
+
+def _run_map(cfg, out, grid, rules, settings, run, overwrite, progress, clock, *, source):
+    """Runs the grid's points in the folder ``out`` (prepared and locked meanwhile; ``run``:
+    max_wall, scheduler and workers), writes map.csv, map.parquet and the figures, and
+    returns the study."""
+    import pandas as pd
+
+    from .folder import prepare_folder
+    from .map_figures import write_maps
+    from .schedule import run_all, timing
+
+    out = prepare_folder(out, "map", cfg, overwrite=overwrite, source=source, settings=settings)
     points_dir = out / "points"
     points_dir.mkdir(exist_ok=True)
     lock = lock_folder(out)
     try:
-        records = run_all(
-            specs,
-            points_dir,
-            max_wall=float(max_wall),
-            scheduler=scheduler,
-            workers=workers,
-            progress=progress,
-            stop_rules=rules,
-        )
+        specs = [spec for spec, _settle, _win in grid]
+        records = run_all(specs, points_dir, progress=progress, stop_rules=rules, **run)
         rows = []
-        for spec, _settle, _win in grid:
+        for spec in specs:
             ds = open_run(points_dir / spec.file)
             rows.append(point_row(spec, ds, records[spec.name], rules[spec.name]))
         frame = pd.DataFrame(rows)
         frame.to_csv(out / "map.csv", index=False)
         frame.to_parquet(out / "map.parquet", engine="pyarrow", index=False)
         figures = write_maps(frame, out / "figures", cfg.name)
-        study_timing = timing(records, clock(), workers if scheduler is None else 0)
+        workers = run["workers"] if run["scheduler"] is None else 0
+        study_timing = timing(records, clock(), workers)
     finally:
         lock.unlink(missing_ok=True)
     return MapStudy(out, frame, figures, study_timing)
