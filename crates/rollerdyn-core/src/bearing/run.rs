@@ -278,46 +278,8 @@ pub fn run(
         system.layout.rollers,
         start.as_ref().map_or(0.0, |s| s.time),
     )?;
-    let start = match start {
-        Some(s) => s,
-        None => {
-            system.check_point_law(options.t_end)?;
-            Start {
-                time: 0.0,
-                state: if options.start_from_equilibrium {
-                    system.equilibrium_state(0.0)?
-                } else {
-                    system.initial_state()?
-                },
-                step: None,
-            }
-        }
-    };
+    let start = checked_start(system, start, options)?;
     let (t0, y0) = (start.time, &start.state);
-    let n = system.layout.len();
-    if y0.len() != n || !y0.iter().all(|v| v.is_finite()) || !t0.is_finite() {
-        return Err(crate::Error::invalid(
-            "start state",
-            format!("{} values at t = {t0}", y0.len()),
-            format!("must be {n} finite values, the state of this model (same rollers and ring tilt mode)"),
-        ));
-    }
-    if let Some(outside) = left_the_bearing(system, t0, y0) {
-        // A start outside the bearing (a tampered checkpoint) has no step the solver could
-        // take: it would shrink its steps for ever inside one attempt.
-        return Err(crate::Error::invalid(
-            "start state",
-            format!("t = {t0}"),
-            format!("must place every body inside the bearing: {outside}"),
-        ));
-    }
-    if let Some(h) = start.step.filter(|h| !(h.is_finite() && *h > 0.0)) {
-        return Err(crate::Error::invalid(
-            "start step",
-            format!("{h} s"),
-            "must be a positive step size (a checkpoint's)",
-        ));
-    }
     let settings = Options {
         rtol: options.rtol,
         atol: system.absolute_tolerances(options.atol, options.atol_time_scale),
@@ -410,6 +372,59 @@ pub fn run(
             checkpoint: reached,
         },
     })
+}
+
+/// The run's start: `start` (a checkpoint's) or the consistent initial state at t = 0
+/// (from rest, or from the quasi-static equilibrium with
+/// [`RunOptions::start_from_equilibrium`]; a point-law run the flanges cannot carry is
+/// refused first, [`BearingSystem::check_point_law`]), checked: the model's number of
+/// finite states, every body inside the bearing, a positive step.
+fn checked_start(
+    system: &BearingSystem<'_>,
+    start: Option<Start>,
+    options: &RunOptions,
+) -> crate::Result<Start> {
+    let start = match start {
+        Some(s) => s,
+        None => {
+            system.check_point_law(options.t_end)?;
+            Start {
+                time: 0.0,
+                state: if options.start_from_equilibrium {
+                    system.equilibrium_state(0.0)?
+                } else {
+                    system.initial_state()?
+                },
+                step: None,
+            }
+        }
+    };
+    let (t0, y0) = (start.time, &start.state);
+    let n = system.layout.len();
+    if y0.len() != n || !y0.iter().all(|v| v.is_finite()) || !t0.is_finite() {
+        return Err(crate::Error::invalid(
+            "start state",
+            format!("{} values at t = {t0}", y0.len()),
+            format!("must be {n} finite values, the state of this model (same rollers and ring tilt mode)"),
+        ));
+    }
+    if let Some(outside) = left_the_bearing(system, t0, y0) {
+        // A start outside the bearing (a tampered checkpoint) has no step the solver could
+        // take: it would shrink its steps for ever inside one attempt.
+        return Err(crate::Error::invalid(
+            "start state",
+            format!("t = {t0}"),
+            format!("must place every body inside the bearing: {outside}"),
+        ));
+    }
+    if let Some(h) = start.step.filter(|h| !(h.is_finite() && *h > 0.0)) {
+        return Err(crate::Error::invalid(
+            "start step",
+            format!("{h} s"),
+            "must be a positive step size (a checkpoint's)",
+        ));
+    }
+    Ok(start)
 }
 
 /// Evaluates the outputs at (t, y).
