@@ -448,158 +448,13 @@ fn general(c1: V3, r1: f64, u1: V3, v1: V3, c2: V3, n2: V3, r2: f64, scale: f64)
         pu: proj(&u1),
         pv: proj(&v1),
     };
-    let (r1s, r2s) = (st.r1, st.r2);
-    let (du, dv) = (delta.dot(&u1), delta.dot(&v1));
-    let (pdu, pdv) = (st.pd.dot(&st.pu), st.pd.dot(&st.pv));
-    let (puu, pvv, puv) = (
-        st.pu.norm_squared(),
-        st.pv.norm_squared(),
-        st.pu.dot(&st.pv),
-    );
-    let pdd = st.pd.norm_squared();
-
-    // (E3), (E4) as trigonometric polynomials e(c) + σ o(c).
-    let tp = |e: &[f64], o: &[f64]| TrigPoly {
-        e: Poly::new(e),
-        o: Poly::new(o),
-    };
-    let b_poly = tp(
-        &[-r1s * puv, pdv, 2.0 * r1s * puv],
-        &[-pdu, r1s * (pvv - puu)],
-    );
-    let a_is_zero = du.abs() + dv.abs() <= 1e-14;
-    let (g, g_size) = if a_is_zero {
-        // Centre of circle 2 on the axis of circle 1 (sect. 5.3): F' = 0 ⇔ B = 0.
-        (b_poly, pdd.sqrt() + r1s)
-    } else {
-        let a_poly = tp(&[0.0, dv], &[-du]);
-        let rho2 = tp(
-            &[
-                pdd + r1s * r1s * pvv,
-                2.0 * r1s * pdu,
-                r1s * r1s * (puu - pvv),
-            ],
-            &[2.0 * r1s * pdv, 2.0 * r1s * r1s * puv],
-        );
-        let t1 = a_poly.mul(&a_poly).mul(&rho2);
-        let t2 = b_poly.mul(&b_poly);
-        let g = t1.lin(1.0, &t2, -r2s * r2s);
-        (g, t1.abs_sum() + r2s * r2s * t2.abs_sum())
-    };
-    let g_sum = g.abs_sum();
-    let degenerate = g_sum.is_nan() || g_sum <= 1e-12 * g_size;
-
-    // Candidate points (cos s, sin s).
-    let mut cand = [(0.0f64, 0.0f64, 0.0f64); CANDIDATE_CAPACITY];
-    let mut nc = 0;
-    let push = |c: f64, s: f64, f: f64, list: &mut [(f64, f64, f64)], n: &mut usize| {
-        if *n < list.len() {
-            list[*n] = (c, s, f);
-            *n += 1;
-        }
-    };
-    let p = g.eliminate();
-    let norm = p.c[..=p.deg].iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let mut seed = None;
-    if degenerate || !(norm > 0.0 && norm.is_finite()) {
-        for k in 0..DENSE_SAMPLES {
-            let (s, c) = (std::f64::consts::TAU * k as f64 / DENSE_SAMPLES as f64).sin_cos();
-            push(c, s, st.f(c, s), &mut cand, &mut nc);
-        }
-    } else {
-        let p = p.lin(1.0 / norm, &p, 0.0);
-        // Samples at the ends of the pieces, on both half circles (σ ≥ 0 and σ ≤ 0).
-        let mut d_up = [0.0; PIECES + 1];
-        let mut d_down = [0.0; PIECES + 1];
-        let mut p_size = 0.0f64;
-        for (k, &(c, s)) in PIECE_ENDS.iter().enumerate() {
-            let f = st.f(c, s);
-            push(c, s, f, &mut cand, &mut nc);
-            d_up[k] = f.sqrt();
-            d_down[k] = d_up[k];
-            if s > 0.0 {
-                let f = st.f(c, -s);
-                push(c, -s, f, &mut cand, &mut nc);
-                d_down[k] = f.sqrt();
-            }
-            p_size = p_size.max(p.eval(c).abs());
-        }
-        // An upper bound on the minimum: the best sample, polished.
-        let best =
-            cand[..nc].iter().fold(
-                (0.0, 0.0, f64::INFINITY),
-                |b, x| if x.2 < b.2 { *x } else { b },
-            );
-        let (c, s, f) = st.polish(best.0, best.1);
-        push(c, s, f, &mut cand, &mut nc);
-        seed = Some((c, s, f));
-        let bound = f.sqrt() + 2.0 * EQ_TOL;
-        // Only pieces whose arcs may come closer than that need their roots: |P'(s)| = r₁
-        // and the distance to a set is 1-Lipschitz, so d(s) is r₁-Lipschitz and on an arc
-        // of length ℓ between samples d_a, d_b, d ≥ (d_a + d_b − r₁ ℓ)/2.
-        let mut active = [false; PIECES];
-        for (j, flag) in active.iter_mut().enumerate() {
-            let slack = r1s * PIECE_ARC;
-            *flag = d_up[j] + d_up[j + 1] - slack <= 2.0 * bound
-                || d_down[j] + d_down[j + 1] - slack <= 2.0 * bound;
-        }
-        let mut roots = [(0.0, false); 12];
-        let nroots = roots_on_pieces(&p, &active, p_size, &mut roots);
-        for &(c, cluster) in &roots[..nroots] {
-            let s = (1.0 - c * c).max(0.0).sqrt();
-            if s == 0.0 {
-                push(c, 0.0, st.f(c, 0.0), &mut cand, &mut nc);
-                continue;
-            }
-            // The sign of sin s zeroing G = g₀ + σ g₁ (both if both nearly do, and for an
-            // unresolved cluster, as at a double root of p from a mirror pair ±s).
-            let (e, o) = (g.e.eval(c), g.o.eval(c) * s);
-            let size = g.e.abs_eval(c) + g.o.abs_eval(c) * s;
-            let (gp, gm) = ((e + o).abs(), (e - o).abs());
-            if cluster || gp <= gm || gp <= 1e-6 * size {
-                push(c, s, st.f(c, s), &mut cand, &mut nc);
-            }
-            if cluster || gm < gp || gm <= 1e-6 * size {
-                push(c, -s, st.f(c, -s), &mut cand, &mut nc);
-            }
-        }
-    }
-    let cand = &cand[..nc];
-    let (f_best, f_worst) = cand
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), x| {
-            (lo.min(x.2), hi.max(x.2))
-        });
-
-    // Polish the promising candidates, best first, skipping those next to an already
-    // polished one (the polished best sample is one).
-    let mut promising = [(0.0f64, 0.0f64, 0.0f64); CANDIDATE_CAPACITY];
-    let mut np = 0;
-    for x in cand.iter().filter(|x| x.2 <= f_best + 1e-6) {
-        promising[np] = *x;
-        np += 1;
-    }
-    let promising = &mut promising[..np];
-    promising.sort_unstable_by(|a, b| a.2.total_cmp(&b.2));
+    let (g, degenerate) = st.stationarity();
+    let mut cand = Candidates::default();
+    let seed = cand.collect(&st, &g, degenerate);
+    let cand = cand.as_slice();
+    let f_worst = cand.iter().fold(f64::NEG_INFINITY, |hi, x| hi.max(x.2));
     let mut minima = [(0.0f64, 0.0f64, 0.0f64); 8];
-    let mut nm = 0;
-    if let Some(seed) = seed {
-        minima[0] = seed;
-        nm = 1;
-    }
-    for &(c, s, _) in promising.iter() {
-        if nm == minima.len() {
-            break;
-        }
-        let near = minima[..nm]
-            .iter()
-            .any(|m| (m.0 * s - m.1 * c).abs() < 1e-4 && m.0 * c + m.1 * s > 0.0);
-        if near {
-            continue;
-        }
-        minima[nm] = st.polish(c, s);
-        nm += 1;
-    }
+    let nm = st.polished_minima(cand, seed, &mut minima);
     if nm == 0 {
         // Only reachable with non-finite values inside; nothing sensible to return.
         let nan = V3::repeat(f64::NAN);
@@ -608,11 +463,6 @@ fn general(c1: V3, r1: f64, u1: V3, v1: V3, c2: V3, n2: V3, r2: f64, scale: f64)
             pairs: ClosestPairs::Unique(nan, nan),
         };
     }
-    let minima = &mut minima[..nm];
-    minima.sort_unstable_by(|a, b| a.2.total_cmp(&b.2));
-    let d_min = minima[0].2.sqrt();
-    let level = d_min + EQ_TOL;
-
     // Output in the original units.
     let (u2, _) = orthonormal_basis(&n2);
     let to_pair = |c: f64, s: f64| {
@@ -620,52 +470,255 @@ fn general(c1: V3, r1: f64, u1: V3, v1: V3, c2: V3, n2: V3, r2: f64, scale: f64)
         let q = point_on_circle(&c2, &n2, r2, &(p - c2), &u2);
         (p, q)
     };
-    let (p, q) = to_pair(minima[0].0, minima[0].1);
-    let sq = (p - q).norm_squared();
+    st.closest_pairs(&minima[..nm], f_worst, to_pair)
+}
 
-    // A continuum: F constant over circle 1, or P on the axis of circle 2 (all of
-    // circle 2 equidistant from it: the spread of |P − K| over K is ≈ 2 r₂ ρ / d).
-    let (rho, d2) = st.rho_d2(minima[0].0, minima[0].1);
-    let far = (d2 + r2s * r2s + 2.0 * r2s * rho).sqrt();
-    let near = minima[0].2.sqrt();
-    let axis_spread = 4.0 * r2s * rho / (far + near).max(1e-300);
-    if f_worst.sqrt() <= level || axis_spread <= EQ_TOL {
-        return CircleDistance {
-            squared_distance: sq,
-            pairs: ClosestPairs::Infinite(p, q),
-        };
-    }
+/// Candidate points (cos s, sin s, F) of circle 1 for the minimum of F.
+struct Candidates {
+    list: [(f64, f64, f64); CANDIDATE_CAPACITY],
+    n: usize,
+}
 
-    // Isolated minima at equal distance, one per basin.
-    let mut kept = [0usize; 8];
-    let mut nk = 0;
-    for i in 0..minima.len() {
-        if minima[i].2.sqrt() > level {
-            break;
-        }
-        let a = (minima[i].0, minima[i].1);
-        let distinct = kept[..nk].iter().all(|&j| {
-            let b = (minima[j].0, minima[j].1);
-            st.barrier_between(a, b, level)
-        });
-        if distinct {
-            kept[nk] = i;
-            nk += 1;
+impl Default for Candidates {
+    fn default() -> Self {
+        Self {
+            list: [(0.0, 0.0, 0.0); CANDIDATE_CAPACITY],
+            n: 0,
         }
     }
-    if nk <= 1 {
-        return CircleDistance {
-            squared_distance: sq,
-            pairs: ClosestPairs::Unique(p, q),
-        };
+}
+
+impl Candidates {
+    fn push(&mut self, c: f64, s: f64, f: f64) {
+        if self.n < self.list.len() {
+            self.list[self.n] = (c, s, f);
+            self.n += 1;
+        }
     }
-    let pairs = kept[..nk]
-        .iter()
-        .map(|&i| to_pair(minima[i].0, minima[i].1))
-        .collect();
-    CircleDistance {
-        squared_distance: sq,
-        pairs: ClosestPairs::Several(pairs),
+
+    fn as_slice(&self) -> &[(f64, f64, f64)] {
+        &self.list[..self.n]
+    }
+
+    /// The candidates of F's minimum: dense samples where the polynomial `g` of F' = 0
+    /// is `degenerate`; else the ends of the pieces, the best of them polished (returned
+    /// as the seed), and the roots of the polynomial on the pieces whose arcs may come
+    /// closer than that.
+    fn collect(&mut self, st: &Setup, g: &TrigPoly, degenerate: bool) -> Option<(f64, f64, f64)> {
+        let p = g.eliminate();
+        let norm = p.c[..=p.deg].iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        if degenerate || !(norm > 0.0 && norm.is_finite()) {
+            for k in 0..DENSE_SAMPLES {
+                let (s, c) = (std::f64::consts::TAU * k as f64 / DENSE_SAMPLES as f64).sin_cos();
+                self.push(c, s, st.f(c, s));
+            }
+            return None;
+        }
+        let p = p.lin(1.0 / norm, &p, 0.0);
+        // Samples at the ends of the pieces, on both half circles (σ ≥ 0 and σ ≤ 0).
+        let mut d_up = [0.0; PIECES + 1];
+        let mut d_down = [0.0; PIECES + 1];
+        let mut p_size = 0.0f64;
+        for (k, &(c, s)) in PIECE_ENDS.iter().enumerate() {
+            let f = st.f(c, s);
+            self.push(c, s, f);
+            d_up[k] = f.sqrt();
+            d_down[k] = d_up[k];
+            if s > 0.0 {
+                let f = st.f(c, -s);
+                self.push(c, -s, f);
+                d_down[k] = f.sqrt();
+            }
+            p_size = p_size.max(p.eval(c).abs());
+        }
+        // An upper bound on the minimum: the best sample, polished.
+        let best =
+            self.as_slice().iter().fold(
+                (0.0, 0.0, f64::INFINITY),
+                |b, x| if x.2 < b.2 { *x } else { b },
+            );
+        let (c, s, f) = st.polish(best.0, best.1);
+        self.push(c, s, f);
+        let bound = f.sqrt() + 2.0 * EQ_TOL;
+        // Only pieces whose arcs may come closer than that need their roots: |P'(s)| = r₁
+        // and the distance to a set is 1-Lipschitz, so d(s) is r₁-Lipschitz and on an arc
+        // of length ℓ between samples d_a, d_b, d ≥ (d_a + d_b − r₁ ℓ)/2.
+        let mut active = [false; PIECES];
+        for (j, flag) in active.iter_mut().enumerate() {
+            let slack = st.r1 * PIECE_ARC;
+            *flag = d_up[j] + d_up[j + 1] - slack <= 2.0 * bound
+                || d_down[j] + d_down[j + 1] - slack <= 2.0 * bound;
+        }
+        let mut roots = [(0.0, false); 12];
+        let nroots = roots_on_pieces(&p, &active, p_size, &mut roots);
+        for &(c, cluster) in &roots[..nroots] {
+            self.push_root(st, g, c, cluster);
+        }
+        Some((c, s, f))
+    }
+
+    /// The points of circle 1 at cos s = `c`, a root of the eliminated polynomial: the
+    /// sign of sin s zeroing G = g₀ + σ g₁ (both if both nearly do, and for an unresolved
+    /// `cluster`, as at a double root from a mirror pair ±s).
+    fn push_root(&mut self, st: &Setup, g: &TrigPoly, c: f64, cluster: bool) {
+        let s = (1.0 - c * c).max(0.0).sqrt();
+        if s == 0.0 {
+            self.push(c, 0.0, st.f(c, 0.0));
+            return;
+        }
+        let (e, o) = (g.e.eval(c), g.o.eval(c) * s);
+        let size = g.e.abs_eval(c) + g.o.abs_eval(c) * s;
+        let (gp, gm) = ((e + o).abs(), (e - o).abs());
+        if cluster || gp <= gm || gp <= 1e-6 * size {
+            self.push(c, s, st.f(c, s));
+        }
+        if cluster || gm < gp || gm <= 1e-6 * size {
+            self.push(c, -s, st.f(c, -s));
+        }
+    }
+}
+
+impl Setup {
+    /// The polynomial G of F' = 0 ((E3), (E4) as trigonometric polynomials e(c) + σ o(c))
+    /// and whether it is degenerate (nil against the size of its terms).
+    fn stationarity(&self) -> (TrigPoly, bool) {
+        let (r1s, r2s) = (self.r1, self.r2);
+        let (du, dv) = (self.delta.dot(&self.u), self.delta.dot(&self.v));
+        let (pdu, pdv) = (self.pd.dot(&self.pu), self.pd.dot(&self.pv));
+        let (puu, pvv, puv) = (
+            self.pu.norm_squared(),
+            self.pv.norm_squared(),
+            self.pu.dot(&self.pv),
+        );
+        let pdd = self.pd.norm_squared();
+        let tp = |e: &[f64], o: &[f64]| TrigPoly {
+            e: Poly::new(e),
+            o: Poly::new(o),
+        };
+        let b_poly = tp(
+            &[-r1s * puv, pdv, 2.0 * r1s * puv],
+            &[-pdu, r1s * (pvv - puu)],
+        );
+        let a_is_zero = du.abs() + dv.abs() <= 1e-14;
+        let (g, g_size) = if a_is_zero {
+            // Centre of circle 2 on the axis of circle 1 (sect. 5.3): F' = 0 ⇔ B = 0.
+            (b_poly, pdd.sqrt() + r1s)
+        } else {
+            let a_poly = tp(&[0.0, dv], &[-du]);
+            let rho2 = tp(
+                &[
+                    pdd + r1s * r1s * pvv,
+                    2.0 * r1s * pdu,
+                    r1s * r1s * (puu - pvv),
+                ],
+                &[2.0 * r1s * pdv, 2.0 * r1s * r1s * puv],
+            );
+            let t1 = a_poly.mul(&a_poly).mul(&rho2);
+            let t2 = b_poly.mul(&b_poly);
+            let g = t1.lin(1.0, &t2, -r2s * r2s);
+            (g, t1.abs_sum() + r2s * r2s * t2.abs_sum())
+        };
+        let g_sum = g.abs_sum();
+        let degenerate = g_sum.is_nan() || g_sum <= 1e-12 * g_size;
+        (g, degenerate)
+    }
+
+    /// Polishes the promising candidates `cand` (within 1e-6 of the best), best first,
+    /// skipping those next to an already polished one (the polished `seed` is one), into
+    /// `minima`, sorted; returns how many.
+    fn polished_minima(
+        &self,
+        cand: &[(f64, f64, f64)],
+        seed: Option<(f64, f64, f64)>,
+        minima: &mut [(f64, f64, f64); 8],
+    ) -> usize {
+        let f_best = cand.iter().fold(f64::INFINITY, |lo, x| lo.min(x.2));
+        let mut promising = [(0.0f64, 0.0f64, 0.0f64); CANDIDATE_CAPACITY];
+        let mut np = 0;
+        for x in cand.iter().filter(|x| x.2 <= f_best + 1e-6) {
+            promising[np] = *x;
+            np += 1;
+        }
+        let promising = &mut promising[..np];
+        promising.sort_unstable_by(|a, b| a.2.total_cmp(&b.2));
+        let mut nm = 0;
+        if let Some(seed) = seed {
+            minima[0] = seed;
+            nm = 1;
+        }
+        for &(c, s, _) in promising.iter() {
+            if nm == minima.len() {
+                break;
+            }
+            let near = minima[..nm]
+                .iter()
+                .any(|m| (m.0 * s - m.1 * c).abs() < 1e-4 && m.0 * c + m.1 * s > 0.0);
+            if near {
+                continue;
+            }
+            minima[nm] = self.polish(c, s);
+            nm += 1;
+        }
+        minima[..nm].sort_unstable_by(|a, b| a.2.total_cmp(&b.2));
+        nm
+    }
+
+    /// The distance and closest pairs (by `to_pair`, in the original units) from the
+    /// sorted `minima` of F, whose candidates reached up to `f_worst`: a continuum where F
+    /// is constant over circle 1 or the point lies on circle 2's axis; else the isolated
+    /// minima at equal distance, one per basin.
+    fn closest_pairs(
+        &self,
+        minima: &[(f64, f64, f64)],
+        f_worst: f64,
+        to_pair: impl Fn(f64, f64) -> (V3, V3),
+    ) -> CircleDistance {
+        let level = minima[0].2.sqrt() + EQ_TOL;
+        let (p, q) = to_pair(minima[0].0, minima[0].1);
+        let sq = (p - q).norm_squared();
+        // A continuum: F constant over circle 1, or P on the axis of circle 2 (all of
+        // circle 2 equidistant from it: the spread of |P − K| over K is ≈ 2 r₂ ρ / d).
+        let (rho, d2) = self.rho_d2(minima[0].0, minima[0].1);
+        let far = (d2 + self.r2 * self.r2 + 2.0 * self.r2 * rho).sqrt();
+        let near = minima[0].2.sqrt();
+        let axis_spread = 4.0 * self.r2 * rho / (far + near).max(1e-300);
+        if f_worst.sqrt() <= level || axis_spread <= EQ_TOL {
+            return CircleDistance {
+                squared_distance: sq,
+                pairs: ClosestPairs::Infinite(p, q),
+            };
+        }
+        // Isolated minima at equal distance, one per basin.
+        let mut kept = [0usize; 8];
+        let mut nk = 0;
+        for i in 0..minima.len() {
+            if minima[i].2.sqrt() > level {
+                break;
+            }
+            let a = (minima[i].0, minima[i].1);
+            let distinct = kept[..nk].iter().all(|&j| {
+                let b = (minima[j].0, minima[j].1);
+                self.barrier_between(a, b, level)
+            });
+            if distinct {
+                kept[nk] = i;
+                nk += 1;
+            }
+        }
+        if nk <= 1 {
+            return CircleDistance {
+                squared_distance: sq,
+                pairs: ClosestPairs::Unique(p, q),
+            };
+        }
+        let pairs = kept[..nk]
+            .iter()
+            .map(|&i| to_pair(minima[i].0, minima[i].1))
+            .collect();
+        CircleDistance {
+            squared_distance: sq,
+            pairs: ClosestPairs::Several(pairs),
+        }
     }
 }
 
