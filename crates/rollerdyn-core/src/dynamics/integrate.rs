@@ -608,6 +608,58 @@ impl<S: OdeSystem> Run<'_, '_, S> {
     }
 }
 
+impl<S: OdeSystem> Run<'_, '_, S> {
+    /// Fails the run at `t` (with the accepted `state()`) if the step proposed next,
+    /// `step`, is not finite: the solver would loop for ever (its Newton failures are not
+    /// limited); or if the steps collapsed ([`StallWatch`]).
+    fn check_step(
+        &self,
+        stall: &mut StallWatch,
+        (t, step): (f64, f64),
+        min_mean_step: f64,
+        state: &dyn Fn() -> Vec<f64>,
+    ) -> Result<(), Failure> {
+        if !step.is_finite() {
+            let message = format!("the step size became {step}");
+            return Err(self.failure(t, message, state()));
+        }
+        let taken = self.counters.borrow().stats.steps;
+        let checked = stall.check(taken, t, min_mean_step);
+        checked.map_err(|message| self.failure(t, message, state()))
+    }
+
+    /// Delivers to `events` the outputs that the step to `t` (of size `step`) passed,
+    /// each state from `interpolate`; the counters if the events stopped the run. A state
+    /// that is not finite fails the run (with the accepted `state()`).
+    fn deliver_outputs(
+        &self,
+        outputs: &mut OutputGrid,
+        (t, step): (f64, f64),
+        interpolate: impl Fn(f64) -> Result<Vec<f64>, String>,
+        state: &dyn Fn() -> Vec<f64>,
+        events: &mut impl FnMut(Event) -> ControlFlow<()>,
+    ) -> Result<Option<Stats>, Failure> {
+        while let Some(to) = outputs.due(t) {
+            let y = interpolate(to).map_err(|message| self.failure(t, message, state()))?;
+            if !y.iter().all(|v| v.is_finite()) {
+                let message = "the state is no longer finite (NaN or infinity)".into();
+                return Err(self.failure(t, message, state()));
+            }
+            let stats = self.stats(t, step);
+            let event = Event::Output {
+                time: to,
+                state: &y,
+                stats: &stats,
+            };
+            if events(event).is_break() {
+                return Ok(Some(stats));
+            }
+            outputs.delivered(to);
+        }
+        Ok(None)
+    }
+}
+
 /// The output times origin + k·Δt_out (the last one t_end) and how far they were
 /// delivered.
 struct OutputGrid {
@@ -763,15 +815,7 @@ impl<S: OdeSystem> Segment<'_, '_, '_, S> {
                 .borrow_mut()
                 .record_solver(&before, on!(&solver, s => s.get_statistics()));
             let step = on!(&solver, s => s.state().h);
-            if !step.is_finite() {
-                // The next step would loop in the solver for ever (its Newton failures are
-                // not limited): end here with an error instead.
-                let message = format!("the step size became {step}");
-                return Err(run.failure(t, message, state()));
-            }
-            let taken = counters.borrow().stats.steps;
-            let checked = stall.check(taken, t, options.min_mean_step);
-            checked.map_err(|message| run.failure(t, message, state()))?;
+            run.check_step(stall, (t, step), options.min_mean_step, &state)?;
             let stats = run.stats(t, step);
             if events(Event::Step {
                 time: t,
@@ -781,25 +825,14 @@ impl<S: OdeSystem> Segment<'_, '_, '_, S> {
             {
                 return Ok(SegmentEnd::Stopped(stats));
             }
-            let interpolate = |to: f64| on!(&solver, s => s.interpolate(to.min(t)));
-            while let Some(to) = outputs.due(t) {
-                let y = interpolate(to)
-                    .map_err(|e| fail(t, &e, state()))?
-                    .clone_as_vec();
-                if !y.iter().all(|v| v.is_finite()) {
-                    let message = "the state is no longer finite (NaN or infinity)".into();
-                    return Err(run.failure(t, message, state()));
-                }
-                let stats = run.stats(t, step);
-                let event = Event::Output {
-                    time: to,
-                    state: &y,
-                    stats: &stats,
-                };
-                if events(event).is_break() {
-                    return Ok(SegmentEnd::Stopped(stats));
-                }
-                outputs.delivered(to);
+            let interpolate = |to: f64| {
+                on!(&solver, s => s.interpolate(to.min(t)))
+                    .map(|y| y.clone_as_vec())
+                    .map_err(|e| e.to_string())
+            };
+            let delivered = run.deliver_outputs(outputs, (t, step), interpolate, &state, events)?;
+            if let Some(stats) = delivered {
+                return Ok(SegmentEnd::Stopped(stats));
             }
             // A step cut to land on the stop can fall short of it by round-off (B1 with the
             // free tilt: at 0.2 s − 7.5e-15 s, after a step of 7.6e-15 s); the rest would
