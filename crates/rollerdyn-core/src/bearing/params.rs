@@ -316,6 +316,18 @@ pub struct ModelOptions {
 impl BearingParams {
     /// Checks what the model relies on; the first violation is returned.
     pub fn check(&self) -> Result<()> {
+        self.check_ring_tilt()?;
+        self.check_fit()?;
+        self.check_values()?;
+        self.check_oil_and_gravity()?;
+        self.radial_load.check("radial_load")?;
+        self.axial_load.check("axial_load")?;
+        self.inner_ring_speed.check("inner_ring_speed")?;
+        Ok(())
+    }
+
+    /// A prescribed misalignment within ±1°, and none with the tilt free.
+    fn check_ring_tilt(&self) -> Result<()> {
         let gamma = self.inner_ring_misalignment;
         if !(gamma.is_finite() && gamma.abs() <= 1f64.to_radians()) {
             return Err(Error::invalid(
@@ -331,6 +343,13 @@ impl BearingParams {
                 "must be 0 with the tilt free (a prescribed tilt needs the tilt locked)",
             ));
         }
+        Ok(())
+    }
+
+    /// Rollers, slices and flanges that fit: at least three rollers and one slice, rollers
+    /// between the raceways without overlapping each other, flanges lower than the roller
+    /// and together lower than the annulus.
+    fn check_fit(&self) -> Result<()> {
         if self.roller_count < 3 {
             return Err(Error::invalid("roller_count", self.roller_count, ">= 3"));
         }
@@ -380,6 +399,12 @@ impl BearingParams {
                 format!("neighbouring rollers overlap on the pitch circle (chord {chord:.6e} m <= roller diameter {:.6e} m)", 2.0 * r),
             ));
         }
+        Ok(())
+    }
+
+    /// Masses, inertias, material values and settings positive (or non-negative) and
+    /// finite.
+    fn check_values(&self) -> Result<()> {
         for (name, v) in [
             ("roller_density", self.roller_density),
             ("inner_ring_mass", self.inner_ring_mass),
@@ -409,6 +434,11 @@ impl BearingParams {
                 return Err(Error::invalid(name, v, "non-negative and finite"));
             }
         }
+        Ok(())
+    }
+
+    /// The squeeze and race films' settings, gravity and the oil–air mixture.
+    fn check_oil_and_gravity(&self) -> Result<()> {
         if self.squeeze_film.enabled {
             for (name, v) in [
                 ("squeeze_film.half_width", self.squeeze_film.half_width),
@@ -458,9 +488,6 @@ impl BearingParams {
                 "positive when the mixture has a density",
             ));
         }
-        self.radial_load.check("radial_load")?;
-        self.axial_load.check("axial_load")?;
-        self.inner_ring_speed.check("inner_ring_speed")?;
         Ok(())
     }
 
