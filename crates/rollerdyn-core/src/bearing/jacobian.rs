@@ -51,6 +51,27 @@ struct Column {
     ring_changes: Vec<(Wrench, Wrench)>,
 }
 
+/// State k moved by its difference step ([`BearingSystem::jacobian_column`]).
+struct Perturbation {
+    /// The moved state vector.
+    state: Vec<f64>,
+    /// The step taken (after round-off).
+    step: f64,
+    /// The kinematics at the moved state.
+    kin: BearingKinematics,
+    /// The roller moved (None: the inner ring).
+    body: Option<usize>,
+}
+
+/// The loads after a [`Perturbation`]: the summed loads, which bodies the evaluated
+/// contacts touch, and what the moved roller's inner-ring contacts changed.
+struct ChangedLoads {
+    loads: Loads,
+    touched_ring: bool,
+    touched: Vec<bool>,
+    ring_changes: Vec<(Wrench, Wrench)>,
+}
+
 /// The roller state (local index) that moves a roller as inner-ring state `k` moves the
 /// ring, for the ring's translations (0–2) and velocities (3–5); `None` for its tilt.
 fn roller_twin(k: usize) -> Option<usize> {
@@ -258,44 +279,73 @@ impl BearingSystem<'_> {
     /// Column k of the Jacobian as (row, value) pairs: state k perturbed, only its body's
     /// contacts evaluated again, only the rows of the bodies they touch.
     fn jacobian_column(&self, base: &Linearisation, f0: &[f64], k: usize) -> Column {
-        let (t, y, kin) = (base.t, base.y, base.kin);
+        let moved = self.perturbed(base, k);
+        let changed = self.changed_loads(base, &moved, k);
+        let entries = self.changed_rows(base, f0, &moved, &changed);
+        Column {
+            entries,
+            step: moved.step,
+            ring_changes: changed.ring_changes,
+        }
+    }
+
+    /// State k of the linearisation moved by its difference step, and the kinematics
+    /// that follow.
+    fn perturbed(&self, base: &Linearisation, k: usize) -> Perturbation {
+        let (t, y) = (base.t, base.y);
         let mut yp = y.to_vec();
         let h = 1.5e-8 * y[k].abs().max(self.scale(k));
         yp[k] = y[k] + h;
-        let h = yp[k] - y[k];
+        let step = yp[k] - y[k];
         let body = self.layout.body_of(k);
-        let mut kin_p = kin.clone();
-        let elements = match body {
+        let mut kin = base.kin.clone();
+        match body {
             None => {
-                kin_p.inner_ring = ring_kinematics(
+                kin.inner_ring = ring_kinematics(
                     &self.layout,
                     &yp,
                     self.params.inner_ring_speed.at(t).0,
                     &self.locked_axis,
                 );
-                &self.topology.ring_elements
             }
-            Some(i) => {
-                kin_p.rollers[i] = roller_kinematics(&self.layout, &yp, i);
-                &self.topology.roller_elements[i]
-            }
-        };
+            Some(i) => kin.rollers[i] = roller_kinematics(&self.layout, &yp, i),
+        }
+        Perturbation {
+            state: yp,
+            step,
+            kin,
+            body,
+        }
+    }
+
+    /// The summed loads with the moved body's contacts evaluated again (a velocity moves
+    /// no contact: their geometry is the linearisation's), the bodies they touch, and for
+    /// a roller state with a ring twin the changes of its inner-ring contacts.
+    fn changed_loads(&self, base: &Linearisation, moved: &Perturbation, k: usize) -> ChangedLoads {
         let z = self.layout.rollers;
-        let mut loads_p = base.loads.clone();
-        let mut touched_ring = body.is_none();
-        let mut touched = vec![false; z];
-        if let Some(i) = body {
-            touched[i] = true;
+        let elements = match moved.body {
+            None => &self.topology.ring_elements,
+            Some(i) => &self.topology.roller_elements[i],
+        };
+        let mut out = ChangedLoads {
+            loads: base.loads.clone(),
+            touched_ring: moved.body.is_none(),
+            touched: vec![false; z],
+            ring_changes: Vec::new(),
+        };
+        if let Some(i) = moved.body {
+            out.touched[i] = true;
         }
         let moves = !self.is_velocity(k);
-        let twin = body.is_some_and(|i| has_ring_twin(k - self.layout.roller(i)));
-        let mut ring_changes = Vec::new();
+        let twin = moved
+            .body
+            .is_some_and(|i| has_ring_twin(k - self.layout.roller(i)));
         for &e in elements {
             let element = &self.topology.elements[e];
             let new = if moves {
-                self.evaluate(element, &kin_p)
+                self.evaluate(element, &moved.kin)
             } else {
-                self.evaluate_at(element, &kin_p, &base.geometries[e])
+                self.evaluate_at(element, &moved.kin, &base.geometries[e])
             };
             let old = &base.results[e];
             let [body_a, body_b] = element.bodies(z);
@@ -304,40 +354,53 @@ impl BearingSystem<'_> {
                 on_ring.sub(&old.on_a);
                 let mut on_roller = new.on_b;
                 on_roller.sub(&old.on_b);
-                ring_changes.push((on_ring, on_roller));
+                out.ring_changes.push((on_ring, on_roller));
             }
             for (bd, wn, wo) in [
                 (body_a, &new.on_a, &old.on_a),
                 (body_b, &new.on_b, &old.on_b),
             ] {
                 match bd {
-                    Body::InnerRing => touched_ring = true,
-                    Body::Roller(r) => touched[r] = true,
+                    Body::InnerRing => out.touched_ring = true,
+                    Body::Roller(r) => out.touched[r] = true,
                     Body::OuterRing => continue,
                 }
-                let w = loads_p.on(bd);
+                let w = out.loads.on(bd);
                 w.sub(wo);
                 w.add(wn);
             }
         }
+        out
+    }
+
+    /// The differences (f(y + h e_k) − f(y))/h in the rows of the bodies the changed
+    /// contacts touch (the moved roller's drag evaluated again).
+    fn changed_rows(
+        &self,
+        base: &Linearisation,
+        f0: &[f64],
+        moved: &Perturbation,
+        changed: &ChangedLoads,
+    ) -> Vec<(usize, f64)> {
+        let (t, yp, kin_p, h) = (base.t, &moved.state, &moved.kin, moved.step);
         let mut column = Vec::new();
         let mut fp = vec![0.0; f0.len()];
-        if touched_ring {
+        if changed.touched_ring {
             let m = self.layout.ring_states();
             self.ring_rates(
                 t,
                 &kin_p.inner_ring,
                 &yp[..m],
-                &loads_p.inner_ring,
+                &changed.loads.inner_ring,
                 &mut fp[..m],
             );
             column.extend((0..m).map(|row| (row, (fp[row] - f0[row]) / h)));
         }
-        for (r, _) in touched.iter().enumerate().filter(|(_, t)| **t) {
+        for (r, _) in changed.touched.iter().enumerate().filter(|(_, t)| **t) {
             let s = self.layout.roller(r);
             let range = s..s + ROLLER_STATES;
             let moved_drag;
-            let drag = if body == Some(r) {
+            let drag = if moved.body == Some(r) {
                 moved_drag = self.roller_drag(&kin_p.rollers[r]);
                 &moved_drag
             } else {
@@ -346,16 +409,12 @@ impl BearingSystem<'_> {
             self.roller_rates_with(
                 &kin_p.rollers[r],
                 &yp[range.clone()],
-                &loads_p.rollers[r],
+                &changed.loads.rollers[r],
                 drag,
                 &mut fp[range.clone()],
             );
             column.extend(range.map(|row| (row, (fp[row] - f0[row]) / h)));
         }
-        Column {
-            entries: column,
-            step: h,
-            ring_changes,
-        }
+        column
     }
 }
