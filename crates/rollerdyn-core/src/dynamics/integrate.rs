@@ -606,9 +606,7 @@ impl<S: OdeSystem> Run<'_, '_, S> {
             state,
         }
     }
-}
 
-impl<S: OdeSystem> Run<'_, '_, S> {
     /// Fails the run at `t` (with the accepted `state()`) if the step proposed next,
     /// `step`, is not finite: the solver would loop for ever (its Newton failures are not
     /// limited); or if the steps collapsed ([`StallWatch`]).
