@@ -267,14 +267,14 @@ def operating_map(
     workers = default_workers() if workers is None else workers
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise StudyError(f"--workers = {workers!r}: must be a whole number >= 1")
-    grid, rules = _map_points(cfg, (speeds, radial, axial), start, ramp, window, tol, max_time)
+    specs, rules = _map_points(cfg, (speeds, radial, axial), start, ramp, window, tol, max_time)
     check_scheduler(scheduler)
     settings = {"start": start, "ramp": ramp, "window": window, "tol": tol, "max_time": max_time}
     run = {"max_wall": float(max_wall), "scheduler": scheduler, "workers": workers}
     return _run_map(
         cfg,
         Path(outdir),
-        grid,
+        specs,
         rules,
         settings,
         run,
@@ -332,15 +332,15 @@ def _map_axes(cfg: Any, speed: Any, radial_load: Any, axial_load: Any):
 
 
 def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time):
-    """The runs of the grid ``axes`` (speeds, radial loads, axial loads): a list of (run,
-    settling time, window) and the steadiness rule of each run by name. Every point is
-    validated before any runs: the points that fail are named together."""
+    """The runs of the grid ``axes`` (speeds, radial loads, axial loads) and the
+    steadiness rule of each run by name. Every point is validated before any runs: the
+    points that fail are named together."""
     from ..config import ConfigError
     from ..model import Model
 
     g = cfg.geometry
     factor = epicyclic_factor(g.roller_diameter, g.pitch_diameter)
-    rules, grid, problems = {}, [], []
+    rules, specs, problems = {}, [], []
     # the equilibrium does not evaluate the traction: its untabulated model, built at once
     traction = Model(cfg).traction_model(tabulated=False) if start == "equilibrium" else None
     for i, (w, fr, fa) in enumerate(itertools.product(*axes)):
@@ -383,13 +383,13 @@ def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time):
             meta=meta,
         )
         rules[name] = SteadyRule(settle, win, tol, factor)
-        grid.append((spec, settle, win))
+        specs.append(spec)
     if problems:
         raise StudyError(
             f"invalid map: {len(problems)} grid point(s) fail validation (no run was started): "
             + "; ".join(problems)
         )
-    return grid, rules
+    return specs, rules
 
 
 def _point_start(cfg: Any, point, start: str, ramp: float, traction):
@@ -407,10 +407,10 @@ def _point_start(cfg: Any, point, start: str, ramp: float, traction):
     return variant, settle, start
 
 
-def _run_map(cfg, out, grid, rules, settings, run, overwrite, progress, clock, *, source):
-    """Runs the grid's points in the folder ``out`` (prepared and locked meanwhile; ``run``:
-    max_wall, scheduler and workers), writes map.csv, map.parquet and the figures, and
-    returns the study."""
+def _run_map(cfg, out, specs, rules, settings, run, overwrite, progress, clock, *, source):
+    """Runs the grid's points ``specs`` in the folder ``out`` (prepared, and locked
+    meanwhile; ``run``: max_wall, scheduler and workers), writes map.csv, map.parquet and
+    the figures, and returns the study."""
     import pandas as pd
 
     from .folder import prepare_folder
@@ -422,7 +422,6 @@ def _run_map(cfg, out, grid, rules, settings, run, overwrite, progress, clock, *
     points_dir.mkdir(exist_ok=True)
     lock = lock_folder(out)
     try:
-        specs = [spec for spec, _settle, _win in grid]
         records = run_all(specs, points_dir, progress=progress, stop_rules=rules, **run)
         rows = []
         for spec in specs:
