@@ -558,18 +558,21 @@ pub fn integrate<S: OdeSystem>(
             options,
             stop: checkpoint.unwrap_or(t_end),
         };
-        match segment.integrate((t, &y, h), &mut outputs, &mut stall, &mut events)? {
+        let step = match segment.integrate((t, &y, h), &mut outputs, &mut stall, &mut events)? {
             SegmentEnd::Stopped(stats) => return Ok(stats),
-            SegmentEnd::Reached { time, state, step } => (t, y, h) = (time, state, Some(step)),
-        }
-        let stats = run.stats(t, h.unwrap_or(0.0));
+            SegmentEnd::Reached { time, state, step } => {
+                (t, y, h) = (time, state, Some(step));
+                step
+            }
+        };
+        let stats = run.stats(t, step);
         if checkpoint.is_none() {
             return Ok(stats);
         }
         let reached = Checkpoint {
             time: t,
             state: y.clone(),
-            step: h.unwrap_or(0.0),
+            step,
             stats,
         };
         if events(Event::Checkpoint(&reached)).is_break() || t >= t_end - slack(t_end) {
