@@ -1,11 +1,14 @@
 //! Criterion benchmarks of roller end / flange detection on B1's geometry: one composite
 //! evaluation (six pairings of one roller end against one flange) per method, over a
 //! roller's trajectory through the load zone (the gradient method warm-started from the
-//! previous step, as in a run). Run: `cargo bench -p rollerdyn-core --bench contact`.
+//! previous step, as in a run); and the distributed law's overlap integral over the
+//! trajectory's poses where the end presses the flange. Run:
+//! `cargo bench -p rollerdyn-core --bench contact`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use rollerdyn_core::contact::benchmark::Trajectory;
-use rollerdyn_core::contact::{gradient, pruning, semi_analytical, Pairing};
+use rollerdyn_core::contact::distributed::{self, Asperities};
+use rollerdyn_core::contact::{deepest, gradient, pruning, semi_analytical, Pairing};
 use rollerdyn_core::geometry::circle::{circle_circle_distance, Circle3};
 use rollerdyn_core::geometry::end_flange::{Flange, FlangePlacement, FlangeShape, RollerEnd};
 use rollerdyn_core::geometry::primitives::Vec3;
@@ -152,9 +155,37 @@ fn detection(c: &mut Criterion) {
     });
 }
 
+/// The distributed end–flange law's overlap integral (`contact::distributed::integrate`)
+/// with B1's roughness, at each pose of the trajectory whose detected contact lies within
+/// the asperities' reach, from the detected deepest point as in a run.
+fn distributed_overlap(c: &mut Criterion) {
+    let (_, flange, ends) = b1();
+    let asperities = Asperities { sigma: 0.24e-6 };
+    let pressed: Vec<(RollerEnd, Vec3)> = ends
+        .iter()
+        .filter_map(|end| {
+            let contact = deepest(&semi_analytical::detect(end, &flange))?;
+            (contact.penetration > -asperities.reach()).then_some((*end, contact.p1))
+        })
+        .collect();
+    assert!(
+        !pressed.is_empty(),
+        "no pose of the trajectory presses the flange"
+    );
+    let n = pressed.len();
+    let mut k = 0;
+    c.bench_function("distributed overlap (B1 roughness)", |b| {
+        b.iter(|| {
+            k = (k + 1) % n;
+            let (end, p1) = black_box(&pressed[k]);
+            distributed::integrate(end, &flange, p1, asperities, false)
+        })
+    });
+}
+
 criterion_group! {
     name = benches;
     config = Criterion::default().sample_size(20).measurement_time(std::time::Duration::from_secs(2));
-    targets = detection
+    targets = detection, distributed_overlap
 }
 criterion_main!(benches);

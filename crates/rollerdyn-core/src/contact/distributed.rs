@@ -391,49 +391,100 @@ impl Field {
     }
 
     /// The distance r > 0 from (u, v), where g = `inside` > 0, along `dir` to the support's
-    /// boundary, from the guess `start`: Newton's method kept within the bracket found so
-    /// far (bisection when it leaves it). g is concave along the ray, so Newton's steps
-    /// from outside approach the root monotonically. The bracket starts at 2.5 roller
-    /// radii, where every point is off the end (g falls steeply past its edge), and short of
-    /// the ring's circle's other side.
+    /// boundary, from the guess `start` ([`BoundarySearch`]).
     fn boundary(&self, p: (f64, f64), dir: (f64, f64), inside: f64, start: f64) -> f64 {
-        let limit = 2.5 * (self.end.tube_center + self.end.tube_radius) / dir.0.hypot(dir.1);
-        let ftol = ROOT_FTOL * inside;
-        let (mut lo, mut hi) = (0.0, limit);
-        let mut r = start.clamp(1e-12, limit);
-        for _ in 0..100 {
-            let (g, slope) = self.depth_along(p, dir, r);
-            if g.abs() <= ftol {
-                return r;
+        self.boundaries(p, &[dir], inside, &[start])[0]
+    }
+
+    /// The boundary along each of the N rays `dirs` from (u, v), where g = `inside` > 0,
+    /// each from its guess in `starts`: every ray's search takes the same evaluations as
+    /// it would alone ([`BoundarySearch`]), but the rays' Newton steps are taken in turn,
+    /// one ray's after another's, so that the processor overlaps their independent chains
+    /// of square roots and divisions instead of waiting for each.
+    fn boundaries<const N: usize>(
+        &self,
+        p: (f64, f64),
+        dirs: &[(f64, f64); N],
+        inside: f64,
+        starts: &[f64; N],
+    ) -> [f64; N] {
+        let reach = 2.5 * (self.end.tube_center + self.end.tube_radius);
+        let mut searches: [BoundarySearch; N] = std::array::from_fn(|k| {
+            BoundarySearch::new(reach / dirs[k].0.hypot(dirs[k].1), inside, starts[k])
+        });
+        let mut roots: [Option<f64>; N] = [None; N];
+        while roots.iter().any(Option::is_none) {
+            for (root, (search, dir)) in roots.iter_mut().zip(searches.iter_mut().zip(dirs)) {
+                if root.is_none() {
+                    let (g, slope) = self.depth_along(p, *dir, search.r);
+                    *root = search.take(g, slope);
+                }
             }
-            if g > 0.0 {
-                lo = r;
-            } else {
-                hi = r;
-            }
-            if hi - lo <= 1e-12 * hi {
-                break;
-            }
-            let newton = r - g / slope;
-            let in_bracket = slope < 0.0 && newton > lo && newton < hi;
-            if in_bracket && g.abs() <= NEWTON_FTOL * inside {
-                return newton;
-            }
-            r = if in_bracket { newton } else { 0.5 * (lo + hi) };
         }
-        0.5 * (lo + hi)
+        roots.map(|root| root.unwrap_or(f64::NAN))
     }
 
     /// The midpoint of the chord through `p` along `u`, and the chord's half-length.
     fn chord_midpoint(&self, p: (f64, f64), u: (f64, f64), scale: f64) -> ((f64, f64), f64) {
         let inside = self.depth(p.0, p.1);
-        let forward = self.boundary(p, u, inside, scale);
-        let backward = self.boundary(p, (-u.0, -u.1), inside, scale);
+        let [forward, backward] = self.boundaries(p, &[u, (-u.0, -u.1)], inside, &[scale; 2]);
         let shift = 0.5 * (forward - backward);
         (
             (p.0 + shift * u.0, p.1 + shift * u.1),
             0.5 * (forward + backward),
         )
+    }
+}
+
+/// One search for the support's boundary along a ray: Newton's method kept within the
+/// bracket found so far (bisection when it leaves it). g is concave along the ray, so
+/// Newton's steps from outside approach the root monotonically. The bracket starts at the
+/// ray's `limit`, 2.5 roller radii, where every point is off the end (g falls steeply past
+/// its edge), and short of the ring's circle's other side. At most 100 evaluations.
+struct BoundarySearch {
+    lo: f64,
+    hi: f64,
+    /// Where g is to be evaluated next.
+    r: f64,
+    /// g at the ray's start.
+    inside: f64,
+    evaluations: usize,
+}
+
+impl BoundarySearch {
+    fn new(limit: f64, inside: f64, start: f64) -> Self {
+        Self {
+            lo: 0.0,
+            hi: limit,
+            r: start.clamp(1e-12, limit),
+            inside,
+            evaluations: 0,
+        }
+    }
+
+    /// Takes g and dg/dr at `self.r`: the root, once found, or None with the next `r` set.
+    fn take(&mut self, g: f64, slope: f64) -> Option<f64> {
+        let r = self.r;
+        if g.abs() <= ROOT_FTOL * self.inside {
+            return Some(r);
+        }
+        if g > 0.0 {
+            self.lo = r;
+        } else {
+            self.hi = r;
+        }
+        let (lo, hi) = (self.lo, self.hi);
+        if hi - lo <= 1e-12 * hi {
+            return Some(0.5 * (lo + hi));
+        }
+        let newton = r - g / slope;
+        let in_bracket = slope < 0.0 && newton > lo && newton < hi;
+        if in_bracket && g.abs() <= NEWTON_FTOL * self.inside {
+            return Some(newton);
+        }
+        self.r = if in_bracket { newton } else { 0.5 * (lo + hi) };
+        self.evaluations += 1;
+        (self.evaluations == 100).then_some(0.5 * (lo + hi))
     }
 }
 
@@ -650,13 +701,21 @@ impl Field {
         let step = TAU / COARSE_RAYS as f64;
         let jacobian = frame.jacobian() * step;
         let (mut area, mut m1, mut m2) = (0.0, (0.0, 0.0), (0.0, 0.0, 0.0));
-        let mut reach = 1.0;
         let (ca, cb) = frame.centre;
+        let dirs = COARSE_RAY_ANGLES.map(|angle| frame.ray(angle));
+        let reaches = match starts {
+            Some(starts) => self.boundaries(frame.centre, &dirs, inside, starts),
+            // Without guesses each ray starts from the reach of the one before.
+            None => {
+                let mut reach = 1.0;
+                dirs.map(|dir| {
+                    reach = self.boundary(frame.centre, dir, inside, reach);
+                    reach
+                })
+            }
+        };
         let mut points = [(0.0, 0.0); COARSE_RAYS];
-        for (k, angle) in COARSE_RAY_ANGLES.iter().enumerate() {
-            let (ua, ub) = frame.ray(*angle);
-            let start = starts.map_or(reach, |r| r[k]);
-            reach = self.boundary(frame.centre, (ua, ub), inside, start);
+        for (k, (&(ua, ub), &reach)) in dirs.iter().zip(&reaches).enumerate() {
             points[k] = (ca + reach * ua, cb + reach * ub);
             // ∫₀ᴿ ρ dρ, ∫₀ᴿ ρ² dρ, ∫₀ᴿ ρ³ dρ.
             let (r2, r3, r4) = (
@@ -702,9 +761,9 @@ impl Field {
             max_depth: depth0,
             ..Default::default()
         };
-        for (k, angle) in RAY_ANGLES.iter().enumerate() {
-            let (ua, ub) = frame.ray(*angle);
-            let reach = self.boundary(c, (ua, ub), depth_c, starts[k]);
+        let dirs = RAY_ANGLES.map(|angle| frame.ray(angle));
+        let reaches = self.boundaries(c, &dirs, depth_c, starts);
+        for (&(ua, ub), &reach) in dirs.iter().zip(&reaches) {
             s.area += 0.5 * reach * reach * jacobian;
             for (xi, wi) in GAUSS_NODES.iter().zip(GAUSS_WEIGHTS) {
                 let r = reach * xi;
