@@ -218,6 +218,85 @@ proptest::proptest! {
     }
 }
 
+/// The boundary search of one ray written as one loop (the form before the searches of a
+/// pass were interleaved): Newton's method within the bracket found so far, bisection when
+/// it leaves it, the root accepted at |g| ≤ ROOT_FTOL·inside or after a Newton step from
+/// |g| ≤ NEWTON_FTOL·inside, at most 100 evaluations.
+fn sequential_boundary(
+    field: &Field,
+    p: (f64, f64),
+    dir: (f64, f64),
+    inside: f64,
+    start: f64,
+) -> f64 {
+    let limit = 2.5 * (field.end.tube_center + field.end.tube_radius) / dir.0.hypot(dir.1);
+    let (mut lo, mut hi) = (0.0, limit);
+    let mut r = start.clamp(1e-12, limit);
+    for _ in 0..100 {
+        let (g, slope) = field.depth_along(p, dir, r);
+        if g.abs() <= ROOT_FTOL * inside {
+            return r;
+        }
+        if g > 0.0 {
+            lo = r;
+        } else {
+            hi = r;
+        }
+        if hi - lo <= 1e-12 * hi {
+            break;
+        }
+        let newton = r - g / slope;
+        let in_bracket = slope < 0.0 && newton > lo && newton < hi;
+        if in_bracket && g.abs() <= NEWTON_FTOL * inside {
+            return newton;
+        }
+        r = if in_bracket { newton } else { 0.5 * (lo + hi) };
+    }
+    0.5 * (lo + hi)
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 32, .. Default::default() })]
+
+    /// The boundary searches of a pass taken in turn (`Field::boundaries`) find each ray's
+    /// boundary exactly, to the last bit, as the plain sequential search of one ray
+    /// ([`sequential_boundary`]) does, from any guesses: the interleaving only reorders
+    /// independent work. Any B1 pose with an overlap (as in `any_overlap_matches_the_grid`),
+    /// 24 rays from the detected deepest point, guesses from 1 nm to 3 mm.
+    #[test]
+    fn boundary_searches_in_turn_equal_each_alone(
+        inner in proptest::bool::ANY,
+        psi in -3.2..3.2f64,
+        tilt in -2e-3..2e-3f64,
+        skew in -2e-3..2e-3f64,
+        log_starts in proptest::array::uniform24(-9.0..-2.5f64),
+        scales in proptest::array::uniform24(0.2..5.0f64),
+    ) {
+        let flange = b1_flange(inner, true);
+        let end = b1_end(true, psi, 22e-6, 0.0, tilt, skew);
+        let c = contact_of(&end, &flange);
+        proptest::prop_assume!(c.penetration > 0.05e-6);
+        let field = Field {
+            asperities: Asperities { sigma: 0.24e-6 },
+            ..Field::new(EndGraph::new(&end), FlangeProfile::new(&flange)).expect("a field")
+        };
+        let centre = field.coordinates(&c.p1);
+        let inside = field.depth(centre.0, centre.1);
+        proptest::prop_assume!(inside > 0.0);
+        let dirs: [(f64, f64); 24] = std::array::from_fn(|k| {
+            let (sin, cos) = RAY_ANGLES[k];
+            (scales[k] * cos, sin)
+        });
+        let starts = log_starts.map(|x| 10f64.powf(x));
+        let together = field.boundaries(centre, &dirs, inside, &starts);
+        for k in 0..24 {
+            let alone = sequential_boundary(&field, centre, dirs[k], inside, starts[k]);
+            proptest::prop_assert_eq!(together[k].to_bits(), alone.to_bits(), "ray {}", k);
+            proptest::prop_assert!(together[k] > 0.0 && together[k].is_finite());
+        }
+    }
+}
+
 /// The Winkler force (`tribology::foundation`) is smooth where the point contact is not:
 /// over the same tilts through the flat position, at a fixed axial shift, with and without
 /// skew, its second differences in steps of 0.5 µrad stay below 1e-5 of the force
