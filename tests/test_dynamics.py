@@ -232,6 +232,37 @@ def test_free_tilt_with_the_distributed_flange_law_runs_through_its_checkpoints(
     assert tilt > 1e-9, tilt
 
 
+DISTRIBUTED_IN_MOTION = {
+    "solver.start": "equilibrium",
+    "operating.load_ramp": None,
+    "operating.speed_ramp": None,
+    "surfaces.flange_law": "distributed",
+    "operating.end_time": "3 ms",
+    "solver.output_interval": "0.5 ms",
+    "solver.checkpoint_interval": "1 ms",
+}
+"""B1 with the distributed end-flange law from equilibrium at full load and speed: every
+loaded roller end on its flanges from the first step (18 overlaps above 1 N at 3 ms)."""
+
+
+def test_distributed_law_runs_equal_on_any_threads_and_resumed():
+    # The distributed law carries each overlap's support frame from one accepted step to
+    # the next (docs/dynamics.md, "Distributed roller end-flange law"): the frames live in
+    # the run's workspace, change only between steps and are cleared at every checkpoint,
+    # so a run gives the same bits on one and two threads, and resumed from a checkpoint.
+    cfg = variant(**DISTRIBUTED_IN_MOTION)
+    one = simulate(cfg, threads=1)
+    assert int((one.flange_normal_force.isel(time=-1) > 1.0).sum()) >= 10
+    two = simulate(cfg, threads=2)
+    for name in one.data_vars:
+        assert np.array_equal(one[name].values, two[name].values, equal_nan=True), name
+    part = simulate(cfg, t_end=0.0015)
+    assert float(part.checkpoint_time) == pytest.approx(0.001, abs=1e-15)
+    resumed = simulate(cfg, resume=part)
+    for name in one.data_vars:
+        assert np.array_equal(one[name].values, resumed[name].values, equal_nan=True), name
+
+
 def test_e_gradient_and_semi_analytical_detectors_give_the_same_trajectories():
     # 1. Trajectories through the first roller end / flange impacts (the ring, pushed by
     #    the axial load through its 20 um play, hits the roller ends): same to 1 nm.

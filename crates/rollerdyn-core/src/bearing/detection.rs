@@ -16,7 +16,7 @@ use super::params::{BearingParams, Detector, FlangeLaw};
 use super::state::Kinematics;
 use super::topology::{end_slot, flange_side};
 use crate::bearing::workspace::BearingSystem;
-use crate::contact::distributed::{self, Asperities, DistributedOverlap};
+use crate::contact::distributed::{self, Asperities, DistributedOverlap, SupportFrame};
 use crate::contact::gradient::{self, Unknowns};
 use crate::contact::mesh::{MeshDetector, MeshResolution};
 use crate::contact::pruning;
@@ -51,6 +51,43 @@ impl WarmStarts {
     }
 }
 
+/// The distributed flange law's support frames ([`SupportFrame`]) that the evaluations of
+/// a step start from, one slot per roller end and flange ([`end_slot`]): those the latest
+/// evaluation of the step before found, taken when it was accepted
+/// (`BearingSystem::take_support_frames`). Every evaluation within a step reads the same
+/// frames, so a step's right-hand sides and Jacobian columns are one smooth function of
+/// the state, whatever the threads; the frames follow the contacts from step to step.
+#[derive(Debug)]
+pub(super) struct SupportFrames(Vec<Mutex<Option<SupportFrame>>>);
+
+impl SupportFrames {
+    /// No frames, for a bearing of `rollers` rollers.
+    pub(super) fn new(rollers: usize) -> Self {
+        Self((0..4 * rollers).map(|_| Mutex::new(None)).collect())
+    }
+
+    fn lock(&self, slot: usize) -> MutexGuard<'_, Option<SupportFrame>> {
+        self.0[slot].lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// The frame of roller i's end against flange k.
+    fn get(&self, roller: usize, flange: usize) -> Option<SupportFrame> {
+        *self.lock(end_slot(roller, flange))
+    }
+
+    /// Sets the frame of roller i's end against flange k.
+    pub(super) fn set(&self, roller: usize, flange: usize, frame: Option<SupportFrame>) {
+        *self.lock(end_slot(roller, flange)) = frame;
+    }
+
+    /// Forgets every frame.
+    pub(super) fn clear(&self) {
+        for slot in 0..self.0.len() {
+            *self.lock(slot) = None;
+        }
+    }
+}
+
 /// The position-dependent part of a roller end–flange contact (`BearingSystem::end_geometry`).
 #[derive(Debug, Clone, Copy)]
 pub struct EndGeometry {
@@ -60,6 +97,8 @@ pub struct EndGeometry {
     pub overlap: Option<DistributedOverlap>,
     /// The flange's Winkler modulus for the overlap [Pa/m].
     pub foundation_modulus: f64,
+    /// The overlap's support frame for the next step ([`SupportFrames`]).
+    pub support_frame: Option<SupportFrame>,
 }
 
 impl BearingSystem<'_> {
@@ -93,7 +132,8 @@ impl BearingSystem<'_> {
 
     /// The position-dependent part of roller i's end against flange k: the detected contact
     /// ([`Self::end_contact`]) and, with the distributed flange law, its whole overlap
-    /// ([`distributed::integrate`]) when the detected contact overlaps.
+    /// ([`distributed::integrate_near`], from the step's support frame) when the detected
+    /// contact overlaps.
     pub(super) fn end_geometry(
         &self,
         end: &RollerEnd,
@@ -102,21 +142,23 @@ impl BearingSystem<'_> {
         k: usize,
     ) -> EndGeometry {
         let contact = self.end_contact(end, flange, roller, k);
-        let overlap = match (self.params.flange_law, &contact) {
+        let found = match (self.params.flange_law, &contact) {
             (FlangeLaw::Distributed, Some(c)) => {
                 let start = self.workspace.profiler.stopwatch();
-                let overlap = self.overlap(end, flange, c, false);
+                let near = self.workspace.support_frames.get(roller, k);
+                let found = self.overlap_near(end, flange, c, false, near.as_ref());
                 self.workspace
                     .profiler
                     .spend_time(start, |pr, t| pr.detection += t);
-                overlap
+                found
             }
             _ => None,
         };
         EndGeometry {
             contact,
-            overlap,
+            overlap: found.map(|(overlap, _)| overlap),
             foundation_modulus: self.foundation_modulus[usize::from(k >= 2)],
+            support_frame: found.map(|(_, frame)| frame),
         }
     }
 
@@ -131,10 +173,24 @@ impl BearingSystem<'_> {
         c: &Contact,
         energy: bool,
     ) -> Option<DistributedOverlap> {
+        self.overlap_near(end, flange, c, energy, None)
+            .map(|(overlap, _)| overlap)
+    }
+
+    /// [`Self::overlap`] from the support frame `near` of a nearby pose
+    /// ([`distributed::integrate_near`]), and the frame for the next.
+    fn overlap_near(
+        &self,
+        end: &RollerEnd,
+        flange: &Flange,
+        c: &Contact,
+        energy: bool,
+        near: Option<&SupportFrame>,
+    ) -> Option<(DistributedOverlap, SupportFrame)> {
         let asperities = self.asperities();
         // (a NaN penetration, no contact found, compares false: nothing carried)
         (c.penetration > -asperities.reach())
-            .then(|| distributed::integrate(end, flange, &c.p1, asperities, energy))
+            .then(|| distributed::integrate_near(end, flange, &c.p1, asperities, energy, near))
             .flatten()
     }
 

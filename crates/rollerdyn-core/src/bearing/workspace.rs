@@ -11,11 +11,12 @@
 //! reached through it as on the model itself ([`std::ops::Deref`]).
 
 use super::contacts::{ElementResult, Geometry};
-use super::detection::WarmStarts;
+use super::detection::{SupportFrames, WarmStarts};
 use super::model::BearingModel;
-use super::params::Detector;
+use super::params::{Detector, FlangeLaw};
 use super::profile::{Profile, Profiler};
 use super::state::BearingKinematics;
+use super::topology::Element;
 use crate::dynamics::integrate::OdeSystem;
 use crate::dynamics::team::Team;
 use crate::error::{Error, Result};
@@ -53,6 +54,9 @@ impl std::fmt::Debug for Evaluation {
 pub struct Workspace {
     /// The gradient detector's warm starts, one slot per roller end and flange.
     pub(super) warm_starts: WarmStarts,
+    /// The distributed flange law's support frames of the step, one slot per roller end
+    /// and flange.
+    pub(super) support_frames: SupportFrames,
     /// The profile, one slot per thread that evaluates the model.
     pub(super) profiler: Profiler,
     /// The helper threads that evaluate contacts and Jacobian columns beside the calling
@@ -81,6 +85,7 @@ impl Workspace {
     pub fn single(model: &BearingModel) -> Self {
         Self {
             warm_starts: WarmStarts::new(model.params.roller_count),
+            support_frames: SupportFrames::new(model.params.roller_count),
             profiler: Profiler::single(),
             team: None,
             built_for: fingerprint(model),
@@ -112,6 +117,7 @@ impl Workspace {
         };
         Ok(Self {
             warm_starts: WarmStarts::new(model.params.roller_count),
+            support_frames: SupportFrames::new(model.params.roller_count),
             profiler: Profiler::for_threads(threads),
             team,
             built_for: fingerprint(model),
@@ -248,6 +254,27 @@ impl BearingSystem<'_> {
         *self.workspace.latest() = Some(evaluation);
     }
 
+    /// With the distributed flange law, takes the support frames of the latest evaluation
+    /// (the step's last Newton iterate) as those of the next step's evaluations
+    /// ([`super::detection::SupportFrames`]; none where it found no overlap), and forgets
+    /// that evaluation: taken from the frames before, it is not the base of a Jacobian
+    /// taken from these.
+    fn take_support_frames(&self) {
+        if self.params.flange_law != FlangeLaw::Distributed {
+            return;
+        }
+        let latest = self.workspace.latest().take();
+        self.workspace.support_frames.clear();
+        let Some(evaluation) = latest else {
+            return;
+        };
+        for (element, geometry) in self.topology.elements.iter().zip(&evaluation.geometries) {
+            if let (Element::End(i, k), Geometry::End(end)) = (element, geometry) {
+                self.workspace.support_frames.set(*i, *k, end.support_frame);
+            }
+        }
+    }
+
     /// Forgets the remembered evaluation, so that the next right-hand side or Jacobian
     /// evaluates every contact (`rollerdyn bench model` times right-hand sides at one
     /// state this way).
@@ -283,11 +310,16 @@ impl OdeSystem for BearingSystem<'_> {
         self.partial_structured_jacobian(t, y, states, jac)
     }
 
-    /// Clears the gradient detector's warm starts and the remembered evaluation
-    /// (checkpoints restart from here).
+    /// Clears the gradient detector's warm starts, the distributed law's support frames and
+    /// the remembered evaluation (checkpoints restart from here).
     fn restart(&self) {
         self.workspace.warm_starts.clear();
+        self.workspace.support_frames.clear();
         self.forget_evaluation();
+    }
+
+    fn step_accepted(&self) {
+        self.take_support_frames();
     }
 }
 

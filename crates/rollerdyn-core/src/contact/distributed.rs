@@ -523,6 +523,33 @@ pub fn integrate(
     asperities: Asperities,
     energy: bool,
 ) -> Option<DistributedOverlap> {
+    integrate_near(end, flange, deepest, asperities, energy, None).map(|(overlap, _)| overlap)
+}
+
+/// The frame of the final rays that one integration leaves for the next at a nearby pose
+/// ([`integrate_near`]): the support's centroid and principal axes from the reach of its
+/// final rays (exact moments of the area the rays bound), and guesses of each ray's reach.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SupportFrame {
+    stretch: Stretch,
+    starts: [f64; RAYS],
+}
+
+/// [`integrate`], and the support's frame for the next integration at a nearby pose. With
+/// `near`, the frame an integration at a nearby pose left: its rays are used as they are
+/// when its centre lies inside the support here, and the chords and both passes of
+/// [`Field::support_frame`] (two fifths of the field's samples) are not taken. The
+/// integrals then differ from [`integrate`]'s by the quadrature's dependence on its frame
+/// only (the integrand vanishes on the boundary the rays find, wherever they start), and
+/// for a fixed `near` they are as smooth in the pose as [`integrate`]'s.
+pub fn integrate_near(
+    end: &RollerEnd,
+    flange: &Flange,
+    deepest: &Vec3,
+    asperities: Asperities,
+    energy: bool,
+    near: Option<&SupportFrame>,
+) -> Option<(DistributedOverlap, SupportFrame)> {
     let graph = EndGraph::new(end);
     let profile = FlangeProfile::new(flange);
     let field = Field {
@@ -535,12 +562,29 @@ pub fn integrate(
     if !(depth0 > 0.0 && depth0.is_finite()) {
         return None;
     }
-    let (frame, depth_c, starts) = field.support_frame(anchor, depth0)?;
+    let (frame, depth_c, starts) = match near.and_then(|near| field.reuse(near)) {
+        Some(reused) => reused,
+        None => field.support_frame(anchor, depth0)?,
+    };
     let depth0 = asperities.load(depth0 - asperities.reach());
-    Some(field.sum_over_rays(&frame, depth_c, depth0, &starts))
+    let (overlap, reaches) = field.sum_over_rays(&frame, depth_c, depth0, &starts);
+    let (stretch, points) = shape_of_support(&frame, &RAY_ANGLES, &reaches);
+    let next = SupportFrame {
+        stretch,
+        starts: predicted_reaches(&stretch, &RAY_ANGLES, &points),
+    };
+    Some((overlap, next))
 }
 
 impl Field {
+    /// The frame `near` of an integration at a nearby pose, with g at its centre, if its
+    /// centre lies inside the support here (else None: a fresh frame is needed).
+    fn reuse(&self, near: &SupportFrame) -> Option<(Stretch, f64, [f64; RAYS])> {
+        let (u, v) = near.stretch.centre;
+        let depth_c = self.depth(u, v);
+        (depth_c > 0.0 && depth_c.is_finite()).then_some((near.stretch, depth_c, near.starts))
+    }
+
     /// The frame of the final rays and g at its centre, from `anchor` (g = `depth0` > 0):
     /// a first centre mid-way along chords through the anchor along u, v and u again, then
     /// twice the support's own centroid and principal axes from the reach of rays (the
@@ -593,10 +637,10 @@ impl Field {
 /// flat tilt the 24 final rays took 75–97 evaluations with these guesses against 95–101
 /// from the previous ray's reach (the corners where the rim cuts the end's edge keep the
 /// guesses a few per cent off). A guess that is not a positive number is replaced by 1.
-fn predicted_reaches<const N: usize>(
+fn predicted_reaches<const N: usize, const M: usize>(
     frame: &Stretch,
     angles: &[(f64, f64); N],
-    points: &[(f64, f64); COARSE_RAYS],
+    points: &[(f64, f64); M],
 ) -> [f64; N] {
     let [e1, e2] = frame.axes;
     let mut polar = points.map(|p| {
@@ -606,7 +650,7 @@ fn predicted_reaches<const N: usize>(
         (pseudo_angle(x, y), (x * x + y * y).sqrt())
     });
     polar.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let n = COARSE_RAYS;
+    let n = M;
     std::array::from_fn(|k| {
         let (sin, cos) = angles[k];
         let theta = pseudo_angle(cos, sin);
@@ -649,7 +693,7 @@ fn pseudo_angle(x: f64, y: f64) -> f64 {
 /// Polar coordinates stretched along two orthonormal axes of the end plane: the point
 /// centre + ρ (half.0 cos θ axes[0] + half.1 sin θ axes[1]); the support is about the
 /// unit disc in ρ, θ, so the rays' reach varies slowly with θ.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 struct Stretch {
     centre: (f64, f64),
     axes: [(f64, f64); 2],
@@ -689,19 +733,15 @@ struct Sums {
 }
 
 impl Field {
-    /// The support's centroid and principal axes (half-lengths 2√λ, an ellipse's semi-axes),
-    /// from `COARSE_RAYS` rays of `frame` (starting at its centre, where g = `inside`): with
-    /// the reach R of each ray, the area's moments are exact integrals of polynomials in ρ.
+    /// The support's centroid and principal axes ([`shape_of_support`]) from
+    /// `COARSE_RAYS` rays of `frame` (starting at its centre, where g = `inside`), and the
+    /// boundary points the rays found.
     fn area_moments(
         &self,
         frame: &Stretch,
         inside: f64,
         starts: Option<&[f64; COARSE_RAYS]>,
     ) -> (Stretch, [(f64, f64); COARSE_RAYS]) {
-        let step = TAU / COARSE_RAYS as f64;
-        let jacobian = frame.jacobian() * step;
-        let (mut area, mut m1, mut m2) = (0.0, (0.0, 0.0), (0.0, 0.0, 0.0));
-        let (ca, cb) = frame.centre;
         let dirs = COARSE_RAY_ANGLES.map(|angle| frame.ray(angle));
         let reaches = match starts {
             Some(starts) => self.boundaries(frame.centre, &dirs, inside, starts),
@@ -714,46 +754,19 @@ impl Field {
                 })
             }
         };
-        let mut points = [(0.0, 0.0); COARSE_RAYS];
-        for (k, (&(ua, ub), &reach)) in dirs.iter().zip(&reaches).enumerate() {
-            points[k] = (ca + reach * ua, cb + reach * ub);
-            // ∫₀ᴿ ρ dρ, ∫₀ᴿ ρ² dρ, ∫₀ᴿ ρ³ dρ.
-            let (r2, r3, r4) = (
-                reach.powi(2) / 2.0,
-                reach.powi(3) / 3.0,
-                reach.powi(4) / 4.0,
-            );
-            area += r2 * jacobian;
-            m1.0 += (ca * r2 + ua * r3) * jacobian;
-            m1.1 += (cb * r2 + ub * r3) * jacobian;
-            m2.0 += (ca * ca * r2 + 2.0 * ca * ua * r3 + ua * ua * r4) * jacobian;
-            m2.1 += (cb * cb * r2 + 2.0 * cb * ub * r3 + ub * ub * r4) * jacobian;
-            m2.2 += (ca * cb * r2 + (ca * ub + cb * ua) * r3 + ua * ub * r4) * jacobian;
-        }
-        let centre = (m1.0 / area, m1.1 / area);
-        let caa = (m2.0 / area - centre.0 * centre.0).max(0.0);
-        let cbb = (m2.1 / area - centre.1 * centre.1).max(0.0);
-        let cab = m2.2 / area - centre.0 * centre.1;
-        let (l1, l2, (e1a, e1b)) = principal(caa, cbb, cab);
-        let floor = 1e-3 * frame.half.0.max(frame.half.1);
-        let shape = Stretch {
-            centre,
-            axes: [(e1a, e1b), (-e1b, e1a)],
-            half: ((2.0 * l1.sqrt()).max(floor), (2.0 * l2.sqrt()).max(floor)),
-        };
-        (shape, points)
+        shape_of_support(frame, &COARSE_RAY_ANGLES, &reaches)
     }
 
     /// Sums the integrals over `RAYS` rays of `frame` (g = `depth_c` at its centre), with
     /// `depth0` the deepest overlap known; each ray's boundary searched from its guess in
-    /// `starts` ([`predicted_reaches`]).
+    /// `starts` ([`predicted_reaches`]). Also the rays' reaches.
     fn sum_over_rays(
         &self,
         frame: &Stretch,
         depth_c: f64,
         depth0: f64,
         starts: &[f64; RAYS],
-    ) -> DistributedOverlap {
+    ) -> (DistributedOverlap, [f64; RAYS]) {
         let step = TAU / RAYS as f64;
         let jacobian = frame.jacobian() * step;
         let c = frame.centre;
@@ -788,7 +801,7 @@ impl Field {
                 s.normal += p.normal * weight;
             }
         }
-        self.finish(&s)
+        (self.finish(&s), reaches)
     }
 
     fn finish(&self, s: &Sums) -> DistributedOverlap {
@@ -816,6 +829,50 @@ impl Field {
             major_axis: major,
         }
     }
+}
+
+/// The support's centroid and principal axes (half-lengths 2√λ, an ellipse's semi-axes)
+/// from the reach R of each of the N rays of `frame` at `angles` (uniform in angle): the
+/// area's moments are exact integrals of polynomials in ρ over the region the rays bound.
+/// Also the boundary points the rays found.
+fn shape_of_support<const N: usize>(
+    frame: &Stretch,
+    angles: &[(f64, f64); N],
+    reaches: &[f64; N],
+) -> (Stretch, [(f64, f64); N]) {
+    let step = TAU / N as f64;
+    let jacobian = frame.jacobian() * step;
+    let (mut area, mut m1, mut m2) = (0.0, (0.0, 0.0), (0.0, 0.0, 0.0));
+    let (ca, cb) = frame.centre;
+    let dirs = angles.map(|angle| frame.ray(angle));
+    let mut points = [(0.0, 0.0); N];
+    for (k, (&(ua, ub), &reach)) in dirs.iter().zip(reaches).enumerate() {
+        points[k] = (ca + reach * ua, cb + reach * ub);
+        // ∫₀ᴿ ρ dρ, ∫₀ᴿ ρ² dρ, ∫₀ᴿ ρ³ dρ.
+        let (r2, r3, r4) = (
+            reach.powi(2) / 2.0,
+            reach.powi(3) / 3.0,
+            reach.powi(4) / 4.0,
+        );
+        area += r2 * jacobian;
+        m1.0 += (ca * r2 + ua * r3) * jacobian;
+        m1.1 += (cb * r2 + ub * r3) * jacobian;
+        m2.0 += (ca * ca * r2 + 2.0 * ca * ua * r3 + ua * ua * r4) * jacobian;
+        m2.1 += (cb * cb * r2 + 2.0 * cb * ub * r3 + ub * ub * r4) * jacobian;
+        m2.2 += (ca * cb * r2 + (ca * ub + cb * ua) * r3 + ua * ub * r4) * jacobian;
+    }
+    let centre = (m1.0 / area, m1.1 / area);
+    let caa = (m2.0 / area - centre.0 * centre.0).max(0.0);
+    let cbb = (m2.1 / area - centre.1 * centre.1).max(0.0);
+    let cab = m2.2 / area - centre.0 * centre.1;
+    let (l1, l2, (e1a, e1b)) = principal(caa, cbb, cab);
+    let floor = 1e-3 * frame.half.0.max(frame.half.1);
+    let shape = Stretch {
+        centre,
+        axes: [(e1a, e1b), (-e1b, e1a)],
+        half: ((2.0 * l1.sqrt()).max(floor), (2.0 * l2.sqrt()).max(floor)),
+    };
+    (shape, points)
 }
 
 /// The principal moments λ₁ ≥ λ₂ of the covariance [[caa, cab], [cab, cbb]] and the unit

@@ -40,6 +40,11 @@ pub trait OdeSystem {
     /// iterations), as if newly built. [`integrate`] calls it at every (re)start, so that a
     /// run resumed from a checkpoint computes what the uninterrupted run computed.
     fn restart(&self) {}
+    /// Told after every accepted step, when the solver has evaluated all it will of it: a
+    /// system may take what its latest evaluation found as the start of the next step's
+    /// evaluations (inner iterations' starting points), which every evaluation of that
+    /// step then shares, so that within a step f stays one function of (t, y).
+    fn step_accepted(&self) {}
     /// Renews in `jac` (∂f/∂y at an earlier state) only the columns of the states coupled
     /// to `states`, at (t, y), and keeps the others; returns `false`, leaving `jac` as it
     /// is, if the system cannot (the caller then computes the whole Jacobian). Used after
@@ -815,6 +820,7 @@ impl<S: OdeSystem> Segment<'_, '_, '_, S> {
             counters
                 .borrow_mut()
                 .record_solver(&before, on!(&solver, s => s.get_statistics()));
+            counters.borrow().system.step_accepted();
             let step = on!(&solver, s => s.state().h);
             run.check_step(stall, (t, step), options.min_mean_step, &state)?;
             let stats = run.stats(t, step);
