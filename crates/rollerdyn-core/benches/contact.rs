@@ -2,7 +2,8 @@
 //! evaluation (six pairings of one roller end against one flange) per method, over a
 //! roller's trajectory through the load zone (the gradient method warm-started from the
 //! previous step, as in a run); and the distributed law's overlap integral over the
-//! trajectory's poses where the end presses the flange. Run:
+//! trajectory's poses where the end presses the flange, from a fresh support frame and from
+//! the one the pose before left, as in a run. Run:
 //! `cargo bench -p rollerdyn-core --bench contact`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
@@ -181,6 +182,29 @@ fn distributed_overlap(c: &mut Criterion) {
             distributed::integrate(end, &flange, p1, asperities, false)
         })
     });
+    // As a run integrates it: from the support frame the pose before left
+    // (`distributed::integrate_near`), carried along the trajectory.
+    let mut frame = None;
+    let frames: Vec<_> = pressed
+        .iter()
+        .map(|(end, p1)| {
+            let before = frame;
+            frame =
+                distributed::integrate_near(end, &flange, p1, asperities, false, before.as_ref())
+                    .map(|(_, next)| next);
+            before
+        })
+        .collect();
+    c.bench_function(
+        "distributed overlap from the pose before's frame (B1 roughness)",
+        |b| {
+            b.iter(|| {
+                k = (k + 1) % n;
+                let (end, p1) = black_box(&pressed[k]);
+                distributed::integrate_near(end, &flange, p1, asperities, false, frames[k].as_ref())
+            })
+        },
+    );
 }
 
 criterion_group! {

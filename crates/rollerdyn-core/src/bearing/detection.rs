@@ -97,7 +97,7 @@ pub struct EndGeometry {
     pub overlap: Option<DistributedOverlap>,
     /// The flange's Winkler modulus for the overlap [Pa/m].
     pub foundation_modulus: f64,
-    /// The overlap's support frame for the next step ([`SupportFrames`]).
+    /// The overlap's support frame, for the next step's evaluations to start from.
     pub support_frame: Option<SupportFrame>,
 }
 

@@ -24,6 +24,11 @@
 //! function of the pose as the overlap moves from the edge across the face to the rim; the
 //! integrand vanishes at the boundary, so the roots' tolerance enters the load and its
 //! centre only at second order.
+//!
+//! A run integrates the same end and flange at nearby poses step after step:
+//! [`integrate_near`] starts from the frame the last integration left ([`SupportFrame`]:
+//! the centroid and axes of the area its final rays bounded, and their reaches) instead of
+//! the chords and passes, at about half the cost.
 
 use crate::geometry::end_flange::{Flange, RollerEnd};
 use crate::geometry::primitives::Vec3;
