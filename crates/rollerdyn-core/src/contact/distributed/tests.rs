@@ -75,6 +75,43 @@ fn pressed(tilt: f64, depth: f64) -> (RollerEnd, Flange) {
     (b1_end(true, 0.3, dx, 0.0, tilt, 0.0), flange)
 }
 
+/// The poses checked against the grid: the three pairings the end takes on the inner
+/// ring's flange as it tilts through the flat position (TO-CO, SP-CO, SP-TO(rim)), a deep
+/// TO-CO, and an end on an outer-ring flange.
+fn grid_poses() -> [(RollerEnd, Flange); 5] {
+    let outer = {
+        let flange = b1_flange(false, false);
+        let mut dx = -20e-6;
+        let end = |dx: f64| b1_end(false, 1.1, dx, 0.0, -0.8e-3, 0.3e-3);
+        for _ in 0..4 {
+            dx -= 1e-6 - contact_of(&end(dx), &flange).penetration;
+        }
+        (end(dx), flange)
+    };
+    [
+        pressed(1.0e-3, 1.5e-6),
+        pressed(-1.60e-3, 1.5e-6),
+        pressed(-1.66e-3, 0.5e-6),
+        pressed(-1.3e-3, 3e-6),
+        outer,
+    ]
+}
+
+/// The axial shift that presses `end(shift)` into `flange` by `depth` (its `plus_end` side).
+fn shift_pressing(
+    flange: &Flange,
+    plus_end: bool,
+    depth: f64,
+    end: impl Fn(f64) -> RollerEnd,
+) -> f64 {
+    let side = if plus_end { 1.0 } else { -1.0 };
+    let mut dx = side * 20e-6;
+    for _ in 0..5 {
+        dx += side * (depth - contact_of(&end(dx), flange).penetration);
+    }
+    dx
+}
+
 /// B1's Winkler force of overlap volume V (E' of steel, the 0.40 mm² face contact area).
 fn b1_force(volume: f64) -> f64 {
     foundation_force(foundation_modulus(230.77e9, 4.0e-7), volume)
@@ -96,23 +133,7 @@ fn rel(a: f64, b: f64) -> f64 {
 /// error is smooth in the pose.
 #[test]
 fn integrals_match_a_brute_force_grid() {
-    let outer = {
-        let flange = b1_flange(false, false);
-        let mut dx = -20e-6;
-        let end = |dx: f64| b1_end(false, 1.1, dx, 0.0, -0.8e-3, 0.3e-3);
-        for _ in 0..4 {
-            dx -= 1e-6 - contact_of(&end(dx), &flange).penetration;
-        }
-        (end(dx), flange)
-    };
-    let cases = [
-        pressed(1.0e-3, 1.5e-6),
-        pressed(-1.60e-3, 1.5e-6),
-        pressed(-1.66e-3, 0.5e-6),
-        pressed(-1.3e-3, 3e-6),
-        outer,
-    ];
-    for (end, flange) in cases {
+    for (end, flange) in grid_poses() {
         let c = contact_of(&end, &flange);
         assert!(c.penetration > 0.0);
         let d = integrate(&end, &flange, &c.p1, SMOOTH, false).expect("an overlap");
@@ -197,13 +218,8 @@ proptest::proptest! {
         depth in 0.1e-6..3e-6f64,
     ) {
         let flange = b1_flange(inner, plus_end);
-        let side = if plus_end { 1.0 } else { -1.0 };
         let end = |dx: f64| b1_end(plus_end, psi, dx, 0.0, tilt, skew);
-        let mut dx = side * 20e-6;
-        for _ in 0..5 {
-            dx += side * (depth - contact_of(&end(dx), &flange).penetration);
-        }
-        let end = end(dx);
+        let end = end(shift_pressing(&flange, plus_end, depth, end));
         let c = contact_of(&end, &flange);
         proptest::prop_assume!(c.penetration > 0.05e-6);
         let d = integrate(&end, &flange, &c.p1, SMOOTH, false).expect("an overlap");
@@ -568,23 +584,7 @@ fn a_frame_carried_from_pose_to_pose_keeps_the_integrals() {
 /// 2.9e-3).
 #[test]
 fn a_settled_frame_matches_the_brute_force_grid() {
-    let outer = {
-        let flange = b1_flange(false, false);
-        let mut dx = -20e-6;
-        let end = |dx: f64| b1_end(false, 1.1, dx, 0.0, -0.8e-3, 0.3e-3);
-        for _ in 0..4 {
-            dx -= 1e-6 - contact_of(&end(dx), &flange).penetration;
-        }
-        (end(dx), flange)
-    };
-    let cases = [
-        pressed(1.0e-3, 1.5e-6),
-        pressed(-1.60e-3, 1.5e-6),
-        pressed(-1.66e-3, 0.5e-6),
-        pressed(-1.3e-3, 3e-6),
-        outer,
-    ];
-    for (end, flange) in cases {
+    for (end, flange) in grid_poses() {
         let c = contact_of(&end, &flange);
         let mut frame = None;
         let mut settled = None;
@@ -628,10 +628,7 @@ proptest::proptest! {
         let flange = b1_flange(inner, plus_end);
         let side = if plus_end { 1.0 } else { -1.0 };
         let end = |dx: f64, tilt: f64, skew: f64| b1_end(plus_end, psi, dx, 0.0, tilt, skew);
-        let mut dx = side * 20e-6;
-        for _ in 0..5 {
-            dx += side * (depth - contact_of(&end(dx, tilt, skew), &flange).penetration);
-        }
+        let dx = shift_pressing(&flange, plus_end, depth, |dx| end(dx, tilt, skew));
         let before = end(dx + side * moved.2, tilt + moved.0, skew + moved.1);
         let here = end(dx, tilt, skew);
         let c = contact_of(&here, &flange);
