@@ -112,6 +112,20 @@ fn shift_pressing(
     dx
 }
 
+/// Any B1 roller end pressed into any flange: (inner ring, +x end, azimuth ψ, tilt and skew
+/// within ±2 mrad, overlap 0.1–3 µm), for [`shift_pressing`].
+fn any_pressed_pose() -> impl proptest::strategy::Strategy<Value = (bool, bool, f64, f64, f64, f64)>
+{
+    (
+        proptest::bool::ANY,
+        proptest::bool::ANY,
+        -3.2..3.2f64,
+        -2e-3..2e-3f64,
+        -2e-3..2e-3f64,
+        0.1e-6..3e-6f64,
+    )
+}
+
 /// B1's Winkler force of overlap volume V (E' of steel, the 0.40 mm² face contact area).
 fn b1_force(volume: f64) -> f64 {
     foundation_force(foundation_modulus(230.77e9, 4.0e-7), volume)
@@ -210,12 +224,7 @@ proptest::proptest! {
     /// fixed poses' 1.2 %).
     #[test]
     fn any_overlap_matches_the_grid(
-        inner in proptest::bool::ANY,
-        plus_end in proptest::bool::ANY,
-        psi in -3.2..3.2f64,
-        tilt in -2e-3..2e-3f64,
-        skew in -2e-3..2e-3f64,
-        depth in 0.1e-6..3e-6f64,
+        (inner, plus_end, psi, tilt, skew, depth) in any_pressed_pose(),
     ) {
         let flange = b1_flange(inner, plus_end);
         let end = |dx: f64| b1_end(plus_end, psi, dx, 0.0, tilt, skew);
@@ -617,12 +626,7 @@ proptest::proptest! {
     /// is not used: the result is then the fresh one, bit for bit.
     #[test]
     fn a_frame_from_a_nearby_pose_gives_the_fresh_integrals(
-        inner in proptest::bool::ANY,
-        plus_end in proptest::bool::ANY,
-        psi in -3.2..3.2f64,
-        tilt in -2e-3..2e-3f64,
-        skew in -2e-3..2e-3f64,
-        depth in 0.1e-6..3e-6f64,
+        (inner, plus_end, psi, tilt, skew, depth) in any_pressed_pose(),
         moved in (-20e-6..20e-6f64, -20e-6..20e-6f64, -0.2e-6..0.2e-6f64),
     ) {
         let flange = b1_flange(inner, plus_end);
