@@ -146,7 +146,8 @@ def bench(
     contact) and one Jacobian (200, each taking its base evaluation from the one before at
     the same state, as a run's Jacobian takes the latest right-hand side's) at the final
     state of --state, in µs, and the right-hand side's split into detection, line contacts
-    and flange forces.
+    and flange forces. With the distributed end-flange law the overlaps start, as in a run,
+    from the support frames a first evaluation at that state found.
 
     mbs: the whole run (to --t-end) on one core with each detector: wall time, steps,
     right-hand-side and Jacobian evaluations, and where the time goes: detection, line
