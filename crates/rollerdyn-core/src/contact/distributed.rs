@@ -528,7 +528,7 @@ pub fn integrate(
     asperities: Asperities,
     energy: bool,
 ) -> Option<DistributedOverlap> {
-    integrate_near(end, flange, deepest, asperities, energy, None).map(|(overlap, _)| overlap)
+    integrate_from(end, flange, deepest, asperities, energy, None).map(|(overlap, ..)| overlap)
 }
 
 /// The frame of the final rays that one integration leaves for the next at a nearby pose
@@ -555,6 +555,25 @@ pub fn integrate_near(
     energy: bool,
     near: Option<&SupportFrame>,
 ) -> Option<(DistributedOverlap, SupportFrame)> {
+    let (overlap, frame, reaches) = integrate_from(end, flange, deepest, asperities, energy, near)?;
+    let (stretch, points) = shape_of_support(&frame, &RAY_ANGLES, &reaches);
+    let next = SupportFrame {
+        stretch,
+        starts: predicted_reaches(&stretch, &RAY_ANGLES, &points),
+    };
+    Some((overlap, next))
+}
+
+/// The overlap integrated from the frame `near` if it serves here, else from a fresh one
+/// ([`Field::support_frame`]), with the frame of its final rays and their reaches.
+fn integrate_from(
+    end: &RollerEnd,
+    flange: &Flange,
+    deepest: &Vec3,
+    asperities: Asperities,
+    energy: bool,
+    near: Option<&SupportFrame>,
+) -> Option<(DistributedOverlap, Stretch, [f64; RAYS])> {
     let graph = EndGraph::new(end);
     let profile = FlangeProfile::new(flange);
     let field = Field {
@@ -573,12 +592,7 @@ pub fn integrate_near(
     };
     let depth0 = asperities.load(depth0 - asperities.reach());
     let (overlap, reaches) = field.sum_over_rays(&frame, depth_c, depth0, &starts);
-    let (stretch, points) = shape_of_support(&frame, &RAY_ANGLES, &reaches);
-    let next = SupportFrame {
-        stretch,
-        starts: predicted_reaches(&stretch, &RAY_ANGLES, &points),
-    };
-    Some((overlap, next))
+    Some((overlap, frame, reaches))
 }
 
 impl Field {
