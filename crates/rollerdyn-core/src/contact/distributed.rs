@@ -123,19 +123,26 @@ impl EndGraph {
         s.max(-PAST_THE_EDGE_SLOPE)
     }
 
-    /// h(ρ): end sphere inside the junction radius, edge torus outside it, and a steep fall
-    /// past the roller radius (no surface there).
-    fn height(&self, rho: f64) -> f64 {
-        if rho <= self.junction {
-            self.sphere_offset + ((self.sphere_radius - rho) * (self.sphere_radius + rho)).sqrt()
-        } else {
+    /// h(ρ) at K radii at once: the end sphere inside the junction radius, the edge torus
+    /// outside it, and a steep fall past the roller radius (no surface there). Without
+    /// branches (the pieces chosen by selection), so that the points' square roots overlap.
+    fn heights<const K: usize>(&self, rho: &[f64; K]) -> [f64; K] {
+        std::array::from_fn(|k| {
+            let rho = rho[k];
+            let on_sphere = rho <= self.junction;
             let x = rho - self.tube_center;
-            if x < self.tube_radius {
-                ((self.tube_radius - x) * (self.tube_radius + x)).sqrt()
+            let (reach, offset, base) = if on_sphere {
+                (self.sphere_radius, rho, self.sphere_offset)
+            } else {
+                (self.tube_radius, x, 0.0)
+            };
+            let root = ((reach - offset) * (reach + offset)).max(0.0).sqrt();
+            if on_sphere || x < self.tube_radius {
+                base + root
             } else {
                 -PAST_THE_EDGE_SLOPE * (x - self.tube_radius)
             }
-        }
+        })
     }
 }
 
@@ -181,32 +188,40 @@ impl FlangeProfile {
         }
     }
 
-    /// Depth of `p` inside the flange (positive inside, negative outside) and the flange's
-    /// outward unit normal at its foot.
-    fn depth(&self, p: &Vec3) -> (f64, Vec3) {
-        let d = p - self.origin;
-        let s = d.dot(&self.axis);
-        let radial = d - self.axis * s;
-        let rho = radial.norm();
-        let e_rho = if rho > 0.0 {
-            radial / rho
-        } else {
-            Vec3::zeros()
-        };
-        let g = (s - self.s0) * self.ds + (rho - self.rho0) * self.drho;
-        let tube = if g < self.g_min {
-            self.root
-        } else if g > self.g_max {
-            self.rim
-        } else {
+    /// The depth of each of K points `p` (components by array) inside the flange (positive
+    /// inside, negative outside) and the flange's outward unit normal at its foot: the cone
+    /// between the root and rim tori's tangent circles, the nearer torus beyond them.
+    /// Without branches: the torus's distance is computed for every point and selected.
+    fn depths<const K: usize>(&self, p: &[[f64; K]; 3]) -> ([f64; K], [[f64; K]; 3]) {
+        let (o, ax) = (&self.origin, &self.axis);
+        let mut depth = [0.0; K];
+        let mut normal = [[0.0; K]; 3];
+        for k in 0..K {
+            let d = [p[0][k] - o[0], p[1][k] - o[1], p[2][k] - o[2]];
+            let s = d[0] * ax[0] + d[1] * ax[1] + d[2] * ax[2];
+            let radial = [d[0] - ax[0] * s, d[1] - ax[1] * s, d[2] - ax[2] * s];
+            let rho =
+                (radial[0] * radial[0] + radial[1] * radial[1] + radial[2] * radial[2]).sqrt();
+            let inv_rho = if rho > 0.0 { 1.0 / rho } else { 0.0 };
+            let g = (s - self.s0) * self.ds + (rho - self.rho0) * self.drho;
+            let on_root = g < self.g_min;
+            let on_cone = !on_root && g <= self.g_max;
+            let (cs, crho, r) = if on_root { self.root } else { self.rim };
+            let (vs, vr) = (s - cs, rho - crho);
+            let length = (vs * vs + vr * vr).sqrt();
             let (ns, nr) = self.normal;
-            let distance = (s - self.s0) * ns + (rho - self.rho0) * nr;
-            return (-distance, self.axis * ns + e_rho * nr);
-        };
-        let (cs, crho, r) = tube;
-        let (vs, vr) = (s - cs, rho - crho);
-        let length = (vs * vs + vr * vr).sqrt();
-        (r - length, (self.axis * vs + e_rho * vr) / length)
+            let cone_distance = (s - self.s0) * ns + (rho - self.rho0) * nr;
+            let (depth_k, along, across) = if on_cone {
+                (-cone_distance, ns, nr)
+            } else {
+                (r - length, vs / length, vr / length)
+            };
+            depth[k] = depth_k;
+            for i in 0..3 {
+                normal[i][k] = ax[i] * along + radial[i] * (inv_rho * across);
+            }
+        }
+        (depth, normal)
     }
 }
 
@@ -341,10 +356,45 @@ impl Field {
     }
 }
 
-/// One sample of the field: depth, surface point on the roller, flange normal.
+/// The field at K points at once ([`Field::samples`]), as arrays: depth, surface point on
+/// the roller and flange normal of each, by component.
+struct Samples<const K: usize> {
+    depth: [f64; K],
+    point: [[f64; K]; 3],
+    normal: [[f64; K]; 3],
+}
+
+impl Field {
+    /// The field at K points (u, v) at once ([`Field::samples_plane`]).
+    fn samples<const K: usize>(&self, u: &[f64; K], v: &[f64; K]) -> Samples<K> {
+        let plane: [(f64, f64); K] = std::array::from_fn(|k| self.plane(u[k], v[k]));
+        self.samples_plane(&plane.map(|p| p.0), &plane.map(|p| p.1))
+    }
+
+    /// The field at K end-plane points (a, b) at once: the end's surface point over each
+    /// and its depth in the flange with the flange's normal. The points' chains of square
+    /// roots and divisions (the end's radius and height, the flange's radius, the tube's
+    /// distance) are independent and taken without branches, so the processor overlaps
+    /// them.
+    fn samples_plane<const K: usize>(&self, a: &[f64; K], b: &[f64; K]) -> Samples<K> {
+        let rho: [f64; K] = std::array::from_fn(|k| (a[k] * a[k] + b[k] * b[k]).sqrt());
+        let h = self.end.heights(&rho);
+        let (o, t, w, e) = (&self.end.origin, &self.t, &self.w, &self.end.axis);
+        let point: [[f64; K]; 3] = std::array::from_fn(|i| {
+            std::array::from_fn(|k| o[i] + t[i] * a[k] + w[i] * b[k] + e[i] * h[k])
+        });
+        let (depth, normal) = self.flange.depths(&point);
+        Samples {
+            depth,
+            point,
+            normal,
+        }
+    }
+}
+
+/// One sample of the field: depth and flange normal.
 struct Sample {
     depth: f64,
-    point: Vec3,
     normal: Vec3,
 }
 
@@ -359,15 +409,12 @@ impl Field {
         self.sample_plane(a, b)
     }
 
-    /// The sample at the end-plane point (a, b).
+    /// The sample at the end-plane point (a, b) ([`Field::samples_plane`] at one point).
     fn sample_plane(&self, a: f64, b: f64) -> Sample {
-        let h = self.end.height((a * a + b * b).sqrt());
-        let point = self.end.origin + self.t * a + self.w * b + self.end.axis * h;
-        let (depth, normal) = self.flange.depth(&point);
+        let s = self.samples_plane(&[a], &[b]);
         Sample {
-            depth,
-            point,
-            normal,
+            depth: s.depth[0],
+            normal: Vec3::new(s.normal[0][0], s.normal[1][0], s.normal[2][0]),
         }
     }
 
@@ -795,29 +842,38 @@ impl Field {
         };
         let dirs = RAY_ANGLES.map(|angle| frame.ray(angle));
         let reaches = self.boundaries(c, &dirs, depth_c, starts);
-        for (&(ua, ub), &reach) in dirs.iter().zip(&reaches) {
-            s.area += 0.5 * reach * reach * jacobian;
-            for (xi, wi) in GAUSS_NODES.iter().zip(GAUSS_WEIGHTS) {
-                let r = reach * xi;
-                let (a, b) = (c.0 + r * ua, c.1 + r * ub);
-                let p = self.sample(a, b);
-                let (load, stiffness) = self.asperities.load_and_stiffness(p.depth);
-                let area = wi * reach * r * jacobian;
+        s.area = reaches
+            .iter()
+            .map(|reach| 0.5 * reach * reach * jacobian)
+            .sum();
+        // Node by node, every ray's point at once ([`Field::samples`]).
+        for (xi, wi) in GAUSS_NODES.iter().zip(GAUSS_WEIGHTS) {
+            let r = reaches.map(|reach| reach * xi);
+            let u: [f64; RAYS] = std::array::from_fn(|k| c.0 + r[k] * dirs[k].0);
+            let v: [f64; RAYS] = std::array::from_fn(|k| c.1 + r[k] * dirs[k].1);
+            let p = self.samples(&u, &v);
+            for k in 0..RAYS {
+                let depth = p.depth[k];
+                let (a, b) = (u[k], v[k]);
+                let (load, stiffness) = self.asperities.load_and_stiffness(depth);
+                let area = wi * reaches[k] * r[k] * jacobian;
                 let weight = area * load;
                 s.volume += weight;
                 s.stiffness_area += area * stiffness;
                 if self.energy {
-                    s.energy += area * self.asperities.energy(p.depth);
+                    s.energy += area * self.asperities.energy(depth);
                 }
                 s.max_depth = s.max_depth.max(load);
-                let g = p.depth.max(0.0);
+                let g = depth.max(0.0);
                 s.a += weight * a;
                 s.b += weight * b;
                 s.aa += weight * a * a;
                 s.bb += weight * b * b;
                 s.ab += weight * a * b;
-                s.centre += (p.point + p.normal * (0.5 * g)) * weight;
-                s.normal += p.normal * weight;
+                let point = Vec3::new(p.point[0][k], p.point[1][k], p.point[2][k]);
+                let normal = Vec3::new(p.normal[0][k], p.normal[1][k], p.normal[2][k]);
+                s.centre += (point + normal * (0.5 * g)) * weight;
+                s.normal += normal * weight;
             }
         }
         (self.finish(&s), reaches)

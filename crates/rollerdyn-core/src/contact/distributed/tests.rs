@@ -46,12 +46,15 @@ fn brute_force(end: &RollerEnd, flange: &Flange, deepest: &Vec3, n: usize) -> Gr
     for i in 0..n {
         for j in 0..n {
             let (a, b) = (lo.0 + (i as f64 + 0.5) * ha, lo.1 + (j as f64 + 0.5) * hb);
-            let s = field.sample_plane(a, b);
-            if s.depth > 0.0 {
+            let s = field.samples_plane(&[a], &[b]);
+            let depth = s.depth[0];
+            if depth > 0.0 {
+                let point = Vec3::new(s.point[0][0], s.point[1][0], s.point[2][0]);
+                let normal = Vec3::new(s.normal[0][0], s.normal[1][0], s.normal[2][0]);
                 let da = ha * hb;
-                g.volume += s.depth * da;
+                g.volume += depth * da;
                 g.area += da;
-                g.centre += (s.point + s.normal * (0.5 * s.depth)) * (s.depth * da);
+                g.centre += (point + normal * (0.5 * depth)) * (depth * da);
             }
         }
     }
@@ -653,6 +656,56 @@ proptest::proptest! {
         let (u, v) = frame.stretch.centre;
         if field.depth(u, v) <= 0.0 {
             proptest::prop_assert_eq!(got, fresh);
+        }
+    }
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig { cases: 128, .. Default::default() })]
+
+    /// The field's samples against the geometry's own surfaces (`geometry::primitives`),
+    /// eight points of the end plane at once as the quadrature takes them, at any B1 pose:
+    /// each surface point lies on the end's sphere or edge torus (to 1e-12 m: round-off
+    /// of a 5 m sphere is 1e-15 m), and its depth and normal are minus the signed distance
+    /// from, and the outward normal of, the flange patch its foot lies on (cone, root or
+    /// rim torus; to 1e-12 m and 1e-9). Points whose foot lies on no patch or on two
+    /// (far from the flange, where the profile's nearest figure is the only answer) are
+    /// not compared.
+    #[test]
+    fn field_samples_lie_on_the_end_and_measure_the_flange(
+        (inner, plus_end, psi, tilt, skew, depth) in any_pressed_pose(),
+        points in proptest::array::uniform8((0.0..1.0f64, -3.2..3.2f64)),
+    ) {
+        let flange = b1_flange(inner, plus_end);
+        let end = |dx: f64| b1_end(plus_end, psi, dx, 0.0, tilt, skew);
+        let end = end(shift_pressing(&flange, plus_end, depth, end));
+        let graph = EndGraph::new(&end);
+        let field = Field::new(graph, FlangeProfile::new(&flange)).expect("a field");
+        let radius = graph.tube_center + graph.tube_radius;
+        let a = points.map(|(r, phi)| radius * r.sqrt() * phi.cos());
+        let b = points.map(|(r, phi)| radius * r.sqrt() * phi.sin());
+        let s = field.samples_plane(&a, &b);
+        for k in 0..8 {
+            let point = Vec3::new(s.point[0][k], s.point[1][k], s.point[2][k]);
+            let normal = Vec3::new(s.normal[0][k], s.normal[1][k], s.normal[2][k]);
+            let rho = a[k].hypot(b[k]);
+            let off_end = if rho <= graph.junction {
+                end.sphere.signed_distance(&point)
+            } else {
+                end.torus.foot(&point).distance
+            };
+            proptest::prop_assert!(off_end.abs() < 1e-12, "point {k} {off_end} m off the end");
+            let feet = [flange.cone.foot(&point), flange.root.foot(&point), flange.rim.foot(&point)];
+            let mut on = feet.iter().filter(|f| f.on_patch);
+            if let (Some(foot), None) = (on.next(), on.next()) {
+                proptest::prop_assert!(
+                    (s.depth[k] + foot.distance).abs() < 1e-12,
+                    "point {k}: depth {} against the patch's distance {}",
+                    s.depth[k],
+                    foot.distance
+                );
+                proptest::prop_assert!((normal - foot.normal).norm() < 1e-9, "point {k}: normal");
+            }
         }
     }
 }
