@@ -670,7 +670,9 @@ proptest::proptest! {
     /// from, and the outward normal of, the flange patch its foot lies on (cone, root or
     /// rim torus; to 1e-12 m and 1e-9). Points whose foot lies on no patch or on two
     /// (far from the flange, where the profile's nearest figure is the only answer) are
-    /// not compared.
+    /// not compared. And each point of the batch is the single sample at that point, to
+    /// the last bit: the boundary searches (one point) and the Gauss points (a batch) see
+    /// the same field, so the integrand vanishes where the searches put the boundary.
     #[test]
     fn field_samples_lie_on_the_end_and_measure_the_flange(
         (inner, plus_end, psi, tilt, skew, depth) in any_pressed_pose(),
@@ -695,6 +697,9 @@ proptest::proptest! {
                 end.torus.foot(&point).distance
             };
             proptest::prop_assert!(off_end.abs() < 1e-12, "point {k} {off_end} m off the end");
+            let single = field.sample_plane(a[k], b[k]);
+            proptest::prop_assert_eq!(single.depth.to_bits(), s.depth[k].to_bits());
+            proptest::prop_assert_eq!(single.normal, normal);
             let feet = [flange.cone.foot(&point), flange.root.foot(&point), flange.rim.foot(&point)];
             let mut on = feet.iter().filter(|f| f.on_patch);
             if let (Some(foot), None) = (on.next(), on.next()) {
