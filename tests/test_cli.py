@@ -147,9 +147,9 @@ def test_runtime_study_writes_table_csv_and_plot(tmp_path):
 
 def test_run_notes_the_slow_free_tilt_with_the_point_law(tmp_path):
     """B1 with `inner_ring.tilt = "free"` and the point end-flange law stalls in the load
-    ramp, at t = 0.0226 s (docs/dynamics.md, "Free inner ring tilt"): `run` says so in one
-    line and names the law that runs it, and says nothing for B1 as it is or for the free
-    tilt with the distributed law."""
+    ramp, at t = 0.0226 s (docs/dynamics.md, "Free inner ring tilt"), and with a prescribed
+    tilt it creeps: `run` says so in one line and names the law that runs it, and says
+    nothing for B1 as it is or for either tilt with the distributed law."""
     from rollerdyn import load_config
     from rollerdyn.cli.run import slow_configuration_note
 
@@ -162,6 +162,18 @@ def test_run_notes_the_slow_free_tilt_with_the_point_law(tmp_path):
         free.read_text().replace('flange_law = "point"', 'flange_law = "distributed"')
     )
     assert slow_configuration_note(load_config(distributed)) is None
+    # A prescribed tilt creeps with the point law (B1 at 0.05 deg: t = 0.62 s after 273 s,
+    # docs/dynamics.md, "Prescribed tilt instead"), not with the distributed one.
+    tilted = b1_file_with(
+        tmp_path, 'tilt = "locked"', 'tilt = "locked"\nmisalignment = "0.05 deg"', "tilt.toml"
+    )
+    note = slow_configuration_note(load_config(tilted))
+    assert note is not None and "misalignment" in note and "distributed" in note
+    tilted_distributed = tmp_path / "td.toml"
+    tilted_distributed.write_text(
+        tilted.read_text().replace('flange_law = "point"', 'flange_law = "distributed"')
+    )
+    assert slow_configuration_note(load_config(tilted_distributed)) is None
     out = tmp_path / "free.nc"
     result = RUNNER.invoke(app, ["run", str(free), "-o", str(out), "--t-end", "0.0002"])
     assert result.exit_code == 0, result.output

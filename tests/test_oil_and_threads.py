@@ -88,6 +88,9 @@ def test_operating_point_cases_change_the_configuration_and_stop_at_the_wall_cap
     assert fast.operating.final_inner_ring_speed == pytest.approx(3000 * 2 * np.pi / 60)
     assert case_config(cfg, "free-tilt").inner_ring.tilt == "free"
     assert case_config(cfg, "axial-0N").operating.axial_load == 0.0
+    tilted = case_config(cfg, "distributed-tilt-0.05deg")
+    assert tilted.inner_ring.misalignment == pytest.approx(np.radians(0.05))
+    assert tilted.surfaces.flange_law == "distributed" and tilted.inner_ring.tilt == "locked"
     assert set(CASES) >= {"whole", "full-speed-500rpm", "free-tilt", "axial-0N"}
     with pytest.raises(ValueError, match="case"):
         case_config(cfg, "nope")

@@ -47,6 +47,10 @@ CASES: dict[str, tuple[str, dict[str, Any]]] = {
         {**_FROM_EQUILIBRIUM, "operating.inner_ring_speed": "3000 rpm"},
     ),
     "free-tilt": ("the whole run with inner_ring.tilt = free", {"inner_ring.tilt": "free"}),
+    "tilt-0.05deg": (
+        "the whole run with the locked ring tilted by 0.05 deg (inner_ring.misalignment)",
+        {"inner_ring.misalignment": "0.05 deg"},
+    ),
     "axial-0N": ("the whole run with no axial load", {"operating.axial_load": "0 N"}),
     "axial-500N": ("the whole run with 500 N axial load", {"operating.axial_load": "500 N"}),
     "axial-2000N": ("the whole run with 2000 N axial load", {"operating.axial_load": "2000 N"}),
@@ -55,7 +59,15 @@ CASES: dict[str, tuple[str, dict[str, Any]]] = {
 
 #: The distributed roller end-flange law (surfaces.flange_law) for each of the whole runs.
 _DISTRIBUTED = {"surfaces.flange_law": "distributed"}
-for _name in ("whole", "free-tilt", "axial-0N", "axial-500N", "axial-2000N", "axial-3000N"):
+for _name in (
+    "whole",
+    "free-tilt",
+    "tilt-0.05deg",
+    "axial-0N",
+    "axial-500N",
+    "axial-2000N",
+    "axial-3000N",
+):
     _text, _changes = CASES[_name]
     CASES[f"distributed-{_name}"] = (
         f"{_text}, distributed flange law",

@@ -81,9 +81,10 @@ def bench(
             "--cases",
             help=f"mbs: comma-separated operating points to run with the {SEMI_ANALYTICAL} "
             "detector instead of the detector comparison: whole, full-speed-500rpm, "
-            "full-speed-3000rpm, equilibrium-500rpm, equilibrium-3000rpm, free-tilt, axial-0N, "
-            "axial-500N, axial-2000N, axial-3000N, and distributed-NAME for NAME one of whole, "
-            "free-tilt and the axial-* (the distributed end-flange law); 'default' (whole, "
+            "full-speed-3000rpm, equilibrium-500rpm, equilibrium-3000rpm, free-tilt, "
+            "tilt-0.05deg (inner_ring.misalignment), axial-0N, axial-500N, axial-2000N, "
+            "axial-3000N, and distributed-NAME for NAME one of whole, free-tilt, tilt-0.05deg "
+            "and the axial-* (the distributed end-flange law); 'default' (whole, "
             "full-speed-500rpm, full-speed-3000rpm, free-tilt, axial-0N) or 'all'. Prints "
             "steps, Newton failures, right-hand sides, Jacobians (of them partial: "
             "solver.partial_jacobians), wall time [s] and simulated seconds per wall "

@@ -237,15 +237,29 @@ def _signals_deferred(received: list[int]):
 
 
 def slow_configuration_note(cfg: BearingConfig) -> str | None:
-    """A one-line note for a configuration known to stall where B1 runs, or None: the free
-    inner-ring tilt with the paper's point end-flange law (docs/dynamics.md, "Free inner
-    ring tilt": B1 so configured stalls in the load ramp, at t = 0.0226 s)."""
-    if cfg.inner_ring.tilt == "free" and cfg.surfaces.flange_law == "point":
+    """A one-line note for a configuration known to stall or creep where B1 runs, or None,
+    with the paper's point end-flange law (docs/dynamics.md, "Free inner ring tilt"):
+    the free inner-ring tilt (B1 stalls in the load ramp, at t = 0.0226 s) and a
+    prescribed tilt (B1 at 0.05 deg creeps from t = 0.39 s on, near the end of the load
+    ramp, with its most loaded inner-flange ends on their end faces: t = 0.62 s after
+    273 s)."""
+    if cfg.surfaces.flange_law != "point":
+        return None
+    if cfg.inner_ring.tilt == "free":
         return (
             "note: inner_ring.tilt = free with surfaces.flange_law = point stalls in the load "
             "ramp (B1: the steps collapse at t = 0.023 s and the run stops); with "
             'surfaces.flange_law = "distributed" it takes less than the locked run with that '
             'law (docs/dynamics.md, "Free inner ring tilt")'
+        )
+    if cfg.inner_ring.misalignment != 0.0:
+        return (
+            "note: a prescribed inner_ring.misalignment with surfaces.flange_law = point "
+            "creeps once the loads are up (B1 at 0.05 deg: steps of 2-3 us from t = 0.39 s, "
+            "0.2-0.3 us in the speed ramp, t = 0.62 s after 4.5 minutes; the most loaded "
+            'ends lie on their end faces); with surfaces.flange_law = "distributed" B1\'s '
+            'whole run at 0.05 deg takes about 50 s (docs/dynamics.md, "Prescribed tilt '
+            'instead")'
         )
     return None
 
