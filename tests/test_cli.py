@@ -180,6 +180,39 @@ def test_run_notes_the_slow_free_tilt_with_the_point_law(tmp_path):
     assert "stalls in the load ramp" in result.output and "Traceback" not in result.output
 
 
+def test_run_notes_a_load_past_the_flanges_static_limit(tmp_path):
+    """A run whose loads at its end time the flanges cannot carry by ISO 76's static limit
+    (4 GPa; B1's quasi-static equilibrium at 10 kN axially presses a flange rim at 15.6 GPa
+    with the point law and 7.9 GPa with the distributed one, `rollerdyn statics`) gets one
+    line saying so, and goes on; B1 as it is, and B1 at 10 kN at a time when its load ramp
+    has brought only a few newtons, get none."""
+    from rollerdyn import load_config
+    from rollerdyn.cli.run import capacity_note
+
+    b1 = load_config(B1)
+    assert capacity_note(b1, b1.end_time) is None
+    heavy = b1_file_with(tmp_path, 'axial_load = "1000 N"', 'axial_load = "10000 N"')
+    point = load_config(heavy)
+    note = capacity_note(point, point.end_time)
+    assert note is not None and "axial 10000 N" in note and "ISO 76" in note, note
+    assert "15.6 GPa" in note and "the run goes on" in note, note
+    assert capacity_note(point, 0.002) is None  # the ramp has brought 0.16 % of the loads
+    # The loads ramped up within 0.1 ms, the distributed law: the note, then the run.
+    fast = tmp_path / "fast.toml"
+    fast.write_text(
+        heavy.read_text()
+        .replace('end = "0.5 s"', 'end = "0.1 ms"', 1)
+        .replace('flange_law = "point"', 'flange_law = "distributed"')
+    )
+    out = tmp_path / "heavy.nc"
+    result = RUNNER.invoke(
+        app, ["run", str(fast), "-o", str(out), "--t-end", "0.0002", "--threads", "1"]
+    )
+    assert result.exit_code == 0, result.output
+    assert "7.9 GPa, above the 4 GPa of ISO 76" in result.output, result.output
+    assert "Traceback" not in result.output and out.is_file()
+
+
 def test_ctrl_c_while_the_result_is_written_loses_nothing(tmp_path, monkeypatch):
     """Ctrl-C (or SIGTERM) that arrives after the run has ended, while its result is being
     written (about 1.5 s for B1, compressing), lets the write finish: the file holds the

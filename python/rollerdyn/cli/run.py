@@ -160,8 +160,9 @@ def run(
     if interval is not None:
         solver = cfg.solver.model_copy(update={"checkpoint_interval": float(interval)})
         cfg = cfg.model_copy(update={"solver": solver})
-    if (note := slow_configuration_note(cfg)) is not None:
-        say(note, "yellow")
+    for note in (slow_configuration_note(cfg), capacity_note(cfg, end)):
+        if note is not None:
+            say(note, "yellow")
     for tmp, pid in remove_stale_temporaries(output):
         say(f"removed {tmp}: a temporary file of process {pid}, which no longer runs")
     t_start = 0.0 if previous is None else float(resume_state(previous)[0])
@@ -261,6 +262,34 @@ def slow_configuration_note(cfg: BearingConfig) -> str | None:
             'whole run at 0.05 deg takes about 50 s (docs/dynamics.md, "Prescribed tilt '
             'instead")'
         )
+    return None
+
+
+def capacity_note(cfg: BearingConfig, t: float) -> str | None:
+    """A one-line note when the loads at time ``t`` (the run's end) are more than the
+    flanges carry: their quasi-static equilibrium (``rollerdyn statics``, the
+    configuration's end-flange law) presses a roller end on a flange past ISO 76's static
+    limit of 4 GPa, where the flanges deform for good (docs/dynamics.md, "Distributed
+    roller end-flange law": B1 from 2.8 kN axially). The run goes on, as the issue of a
+    load past the flanges' capacity is the user's to judge; its elastic contacts do not
+    describe that deformation. None otherwise, also where the statics find no equilibrium
+    for another reason (a free or prescribed tilt with the point law)."""
+    from ..statics import statics
+
+    op = cfg.operating
+    try:
+        statics(
+            cfg,
+            radial_load=op.radial_load_at(t),
+            axial_load=op.axial_load_at(t),
+            speed=op.inner_ring_speed_at(t),
+        )
+    except ValueError as error:
+        if "cannot carry it" in str(error):
+            return (
+                f"note: at the loads of t = {t:.4g} s, {error}; the run goes on, but its "
+                "elastic contacts do not describe flanges deformed past that limit"
+            )
     return None
 
 
