@@ -270,10 +270,11 @@ def capacity_note(cfg: BearingConfig, t: float) -> str | None:
     flanges carry: their quasi-static equilibrium (``rollerdyn statics``, the
     configuration's end-flange law) presses a roller end on a flange past ISO 76's static
     limit of 4 GPa, where the flanges deform for good (docs/dynamics.md, "Distributed
-    roller end-flange law": B1 from 2.8 kN axially). The run goes on, as the issue of a
-    load past the flanges' capacity is the user's to judge; its elastic contacts do not
-    describe that deformation. None otherwise, also where the statics find no equilibrium
-    for another reason (a free or prescribed tilt with the point law)."""
+    roller end-flange law": B1 from 2.8 kN axially). The run goes on: whether such a load
+    is worth a run is the user's call, and its elastic contacts do not describe that
+    deformation. None otherwise, also where the statics find no equilibrium for another
+    reason (B1 with a prescribed tilt and the point law) or fail: the note is advice and
+    never stops a run."""
     from ..statics import statics
 
     op = cfg.operating
@@ -290,6 +291,8 @@ def capacity_note(cfg: BearingConfig, t: float) -> str | None:
                 f"note: at the loads of t = {t:.4g} s, {error}; the run goes on, but its "
                 "elastic contacts do not describe flanges deformed past that limit"
             )
+    except Exception:  # advice only: whatever the statics make of a case, the run goes on
+        return None
     return None
 
 
