@@ -195,7 +195,7 @@ def test_run_notes_a_load_past_the_flanges_static_limit(tmp_path):
     point = load_config(heavy)
     note = capacity_note(point, point.end_time)
     assert note is not None and "axial 10000 N" in note and "ISO 76" in note, note
-    assert "15.6 GPa" in note and "the run goes on" in note, note
+    assert "15.6 GPa" in note and "a run goes on" in note, note
     assert capacity_note(point, 0.002) is None  # the ramp has brought 0.16 % of the loads
     # The loads ramped up within 0.1 ms, the distributed law: the note, then the run.
     fast = tmp_path / "fast.toml"
@@ -211,6 +211,10 @@ def test_run_notes_a_load_past_the_flanges_static_limit(tmp_path):
     assert result.exit_code == 0, result.output
     assert "7.9 GPa, above the 4 GPa of ISO 76" in result.output, result.output
     assert "Traceback" not in result.output and out.is_file()
+    # `check` prints the same note after its table, and none for B1.
+    checked = RUNNER.invoke(app, ["check", str(heavy)])
+    assert checked.exit_code == 0 and "15.6 GPa, above the 4 GPa" in checked.output
+    assert "cannot carry" not in RUNNER.invoke(app, ["check", str(B1)]).output
 
 
 def test_ctrl_c_while_the_result_is_written_loses_nothing(tmp_path, monkeypatch):

@@ -288,7 +288,7 @@ def capacity_note(cfg: BearingConfig, t: float) -> str | None:
     except ValueError as error:
         if "cannot carry it" in str(error):
             return (
-                f"note: at the loads of t = {t:.4g} s, {error}; the run goes on, but its "
+                f"note: at the loads of t = {t:.4g} s, {error}; a run goes on, but its "
                 "elastic contacts do not describe flanges deformed past that limit"
             )
     except Exception:  # advice only: whatever the statics make of a case, the run goes on

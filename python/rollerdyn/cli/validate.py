@@ -10,7 +10,7 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
-from .common import ConfigOption, console, default_config, load
+from .common import ConfigOption, console, default_config, load, say
 
 
 def validate(config: ConfigOption = None) -> None:
@@ -58,9 +58,13 @@ def check(
 
     Shows roller diameter, pitch diameter, gap between rollers, roller mass and inertias,
     end time, lubricant state at the run temperature (eta0, Roelands z, alpha*) and the
-    line-contact power laws (eq. 11) fitted to Tripp with their errors.
+    line-contact power laws (eq. 11) fitted to Tripp with their errors; then the notes
+    `rollerdyn run` would print at its start: a configuration known to creep with the
+    point end-flange law (a free or prescribed ring tilt), and loads at the end time
+    whose quasi-static equilibrium presses a flange past ISO 76's 4 GPa.
     """
     from ..model import Model
+    from .run import capacity_note, slow_configuration_note
 
     cfg = load(config)
     model = Model(cfg)
@@ -89,3 +93,6 @@ def check(
     for name, value, unit in rows:
         table.add_row(name, f"{value:.6g}", unit)
     console.print(table)
+    for note in (slow_configuration_note(cfg), capacity_note(cfg, cfg.end_time)):
+        if note is not None:
+            say(note, "yellow")
