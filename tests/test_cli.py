@@ -151,7 +151,7 @@ def test_run_notes_the_slow_free_tilt_with_the_point_law(tmp_path):
     tilt it creeps: `run` says so in one line and names the law that runs it, and says
     nothing for B1 as it is or for either tilt with the distributed law."""
     from rollerdyn import load_config
-    from rollerdyn.cli.run import slow_configuration_note
+    from rollerdyn.notes import slow_configuration_note
 
     free = b1_file_with(tmp_path, 'tilt = "locked"', 'tilt = "free"', "free.toml")
     note = slow_configuration_note(load_config(free))
@@ -187,7 +187,7 @@ def test_run_notes_a_load_past_the_flanges_static_limit(tmp_path):
     line saying so, and goes on; B1 as it is, and B1 at 10 kN at a time when its load ramp
     has brought only a few newtons, get none."""
     from rollerdyn import load_config
-    from rollerdyn.cli.run import capacity_note
+    from rollerdyn.notes import capacity_note, configuration_notes
 
     b1 = load_config(B1)
     assert capacity_note(b1, b1.end_time) is None
@@ -197,6 +197,9 @@ def test_run_notes_a_load_past_the_flanges_static_limit(tmp_path):
     assert note is not None and "axial 10000 N" in note and "ISO 76" in note, note
     assert "15.6 GPa" in note and "a run goes on" in note, note
     assert capacity_note(point, 0.002) is None  # the ramp has brought 0.16 % of the loads
+    # From Python, the notes run prints: the capacity note only, for this configuration.
+    assert configuration_notes(heavy) == [note]
+    assert configuration_notes(B1) == [] and configuration_notes(heavy, t_end=0.002) == []
     # The loads ramped up within 0.1 ms, the distributed law: the note, then the run.
     fast = tmp_path / "fast.toml"
     fast.write_text(

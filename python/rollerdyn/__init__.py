@@ -34,6 +34,7 @@ _LAZY = {
     "ConfigError": ".config",
     "load_config": ".config",
     "parse_config": ".config",
+    "configuration_notes": ".notes",
 }
 
 
@@ -101,6 +102,7 @@ def simulate(
 __all__ = [
     "BearingConfig",
     "ConfigError",
+    "configuration_notes",
     "load_config",
     "parse_config",
     "report",

@@ -9,7 +9,7 @@ import math
 import signal
 import time
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated
+from typing import Annotated
 
 import typer
 
@@ -26,9 +26,6 @@ from .common import (
     say,
     time_option,
 )
-
-if TYPE_CHECKING:
-    from ..config import BearingConfig
 
 
 def run(
@@ -148,6 +145,7 @@ def run(
     cfg = load(config)
     # after the input checks: a bad option or file is refused before xarray and the
     # simulation's other libraries load (about 0.6 s)
+    from ..notes import configuration_notes
     from ..simulation import CheckpointSaver, SimulationError, resume_state, simulate, write
 
     end = cfg.end_time if end is None else end
@@ -160,9 +158,8 @@ def run(
     if interval is not None:
         solver = cfg.solver.model_copy(update={"checkpoint_interval": float(interval)})
         cfg = cfg.model_copy(update={"solver": solver})
-    for note in (slow_configuration_note(cfg), capacity_note(cfg, end)):
-        if note is not None:
-            say(note, "yellow")
+    for note in configuration_notes(cfg, end):
+        say(note, "yellow")
     for tmp, pid in remove_stale_temporaries(output):
         say(f"removed {tmp}: a temporary file of process {pid}, which no longer runs")
     t_start = 0.0 if previous is None else float(resume_state(previous)[0])
@@ -235,65 +232,6 @@ def _signals_deferred(received: list[int]):
     finally:
         for signum, handler in handlers.items():
             signal.signal(signum, handler)
-
-
-def slow_configuration_note(cfg: BearingConfig) -> str | None:
-    """A one-line note for a configuration known to stall or creep where B1 runs, or None,
-    with the paper's point end-flange law (docs/dynamics.md, "Free inner ring tilt"):
-    the free inner-ring tilt (B1 stalls in the load ramp, at t = 0.0226 s) and a
-    prescribed tilt (B1 at 0.05 deg creeps from t = 0.39 s on, near the end of the load
-    ramp, with its most loaded inner-flange ends on their end faces: t = 0.62 s after
-    273 s)."""
-    if cfg.surfaces.flange_law != "point":
-        return None
-    if cfg.inner_ring.tilt == "free":
-        return (
-            "note: inner_ring.tilt = free with surfaces.flange_law = point stalls in the load "
-            "ramp (B1: the steps collapse at t = 0.023 s and the run stops); with "
-            'surfaces.flange_law = "distributed" it takes less than the locked run with that '
-            'law (docs/dynamics.md, "Free inner ring tilt")'
-        )
-    if cfg.inner_ring.misalignment != 0.0:
-        return (
-            "note: a prescribed inner_ring.misalignment with surfaces.flange_law = point "
-            "creeps once the loads are up (B1 at 0.05 deg: steps of 2-3 us from t = 0.39 s, "
-            "0.2-0.3 us in the speed ramp, t = 0.62 s after 4.5 minutes; the most loaded "
-            'ends lie on their end faces); with surfaces.flange_law = "distributed" B1\'s '
-            'whole run at 0.05 deg takes about 50 s (docs/dynamics.md, "Prescribed tilt '
-            'instead")'
-        )
-    return None
-
-
-def capacity_note(cfg: BearingConfig, t: float) -> str | None:
-    """A one-line note when the loads at time ``t`` (the run's end) are more than the
-    flanges carry: their quasi-static equilibrium (``rollerdyn statics``, the
-    configuration's end-flange law) presses a roller end on a flange past ISO 76's static
-    limit of 4 GPa, where the flanges deform for good (docs/dynamics.md, "Distributed
-    roller end-flange law": B1 from 2.8 kN axially). The run goes on: whether such a load
-    is worth a run is the user's call, and its elastic contacts do not describe that
-    deformation. None otherwise, also where the statics find no equilibrium for another
-    reason (B1 with a prescribed tilt and the point law) or fail: the note is advice and
-    never stops a run."""
-    from ..statics import statics
-
-    op = cfg.operating
-    try:
-        statics(
-            cfg,
-            radial_load=op.radial_load_at(t),
-            axial_load=op.axial_load_at(t),
-            speed=op.inner_ring_speed_at(t),
-        )
-    except ValueError as error:
-        if "cannot carry it" in str(error):
-            return (
-                f"note: at the loads of t = {t:.4g} s, {error}; a run goes on, but its "
-                "elastic contacts do not describe flanges deformed past that limit"
-            )
-    except Exception:  # advice only: whatever the statics make of a case, the run goes on
-        return None
-    return None
 
 
 def _stop_status(message: str) -> int:

@@ -64,7 +64,7 @@ def check(
     whose quasi-static equilibrium presses a flange past ISO 76's 4 GPa.
     """
     from ..model import Model
-    from .run import capacity_note, slow_configuration_note
+    from ..notes import configuration_notes
 
     cfg = load(config)
     model = Model(cfg)
@@ -93,6 +93,5 @@ def check(
     for name, value, unit in rows:
         table.add_row(name, f"{value:.6g}", unit)
     console.print(table)
-    for note in (slow_configuration_note(cfg), capacity_note(cfg, cfg.end_time)):
-        if note is not None:
-            say(note, "yellow")
+    for note in configuration_notes(cfg):
+        say(note, "yellow")

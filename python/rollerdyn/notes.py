@@ -1,0 +1,81 @@
+"""Notes on a configuration before it runs (``rollerdyn run`` and ``rollerdyn check`` print
+them; :func:`configuration_notes` from Python): what is known to make a run creep with the
+paper's point end-flange law, and loads whose quasi-static equilibrium the flanges cannot
+carry by ISO 76's static limit. Advice only: a note never stops a run."""
+
+from __future__ import annotations
+
+import os
+
+from .config import BearingConfig, load_config
+
+
+def configuration_notes(
+    config: BearingConfig | str | os.PathLike, t_end: float | None = None
+) -> list[str]:
+    """The notes on ``config`` (a configuration or its TOML file) for a run to ``t_end``
+    [s] (default: the configuration's end time), one line each, in the order ``rollerdyn
+    run`` prints them: :func:`slow_configuration_note`, then :func:`capacity_note`."""
+    cfg = config if isinstance(config, BearingConfig) else load_config(config)
+    t = cfg.end_time if t_end is None else float(t_end)
+    notes = (slow_configuration_note(cfg), capacity_note(cfg, t))
+    return [note for note in notes if note is not None]
+
+
+def slow_configuration_note(cfg: BearingConfig) -> str | None:
+    """A one-line note for a configuration known to stall or creep where B1 runs, or None,
+    with the paper's point end-flange law (docs/dynamics.md, "Free inner ring tilt"):
+    the free inner-ring tilt (B1 stalls in the load ramp, at t = 0.0226 s) and a
+    prescribed tilt (B1 at 0.05 deg creeps from t = 0.39 s on, near the end of the load
+    ramp, with its most loaded inner-flange ends on their end faces: t = 0.62 s after
+    273 s)."""
+    if cfg.surfaces.flange_law != "point":
+        return None
+    if cfg.inner_ring.tilt == "free":
+        return (
+            "note: inner_ring.tilt = free with surfaces.flange_law = point stalls in the load "
+            "ramp (B1: the steps collapse at t = 0.023 s and the run stops); with "
+            'surfaces.flange_law = "distributed" it takes less than the locked run with that '
+            'law (docs/dynamics.md, "Free inner ring tilt")'
+        )
+    if cfg.inner_ring.misalignment != 0.0:
+        return (
+            "note: a prescribed inner_ring.misalignment with surfaces.flange_law = point "
+            "creeps once the loads are up (B1 at 0.05 deg: steps of 2-3 us from t = 0.39 s, "
+            "0.2-0.3 us in the speed ramp, t = 0.62 s after 4.5 minutes; the most loaded "
+            'ends lie on their end faces); with surfaces.flange_law = "distributed" B1\'s '
+            'whole run at 0.05 deg takes about 50 s (docs/dynamics.md, "Prescribed tilt '
+            'instead")'
+        )
+    return None
+
+
+def capacity_note(cfg: BearingConfig, t: float) -> str | None:
+    """A one-line note when the loads at time ``t`` (the run's end) are more than the
+    flanges carry: their quasi-static equilibrium (``rollerdyn statics``, the
+    configuration's end-flange law) presses a roller end on a flange past ISO 76's static
+    limit of 4 GPa, where the flanges deform for good (docs/dynamics.md, "Distributed
+    roller end-flange law": B1 from 2.8 kN axially). The run goes on: whether such a load
+    is worth a run is the user's call, and its elastic contacts do not describe that
+    deformation. None otherwise, also where the statics find no equilibrium for another
+    reason (B1 with a prescribed tilt and the point law) or fail: the note is advice and
+    never stops a run."""
+    from .statics import statics
+
+    op = cfg.operating
+    try:
+        statics(
+            cfg,
+            radial_load=op.radial_load_at(t),
+            axial_load=op.axial_load_at(t),
+            speed=op.inner_ring_speed_at(t),
+        )
+    except ValueError as error:
+        if "cannot carry it" in str(error):
+            return (
+                f"note: at the loads of t = {t:.4g} s, {error}; a run goes on, but its "
+                "elastic contacts do not describe flanges deformed past that limit"
+            )
+    except Exception:  # advice only: whatever the statics make of a case, the run goes on
+        return None
+    return None
