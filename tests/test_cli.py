@@ -181,11 +181,12 @@ def test_run_notes_the_slow_free_tilt_with_the_point_law(tmp_path):
 
 
 def test_run_notes_a_load_past_the_flanges_static_limit(tmp_path):
-    """A run whose loads at its end time the flanges cannot carry by ISO 76's static limit
-    (4 GPa; B1's quasi-static equilibrium at 10 kN axially presses a flange rim at 15.6 GPa
-    with the point law and 7.9 GPa with the distributed one, `rollerdyn statics`) gets one
-    line saying so, and goes on; B1 as it is, and B1 at 10 kN at a time when its load ramp
-    has brought only a few newtons, get none."""
+    """A run whose loads at its end time, or at a load table's row before it, the flanges
+    cannot carry by ISO 76's static limit (4 GPa; B1's quasi-static equilibrium at 10 kN
+    axially presses a flange rim at 15.6 GPa with the point law and 7.9 GPa with the
+    distributed one, `rollerdyn statics`) gets one line saying so, and goes on; B1 as it
+    is, and B1 at 10 kN at a time when its load ramp has brought only a few newtons, get
+    none."""
     from rollerdyn import load_config
     from rollerdyn.notes import capacity_note, configuration_notes
 
@@ -197,6 +198,18 @@ def test_run_notes_a_load_past_the_flanges_static_limit(tmp_path):
     assert note is not None and "axial 10000 N" in note and "ISO 76" in note, note
     assert "15.6 GPa" in note and "a run goes on" in note, note
     assert capacity_note(point, 0.002) is None  # the ramp has brought 0.16 % of the loads
+    # A load table that peaks within the run is judged at its rows: 10 kN at 0.6 s, back
+    # to 1000 N by the end (the distributed law: 7.9 GPa at the peak).
+    peak = b1_file_with(
+        tmp_path,
+        'axial_load = "1000 N"',
+        'axial_load = {table = [["0 s", "0 N"], ["0.6 s", "10000 N"], ["0.8 s", "1000 N"]]}',
+        "peak.toml",
+    )
+    peak.write_text(peak.read_text().replace('flange_law = "point"', 'flange_law = "distributed"'))
+    peaked = capacity_note(load_config(peak), 1.0)
+    assert peaked is not None and "t = 0.6 s" in peaked and "7.9 GPa" in peaked, peaked
+    assert capacity_note(load_config(peak), 0.1) is None  # the table has reached 1667 N
     # From Python, the notes run prints: the capacity note only, for this configuration.
     assert configuration_notes(heavy) == [note]
     assert configuration_notes(B1) == [] and configuration_notes(heavy, t_end=0.002) == []

@@ -8,6 +8,7 @@ from __future__ import annotations
 import os
 
 from .config import BearingConfig, load_config
+from .config.base import TimeTable
 
 
 def configuration_notes(
@@ -51,15 +52,34 @@ def slow_configuration_note(cfg: BearingConfig) -> str | None:
 
 
 def capacity_note(cfg: BearingConfig, t: float) -> str | None:
-    """A one-line note when the loads at time ``t`` (the run's end) are more than the
-    flanges carry: their quasi-static equilibrium (``rollerdyn statics``, the
-    configuration's end-flange law) presses a roller end on a flange past ISO 76's static
-    limit of 4 GPa, where the flanges deform for good (docs/dynamics.md, "Distributed
-    roller end-flange law": B1 from 2.8 kN axially). The run goes on: whether such a load
-    is worth a run is the user's call, and its elastic contacts do not describe that
-    deformation. None otherwise, also where the statics find no equilibrium for another
-    reason (B1 with a prescribed tilt and the point law) or fail: the note is advice and
-    never stops a run."""
+    """A one-line note when the loads of a run to time ``t`` are more than the flanges
+    carry: their quasi-static equilibrium (``rollerdyn statics``, the configuration's
+    end-flange law) presses a roller end on a flange past ISO 76's static limit of 4 GPa,
+    where the flanges deform for good (docs/dynamics.md, "Distributed roller end-flange
+    law": B1 from 2.8 kN axially). The loads are judged at ``t`` and at every row of a
+    load table before it (the extremes of a piecewise-linear history; a ramp only rises),
+    the first past the limit named. The run goes on: whether such a load is worth a run is
+    the user's call, and its elastic contacts do not describe that deformation. None
+    otherwise, also where the statics find no equilibrium for another reason (B1 with a
+    prescribed tilt and the point law) or fail: the note is advice and never stops a
+    run."""
+    op = cfg.operating
+    rows = {
+        row_time
+        for load in (op.radial_load, op.axial_load)
+        if isinstance(load, TimeTable)
+        for row_time in load.times
+        if row_time < t
+    }
+    for time in sorted(rows) + [t]:
+        note = _capacity_note_at(cfg, time)
+        if note is not None:
+            return note
+    return None
+
+
+def _capacity_note_at(cfg: BearingConfig, t: float) -> str | None:
+    """:func:`capacity_note` for the loads at time ``t`` alone."""
     from .statics import statics
 
     op = cfg.operating
