@@ -58,7 +58,7 @@ def capacity_note(cfg: BearingConfig, t: float) -> str | None:
     where the flanges deform for good (docs/dynamics.md, "Distributed roller end-flange
     law": B1 from 2.8 kN axially). The loads are judged at ``t`` and at every row of a
     load table before it (the extremes of a piecewise-linear history; a ramp only rises),
-    the first past the limit named. The run goes on: whether such a load is worth a run is
+    the earliest past the limit named. The run goes on: whether such a load is worth a run is
     the user's call, and its elastic contacts do not describe that deformation. None
     otherwise, also where the statics find no equilibrium for another reason (B1 with a
     prescribed tilt and the point law) or fail: the note is advice and never stops a
