@@ -197,7 +197,7 @@ def test_run_notes_a_load_past_the_flanges_static_limit(tmp_path):
     note = capacity_note(point, point.end_time)
     assert note is not None and "axial 10000 N" in note and "ISO 76" in note, note
     assert "15.6 GPa" in note and "a run goes on" in note, note
-    assert capacity_note(point, 0.002) is None  # the ramp has brought 0.16 % of the loads
+    assert capacity_note(point, 0.002) is None  # the cosine ramp has brought 0.004 % of the loads
     # A load table that peaks within the run is judged at its rows: 10 kN at 0.6 s, back
     # to 1000 N by the end (the distributed law: 7.9 GPa at the peak).
     peak = b1_file_with(
