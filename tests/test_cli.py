@@ -185,7 +185,7 @@ def test_run_notes_a_load_past_the_flanges_static_limit(tmp_path):
     cannot carry by ISO 76's static limit (4 GPa; B1's quasi-static equilibrium at 10 kN
     axially presses a flange rim at 15.6 GPa with the point law and 7.9 GPa with the
     distributed one, `rollerdyn statics`) gets one line saying so, and goes on; B1 as it
-    is, and B1 at 10 kN at a time when its load ramp has brought only a few newtons, get
+    is, and B1 at 10 kN at a time when its load ramp has brought less than a newton, get
     none."""
     from rollerdyn import load_config
     from rollerdyn.notes import capacity_note, configuration_notes
