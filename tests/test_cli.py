@@ -210,6 +210,18 @@ def test_run_notes_a_load_past_the_flanges_static_limit(tmp_path):
     peaked = capacity_note(load_config(peak), 1.0)
     assert peaked is not None and "t = 0.6 s" in peaked and "7.9 GPa" in peaked, peaked
     assert capacity_note(load_config(peak), 0.1) is None  # the table has reached 1667 N
+    # The races: B1 at 15 kN radially presses its inner race at 4.5 GPa in equilibrium,
+    # at 10 kN at 3.8 GPa (`rollerdyn statics`).
+    for radial, pressure in (("15000 N", "4.5 GPa"), ("10000 N", None)):
+        radial_file = b1_file_with(
+            tmp_path, 'radial_load = "5000 N"', f'radial_load = "{radial}"', "radial.toml"
+        )
+        radial_cfg = load_config(radial_file)
+        race = capacity_note(radial_cfg, radial_cfg.end_time)
+        if pressure is None:
+            assert race is None, race
+        else:
+            assert race is not None and f"inner race at {pressure}" in race, race
     # From Python, the notes run prints: the capacity note only, for this configuration.
     assert configuration_notes(heavy) == [note]
     assert configuration_notes(B1) == [] and configuration_notes(heavy, t_end=0.002) == []

@@ -1,7 +1,7 @@
 """Notes on a configuration before it runs (``rollerdyn run`` and ``rollerdyn check`` print
 them; :func:`configuration_notes` from Python): what is known to make a run creep with the
-paper's point end-flange law, and loads whose quasi-static equilibrium the flanges cannot
-carry by ISO 76's static limit. Advice only: a note never stops a run."""
+paper's point end-flange law, and loads whose quasi-static equilibrium the flanges or the
+races cannot carry by ISO 76's static limit. Advice only: a note never stops a run."""
 
 from __future__ import annotations
 
@@ -9,6 +9,13 @@ import os
 
 from .config import BearingConfig, load_config
 from .config.base import TimeTable
+
+#: ISO 76's Hertzian pressure at the static load rating of roller bearings [Pa]: the
+#: contact stress of a permanent deformation of 1e-4 of the roller diameter.
+ISO_76_PRESSURE = 4.0e9
+
+#: The races whose slice pressures the statics report.
+RACES = ("inner", "outer")
 
 
 def configuration_notes(
@@ -52,17 +59,18 @@ def slow_configuration_note(cfg: BearingConfig) -> str | None:
 
 
 def capacity_note(cfg: BearingConfig, t: float) -> str | None:
-    """A one-line note when the loads of a run to time ``t`` are more than the flanges
-    carry: their quasi-static equilibrium (``rollerdyn statics``, the configuration's
-    end-flange law) presses a roller end on a flange past ISO 76's static limit of 4 GPa,
-    where the flanges deform for good (docs/dynamics.md, "Distributed roller end-flange
-    law": B1 from 2.8 kN axially). The loads are judged at ``t`` and at every row of a
-    load table before it (the extremes of a piecewise-linear history; a ramp only rises),
-    the earliest past the limit named. The run goes on: whether such a load is worth a run is
-    the user's call, and its elastic contacts do not describe that deformation. None
-    otherwise, also where the statics find no equilibrium for another reason (B1 with a
-    prescribed tilt and the point law) or fail: the note is advice and never stops a
-    run."""
+    """A one-line note when the loads of a run to time ``t`` are more than the bearing
+    carries statically: their quasi-static equilibrium (``rollerdyn statics``, the
+    configuration's end-flange law) presses a roller end on a flange, or a roller on a
+    race, past ISO 76's static limit of 4 GPa, where the surfaces deform for good
+    (docs/dynamics.md, "Distributed roller end-flange law": B1 from 2.8 kN axially, and
+    its inner race from 11.6 kN radially). The loads are judged at ``t`` and at every row
+    of a load table before it (the extremes of a piecewise-linear history; a ramp only
+    rises), the earliest past the limit named. The run goes on: whether such a load is
+    worth a run is the user's call, and its elastic contacts do not describe that
+    deformation. None otherwise, also where the statics find no equilibrium for another
+    reason (B1 with a prescribed tilt and the point law) or fail: the note is advice and
+    never stops a run."""
     op = cfg.operating
     rows = {
         row_time
@@ -83,12 +91,10 @@ def _capacity_note_at(cfg: BearingConfig, t: float) -> str | None:
     from .statics import statics
 
     op = cfg.operating
+    loads = (op.radial_load_at(t), op.axial_load_at(t))
     try:
-        statics(
-            cfg,
-            radial_load=op.radial_load_at(t),
-            axial_load=op.axial_load_at(t),
-            speed=op.inner_ring_speed_at(t),
+        ds = statics(
+            cfg, radial_load=loads[0], axial_load=loads[1], speed=op.inner_ring_speed_at(t)
         )
     except ValueError as error:
         if "cannot carry it" in str(error):
@@ -96,6 +102,26 @@ def _capacity_note_at(cfg: BearingConfig, t: float) -> str | None:
                 f"note: at the loads of t = {t:.4g} s, {error}; a run goes on, but its "
                 "elastic contacts do not describe flanges deformed past that limit"
             )
+        return None
     except Exception:  # advice only: whatever the statics make of a case, the run goes on
         return None
-    return None
+    return _race_note(t, loads, ds)
+
+
+def _race_note(t: float, loads: tuple[float, float], ds) -> str | None:
+    """The note for a quasi-static equilibrium ``ds`` whose largest race contact pressure
+    (its slices', crowning and edges included) exceeds ISO 76's 4 GPa, or None."""
+    import numpy as np
+
+    per_roller = {race: ds[f"{race}_slice_pressure"].values.max(axis=1) for race in RACES}
+    race = max(RACES, key=lambda r: per_roller[r].max())
+    roller = int(np.argmax(per_roller[race]))
+    pressure = float(per_roller[race][roller])
+    if not pressure > ISO_76_PRESSURE:
+        return None
+    return (
+        f"note: at the loads of t = {t:.4g} s (radial {loads[0]:g} N, axial {loads[1]:g} N) "
+        f"the races cannot carry them: at equilibrium roller {roller} presses the {race} "
+        f"race at {pressure / 1e9:.1f} GPa, above the 4 GPa of ISO 76's static limit; a run "
+        "goes on, but its elastic contacts do not describe races deformed past that limit"
+    )

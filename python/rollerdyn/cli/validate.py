@@ -61,7 +61,7 @@ def check(
     line-contact power laws (eq. 11) fitted to Tripp with their errors; then the notes
     `rollerdyn run` would print at its start: a configuration known to creep with the
     point end-flange law (a free or prescribed ring tilt), and loads at the end time
-    whose quasi-static equilibrium presses a flange past ISO 76's 4 GPa.
+    whose quasi-static equilibrium presses a flange or a race past ISO 76's 4 GPa.
     """
     from ..model import Model
     from ..notes import configuration_notes
