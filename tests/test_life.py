@@ -105,6 +105,30 @@ def test_static_rating_and_fatigue_load_limit_by_hand():
     )
 
 
+def test_static_safety_factors_closed_form():
+    """ISO 76: s_0 = C_0 / P_0 (P_0r = F_r for a radial roller bearing); by stress, the load
+    factor to ISO 76's 4 000 MPa: Hertz's p_0 grows with the square root of a line
+    contact's load and the cube root of a point contact's."""
+    assert life.ROLLER_STATIC_PRESSURE == 4.0e9
+    assert life.static_safety_factor(11_000.0, 5_000.0) == pytest.approx(2.2, rel=1e-15)
+    assert life.static_safety_factor(11_000.0, 0.0) == math.inf
+    assert life.stress_static_safety(2.0e9, "line") == pytest.approx(4.0, rel=1e-15)
+    assert life.stress_static_safety(2.0e9, "point") == pytest.approx(8.0, rel=1e-15)
+    assert life.stress_static_safety(4.0e9, "line") == pytest.approx(1.0, rel=1e-15)
+    assert life.stress_static_safety(0.0, "point") == math.inf
+    assert life.stress_static_safety(1e9, "line", limit=2e9) == pytest.approx(4.0, rel=1e-15)
+    for call, name in (
+        (lambda: life.static_safety_factor(0.0, 1.0), "c0"),
+        (lambda: life.static_safety_factor(1.0, -1.0), "p0"),
+        (lambda: life.stress_static_safety(-1.0, "line"), "pressure"),
+        (lambda: life.stress_static_safety(1e9, "area"), "contact"),
+        (lambda: life.stress_static_safety(1e9, "line", limit=0.0), "limit"),
+        (lambda: life.stress_static_safety(float("nan"), "line"), "pressure"),
+    ):
+        with pytest.raises(ValueError, match=name):
+            call()
+
+
 def test_basic_rating_life_closed_form():
     # ISO 281 7.3: L_10 = (C/P)^(10/3); C/P = 10 gives 10^(10/3) = 2154.43... exactly.
     assert life.basic_rating_life(50e3, 5e3) == pytest.approx(10 ** (10 / 3), rel=1e-14)

@@ -153,6 +153,28 @@ def test_life_follows_the_slice_loads(b1):
     assert float(ds.l10) == pytest.approx((float(ds.dynamic_load_rating) / 5000.0) ** (10 / 3))
 
 
+def test_static_safety_by_iso_76_and_by_stress_agree_at_the_static_rating(b1):
+    """ISO 76's C_0r is the radial load that presses the heaviest roller of a bearing
+    against its raceway at 4 000 MPa, from a closed-form load distribution; the slice
+    model finds B1's own (its clearance, crowning and slices). At F_r = C_0r (10.98 kN)
+    the model's largest race pressure gives a static safety by stress of 1.04: the two
+    agree within 10 % (the model's pressures include the crowned slices' and the
+    clearance's load zone, which ISO 76's factors approximate). The dataset's s_0 is
+    C_0r / F_r, and the flanges' safety by stress is (4 GPa / p_0)^3 of its largest flange
+    pressure."""
+    c0 = float(statics(b1).static_load_rating)
+    ds = statics(b1, radial_load=c0)
+    assert float(ds.s0) == pytest.approx(1.0, rel=1e-12)
+    assert float(ds.s0_races) == pytest.approx(1.0, abs=0.1)
+    assert float(ds.s0_races) == pytest.approx((4e9 / float(ds.max_pressure)) ** 2, rel=1e-12)
+    flange = float(np.nanmax(ds.flange_pressure.values))
+    assert float(ds.s0_flanges) == pytest.approx((4e9 / flange) ** 3, rel=1e-12)
+    # and both fall with the load
+    lighter = statics(b1, radial_load=0.5 * c0)
+    assert float(lighter.s0) == pytest.approx(2.0, rel=1e-12)
+    assert float(lighter.s0_races) > float(ds.s0_races)
+
+
 def test_sweep_is_monotonic_and_keeps_every_case(b1):
     """A radial-load sweep: the heaviest roller grows and the life falls with the load."""
     ds = statics_sweep(

@@ -13,7 +13,9 @@ Sources (docs/life.md tells which was taken where they differ):
 - ISO 281:2007, clause 7 (radial roller bearings: 7.1 basic dynamic radial load rating with
   the factor f_c of Table 7, 7.3 basic rating life), clause 9 (9.2 a_1 for reliability,
   Table 12; 9.3 a_ISO for the systems approach) and Annex B (fatigue load limit).
-- ISO 76:2006 (basic static radial load rating of radial roller bearings).
+- ISO 76:2006 (basic static radial load rating of radial roller bearings, the static
+  equivalent load and the static safety factor s_0 = C_0 / P_0; the 4 000 MPa at the
+  centre of the most heavily loaded contact that defines C_0 for roller bearings).
 - ISO/TS 16281:2008, clause 5.3 (roller bearings: eqs. (47)-(49) roller contact ratings
   from C_r, (56)-(57) lamina ratings, (61)-(64) dynamic equivalent lamina loads, (65) basic
   reference rating life) and clause 7 (a_ISO with the reference equivalent load). The TS
@@ -49,7 +51,10 @@ __all__ = [
     "reference_rating_life",
     "reference_viscosity",
     "reliability_factor",
+    "ROLLER_STATIC_PRESSURE",
     "static_load_rating",
+    "static_safety_factor",
+    "stress_static_safety",
     "viscosity_ratio",
 ]
 
@@ -306,6 +311,45 @@ def static_load_rating(
             f"roller_diameter, pitch_diameter: D_we cos(alpha) / D_pw must be < 1, got {gamma!r}"
         )
     return 44.0 * (1.0 - gamma) * i * n * (length * MM) * (d * MM) * cos_a
+
+
+#: ISO 76:2006's contact stress at the basic static load rating of roller bearings [Pa]
+#: (4 000 MPa at the centre of the most heavily loaded roller/raceway contact; a total
+#: permanent deformation of about 1e-4 of the roller diameter).
+ROLLER_STATIC_PRESSURE = 4.0e9
+
+
+def static_safety_factor(c0: float, p0: float) -> float:
+    """Static safety factor s_0 = C_0 / P_0 (ISO 76:2006). For a radial cylindrical roller
+    bearing (contact angle 0) the static equivalent radial load is P_0r = F_r: the axial
+    load, which its flanges carry, does not enter. c0 [N] > 0, p0 [N] >= 0 (infinite at
+    0)."""
+    c_0 = _positive_scalar("c0", c0)
+    load = _scalar("p0", p0)
+    if load < 0.0:
+        raise ValueError(f"p0: must be >= 0, got {load!r}")
+    return math.inf if load == 0.0 else c_0 / load
+
+
+def stress_static_safety(
+    pressure: float, contact: Literal["line", "point"], limit: float = ROLLER_STATIC_PRESSURE
+) -> float:
+    """Static safety from the largest Hertzian contact pressure p_0 of a load case: the
+    factor by which its load may grow until p_0 reaches ``limit`` (ISO 76's 4 000 MPa for
+    roller bearings), the contact held as it is. Hertz's p_0 grows with the square root of
+    a line contact's load and the cube root of a point contact's, so the factor is
+    (limit / p_0)^2 for ``"line"`` (roller/raceway) and (limit / p_0)^3 for ``"point"``
+    (roller end/flange). Unlike C_0 / P_0 it sees the case's own load distribution,
+    crowning and edges; it does not see the load zone widening with the load (B1: p_0
+    reaches 4 GPa at 2.31 times its radial load, not 1.98). pressure [Pa] >= 0 (infinite at
+    0), limit [Pa] > 0."""
+    p = _scalar("pressure", pressure)
+    if p < 0.0:
+        raise ValueError(f"pressure: must be >= 0, got {p!r}")
+    if contact not in ("line", "point"):
+        raise ValueError(f"contact: must be 'line' or 'point', got {contact!r}")
+    cap = _positive_scalar("limit", limit)
+    return math.inf if p == 0.0 else (cap / p) ** (2 if contact == "line" else 3)
 
 
 def fatigue_load_limit(c0: float, pitch_diameter: float) -> float:

@@ -478,6 +478,30 @@ def _case_variables(
         "max_flange_force": _var(
             float(flange["flange_force"].max()), (), "N", "largest roller end / flange force"
         ),
+        "s0_races": _var(
+            life.stress_static_safety(
+                float(
+                    np.nan_to_num(
+                        np.concatenate([slices["inner_pressures"], slices["outer_pressures"]]),
+                        nan=0.0,
+                    ).max()
+                ),
+                "line",
+            ),
+            (),
+            "1",
+            "static safety by stress at the races, (4 GPa / largest race p0)^2 (ISO 76's "
+            "limit; inf unloaded)",
+        ),
+        "s0_flanges": _var(
+            life.stress_static_safety(
+                float(np.nan_to_num(flange["flange_pressure"], nan=0.0).max()), "point"
+            ),
+            (),
+            "1",
+            "static safety by stress at the flanges, (4 GPa / largest flange p0)^3 (ISO 76's "
+            "limit; inf unloaded)",
+        ),
         "loaded_rollers": _var(
             float((inner_load > 1e-6 * max(inner_load.max(), 1e-30)).sum()),
             (),
@@ -552,10 +576,11 @@ def _load_zone_angle(cfg: BearingConfig, ring: np.ndarray) -> float:
 
 @dataclass(frozen=True)
 class _Ratings:
-    """What the lives of every case of a configuration share: C_r [N], C_u [N] and the
-    oil's kinematic viscosity at the operating temperature [m^2/s]."""
+    """What the lives of every case of a configuration share: C_r [N], C_0r [N], C_u [N]
+    and the oil's kinematic viscosity at the operating temperature [m^2/s]."""
 
     dynamic: float
+    static: float
     fatigue_limit: float
     viscosity: float
 
@@ -566,6 +591,7 @@ def _ratings(cfg: BearingConfig) -> _Ratings:
     c_0 = life.static_load_rating(g.roller_count, d, length, dpw)
     return _Ratings(
         dynamic=life.dynamic_load_rating(g.roller_count, d, length, dpw),
+        static=c_0,
         fatigue_limit=life.fatigue_load_limit(c_0, dpw),
         viscosity=Model(cfg).eta0 / cfg.lubricant.density_at(cfg.operating.temperature),
     )
@@ -600,6 +626,15 @@ def _life_variables(
             c_r, (), "N", "basic dynamic radial load rating C_r (ISO 281:2007, 7.1)"
         ),
         "fatigue_load_limit": _var(c_u, (), "N", "fatigue load limit C_u (ISO 281:2007, annex B)"),
+        "static_load_rating": _var(
+            ratings.static, (), "N", "basic static radial load rating C_0r (ISO 76:2006)"
+        ),
+        "s0": _var(
+            life.static_safety_factor(ratings.static, case.radial_load),
+            (),
+            "1",
+            "static safety factor s_0 = C_0r / P_0r, P_0r = F_r (ISO 76:2006; inf at F_r = 0)",
+        ),
         "l10": _var(l10, (), "1e6 rev", "basic rating life L_10 with P = F_r (ISO 281:2007, 7.3)"),
         "l10r": _var(
             l10r,

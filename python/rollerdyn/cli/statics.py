@@ -61,8 +61,10 @@ def statics_command(
     (centrifugal forces), with the dynamic model's contact laws: race slices (eq. 11) and
     roller end / flange contacts by the semi-analytical detector, with the configuration's
     surfaces.flange_law (the paper's point contact or the distributed overlap). Prints the ring's
-    displacement, the heaviest roller, the load zone, the stiffness and the rating lives
-    (ISO 281 L_10, ISO/TS 16281 L_10r and L_nmr, in 10^6 revolutions).
+    displacement, the heaviest roller, the load zone, the stiffness, the static safety
+    (ISO 76 s_0 = C_0r / F_r, and by stress the load factor to 4 000 MPa at the races and
+    at the flanges) and the rating lives (ISO 281 L_10, ISO/TS 16281 L_10r and L_nmr, in
+    10^6 revolutions).
     """
     from .. import statics as st
 
@@ -158,7 +160,15 @@ def _print_case(ds) -> None:
         ),
         ("radial stiffness k_yy", f"{k[1, 1]:.4g} N/m"),
         ("tilt stiffness k_zz", f"{k[4, 4]:.4g} N*m/rad"),
-        ("C_r (ISO 281)", f"{float(ds.dynamic_load_rating):.6g} N"),
+        (
+            "C_r (ISO 281), C_0r (ISO 76)",
+            f"{float(ds.dynamic_load_rating):.6g} N, {float(ds.static_load_rating):.6g} N",
+        ),
+        ("static safety s_0 = C_0r / F_r (ISO 76)", f"{float(ds.s0):.4g}"),
+        (
+            "static safety by stress: races, flanges",
+            f"{float(ds.s0_races):.4g}, {float(ds.s0_flanges):.4g}",
+        ),
         ("L_10 (ISO 281, P = F_r)", f"{float(ds.l10):.4g} 1e6 rev"),
         ("L_10r (ISO/TS 16281)", f"{float(ds.l10r):.4g} 1e6 rev"),
         ("kappa, L_nmr", f"{float(ds.kappa):.3g}, {float(ds.lnmr):.4g} 1e6 rev"),
@@ -171,7 +181,8 @@ def _print_case(ds) -> None:
 def _print_sweep(ds) -> None:
     swept = ds.attrs["swept"].split(",")
     table = Table(title=f"quasi-static sweep: {ds.sizes['case']} cases")
-    for name in [*swept, "heaviest roller [N]", "ring y [um]", "L_10r [1e6 rev]"]:
+    columns = ["heaviest roller [N]", "ring y [um]", "s_0 (ISO 76)", "s_0 races", "L_10r [1e6 rev]"]
+    for name in [*swept, *columns]:
         table.add_column(name)
     n = ds.sizes["case"]
     shown = sorted({0, n // 4, n // 2, 3 * n // 4, n - 1})
@@ -181,6 +192,8 @@ def _print_sweep(ds) -> None:
             *[f"{float(row[s]):.6g}" for s in swept],
             f"{float(row.max_roller_load):.6g}",
             f"{float(row.ring_displacement[1]) * 1e6:.4g}",
+            f"{float(row.s0):.4g}",
+            f"{float(row.s0_races):.4g}",
             f"{float(row.l10r):.4g}",
         )
     console.print(table)
