@@ -10,10 +10,6 @@ import os
 from .config import BearingConfig, load_config
 from .config.base import TimeTable
 
-#: ISO 76's Hertzian pressure at the static load rating of roller bearings [Pa]: the
-#: contact stress of a permanent deformation of 1e-4 of the roller diameter.
-ISO_76_PRESSURE = 4.0e9
-
 #: The races whose slice pressures the statics report.
 RACES = ("inner", "outer")
 
@@ -110,18 +106,19 @@ def _capacity_note_at(cfg: BearingConfig, t: float) -> str | None:
 
 def _race_note(t: float, loads: tuple[float, float], ds) -> str | None:
     """The note for a quasi-static equilibrium ``ds`` whose largest race contact pressure
-    (its slices', crowning and edges included) exceeds ISO 76's 4 GPa, or None."""
+    (its slices', crowning and edges included) exceeds ISO 76's 4 GPa (its static safety
+    by stress ``s0_races`` below 1), naming that roller and race; else None."""
     import numpy as np
 
+    if not float(ds.s0_races) < 1.0:
+        return None
     per_roller = {race: ds[f"{race}_slice_pressure"].values.max(axis=1) for race in RACES}
     race = max(RACES, key=lambda r: per_roller[r].max())
     roller = int(np.argmax(per_roller[race]))
-    pressure = float(per_roller[race][roller])
-    if not pressure > ISO_76_PRESSURE:
-        return None
     return (
         f"note: at the loads of t = {t:.4g} s (radial {loads[0]:g} N, axial {loads[1]:g} N) "
         f"the races cannot carry them: at equilibrium roller {roller} presses the {race} "
-        f"race at {pressure / 1e9:.1f} GPa, above the 4 GPa of ISO 76's static limit; a run "
-        "goes on, but its elastic contacts do not describe races deformed past that limit"
+        f"race at {float(ds.max_pressure) / 1e9:.1f} GPa, above the 4 GPa of ISO 76's static "
+        "limit; a run goes on, but its elastic contacts do not describe races deformed past "
+        "that limit"
     )

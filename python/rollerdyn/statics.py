@@ -378,6 +378,7 @@ def _case_variables(
         k: np.asarray(r[k]).reshape(z, 4)
         for k in ("flange_force", "flange_pressure", "flange_penetration", "flange_pairing")
     }
+    race_peak = float(max(slices["inner_pressures"].max(), slices["outer_pressures"].max()))
     inner_load = slices["inner_slices"].sum(axis=1)
     outer_load = slices["outer_slices"].sum(axis=1)
     ring = np.asarray(r["ring"])
@@ -470,7 +471,7 @@ def _case_variables(
             float(inner_load.max()), (), "N", "heaviest roller load at the inner race"
         ),
         "max_pressure": _var(
-            float(max(slices["inner_pressures"].max(), slices["outer_pressures"].max())),
+            race_peak,
             (),
             "Pa",
             "largest race contact pressure",
@@ -479,15 +480,7 @@ def _case_variables(
             float(flange["flange_force"].max()), (), "N", "largest roller end / flange force"
         ),
         "s0_races": _var(
-            life.stress_static_safety(
-                float(
-                    np.nan_to_num(
-                        np.concatenate([slices["inner_pressures"], slices["outer_pressures"]]),
-                        nan=0.0,
-                    ).max()
-                ),
-                "line",
-            ),
+            life.stress_static_safety(race_peak, "line"),
             (),
             "1",
             "static safety by stress at the races, (4 GPa / largest race p0)^2 (ISO 76's "
