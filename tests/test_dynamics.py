@@ -366,7 +366,23 @@ def test_a_failed_run_keeps_its_results_and_says_when_and_where():
     ds = simulate(cfg, progress=stop_after_five)
     assert ds.sizes["time"] == 5
     assert ds.attrs["completed"] == 0
-    _ = SimulationError
+    # A run that fails (here: its progress callback raises after the output at 3 ms) raises
+    # SimulationError with everything computed until then, and says when it failed and why.
+
+    def broken(p):
+        if p.at_output and p.time >= 0.003:
+            raise ValueError("the callback broke")
+
+    with pytest.raises(SimulationError) as err:
+        simulate(cfg, threads=1, progress=broken)
+    kept = err.value.dataset
+    assert kept.attrs["completed"] == 0 and kept.sizes["time"] == 4
+    assert float(kept.time[-1]) == pytest.approx(0.003)
+    assert "t = 0.003 s" in str(err.value) and "the callback broke" in str(err.value)
+    assert kept.attrs["error"] == str(err.value)
+    # the records kept are those of the run that went on (bit for bit)
+    for name in ("frictional_torque", "position"):
+        assert np.array_equal(kept[name].values, ds[name].values[:4]), name
 
 
 def test_only_true_from_the_progress_callback_stops_a_run():
