@@ -134,7 +134,9 @@ def test_b_roller_set_speed_follows_epicyclic_kinematics():
     loaded = late.inner_normal_force > 1.0
     orbit = float(late.orbital_speed.where(loaded).mean())
     expected = cfg.roller_set_speed  # omega_i (1 - D/d_m)/2 (Harris & Kotzalas, sect. 8.2)
-    assert abs(orbit / expected - 1) < 0.01, (orbit, expected)
+    # Measured -7.7e-4: the loaded rollers roll on their flattened contacts with creep
+    # (traction needs slip), which the rigid kinematics leaves out; 2e-3 is about 2.5 times it.
+    assert abs(orbit / expected - 1) < 2e-3, (orbit, expected)
 
 
 def test_c_energy_is_conserved_without_friction_and_damping():
@@ -223,13 +225,18 @@ def test_free_tilt_with_the_distributed_flange_law_runs_through_its_checkpoints(
     # ramps: the whole run takes under two minutes (docs/dynamics.md). Its segment to the
     # checkpoint at 0.2 s ended 7.5e-15 s short of it after a step of 7.6e-15 s, and the
     # next step, below the smallest allowed, failed the run; the integrator now counts such
-    # a sliver as the checkpoint reached. The ring tilts (its axis angles move off zero by
-    # more than a nanoradian) and the run goes on past the checkpoint.
+    # a sliver as the checkpoint reached. The run goes on past the checkpoint, and the ring
+    # tilts about z, the axis about which the axial load on the flanges and the radial load
+    # make their moment (measured over 0.1-0.21 s, the loads still ramping: up to 0.71 mrad;
+    # asserted above 0.3 mrad), and not about y, where nothing loads it (measured 3e-10 rad:
+    # asserted below 1e-3 of the z tilt).
     cfg = variant(**{"inner_ring.tilt": "free", "surfaces.flange_law": "distributed"})
     ds = simulate(cfg, t_end=0.21)
     assert float(ds.time[-1]) == pytest.approx(0.21)
-    tilt = np.abs(ds.ring_tilt.sel(time=slice(0.1, None))).max().item()
-    assert tilt > 1e-9, tilt
+    tilt = np.abs(ds.ring_tilt.sel(time=slice(0.1, None))).max("time")
+    about_y, about_z = float(tilt.sel(tilt_axis="theta_y")), float(tilt.sel(tilt_axis="theta_z"))
+    assert about_z > 3e-4, about_z
+    assert about_y < 1e-3 * about_z, (about_y, about_z)
 
 
 DISTRIBUTED_IN_MOTION = {
