@@ -557,6 +557,31 @@ def test_axial_force_check_uses_the_load_zone(judged):
     from rollerdyn.study.findings import axial_force_in_load_zone
 
     assert axial_force_in_load_zone(c).status == NOT_RUN
+    # The same runs moved past the load ramp, three rollers loaded at the inner race and the
+    # inner flanges' axial force put on the loaded rollers (PASS, the whole of it in the
+    # load zone) or on three unloaded ones (FAIL, none of it).
+    fa, name = next((fa, n) for fa, n in plan.loads.items() if fa > 0)
+
+    def judged_with(carriers: list[int]):
+        copies = {k: v.copy(deep=True) for k, v in sets.items()}
+        ds = copies[name].assign_coords(time=copies[name].time + 1.0)
+        ds["inner_normal_force"][:] = 0.0
+        ds["inner_normal_force"][:, [0, 1, 16]] = 100.0
+        ds["flange_axial_force"][:] = 0.0
+        ds["flange_axial_force"].loc[{"flange": "inner-x"}] = 0.0
+        axial = ds["flange_axial_force"].sel(flange="inner+x").values
+        axial[:, carriers] = fa / 3
+        ds["flange_axial_force"].loc[{"flange": "inner+x"}] = axial
+        copies[name] = ds
+        return axial_force_in_load_zone(_Context(plan, copies, records))
+
+    found = judged_with([0, 1, 16])
+    assert found.status == PASS, found.numbers
+    assert found.values[fa]["share"] == pytest.approx(1.0)
+    assert found.values[fa]["zone fraction"] == pytest.approx(3 / 17)
+    found = judged_with([5, 8, 11])
+    assert found.status == FAIL, found.numbers
+    assert found.values[fa]["share"] == pytest.approx(0.0)
 
 
 # --------------------------------------------------------------------------- steadiness
