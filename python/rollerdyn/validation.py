@@ -303,7 +303,8 @@ def _film_cases() -> Iterator[Case]:
         "two fits to different numerical solutions (-4.4 ... +3.3 % over 0.3-3 m/s, 1e5-1e6 N/m)",
     )
     alpha, eta0, rx, u0, force = 2e-8, 0.04, 0.01, 2.0, 500.0
-    for ratio in (1.0, 2.0, 5.0):
+    # measured 4.9, 1.4 and 0.73 % (the formulas agree better as the ellipse lengthens)
+    for ratio, limit in ((1.0, 0.05), (2.0, 0.02), (5.0, 0.01)):
         k = 1.0339 * ratio**0.636
         u, w, g = eta0 * u0 / (e * rx), force / (e * rx * rx), alpha * e
         yield Case(
@@ -314,7 +315,7 @@ def _film_cases() -> Iterator[Case]:
             lambda ry=ratio * rx, c=(rx, u0, force, alpha, eta0): tri.chittenden_film(
                 c[0], ry, math.pi / 2, c[1], c[2], e, c[3], c[4]
             ),
-            0.10,
+            limit,
             "two fits to different numerical solutions",
         )
 
