@@ -299,7 +299,8 @@ mod tests {
         let (r, u0, q) = (0.01, 1.0, 1.0);
         let h = f.moes_line(r, u0, q);
         let expected = 6.0 * 0.05 * u0 * r / q;
-        assert!(rel(h, expected) < 1e-3, "{h} vs {expected}");
+        // Here M is about 1e-4 and L 1e-5: Moes' other terms are below 1e-6 of H_RI.
+        assert!(rel(h, expected) < 1e-6, "{h} vs {expected}");
     }
 
     #[test]

@@ -76,7 +76,9 @@ mod tests {
         let winkler = foundation_force(k, PI * r * delta * delta);
         let hertz = EllipticalContact::new(r, r, E_PRIME, EllipticalMethod::Exact).force(delta);
         let closed_form = PI * k * r * delta.powf(0.5) / (4.0 / 3.0 * 0.5 * E_PRIME * r.sqrt());
-        assert!((winkler / hertz / closed_form - 1.0).abs() < 1e-3);
+        // The exact Hertz solution at α = 1 is Johnson's closed form (K = E = π/2): the
+        // ratio holds to round-off.
+        assert!((winkler / hertz / closed_form - 1.0).abs() < 1e-9);
         assert!((closed_form - 0.0942).abs() < 1e-3, "{closed_form}");
     }
 }

@@ -242,7 +242,13 @@ mod tests {
         let (eta, r, h, rate) = (0.0165, 1.75e-3, 2e-6, 1e-3);
         let f = film_line(eta, r, h, 0.0, rate, 0.0);
         let closed = SQUEEZE_LOAD * eta * r.powf(1.5) * rate / h.powf(1.5);
-        assert!((f.load / closed - 1.0).abs() < 1e-3);
+        // Without entrainment and suction the cavitation ramp has no width: the load is the
+        // squeeze term itself, to round-off.
+        assert!(
+            (f.load / closed - 1.0).abs() < 1e-12,
+            "{} vs {closed}",
+            f.load
+        );
     }
 
     #[test]
