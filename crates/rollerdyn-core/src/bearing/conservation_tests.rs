@@ -10,6 +10,8 @@
 use super::contacts::Wrench;
 use super::state::Kinematics;
 use super::test_b1::{in_workspace, params, B1};
+use super::topology::Element;
+use super::History;
 use super::{BearingModel, RollingResistance, Workspace};
 use crate::geometry::primitives::Vec3;
 use crate::tribology::hydrodynamic::RigidFilm;
@@ -26,9 +28,15 @@ fn net(on_a: &Wrench, a: &Kinematics, on_b: &Wrench, b: &Kinematics) -> (Vec3, V
 
 /// B1 with the films on, `how` the rolling resistance acts, at its quasi-static
 /// equilibrium for t = 0 (full load and speed), every roller's velocities disturbed.
-fn loaded_sliding_state(how: RollingResistance) -> (BearingModel, Vec<f64>) {
+/// Without the axial load (`axial` false) the rollers' ends stand 20 µm from the flanges
+/// (the squeeze film's reach), and the roller at the top is moved 10 µm along +x, so that
+/// its +x end meets the squeeze film across a gap.
+fn loaded_sliding_state(how: RollingResistance, axial: bool) -> (BearingModel, Vec<f64>) {
     let mut p = params(&B1);
     p.rolling_resistance = how;
+    if !axial {
+        p.axial_load = History::constant(0.0);
+    }
     p.race_film = RigidFilm {
         enabled: true,
         cutoff: 100e-6,
@@ -43,6 +51,9 @@ fn loaded_sliding_state(how: RollingResistance) -> (BearingModel, Vec<f64>) {
     };
     let model = BearingModel::new(p).unwrap();
     let mut y = in_workspace(&model, |m| m.equilibrium_state(0.0)).unwrap();
+    if !axial {
+        y[model.layout.roller(model.layout.rollers / 2)] += 10e-6;
+    }
     for i in 0..model.layout.rollers {
         let s = model.layout.roller(i);
         let k = (i + 1) as f64;
@@ -55,26 +66,57 @@ fn loaded_sliding_state(how: RollingResistance) -> (BearingModel, Vec<f64>) {
     (model, y)
 }
 
-/// The largest net force and net moment of any contact, and the largest force and moment
-/// (about the origin) a contact puts on its roller, for scale.
-fn largest_imbalance(how: RollingResistance) -> (f64, f64, f64, f64) {
-    let (model, y) = loaded_sliding_state(how);
+/// What the check found: the largest net force and net moment of any contact, the largest
+/// force and moment (about the origin) a contact puts on its roller, for scale, and how
+/// many contacts acted across a gap, by line contacts (the race film) and by roller ends
+/// (the squeeze film), and how many slid (tangential force).
+struct Imbalance {
+    force: f64,
+    moment: f64,
+    loads: f64,
+    moments: f64,
+    lines_across_gap: usize,
+    ends_across_gap: usize,
+    sliding: usize,
+}
+
+fn largest_imbalance(how: RollingResistance, axial: bool) -> Imbalance {
+    let (model, y) = loaded_sliding_state(how, axial);
     let workspace = Workspace::single(&model);
     let model = model.system(&workspace);
     let kin = model.kinematics(0.0, &y);
     let fixed = Kinematics::fixed();
-    let (mut force, mut moment, mut loads, mut moments) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    let mut found = Imbalance {
+        force: 0.0,
+        moment: 0.0,
+        loads: 0.0,
+        moments: 0.0,
+        lines_across_gap: 0,
+        ends_across_gap: 0,
+        sliding: 0,
+    };
     for element in model.elements() {
         let r = model.evaluate(element, &kin);
         let [a, b] = element.bodies(model.layout.rollers);
         let (ka, kb) = (kin.of(a, &fixed), kin.of(b, &fixed));
         let (f, m) = net(&r.on_a, ka, &r.on_b, kb);
-        force = force.max(f.norm());
-        moment = moment.max(m.norm());
-        loads = loads.max(r.on_b.force.norm());
-        moments = moments.max(kb.center.cross(&r.on_b.force).norm() + r.on_b.moment.norm());
+        found.force = found.force.max(f.norm());
+        found.moment = found.moment.max(m.norm());
+        found.loads = found.loads.max(r.on_b.force.norm());
+        found.moments = found
+            .moments
+            .max(kb.center.cross(&r.on_b.force).norm() + r.on_b.moment.norm());
+        if r.penetration < 0.0 && r.normal != 0.0 {
+            match element {
+                Element::End(..) => found.ends_across_gap += 1,
+                _ => found.lines_across_gap += 1,
+            }
+        }
+        if r.tangential.norm() > 0.0 {
+            found.sliding += 1;
+        }
     }
-    (force, moment, loads, moments)
+    found
 }
 
 /// With the balanced rolling resistance every contact's net force and moment are
@@ -83,9 +125,41 @@ fn largest_imbalance(how: RollingResistance) -> (f64, f64, f64, f64) {
 /// into the race contacts (measured 4.1e-4 N m, 2.1e-4 of the largest; bound 1e-5).
 #[test]
 fn every_contact_conserves_momentum_and_angular_momentum() {
-    let (force, moment, loads, moments) = largest_imbalance(RollingResistance::Balanced);
-    assert!(force <= 1e-12 * loads, "{force} of {loads}");
-    assert!(moment <= 1e-12 * moments, "{moment} of {moments}");
-    let (_, moment, _, moments) = largest_imbalance(RollingResistance::Paper);
-    assert!(moment > 1e-5 * moments, "{moment} of {moments}");
+    for axial in [true, false] {
+        let found = largest_imbalance(RollingResistance::Balanced, axial);
+        assert!(
+            found.force <= 1e-12 * found.loads,
+            "{} of {}",
+            found.force,
+            found.loads
+        );
+        assert!(
+            found.moment <= 1e-12 * found.moments,
+            "{} of {}",
+            found.moment,
+            found.moments
+        );
+        // The films were in the check: line contacts carried across gaps, contacts slid,
+        // and without the axial load the top roller's end met the squeeze film across its
+        // gap.
+        assert!(found.lines_across_gap > 0 && found.sliding > 0);
+        assert!(
+            axial || found.ends_across_gap > 0,
+            "{}",
+            found.ends_across_gap
+        );
+    }
+    let paper = largest_imbalance(RollingResistance::Paper, true);
+    assert!(
+        paper.force <= 1e-12 * paper.loads,
+        "{} of {}",
+        paper.force,
+        paper.loads
+    );
+    assert!(
+        paper.moment > 1e-5 * paper.moments,
+        "{} of {}",
+        paper.moment,
+        paper.moments
+    );
 }

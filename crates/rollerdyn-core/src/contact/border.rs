@@ -94,8 +94,9 @@ pub fn flange_weights(flange: &Flange, contact: &Contact, band: f64) -> [f64; 3]
 }
 
 /// The contact with its relative radii R_x, R_y and major axis recomputed from the blended
-/// curvatures of both bodies (module doc). Contacts that carry no load, and contacts
-/// outside every band, are returned unchanged, except contacts without curvature (the
+/// curvatures of both bodies (module doc), for overlaps (their load) and gaps alike (their
+/// squeeze film, which scales with R_x·R_y). Invalid contacts, and contacts outside every
+/// band, are returned unchanged, except contacts without curvature (the
 /// mesh baseline's, R_x = R_y = NaN): those get the curvatures of the figures at their
 /// points, weighted alike (outside the bands: their own pairing's), so that the mesh
 /// detector's overlaps carry a Hertz force in the model too.
@@ -104,7 +105,7 @@ pub fn flange_weights(flange: &Flange, contact: &Contact, band: f64) -> [f64; 3]
 /// (docs/robustness.md, findings 4 and 6: a non-positive blended curvature was R = ∞,
 /// and Hertz made a NaN force of it).
 pub fn blend(contact: &Contact, end: &RollerEnd, flange: &Flange, bands: &BorderBands) -> Contact {
-    if !(contact.valid && contact.penetration > 0.0) {
+    if !contact.valid {
         return *contact;
     }
     let w_torus = torus_weight(end, contact, bands.roller_angle);

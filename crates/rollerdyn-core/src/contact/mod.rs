@@ -96,7 +96,8 @@ pub struct Contact {
     /// Unit contact normal, from the flange towards the roller.
     pub normal: Vec3,
     /// Smaller relative principal radius R_x [m]. Like `ry` and `major_axis`, computed
-    /// only for valid overlapping contacts (the only ones that carry load); NaN otherwise
+    /// for valid contacts, overlaps (which carry load by them) and gaps (across which the
+    /// squeeze film of [`crate::tribology::squeeze`] acts by them); NaN for invalid ones
     /// (and for the mesh baseline, which has no curvature). For a valid overlapping
     /// contact of the analytical detectors it is finite and within
     /// [[`RADIUS_MIN`], [`RADIUS_MAX`]] ([`relative_radius`]).
@@ -143,7 +144,7 @@ impl Contact {
     }
 
     /// As [`Contact::from_parts`], with the curvatures evaluated only where they are used
-    /// (valid overlapping contacts).
+    /// (valid contacts: an overlap's load and a gap's squeeze film).
     pub(crate) fn assemble(
         pairing: Pairing,
         p1: Vec3,
@@ -153,7 +154,7 @@ impl Contact {
         curvatures: impl FnOnce() -> (Curvature, Curvature),
         valid: bool,
     ) -> Self {
-        let (rx, ry, major_axis) = if valid && penetration > 0.0 {
+        let (rx, ry, major_axis) = if valid {
             let (roller, flange) = curvatures();
             let (kx, ky, major) = relative_curvature(&normal, &roller, &flange);
             (relative_radius(kx), relative_radius(ky), major)
