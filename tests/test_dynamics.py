@@ -272,12 +272,19 @@ def test_distributed_law_runs_equal_on_any_threads_and_resumed():
 
 def test_e_gradient_and_semi_analytical_detectors_give_the_same_trajectories():
     # 1. Trajectories through the first roller end / flange impacts (the ring, pushed by
-    #    the axial load through its 20 um play, hits the roller ends): same to 1 nm.
-    cfg = variant(**{**STATIC, "operating.axial_load": "1000 N", "operating.end_time": "1.7 ms"})
-    semi = simulate(cfg, detector="semi-analytical")
-    grad = simulate(cfg, detector="gradient")
-    assert float(np.abs(semi.position - grad.position).max()) < 1e-9
-    assert float(np.abs(semi.ring_position - grad.ring_position).max()) < 1e-9
+    #    the axial load through its 20 um play, hits the roller ends): with the paper's
+    #    contacts (no squeeze film) the same to 1 nm. With the flanges' squeeze film, which
+    #    acts across gaps from 20 um, the detectors' gap distances enter too, and there the
+    #    gradient method's differ from the semi-analytical's by up to 17 nm of 19 um (its
+    #    closest points across a gap are a local solution): the rollers' positions differ by
+    #    up to 6.2 nm at 1.7 ms (measured; bound 20 nm), the ring's by 0.19 nm (bound 1 nm).
+    changes = {**STATIC, "operating.axial_load": "1000 N", "operating.end_time": "1.7 ms"}
+    for squeeze, rollers in ((False, 1e-9), (True, 2e-8)):
+        cfg = variant(**{**changes, "surfaces.squeeze_film.enabled": squeeze})
+        semi = simulate(cfg, detector="semi-analytical")
+        grad = simulate(cfg, detector="gradient")
+        assert float(np.abs(semi.position - grad.position).max()) < rollers, squeeze
+        assert float(np.abs(semi.ring_position - grad.ring_position).max()) < 1e-9, squeeze
     # 2. The settled, axially loaded bearing (roller ends pressed on their flanges): the
     #    gradient method, cold-started, gives the same forces and moments on every roller
     #    (paper sect. 5.1: differences "within numerical tolerance"): forces to 1e-6 of
@@ -304,21 +311,34 @@ def test_mesh_detector_carries_the_flange_load_with_finite_forces():
     a NaN force. Now every mesh contact gets the figures' curvature at its points (radii
     finite, contact::relative_radius). On the settled, axially loaded B1 the rates are
     finite for the coarsest mesh with sharp borders, and a fine mesh carries the flange
-    load as the semi-analytical detector does (before: the whole load was missing)."""
+    load as the semi-analytical detector does (before: the whole load was missing). The
+    mesh reports overlaps only, so the flanges' squeeze film, which the semi-analytical
+    detector's gaps also carry, is off in both."""
     cfg, ds = static_run("1000 N")
     y = list(ds.final_state.values)
     t = float(ds.time[-1])
     traction = Model(cfg).traction
     load = ds.isel(time=-1).flange_normal_force.sum("flange").values  # per roller, N
     assert load.max() > 10.0
-    semi = np.array(_core.model_rhs(model_parameters(cfg, "semi-analytical"), traction, t, y)[0])
+    no_squeeze = {
+        **STATIC,
+        "operating.axial_load": "1000 N",
+        "surfaces.squeeze_film.enabled": False,
+    }
+    semi_params = model_parameters(variant(**no_squeeze), "semi-analytical")
+    semi = np.array(_core.model_rhs(semi_params, traction, t, y)[0])
+    # Bounds on each roller's axial force error, against its flange load: the coarsest
+    # mesh only within half of it (finite forces are its point); the fine mesh within
+    # 0.1 % for the rollers carrying over 100 N (measured at most 0.03 %) and 2 % for the
+    # lighter ones at the load zone's edge (measured 1.08 % at 53 N: the facets' error in
+    # the penetration weighs more where the penetration is small).
+    heavy = load > 100.0
     for bands, resolution, share in (
         (("0 rad", "0 um"), (8, 2), 0.5),
-        (("1.5e-4 rad", "50 um"), (64, 16), 0.01),
+        (("1.5e-4 rad", "50 um"), (64, 16), np.where(heavy, 1e-3, 2e-2)),
     ):
         changes = {
-            **STATIC,
-            "operating.axial_load": "1000 N",
+            **no_squeeze,
             "solver.border_band_roller": bands[0],
             "solver.border_band_flange": bands[1],
             "solver.mesh_around": resolution[0],
