@@ -162,8 +162,8 @@ def test_run_notes_the_slow_free_tilt_with_the_point_law(tmp_path):
         free.read_text().replace('flange_law = "point"', 'flange_law = "distributed"')
     )
     assert slow_configuration_note(load_config(distributed)) is None
-    # A prescribed tilt creeps with the point law (B1 at 0.05 deg: t = 0.62 s after 273 s,
-    # docs/dynamics.md, "Prescribed tilt instead"), not with the distributed one.
+    # A prescribed tilt creeps with the point law (B1 at 0.05 deg: t = 0.55 s after 63 s on
+    # two cores, docs/dynamics.md, "Prescribed tilt instead"), not with the distributed one.
     tilted = b1_file_with(
         tmp_path, 'tilt = "locked"', 'tilt = "locked"\nmisalignment = "0.05 deg"', "tilt.toml"
     )

@@ -31,8 +31,8 @@ def slow_configuration_note(cfg: BearingConfig) -> str | None:
     with the paper's point end-flange law (docs/dynamics.md, "Free inner ring tilt"):
     the free inner-ring tilt (B1 stalls in the load ramp, at t = 0.0226 s) and a
     prescribed tilt (B1 at 0.05 deg creeps from t = 0.39 s on, near the end of the load
-    ramp, with its most loaded inner-flange ends on their end faces: t = 0.62 s after
-    273 s)."""
+    ramp, with its most loaded inner-flange ends on their end faces: to t = 0.55 s in 63 s
+    on two cores, 64 232 steps)."""
     if cfg.surfaces.flange_law != "point":
         return None
     if cfg.inner_ring.tilt == "free":
@@ -45,10 +45,10 @@ def slow_configuration_note(cfg: BearingConfig) -> str | None:
     if cfg.inner_ring.misalignment != 0.0:
         return (
             "note: a prescribed inner_ring.misalignment with surfaces.flange_law = point "
-            "creeps once the loads are up (B1 at 0.05 deg: steps of 2-3 us from t = 0.39 s, "
-            "0.2-0.3 us in the speed ramp, t = 0.62 s after 4.5 minutes; the most loaded "
-            'ends lie on their end faces); with surfaces.flange_law = "distributed" B1\'s '
-            'whole run at 0.05 deg takes about 50 s (docs/dynamics.md, "Prescribed tilt '
+            "creeps once the loads are up (B1 at 0.05 deg: steps of about 3 us from "
+            "t = 0.39 s, to t = 0.55 s in a minute on two cores; the most loaded ends lie on "
+            'their end faces); with surfaces.flange_law = "distributed" B1\'s whole run at '
+            '0.05 deg takes about 36 s on one core (docs/dynamics.md, "Prescribed tilt '
             'instead")'
         )
     return None
