@@ -180,6 +180,35 @@ def test_run_notes_the_slow_free_tilt_with_the_point_law(tmp_path):
     assert "stalls in the load ramp" in result.output and "Traceback" not in result.output
 
 
+def test_an_equilibrium_start_before_the_loads_is_noted(tmp_path):
+    """`solver.start = "equilibrium"` solves the equilibrium of the loads at t = 0: with B1's
+    ramps, which start from nothing, that is an unloaded bearing, and `check` says so in one
+    line with the remedy (removing the ramps), however short the ramp; it says nothing with
+    the ramps removed or for B1's start from rest."""
+    from b1 import variant
+
+    from rollerdyn.notes import unloaded_start_note
+
+    equilibrium = {"solver.start": "equilibrium"}
+    note = unloaded_start_note(variant(**equilibrium))
+    assert note is not None and "operating.load_ramp" in note and "t = 0" in note
+    no_ramps = {**equilibrium, "operating.load_ramp": None, "operating.speed_ramp": None}
+    assert unloaded_start_note(variant(**no_ramps)) is None
+    assert unloaded_start_note(variant()) is None
+    short_ramp = {
+        **equilibrium,
+        "operating.load_ramp.start": "0 s",
+        "operating.load_ramp.end": "1 ms",
+    }
+    assert unloaded_start_note(variant(**short_ramp)) is not None  # 1 ms: still zero at 0
+    path = b1_file_with(tmp_path, "[solver]\n", '[solver]\nstart = "equilibrium"\n', "eq.toml")
+    result = RUNNER.invoke(app, ["check", str(path)])
+    assert result.exit_code == 0, result.output
+    assert 'solver.start = "equilibrium"' in result.output and "Traceback" not in result.output
+    plain = RUNNER.invoke(app, ["check", str(B1)])
+    assert "solver.start" not in plain.output
+
+
 def test_run_notes_a_load_past_the_flanges_static_limit(tmp_path):
     """A run whose loads at its end time, or at a load table's row before it, the flanges
     cannot carry by ISO 76's static limit (4 GPa; B1's quasi-static equilibrium at 10 kN

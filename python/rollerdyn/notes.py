@@ -1,7 +1,8 @@
 """Notes on a configuration before it runs (``rollerdyn run`` and ``rollerdyn check`` print
 them; :func:`configuration_notes` from Python): what is known to make a run creep with the
-paper's point end-flange law, and loads whose quasi-static equilibrium the flanges or the
-races cannot carry by ISO 76's static limit. Advice only: a note never stops a run."""
+paper's point end-flange law, an equilibrium start whose loads have not begun, and loads
+whose quasi-static equilibrium the flanges or the races cannot carry by ISO 76's static
+limit. Advice only: a note never stops a run."""
 
 from __future__ import annotations
 
@@ -19,10 +20,11 @@ def configuration_notes(
 ) -> list[str]:
     """The notes on ``config`` (a configuration or its TOML file) for a run to ``t_end``
     [s] (default: the configuration's end time), one line each, in the order ``rollerdyn
-    run`` prints them: :func:`slow_configuration_note`, then :func:`capacity_note`."""
+    run`` prints them: :func:`slow_configuration_note`, :func:`unloaded_start_note`, then
+    :func:`capacity_note`."""
     cfg = config if isinstance(config, BearingConfig) else load_config(config)
     t = cfg.end_time if t_end is None else float(t_end)
-    notes = (slow_configuration_note(cfg), capacity_note(cfg, t))
+    notes = (slow_configuration_note(cfg), unloaded_start_note(cfg), capacity_note(cfg, t))
     return [note for note in notes if note is not None]
 
 
@@ -52,6 +54,28 @@ def slow_configuration_note(cfg: BearingConfig) -> str | None:
             'instead")'
         )
     return None
+
+
+def unloaded_start_note(cfg: BearingConfig) -> str | None:
+    """A one-line note when ``solver.start = "equilibrium"`` meets loads that are still
+    zero at t = 0 (a load ramp or table that starts from nothing) but not later, or None:
+    the start is the equilibrium of the loads at t = 0 (docs/dynamics.md, "Start from
+    equilibrium"), so such a run starts unloaded and takes its loads on afterwards, however
+    fast the ramp (B1 with loads and speed ramped over 0.1 ms from such a start, at
+    3000 rpm, fails at t = 0.48 ms, every roller end on its end sphere)."""
+    op = cfg.operating
+    if cfg.solver.start != "equilibrium":
+        return None
+    at_start = abs(op.radial_load_at(0.0)) + abs(op.axial_load_at(0.0))
+    later = abs(op.radial_load_at(cfg.end_time)) + abs(op.axial_load_at(cfg.end_time))
+    if at_start > 0.0 or later == 0.0:
+        return None
+    return (
+        'note: solver.start = "equilibrium" solves the equilibrium of the loads at t = 0, '
+        "which are zero here (operating.load_ramp or a load table starts from nothing): the "
+        "run starts unloaded; to start at full load, remove operating.load_ramp (and "
+        'operating.speed_ramp) (docs/dynamics.md, "Start from equilibrium")'
+    )
 
 
 def capacity_note(cfg: BearingConfig, t: float) -> str | None:
