@@ -62,7 +62,7 @@ def unloaded_start_note(cfg: BearingConfig) -> str | None:
     the start is the equilibrium of the loads at t = 0 (docs/dynamics.md, "Start from
     equilibrium"), so such a run starts unloaded and takes its loads on afterwards, however
     fast the ramp (B1 with loads and speed ramped over 0.1 ms from such a start, at
-    3000 rpm, fails at t = 0.48 ms, every roller end on its end sphere)."""
+    3000 rpm, fails at t = 0.48 ms with 18 roller ends on their end spheres)."""
     op = cfg.operating
     if cfg.solver.start != "equilibrium":
         return None
