@@ -127,18 +127,8 @@ fn largest_imbalance(how: RollingResistance, axial: bool) -> Imbalance {
 fn every_contact_conserves_momentum_and_angular_momentum() {
     for axial in [true, false] {
         let found = largest_imbalance(RollingResistance::Balanced, axial);
-        assert!(
-            found.force <= 1e-12 * found.loads,
-            "{} of {}",
-            found.force,
-            found.loads
-        );
-        assert!(
-            found.moment <= 1e-12 * found.moments,
-            "{} of {}",
-            found.moment,
-            found.moments
-        );
+        assert_round_off(found.force, found.loads);
+        assert_round_off(found.moment, found.moments);
         // The films were in the check: line contacts carried across gaps, contacts slid,
         // and without the axial load the top roller's end met the squeeze film across its
         // gap.
@@ -150,16 +140,16 @@ fn every_contact_conserves_momentum_and_angular_momentum() {
         );
     }
     let paper = largest_imbalance(RollingResistance::Paper, true);
-    assert!(
-        paper.force <= 1e-12 * paper.loads,
-        "{} of {}",
-        paper.force,
-        paper.loads
-    );
+    assert_round_off(paper.force, paper.loads);
     assert!(
         paper.moment > 1e-5 * paper.moments,
         "{} of {}",
         paper.moment,
         paper.moments
     );
+}
+
+/// `value` is round-off against `scale`: at most 1e-12 of it.
+fn assert_round_off(value: f64, scale: f64) {
+    assert!(value <= 1e-12 * scale, "{value} of {scale}");
 }
