@@ -212,6 +212,33 @@ def test_a_distributed_law_run_starts_settled_where_the_point_law_finds_no_equil
         simulate(parse_config(b1_at("3 kN", "distributed")), t_end=0.001, threads=1)
 
 
+def test_the_point_laws_load_check_is_a_rule_of_thumb_that_force_overrides() -> None:
+    """The point law's check refuses a run whose equilibrium puts the most loaded roller end
+    on its end face (docs/dynamics.md, "The whole B1 run"). Without radial load it does so
+    from about 100 N axially (roller ends on their faces at 7 N), where a run measured on
+    2026-11-30 still goes (full speed to 0.1 s: 4 285 steps against B1's 3 471); at 300 N
+    it creeps (44 197 steps) and at 1000 N it stops. So the refusal names the remedy and
+    `force=True` (`--force`) runs it: here 1 ms from the equilibrium at 100 N."""
+    cfg = parse_config(
+        _no_ramps(
+            **{
+                "operating.radial_load": "0 N",
+                "operating.axial_load": "100 N",
+                "operating.end_time": "1 ms",
+                "solver.output_interval": "0.5 ms",
+            }
+        )
+    )
+    with pytest.raises(ValueError, match=r"lies on its end face .* or force the run \(--force"):
+        simulate(cfg, threads=1)
+    ds = simulate(cfg, threads=1, force=True)
+    assert ds.attrs["completed"] == 1 and float(ds.time[-1]) == pytest.approx(1e-3)
+    # it started from the equilibrium of the load it was refused for: the inner ring's
+    # flanges carry the 100 N (within 0.1 %, as at 2500 N above; measured 100.01 N)
+    carried = ds.flange_axial_force.isel(time=0).sel(flange=["inner-x", "inner+x"])
+    assert abs(abs(float(np.nansum(carried.values))) - 100.0) < 0.1, carried.values
+
+
 def test_a_case_that_cannot_start_is_reported_not_raised() -> None:
     cfg = variant(**{"operating.axial_load": "30 kN"})
     result = run_case(cfg, "equilibrium-500rpm", max_wall=10.0)

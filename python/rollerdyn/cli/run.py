@@ -114,7 +114,9 @@ def run(
         typer.Option(
             "--force",
             help="Run even when the estimated result size or cost is far beyond a normal "
-            "run (the refusal prints the estimate).",
+            "run (the refusal prints the estimate), or when the point end-flange law's load "
+            "check refuses it (a roller end pressed onto its end face: the run's steps "
+            "creep or collapse).",
         ),
     ] = False,
 ) -> None:

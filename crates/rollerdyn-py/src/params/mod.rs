@@ -61,6 +61,7 @@ pub(crate) fn run_options(d: &Bound<'_, PyDict>) -> PyResult<(RunOptions, Option
         checkpoint_interval: s.checkpoint_interval,
         start_from_equilibrium: s.start == Some(Start::Equilibrium),
         min_mean_step: s.min_mean_step,
+        check_flange_law: s.check_flange_law,
     };
     Ok((options, s.threads.0))
 }

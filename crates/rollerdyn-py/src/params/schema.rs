@@ -214,6 +214,9 @@ section! {
         min_mean_step: f64,
         /// `simulate` builds its model on that many threads (`Model.run`: the model's own).
         threads: Omittable<usize>,
+        /// Refuse a point-law run whose loads press a roller end onto its end face
+        /// (`simulate(force=True)` sends false).
+        check_flange_law: bool,
     }
 }
 
