@@ -209,6 +209,29 @@ def test_an_equilibrium_start_before_the_loads_is_noted(tmp_path):
     assert "solver.start" not in plain.output
 
 
+def test_check_says_when_run_would_refuse_the_point_law(tmp_path):
+    """`check` tells what `run` would refuse before its first step: the point law's load
+    check (B1 without radial load at 100 N axially puts its most loaded roller end on its
+    end face: docs/dynamics.md, "The whole B1 run"), with the refusal's own words and
+    --force; nothing for B1 itself or for the same loads with the distributed law."""
+    from b1 import variant
+
+    from rollerdyn.notes import refusal_note
+
+    axial = {"operating.radial_load": "0 N", "operating.axial_load": "100 N"}
+    note = refusal_note(variant(**axial))
+    assert note is not None and "lies on its end face" in note and "--force" in note
+    assert refusal_note(variant()) is None
+    assert refusal_note(variant(**axial, **{"surfaces.flange_law": "distributed"})) is None
+    path = b1_file_with(tmp_path, 'radial_load = "5000 N"', 'radial_load = "0 N"', "axial.toml")
+    text = path.read_text(encoding="utf-8")
+    path.write_text(text.replace('axial_load = "1000 N"', 'axial_load = "100 N"'), "utf-8")
+    result = RUNNER.invoke(app, ["check", str(path)])
+    assert result.exit_code == 0, result.output
+    assert "run refuses this configuration" in " ".join(result.output.split())
+    assert "refuses" not in RUNNER.invoke(app, ["check", str(B1)]).output
+
+
 def test_run_notes_a_load_past_the_flanges_static_limit(tmp_path):
     """A run whose loads at its end time, or at a load table's row before it, the flanges
     cannot carry by ISO 76's static limit (4 GPa; B1's quasi-static equilibrium at 10 kN

@@ -2,7 +2,8 @@
 them; :func:`configuration_notes` from Python): what is known to make a run creep with the
 paper's point end-flange law, an equilibrium start whose loads have not begun, and loads
 whose quasi-static equilibrium the flanges or the races cannot carry by ISO 76's static
-limit. Advice only: a note never stops a run."""
+limit. Advice only: a note never stops a run. ``rollerdyn check`` also prints, with
+:func:`refusal_note`, the refusal ``rollerdyn run`` would give before its first step."""
 
 from __future__ import annotations
 
@@ -76,6 +77,25 @@ def unloaded_start_note(cfg: BearingConfig) -> str | None:
         "run starts unloaded; to start at full load, remove operating.load_ramp (and "
         'operating.speed_ramp) (docs/dynamics.md, "Start from equilibrium")'
     )
+
+
+def refusal_note(cfg: BearingConfig, t_end: float | None = None) -> str | None:
+    """The refusal ``rollerdyn run`` would give a run of ``cfg`` to ``t_end`` (default: its
+    end time) before its first step, as a note, or None: the point end-flange law's load
+    check (docs/dynamics.md, "The whole B1 run"), which ``--force`` skips. ``rollerdyn
+    check`` prints it; ``rollerdyn run`` raises the refusal itself."""
+    from . import _core
+    from .model import Model
+    from .simulation import model_parameters
+
+    if cfg.surfaces.flange_law != "point":
+        return None
+    t = cfg.end_time if t_end is None else float(t_end)
+    try:
+        _core.Model(model_parameters(cfg), Model(cfg).traction).check_point_law(t)
+    except ValueError as refusal:
+        return f"note: rollerdyn run refuses this configuration (--force runs it): {refusal}"
+    return None
 
 
 def capacity_note(cfg: BearingConfig, t: float) -> str | None:

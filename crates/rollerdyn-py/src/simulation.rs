@@ -503,6 +503,12 @@ impl PyModel {
         self.system().equilibrium_state(t).map_err(core_err)
     }
 
+    /// The point end–flange law's load check of a run to time t, as a run makes it before
+    /// its first step: a ValueError with the refusal, or None (`rollerdyn check` prints it).
+    fn check_point_law(&self, t: f64) -> PyResult<()> {
+        self.system().check_point_law(t).map_err(core_err)
+    }
+
     /// f(t, y).
     fn rhs(&self, t: f64, y: Vec<f64>) -> PyResult<Vec<f64>> {
         let y = self.state(&y)?;

@@ -58,13 +58,15 @@ def check(
 
     Shows roller diameter, pitch diameter, gap between rollers, roller mass and inertias,
     end time, lubricant state at the run temperature (eta0, Roelands z, alpha*) and the
-    line-contact power laws (eq. 11) fitted to Tripp with their errors; then the notes
-    `rollerdyn run` would print at its start: a configuration known to creep with the
-    point end-flange law (a free or prescribed ring tilt), and loads at the end time
-    whose quasi-static equilibrium presses a flange or a race past ISO 76's 4 GPa.
+    line-contact power laws (eq. 11) fitted to Tripp with their errors; then whether
+    `rollerdyn run` would refuse the run at its start (the point end-flange law's load
+    check, which --force skips), and the notes it would print: a configuration known to
+    creep with the point end-flange law (a free or prescribed ring tilt), an equilibrium
+    start before the loads, and loads at the end time whose quasi-static equilibrium
+    presses a flange or a race past ISO 76's 4 GPa.
     """
     from ..model import Model
-    from ..notes import configuration_notes
+    from ..notes import configuration_notes, refusal_note
 
     cfg = load(config)
     model = Model(cfg)
@@ -93,5 +95,6 @@ def check(
     for name, value, unit in rows:
         table.add_row(name, f"{value:.6g}", unit)
     console.print(table)
-    for note in configuration_notes(cfg):
-        say(note, "yellow")
+    for note in [refusal_note(cfg), *configuration_notes(cfg)]:
+        if note is not None:
+            say(note, "yellow")
