@@ -264,7 +264,7 @@ def test_a_run_writes_its_file_atomically(tmp_path, monkeypatch):
 def test_a_failed_run_keeps_its_partial_file_and_its_error(tmp_path, monkeypatch):
     partial = serial("0 N").isel(time=slice(0, 3))
 
-    def failing(cfg, t_end=None, detector=None, progress=None, resume=None, threads=None):
+    def failing(cfg, t_end=None, detector=None, progress=None, resume=None, threads=None, **kw):
         raise SimulationError("step size too small at t = 0.5 ms", partial)
 
     monkeypatch.setattr("rollerdyn.simulation.simulate", failing)
@@ -272,6 +272,32 @@ def test_a_failed_run_keeps_its_partial_file_and_its_error(tmp_path, monkeypatch
     assert result["status"] == "failed" and "step size too small" in result["error"]
     assert result["file"] == "run_0007.nc" and (tmp_path / "run_0007.nc").is_file()
     assert result["steps"] == partial.attrs["stats_steps"]
+
+
+def test_a_run_the_point_law_refuses_runs_when_the_sweep_is_forced(tmp_path, monkeypatch):
+    """A grid point the point law's load check refuses (B1 without radial load at 100 N
+    axially: its most loaded roller end on its end face, docs/dynamics.md, "The whole B1
+    run") is a failed run with the refusal as its error and no file; `force` (`sweep
+    --force`) hands `force=True` to the run, which then skips the check as `rollerdyn run
+    --force` does (that run itself: tests/test_oil_and_threads.py). Standing still with the
+    load applied over 1 ms, as here, the forced run's steps collapse at t = 1.5 ms
+    (measured 2026-11-30, 37 s): the refusal is right for this one."""
+    data = changed_b1({"operating.radial_load": "0 N", "operating.axial_load": "100 N"}, SHORT_DATA)
+    refused = run_one(data, False, str(tmp_path), "run_0000.nc")
+    assert refused["status"] == "failed" and "lies on its end face" in refused["error"]
+    assert refused["file"] == "" and refused["steps"] == 0
+    calls = []
+    written = serial("0 N")
+
+    def recorded(cfg, **kw):
+        calls.append(kw)
+        return written
+
+    monkeypatch.setattr("rollerdyn.simulation.simulate", recorded)
+    forced = run_one(data, False, str(tmp_path), "run_0001.nc", force=True)
+    assert forced["status"] == "completed" and calls[-1]["force"] is True
+    run_one(data, False, str(tmp_path), "run_0002.nc")
+    assert calls[-1]["force"] is False
 
 
 # --------------------------------------------------------------------------- command line

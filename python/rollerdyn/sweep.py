@@ -382,9 +382,11 @@ def run_one(
     file: str,
     t_end: float | None = None,
     detector: str | None = None,
+    force: bool = False,
 ) -> dict:
-    """One sweep run, as executed in a Dask worker: parse, simulate, write
-    ``outdir/file``, return the summary numbers, status and error (never raises).
+    """One sweep run, as executed in a Dask worker: parse, simulate (``force`` as in
+    :func:`rollerdyn.simulate`), write ``outdir/file``, return the summary numbers, status
+    and error (never raises).
 
     Idempotent: the file is written under a name of this process's own and renamed into
     place (atomic on one file system), so a run killed while writing leaves no partial
@@ -399,7 +401,7 @@ def run_one(
         cfg = parse_config(data, si_numbers=si_numbers)
         try:
             # One thread per run: the sweep runs its points in parallel already.
-            ds = simulate(cfg, t_end=t_end, detector=detector, threads=1)
+            ds = simulate(cfg, t_end=t_end, detector=detector, threads=1, force=force)
         except SimulationError as err:
             ds, status, error = err.dataset, "failed", str(err)
         numbers = summarize(ds)
@@ -449,6 +451,7 @@ def sweep(
     progress: Callable[[int, int, dict | None], Any] | None = None,
     retries: int = 2,
     connect_timeout: float = 10.0,
+    force: bool = False,
 ):
     """Run the grid of ``parameters`` over ``config`` on Dask; return the summary.
 
@@ -460,7 +463,7 @@ def sweep(
     (:class:`SweepError` otherwise). ``scheduler``: None starts a ``LocalCluster`` of
     ``workers`` processes with one thread each; an address (``"tcp://host:8786"``) or a
     ``distributed.Client`` uses that cluster instead (its workers must see ``outdir``).
-    ``t_end`` (s) and ``detector`` as in :func:`rollerdyn.simulate`. ``progress(done,
+    ``t_end`` (s), ``detector`` and ``force`` as in :func:`rollerdyn.simulate`. ``progress(done,
     total, row)`` is called once with ``row=None`` when the runs are submitted and then
     after each run. ``retries``: how many more times Dask runs a task whose attempt did not
     return (its worker died mid-run, or the task raised); each grid point keeps one row,
@@ -505,6 +508,7 @@ def sweep(
                 p.file,
                 t_end,
                 detector,
+                force,
                 pure=False,
                 retries=retries,
             )

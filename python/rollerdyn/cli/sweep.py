@@ -110,6 +110,16 @@ def sweep_command(
             help=detector_help("each configuration"),
         ),
     ] = None,
+    force: Annotated[
+        bool,
+        typer.Option(
+            "--force",
+            help="Run every point as rollerdyn run --force would: also those whose estimated "
+            "result size or cost is far beyond a normal run, and those the point end-flange "
+            "law's load check refuses (a roller end pressed onto its end face: the run's "
+            "steps creep or collapse).",
+        ),
+    ] = False,
 ) -> None:
     """Run a grid of variants of a configuration on Dask and summarise them.
 
@@ -149,6 +159,7 @@ def sweep_command(
                 t_end=end,
                 detector=detector,
                 progress=progress,
+                force=force,
             )
     failed = _print_summary(frame, config, output, list(parameters))
     say(
