@@ -79,23 +79,20 @@ def unloaded_start_note(cfg: BearingConfig) -> str | None:
     )
 
 
-def refusal_note(cfg: BearingConfig, t_end: float | None = None, model=None) -> str | None:
+def refusal_note(cfg: BearingConfig, t_end: float | None = None) -> str | None:
     """The refusal ``rollerdyn run`` would give a run of ``cfg`` to ``t_end`` (default: its
     end time) before its first step, as a note, or None: the point end-flange law's load
     check (docs/dynamics.md, "The whole B1 run"), which ``--force`` skips. ``rollerdyn
-    check`` prints it; ``rollerdyn run`` raises the refusal itself. ``model``: the
-    :class:`rollerdyn.model.Model` of ``cfg`` if one is at hand (its traction table is
-    reused)."""
-    from . import _core
-    from .model import Model
-    from .simulation import model_parameters
+    check`` prints it; ``rollerdyn run`` raises the refusal itself. The check is a
+    quasi-static equilibrium, so it is made on the statics' core model (no traction
+    table)."""
+    from .statics import _core_model
 
     if cfg.surfaces.flange_law != "point":
         return None
     t = cfg.end_time if t_end is None else float(t_end)
-    traction = (Model(cfg) if model is None else model).traction
     try:
-        _core.Model(model_parameters(cfg), traction).check_point_law(t)
+        _core_model(cfg).check_point_law(t)
     except ValueError as refusal:
         return f"note: rollerdyn run refuses this configuration (--force runs it): {refusal}"
     return None

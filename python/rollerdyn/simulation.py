@@ -289,8 +289,9 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
     }
 
 
-def run_options(config: BearingConfig, t_end: float) -> dict:
-    """The SI options of the core's run of ``config`` to ``t_end``, one flat section (the
+def run_options(config: BearingConfig, t_end: float, force: bool = False) -> dict:
+    """The SI options of the core's run of ``config`` to ``t_end`` (``force`` as in
+    :func:`simulate`: without the point law's load check), one flat section (the
     threads are the model's: :class:`rollerdyn._core.Model` is built with them; the core's
     ``RunSettings`` in ``crates/rollerdyn-py/src/params/schema.rs``)."""
     s = config.solver
@@ -310,8 +311,8 @@ def run_options(config: BearingConfig, t_end: float) -> dict:
         "checkpoint_interval": s.checkpoint_interval,
         "start": s.start,
         "min_mean_step": s.stall_step,
-        # the point law's load check before the first step (`simulate(force=True)`: off)
-        "check_flange_law": True,
+        # the point law's load check before the first step
+        "check_flange_law": not force,
     }
 
 
@@ -514,9 +515,7 @@ def simulate(
         check_cost(config, end, 0.0 if start is None else start[0])
     model = Model(config)
     params = model_parameters(config, det)
-    options = run_options(config, end)
-    if force:  # the point law's load check refuses by a rule of thumb, too: forced, it runs
-        options["check_flange_law"] = False
+    options = run_options(config, end, force)
 
     def callback(t, t_end_, steps, rhs, jac, step, at_output):
         if progress is None:

@@ -95,6 +95,6 @@ def check(
     for name, value, unit in rows:
         table.add_row(name, f"{value:.6g}", unit)
     console.print(table)
-    for note in [refusal_note(cfg, model=model), *configuration_notes(cfg)]:
+    for note in [refusal_note(cfg), *configuration_notes(cfg)]:
         if note is not None:
             say(note, "yellow")

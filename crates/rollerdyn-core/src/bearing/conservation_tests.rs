@@ -70,6 +70,7 @@ fn loaded_sliding_state(how: RollingResistance, axial: bool) -> (BearingModel, V
 /// force and moment (about the origin) a contact puts on its roller, for scale, and how
 /// many contacts acted across a gap, by line contacts (the race film) and by roller ends
 /// (the squeeze film), and how many slid (tangential force).
+#[derive(Default)]
 struct Imbalance {
     force: f64,
     moment: f64,
@@ -86,15 +87,7 @@ fn largest_imbalance(how: RollingResistance, axial: bool) -> Imbalance {
     let model = model.system(&workspace);
     let kin = model.kinematics(0.0, &y);
     let fixed = Kinematics::fixed();
-    let mut found = Imbalance {
-        force: 0.0,
-        moment: 0.0,
-        loads: 0.0,
-        moments: 0.0,
-        lines_across_gap: 0,
-        ends_across_gap: 0,
-        sliding: 0,
-    };
+    let mut found = Imbalance::default();
     for element in model.elements() {
         let r = model.evaluate(element, &kin);
         let [a, b] = element.bodies(model.layout.rollers);
