@@ -233,6 +233,9 @@ def test_the_point_laws_load_check_is_a_rule_of_thumb_that_force_overrides() -> 
         simulate(cfg, threads=1)
     ds = simulate(cfg, threads=1, force=True)
     assert ds.attrs["completed"] == 1 and float(ds.time[-1]) == pytest.approx(1e-3)
+    # the file says what was forced, in the refusal's own words
+    assert ds.attrs["forced"].startswith("run with --force past the point law's load check")
+    assert "lies on its end face" in ds.attrs["forced"]
     # it started from the equilibrium of the load it was refused for: the inner ring's
     # flanges carry the 100 N (within 0.1 %, as at 2500 N above; measured 100.01 N)
     carried = ds.flange_axial_force.isel(time=0).sel(flange=["inner-x", "inner+x"])

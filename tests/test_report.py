@@ -8,6 +8,7 @@ installs it); elsewhere the browser tests are skipped without it.
 
 from __future__ import annotations
 
+import html
 import json
 import os
 import re
@@ -238,6 +239,19 @@ def test_python_api_writes_the_page(result, tmp_path):
     assert out == tmp_path / "sub" / "one.html" and out.is_file()
     text = out.read_text(encoding="utf-8")
     assert "(5 frames of" in text and text.count("plotly.js v") == 1
+
+
+def test_a_forced_run_says_so_on_the_page(result, tmp_path):
+    # a run forced past the point law's load check keeps the refusal in its file
+    # (tests/test_oil_and_threads.py); the page says it above the run's inputs
+    with xr.open_dataset(result, engine="h5netcdf") as ds:
+        ds = ds.load()
+    ds.attrs["forced"] = "run with --force past the point law's load check: the <end> face"
+    write(ds, tmp_path / "forced.nc")
+    text = rollerdyn.report([tmp_path / "forced.nc"], tmp_path / "f.html", max_frames=2)
+    page = text.read_text(encoding="utf-8")
+    said = html.escape("Run with --force past the point law's load check: the <end> face")
+    assert f'<p class="warn">{said}</p>' in page
 
 
 def test_missing_or_foreign_files_exit_with_status_2_and_a_clear_message(tmp_path):

@@ -804,6 +804,38 @@ def test_map_point_without_equilibrium_starts_from_short_ramps(tmp_path, client,
         assert float(f.radial_load.values[0]) < 1.0  # loads ramped up from 0, not at once
 
 
+def test_map_point_the_point_law_refuses_runs_when_forced(tmp_path, client):
+    """A grid point the point law's load check refuses (B1 without radial load at 100 N
+    axially: its most loaded roller end on its end face, docs/dynamics.md, "The whole B1
+    run") is a run that could not be run: failed, no file, the refusal as its note. The
+    map invoked again in the same folder with ``force`` runs it (as ``rollerdyn run
+    --force``), and its row and file say that it was forced."""
+
+    def run_map(**kw):
+        return operating_map(
+            B1,
+            tmp_path / "map",
+            speed="3000",
+            radial_load="0",
+            axial_load="100",
+            window=0.001,
+            tol=0.5,
+            max_time=0.018,  # three windows of two roller passing periods (5.8 ms)
+            scheduler=client,
+            **kw,
+        )
+
+    refused = run_map().points.iloc[0]
+    assert refused["status"] == "failed" and refused["file"] == ""
+    assert "lies on its end face" in refused["note"] and "--force" in refused["note"]
+    forced = run_map(force=True).points.iloc[0]
+    assert forced["status"] in ("steady", "not steady") and forced["file"] != ""
+    assert "run with --force past the point law's load check" in forced["note"]
+    with xr.open_dataset(tmp_path / "map" / "points" / forced["file"], engine="h5netcdf") as f:
+        assert "lies on its end face" in f.attrs["forced"]
+        assert f.attrs["final_time_s"] > 0.017
+
+
 # --------------------------------------------------------------------------- command line
 
 

@@ -86,15 +86,24 @@ def refusal_note(cfg: BearingConfig, t_end: float | None = None) -> str | None:
     check`` prints it; ``rollerdyn run`` raises the refusal itself. The check is a
     quasi-static equilibrium, so it is made on the statics' core model (no traction
     table)."""
+    refusal = point_law_refusal(cfg, cfg.end_time if t_end is None else float(t_end))
+    if refusal is None:
+        return None
+    return f"note: rollerdyn run refuses this configuration (--force runs it): {refusal}"
+
+
+def point_law_refusal(cfg: BearingConfig, t_end: float) -> str | None:
+    """The point end-flange law's load check of a run of ``cfg`` to ``t_end`` [s], as the
+    core makes it before a run's first step: its refusal, or None (also for the
+    distributed law, which has no such check)."""
     from .statics import _core_model
 
     if cfg.surfaces.flange_law != "point":
         return None
-    t = cfg.end_time if t_end is None else float(t_end)
     try:
-        _core_model(cfg).check_point_law(t)
+        _core_model(cfg).check_point_law(t_end)
     except ValueError as refusal:
-        return f"note: rollerdyn run refuses this configuration (--force runs it): {refusal}"
+        return str(refusal)
     return None
 
 

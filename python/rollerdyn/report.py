@@ -333,6 +333,8 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
             body.append(
                 f'<p class="warn">The run stopped early: {html.escape(ds.attrs["error"])}</p>'
             )
+        if ds.attrs.get("forced"):
+            body.append(f'<p class="warn">{html.escape(str(ds.attrs["forced"]).capitalize())}</p>')
         plain = [
             [k, _attr_text(v)]
             for k, v in ds.attrs.items()

@@ -513,6 +513,7 @@ def simulate(
         start = _resume_point(resume, config, det, end)
     if not force:
         check_cost(config, end, 0.0 if start is None else start[0])
+    forced = _forced_past(config, end, force, resume)
     model = Model(config)
     params = model_parameters(config, det)
     options = run_options(config, end, force)
@@ -532,6 +533,7 @@ def simulate(
         ds = to_dataset(raw_partial, config, det)
         if resume is not None:
             ds = _join(resume, ds)
+        _stamp_forced(ds, forced)
         checkpoint(ds)
         saving["seconds"] += time.perf_counter() - started
         return False
@@ -545,6 +547,7 @@ def simulate(
     ds.attrs["threads"] = min(threads, default_threads()) if det != GRADIENT else 1
     if resume is not None:
         ds = _join(resume, ds)
+    _stamp_forced(ds, forced)
     if "interruption" in raw:
         # "KeyboardInterrupt: " (Ctrl-C carries no message) reads as an unfinished sentence
         cause = raw["interruption"].strip().removesuffix(":")
@@ -557,6 +560,31 @@ def simulate(
     if raw["error"] is not None:
         raise SimulationError(raw["error"], ds)
     return ds
+
+
+#: How ``attrs["forced"]`` of a forced run begins (its refusal follows).
+FORCED_MARK = "run with --force past the point law's load check"
+
+
+def _forced_past(
+    config: BearingConfig, end: float, force: bool, resume: xr.Dataset | None
+) -> str | None:
+    """The point end-flange law's refusal that ``force`` overrides in a run of ``config`` to
+    ``end`` (None: no refusal, or not forced); a resumed run keeps its first part's."""
+    if resume is not None:
+        return resume.attrs.get("forced")
+    if not force or config.surfaces.flange_law != "point":
+        return None
+    from .notes import point_law_refusal
+
+    return point_law_refusal(config, end)
+
+
+def _stamp_forced(ds: xr.Dataset, forced: str | None) -> None:
+    """Records in ``ds.attrs["forced"]`` the refusal a forced run went past, so that its
+    file, tables and report say so."""
+    if forced:
+        ds.attrs["forced"] = f"{FORCED_MARK}: {forced}"
 
 
 def default_threads() -> int:

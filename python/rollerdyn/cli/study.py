@@ -321,6 +321,16 @@ def map_command(
     scheduler: SchedulerOption = None,
     workers: WorkersOption = None,
     overwrite: OverwriteOption = False,
+    force: Annotated[
+        bool,
+        typer.Option(
+            "--force",
+            help="Run the points the point end-flange law's load check refuses (a roller "
+            "end pressed onto its end face: the run's steps may creep or collapse), as "
+            "rollerdyn run --force does; their rows' notes say so. Without it such a point "
+            "is not run (exit status 1), and the map invoked again with --force runs it.",
+        ),
+    ] = False,
 ) -> None:
     """Run a grid of speeds and loads to steady state on Dask and draw operating maps.
 
@@ -364,6 +374,7 @@ def map_command(
         scheduler=scheduler,
         workers=workers,
         overwrite=overwrite,
+        force=force,
     )
     _print_map(result.points, f"operating map of {config.name} in {output}")
     files = ("map.csv", "map.parquet")
@@ -568,6 +579,7 @@ def _print_runs(frame, title: str) -> None:
 
 
 def _print_map(frame, title: str) -> None:
+    from ..simulation import FORCED_MARK
     from ..study.maps import FALLBACK
 
     def status(row) -> str:
@@ -576,6 +588,8 @@ def _print_map(frame, title: str) -> None:
         if str(row.get("start", "")).startswith(FALLBACK):
             # no equilibrium at t = 0: the point ran from short ramps (docs/study.md)
             text = f"{text} (from short ramps: no equilibrium)"
+        if FORCED_MARK in str(row.get("note", "")):
+            text = f"{text} (--force: past the point law's load check)"
         return text
 
     _print_frame(frame, title, _MAP_COLUMNS, status)

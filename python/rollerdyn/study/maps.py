@@ -243,6 +243,7 @@ def operating_map(
     workers: int | None = None,
     overwrite: bool = False,
     progress: Callable[[dict], Any] | None = None,
+    force: bool = False,
 ) -> MapStudy:
     """Runs the grid ``speed`` x ``radial_load`` x ``axial_load`` of ``config`` until each
     point is steady (see :mod:`.steady`) and draws the maps.
@@ -255,7 +256,10 @@ def operating_map(
     with short ramps; the command line refuses ``--ramp`` otherwise). ``window``
     [s], ``tol`` [1]: the steadiness criterion; ``max_time`` [s]: simulated time at which
     a point that is not steady ends; ``max_wall`` [s]: wall-time cap per point and
-    invocation. Other arguments as in :func:`rollerdyn.study.paper`."""
+    invocation. ``force``: run the points the point end-flange law's load check refuses
+    (as ``rollerdyn run --force``; their rows' notes say so); without it such a point is a
+    run that could not be run, and a later invocation with ``force`` runs it. Other
+    arguments as in :func:`rollerdyn.study.paper`."""
     from ..simulation import as_config
     from .paper import _source_name, default_workers
     from .schedule import Clock, check_scheduler
@@ -270,7 +274,12 @@ def operating_map(
     specs, rules = _map_points(cfg, (speeds, radial, axial), start, ramp, window, tol, max_time)
     check_scheduler(scheduler)
     settings = {"start": start, "ramp": ramp, "window": window, "tol": tol, "max_time": max_time}
-    run = {"max_wall": float(max_wall), "scheduler": scheduler, "workers": workers}
+    run = {
+        "max_wall": float(max_wall),
+        "scheduler": scheduler,
+        "workers": workers,
+        "force": bool(force),
+    }
     return _run_map(
         cfg,
         Path(outdir),
@@ -409,7 +418,7 @@ def _point_start(cfg: Any, point, start: str, ramp: float, traction):
 
 def _run_map(cfg, out, specs, rules, settings, run, overwrite, progress, clock, *, source):
     """Runs the grid's points ``specs`` in the folder ``out`` (prepared, and locked
-    meanwhile; ``run``: max_wall, scheduler and workers), writes map.csv, map.parquet and
+    meanwhile; ``run``: max_wall, scheduler, workers and force), writes map.csv, map.parquet and
     the figures, and returns the study."""
     import pandas as pd
 
@@ -481,6 +490,9 @@ def point_row(spec: RunSpec, ds, rec: dict, rule: SteadyRule) -> dict:
         row["note"] = rule.unmet(spec.t_end)
     if t_k - rule.window >= rule.settle - 1e-12:  # a whole window after the ramps
         row.update(window_outputs(ds, t_k - rule.window, t_k, rule.factor))
+    forced = str(ds.attrs.get("forced", ""))
+    if forced and forced not in row["note"]:  # run past the point law's load check
+        row["note"] = f"{row['note']}; {forced}" if row["note"] else forced
     return row
 
 

@@ -175,6 +175,8 @@ def record(spec: RunSpec, attrs: dict | None, action: str) -> dict:
     state = inspect_run(spec, a)
     if state == FINISHED:
         status, note = COMPLETED, str(a.get("study_done", ""))
+        if a.get("forced"):
+            note = f"{note}; {a['forced']}" if note else str(a["forced"])
     elif state == FAILED:
         status, note = RUN_FAILED, f"failed at t = {reached:.6g} s: {a.get('error', '')}"
     else:
@@ -241,6 +243,7 @@ def execute(
     topic: str | None = None,
     stop_rule: Any = None,
     every: float = 1.0,
+    force: bool = False,
 ) -> dict:
     """Runs ``spec`` (as a Dask task, or directly) and returns its :func:`record`; never
     raises for a run's own failure (the record says it).
@@ -253,7 +256,9 @@ def execute(
 
     ``stop_rule(ds)``, if given, is asked at every checkpoint with the run so far; a text
     it returns (e.g. "steady at t = 0.12 s") ends the run at its next output as done: the
-    file's attribute ``study_done`` keeps the text, and the run counts as finished."""
+    file's attribute ``study_done`` keeps the text, and the run counts as finished.
+    ``force``: as ``simulate``'s (a run the point law's load check refuses runs, and its
+    file says so)."""
     from ..config import parse_config
     from ..simulation import CheckpointSaver, SimulationError, failure_note, simulate, write
 
@@ -296,6 +301,7 @@ def execute(
                 resume=resume,
                 checkpoint=checkpoint,
                 threads=1,  # one run per worker: the runs are the parallelism
+                force=force,
             )
         except SimulationError as err:
             ds = err.dataset

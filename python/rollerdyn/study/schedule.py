@@ -111,6 +111,7 @@ def run_all(
     retries: int = 2,
     connect_timeout: float = 10.0,
     stop_rules: dict | None = None,
+    force: bool = False,
 ) -> dict[str, dict]:
     """Runs every spec whose file does not already hold it (one Dask task each, started
     longest first, :func:`_longest_first`) and returns {name: record} of all of them in
@@ -124,6 +125,7 @@ def run_all(
     (about once a second each), ``{"kind": "done", "name", "record"}`` as each ends.
     ``retries``: how many more times Dask runs a task whose worker died. ``stop_rules``:
     {name: rule} handed to :func:`.runs.execute` (a run ends early when its rule says).
+    ``force``: every run as ``simulate(force=True)`` (the point law's load check skipped).
     First it removes the temporary files a killed writer left beside the runs' files
     (:func:`rollerdyn.paths.remove_stale_temporaries`)."""
     from distributed import as_completed
@@ -173,6 +175,7 @@ def run_all(
                 max_wall,
                 topic,
                 (stop_rules or {}).get(spec.name),
+                force=force,
                 pure=False,
                 retries=retries,
                 key=f"study-{spec.name}-{uuid.uuid4().hex[:8]}",
