@@ -236,6 +236,10 @@ def test_the_point_laws_load_check_is_a_rule_of_thumb_that_force_overrides() -> 
     # the file says what was forced, in the refusal's own words
     assert ds.attrs["forced"].startswith("run with --force past the point law's load check")
     assert "lies on its end face" in ds.attrs["forced"]
+    # a forced run resumed (no check on resuming) keeps what its first part was forced past
+    half = simulate(cfg, t_end=5e-4, threads=1, force=True)
+    rest = simulate(cfg, threads=1, resume=half)
+    assert rest.attrs["forced"] == half.attrs["forced"] and rest.attrs["completed"] == 1
     # it started from the equilibrium of the load it was refused for: the inner ring's
     # flanges carry the 100 N (within 0.1 %, as at 2500 N above; measured 100.01 N)
     carried = ds.flange_axial_force.isel(time=0).sel(flange=["inner-x", "inner+x"])

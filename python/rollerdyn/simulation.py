@@ -569,22 +569,24 @@ FORCED_MARK = "run with --force past the point law's load check"
 def _forced_past(
     config: BearingConfig, end: float, force: bool, resume: xr.Dataset | None
 ) -> str | None:
-    """The point end-flange law's refusal that ``force`` overrides in a run of ``config`` to
-    ``end`` (None: no refusal, or not forced); a resumed run keeps its first part's."""
+    """What ``attrs["forced"]`` of a run of ``config`` to ``end`` says: :data:`FORCED_MARK`
+    and the point end-flange law's refusal that ``force`` overrode, or None (no refusal,
+    or not forced); a resumed run keeps its first part's."""
     if resume is not None:
         return resume.attrs.get("forced")
     if not force or config.surfaces.flange_law != "point":
         return None
     from .notes import point_law_refusal
 
-    return point_law_refusal(config, end)
+    refusal = point_law_refusal(config, end)
+    return None if refusal is None else f"{FORCED_MARK}: {refusal}"
 
 
 def _stamp_forced(ds: xr.Dataset, forced: str | None) -> None:
-    """Records in ``ds.attrs["forced"]`` the refusal a forced run went past, so that its
-    file, tables and report say so."""
+    """Records in ``ds.attrs["forced"]`` the refusal a forced run went past
+    (:func:`_forced_past`), so that its file, tables and report say so."""
     if forced:
-        ds.attrs["forced"] = f"{FORCED_MARK}: {forced}"
+        ds.attrs["forced"] = forced
 
 
 def default_threads() -> int:
