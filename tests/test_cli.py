@@ -48,6 +48,22 @@ def test_help_explains_units():
     assert "SI" in result.output
 
 
+def test_version_names_the_release_and_the_commit():
+    import re
+
+    import rollerdyn
+    from rollerdyn.provenance import git_commit
+
+    result = RUNNER.invoke(app, ["--version"])
+    assert result.exit_code == 0, result.output
+    line = result.output.strip()
+    assert line.startswith(f"rollerdyn {rollerdyn.__version__}") and "\n" not in line
+    # the commit a result file records (attribute git_commit), when run from a checkout
+    if git_commit():
+        assert line.endswith(f"(git {git_commit()})")
+        assert re.fullmatch(r"[0-9a-f]{40}(\+dirty)?", git_commit())
+
+
 def test_bench_contact_compares_the_methods():
     result = RUNNER.invoke(app, ["bench", "contact", "--steps", "64"])
     assert result.exit_code == 0, result.output

@@ -2,7 +2,8 @@
 
 Commands: ``validate`` (every model against published values), ``check`` (validate a
 configuration file and show its derived quantities), ``bench`` (time the hot paths),
-``run``, ``plot``, ``sweep``, ``report`` and ``statics`` (quasi-static analysis). All inputs
+``run``, ``plot``, ``sweep``, ``report`` and ``statics`` (quasi-static analysis); ``rollerdyn
+--version`` prints the version and the git commit a result file would record. All inputs
 and outputs are SI unless a column says otherwise.
 
 Bad input (an option value, a configuration, a file that is no result, an output path that
@@ -20,9 +21,12 @@ only part of rollerdyn that imports typer.
 
 from __future__ import annotations
 
+from typing import Annotated
+
 import typer
 
 from . import bench, plot, report, run, statics, study, sweep, validate
+from .common import say
 
 # rich_markup_mode=None: help texts are plain text (a "[s]" or "[arrays]" stays as typed)
 # and click wraps each paragraph once to the terminal's width.
@@ -32,6 +36,34 @@ app = typer.Typer(
     add_completion=False,
     rich_markup_mode=None,
 )
+
+
+def _print_version(value: bool) -> None:
+    """``--version``: rollerdyn's version and the git commit of the source it runs from."""
+    if not value:
+        return
+    from .. import __version__
+    from ..provenance import git_commit
+
+    commit = git_commit()
+    say(f"rollerdyn {__version__}" + (f" (git {commit})" if commit else ""))
+    raise typer.Exit()
+
+
+@app.callback()
+def _main(
+    version: Annotated[
+        bool,
+        typer.Option(
+            "--version",
+            help="Print rollerdyn's version and the git commit of its source, and exit.",
+            callback=_print_version,
+            is_eager=True,
+        ),
+    ] = False,
+) -> None:
+    """rollerdyn: dynamics of full-complement cylindrical roller bearings."""
+
 
 app.command("validate")(validate.validate)
 app.command("check")(validate.check)
