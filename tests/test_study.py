@@ -635,19 +635,18 @@ def test_ranges_are_read_and_refused_by_option():
         assert str(err.value).startswith("--speed ")
 
 
+def _b1_map(tmp_path, client, **options):
+    """B1's operating map at 3000 rpm in ``tmp_path / "map"`` on the test cluster, with a
+    least window of 1 ms (two roller passing periods, 5.8 ms, decide) and a loose
+    criterion (tol 0.5: steady within a few windows)."""
+    return operating_map(
+        B1, tmp_path / "map", speed="3000", window=0.001, tol=0.5, scheduler=client, **options
+    )
+
+
 def test_map_point_stops_when_steady(tmp_path, client):
     def run_map():
-        return operating_map(
-            B1,
-            tmp_path / "map",
-            speed="3000",
-            axial_load="0",
-            start="equilibrium",
-            window=0.001,
-            tol=0.5,
-            max_time=0.03,
-            scheduler=client,
-        )
+        return _b1_map(tmp_path, client, axial_load="0", start="equilibrium", max_time=0.03)
 
     result = run_map()
     row = result.points.iloc[0]
@@ -786,17 +785,7 @@ def test_map_point_without_equilibrium_starts_from_short_ramps(tmp_path, client,
     import rollerdyn.study.maps as maps
 
     monkeypatch.setattr(maps, "equilibrium_refusal", lambda variant, traction: "a reason")
-    result = operating_map(
-        B1,
-        tmp_path / "map",
-        speed="3000",
-        axial_load="0",
-        ramp=0.002,
-        window=0.001,
-        tol=0.5,
-        max_time=0.04,
-        scheduler=client,
-    )
+    result = _b1_map(tmp_path, client, axial_load="0", ramp=0.002, max_time=0.04)
     row = result.points.iloc[0]
     assert row["start"] == f"{maps.FALLBACK} (a reason)"
     assert row["status"] in ("steady", "not steady") and row["reached [s]"] > 0.004
@@ -812,18 +801,8 @@ def test_map_point_the_point_law_refuses_runs_when_forced(tmp_path, client):
     --force``), and its row and file say that it was forced."""
 
     def run_map(**kw):
-        return operating_map(
-            B1,
-            tmp_path / "map",
-            speed="3000",
-            radial_load="0",
-            axial_load="100",
-            window=0.001,
-            tol=0.5,
-            max_time=0.018,  # three windows of two roller passing periods (5.8 ms)
-            scheduler=client,
-            **kw,
-        )
+        # to three windows of two roller passing periods (5.8 ms)
+        return _b1_map(tmp_path, client, radial_load="0", axial_load="100", max_time=0.018, **kw)
 
     refused = run_map().points.iloc[0]
     assert refused["status"] == "failed" and refused["file"] == ""
