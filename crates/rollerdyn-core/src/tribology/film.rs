@@ -294,7 +294,9 @@ mod tests {
     #[test]
     fn moes_reduces_to_rigid_isoviscous_limit() {
         // No pressure–viscosity (G → 0) and light load (M → 0): H̃ → H_RI = 3/M, i.e.
-        // h = 6 η₀u₀R/w (Martin 1916, central film; Moes 2000).
+        // h = 6 η₀u₀R/w, Moes' own rigid–isoviscous asymptote (Moes 2000; paper eq. 34).
+        // Martin's solution with Reynolds' outlet condition gives 4.89 η₀u₀R/w instead
+        // (`hydrodynamic::MARTIN_LOAD`, the film across gaps); the paper's fit is tested.
         let f = inputs(1e-14, 0.05);
         let (r, u0, q) = (0.01, 1.0, 1.0);
         let h = f.moes_line(r, u0, q);
