@@ -158,7 +158,11 @@ impl ContactForces {
 /// stiffness k = dF_el/dδ and the mass m against the contact, bounded below by zero
 /// smoothly: F = ½(F_d + sqrt(F_d² + (ε F_el)²)), F_d = F_el + c δ̇, ε = 0.02 (it adds at
 /// most 1e-4·F_el at rest). The force is zero and continuous at zero penetration, since
-/// both F_el and k vanish there.
+/// both F_el and k vanish there, though not smooth: c ∝ sqrt(k) falls only as δ^0.25
+/// (Hertz) or δ^0.056 (eq. 11), so an approaching contact meets its damping within
+/// picometres. Hunt and Crossley's law, damping in proportion to F_el and smooth at first
+/// touch, took more steps on B1 (docs/performance-log.md, "The figures again, profile-guided
+/// optimisation, and Hunt–Crossley damping").
 #[inline]
 pub fn damped_normal_force(elastic: f64, stiffness: f64, mass: f64, zeta: f64, rate: f64) -> f64 {
     if elastic <= 0.0 {

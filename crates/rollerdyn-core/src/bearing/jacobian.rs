@@ -4,8 +4,12 @@
 //! roller i, its two neighbours and the inner ring. A velocity moves no contact, so its
 //! columns reuse the slice geometry and the detected flange contacts of the unperturbed
 //! state (`Geometry`). A contact's forces depend on the two bodies' relative pose and
-//! velocity only, so moving the inner ring by δ does to each of its contacts what moving
-//! the roller by −δ does: the ring's translation and velocity columns are assembled from
+//! velocity, so moving the inner ring by δ does to each of its contacts about what moving
+//! the roller by −δ does (not exactly: the entrainment speeds are taken in the roller's
+//! frame, which orbits with the roller's own position and velocity, so the ring's columns
+//! leave out about a fifth, |P − c|/ρ, of the entrainment's change; only the Newton
+//! matrix sees it, docs/performance-log.md, "The inner ring's Jacobian columns from the
+//! rollers'"): the ring's translation and velocity columns are assembled from
 //! the rollers' corresponding columns (their ring contacts' changes, negated) instead of
 //! evaluating every ring contact again; its tilt columns are differenced. After a failed
 //! Newton iteration the integrator may ask for the columns of a few rollers only
