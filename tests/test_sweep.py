@@ -343,6 +343,47 @@ def test_cli_sweep_writes_the_summary(tmp_path):
     assert list(frame["operating.load_ramp.end [s]"]) == [0.001]
     assert frame["status"][0] == "completed" and frame["final_time [s]"][0] == 0.001
     assert (out / "run_0000.nc").is_file()
+    assert not (out / "summary.png").exists()  # one value per path: no line to draw
+
+
+def test_the_summary_figure_draws_over_the_path_with_the_most_values(tmp_path):
+    """The figure's x axis is the numeric path with the most values (here the axial load,
+    3, against the radial load's 2; the detector is text), one line per combination of the
+    others; a failed run is a cross at its partial numbers; without a numeric path of two
+    values there is no figure."""
+    from rollerdyn.sweep_figures import numeric_axis, write_summary_figure
+
+    rows = []
+    for radial in (1000.0, 5000.0):
+        for detector in ("semi-analytical", "gradient"):
+            for axial in (0.0, 500.0, 1000.0):
+                rows.append(
+                    {
+                        "operating.radial_load": f"{radial:g} N",
+                        "operating.radial_load [N]": radial,
+                        "solver.detector": detector,
+                        "operating.axial_load": f"{axial:g} N",
+                        "operating.axial_load [N]": axial,
+                        "status": "failed" if axial == 1000.0 and radial == 5000.0 else "completed",
+                        "mean_frictional_torque [N*m]": 3e-4 * axial + 1e-6 * radial,
+                        "max_race_load [N]": 0.3 * radial,
+                        "max_flange_normal_force [N]": 0.14 * axial,
+                        "max_abs_srr_inner [1]": math.nan,
+                    }
+                )
+    frame = pd.DataFrame(rows)
+    paths = ["operating.radial_load", "solver.detector", "operating.axial_load"]
+    assert numeric_axis(frame, paths) == "operating.axial_load [N]"
+    written = write_summary_figure(frame, paths, tmp_path, "b1.toml")
+    assert [f.name for f in written] == ["summary.png", "summary.svg"]
+    svg = (tmp_path / "summary.svg").read_text()
+    # four lines (2 radial loads x 2 detectors), labelled, and the failed runs' crosses
+    assert "operating.radial_load = 5000 N, solver.detector = gradient" in svg
+    assert "sweep over operating.axial_load (x: failed run, its partial numbers)" in svg
+    one = frame[frame["operating.axial_load [N]"] == 0.0]
+    assert numeric_axis(one, paths) == "operating.radial_load [N]"
+    assert numeric_axis(one[one["operating.radial_load [N]"] == 1000.0], paths) is None
+    assert write_summary_figure(frame.iloc[:1], paths, tmp_path / "none", "b1.toml") == []
 
 
 def test_cli_sweep_help_explains_units_and_defaults():

@@ -470,7 +470,9 @@ def sweep(
     from its attempt that returned. Returns a :class:`pandas.DataFrame`, one row per run in
     run order (columns: :data:`SUMMARY_COLUMNS` and, per path, the value as given and, for numeric
     fields, its SI value in ``"<path> [<unit>]"``), also written to
-    ``outdir/summary.parquet``. A scheduler that cannot be reached (within
+    ``outdir/summary.parquet``, and a figure of the summary over the swept quantity with
+    the most values (``outdir/summary.png``, ``.svg``; :mod:`rollerdyn.sweep_figures`;
+    none when no numeric value is swept). A scheduler that cannot be reached (within
     ``connect_timeout`` seconds) raises :class:`SweepError` before ``outdir`` is touched.
     """
     from distributed import as_completed
@@ -551,7 +553,21 @@ def sweep(
         disconnect(client, cluster, scheduler)  # a no-op once closed (Ctrl-C above)
     with _ctrl_c_ignored():
         _remove_partial_files(out, points)
-        return _summarize(out, points, rows)
+        frame = _summarize(out, points, rows)
+    from .sweep_figures import write_summary_figure
+
+    write_summary_figure(frame, list(parameters), out, _source_label(config))
+    return frame
+
+
+def _source_label(config: Any) -> str:
+    """What the summary figure calls the swept configuration: its file's name, or its
+    bearing's name."""
+    if isinstance(config, str | Path):
+        return Path(config).name
+    if isinstance(config, BearingConfig):
+        return config.name
+    return str(dict(config).get("name", "configuration"))
 
 
 def _remove_partial_files(out: Path, points) -> None:

@@ -130,10 +130,14 @@ def sweep_command(
     [s], mean frictional torque over the last 20 % of the run [N*m], maximum roller race
     load [N], maximum flange normal force [N], maximum |slide-to-roll ratio| at the inner
     race while the ring turns [1] (n/a if it never does), steps, wall time [s], file) is
-    written to summary.parquet and printed. A failed run keeps its partial result and its
-    error in the summary, and the sweep goes on; the command then exits with status 1.
+    written to summary.parquet and printed, and drawn over the swept quantity with the most
+    values, one line per combination of the others, in summary.png and summary.svg (when a
+    numeric value takes two or more values). A failed run keeps its partial result and its
+    error in the summary (a cross in the figure), and the sweep goes on; the command then
+    exits with status 1.
     """
     from ..sweep import SUMMARY_FILE, SweepError, build_grid, sweep
+    from ..sweep_figures import FIGURE_NAME
 
     parameters = _parameters(sets)
     end = time_option("--t-end", t_end)
@@ -162,9 +166,11 @@ def sweep_command(
                 force=force,
             )
     failed = _print_summary(frame, config, output, list(parameters))
+    figure = output / f"{FIGURE_NAME}.png"
+    drawn = f", {figure} (and .svg)" if figure.is_file() else ""
     say(
-        f"wrote {output / SUMMARY_FILE} and {int((frame['file'] != '').sum())} result files; "
-        f"{len(frame) - failed} completed, {failed} failed"
+        f"wrote {output / SUMMARY_FILE}{drawn} and {int((frame['file'] != '').sum())} result "
+        f"files; {len(frame) - failed} completed, {failed} failed"
     )
     if failed:
         raise typer.Exit(1)
