@@ -219,10 +219,13 @@ def test_a_worker_killed_mid_run_loses_no_run(tmp_path):
     assert list(frame["run"]) == [0, 1] and frame["run"].is_unique
     assert list(frame["status"]) == ["completed", "completed"], list(frame["error"])
     assert list(frame["file"]) == ["run_0000.nc", "run_0001.nc"]
+    # no partial file of the killed attempt is left; the summary and its figure are there
     assert sorted(f.name for f in tmp_path.iterdir()) == [
         "run_0000.nc",
         "run_0001.nc",
         "summary.parquet",
+        "summary.png",
+        "summary.svg",
     ]
     for i, axial in enumerate(AXIAL):
         ref = serial(axial)
