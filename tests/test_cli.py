@@ -64,6 +64,55 @@ def test_version_names_the_release_and_the_commit():
         assert re.fullmatch(r"[0-9a-f]{40}(\+dirty)?", git_commit())
 
 
+def _row(output: str, label: str) -> str:
+    """The value cell of the table row that begins with ``label``."""
+    line = next(line for line in output.splitlines() if label in line)
+    return line.split("│")[-2].strip()
+
+
+def test_compare_prints_the_largest_differences(tmp_path):
+    """Two runs differing by known amounts (a copy of one run with roller 3 moved 1 µm
+    along the axis, roller 5 tilted by a further 0.2 mrad and the torque 1 % higher) show
+    exactly those as the largest differences; a run against itself shows zeros, and with
+    no output at full speed the full-speed rows are n/a."""
+    from b1 import variant
+
+    from rollerdyn.simulation import simulate, write
+
+    ds = simulate(variant(), t_end=0.002, threads=1)  # B1's first 2 ms: 3 outputs
+    write(ds, tmp_path / "a.nc")
+    moved = ds.copy(deep=True)
+    moved["position"][:, 3, 0] += 1e-6
+    moved["tilt"][:, 5] += 2e-4
+    moved["frictional_torque"] *= 1.01
+    write(moved, tmp_path / "b.nc")
+    a, b = str(tmp_path / "a.nc"), str(tmp_path / "b.nc")
+    result = RUNNER.invoke(app, ["compare", a, b, "--full-speed", "0 s"])
+    assert result.exit_code == 0, result.output
+    out = result.output
+    assert "3 common outputs" in out
+    assert _row(out, "position along the axis, full speed") == "1 µm"
+    assert _row(out, "position along the radius, full speed") == "0 µm"
+    assert _row(out, "roller tilt, full speed") == "0.2 mrad"
+    assert _row(out, "roller skew, full speed") == "0 mrad"
+    assert _row(out, "mean frictional torque at full speed, relative") == "1 %"
+    assert _row(out, "end-flange normal force, of the largest") == "n/a"  # none yet at 2 ms
+    whole = (
+        _row(out, "in the load zone (±60°), whole run"),
+        _row(out, "outside the load zone, whole run"),
+    )
+    assert sorted(whole) == ["0 µm", "1 µm"]  # roller 3 is in one of the two
+    same = RUNNER.invoke(app, ["compare", a, a])
+    assert (
+        same.exit_code == 0
+        and _row(same.output, "roller position outside the load zone, whole run") == "0 µm"
+    )
+    assert _row(same.output, "roller tilt, full speed") == "n/a"  # 2 ms: never at 0.75 s
+    missing = RUNNER.invoke(app, ["compare", a, str(tmp_path / "none.nc")])
+    assert missing.exit_code == 2 and "none.nc: result file not found" in missing.output
+    assert "Traceback" not in missing.output
+
+
 def test_bench_contact_compares_the_methods():
     result = RUNNER.invoke(app, ["bench", "contact", "--steps", "64"])
     assert result.exit_code == 0, result.output

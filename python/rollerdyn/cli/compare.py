@@ -1,0 +1,107 @@
+"""``rollerdyn compare``: how far two runs of the same bearing drift apart, output by output
+(:func:`rollerdyn.study.agreement.differences`, what the paper study's detector comparison
+uses)."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.table import Table
+
+from .common import console, plain, refuse, time_option
+
+#: How each unit of :data:`rollerdyn.study.agreement.MEASURES` is shown: unit, factor.
+SHOWN_UNITS = {"m": ("µm", 1e6), "rad": ("mrad", 1e3), "-": ("%", 100.0)}
+
+#: The solver statistics shown side by side: attribute, label.
+STATISTICS = (
+    ("stats_steps", "steps"),
+    ("stats_rhs_evaluations", "right-hand sides"),
+    ("stats_gradient_fallbacks", "gradient fallbacks"),
+    ("stats_total_seconds", "wall [s]"),
+)
+
+
+def compare_command(
+    first: Annotated[
+        Path, typer.Argument(help="A result file (netCDF) of rollerdyn run.", metavar="A")
+    ],
+    second: Annotated[
+        Path,
+        typer.Argument(
+            help="Another result of the same bearing, e.g. the other detector's.", metavar="B"
+        ),
+    ],
+    full_speed: Annotated[
+        str,
+        typer.Option(
+            "--full-speed",
+            help="Simulated time from which the runs count as at full speed, with a unit "
+            "(750 ms) or a bare number of seconds: B1's speed ramp ends at 0.7 s; for other "
+            "ramps give their end and some settling time.",
+            metavar="TIME",
+        ),
+    ] = "0.75 s",
+) -> None:
+    """Compare two runs of the same bearing output by output (e.g. the two contact
+    detectors' runs, or a run and its round-off twin: docs/dynamics.md, "Agreement of the
+    two detectors in whole B1 runs").
+
+    Prints the largest differences over the outputs the two share: a roller's position
+    [µm] in the load zone (within 60° of its centre) and outside it, over the whole run and
+    at full speed (from --full-speed, by default 0.75 s; also split into axial, radial and
+    circumferential), tilt and skew at full speed [mrad], the roller end-flange
+    normal forces [% of the largest of either run] and the frictional torque at full speed
+    (its mean, relative [%], and output by output [% of the largest]); n/a where no output
+    qualifies (no full speed in a short run). Then both runs' steps, right-hand sides,
+    gradient fallbacks and wall time.
+
+    Exits with status 2 if a file is missing or not a rollerdyn run's result, if the two
+    runs share no output or differ in their roller count, or for a bad --full-speed.
+    """
+    from ..report import ReportError, open_result
+    from ..study.agreement import MEASURES, NEEDED, differences
+
+    from_full_speed = time_option("--full-speed", full_speed, zero=True)
+    runs = []
+    for path in (first, second):
+        try:
+            runs.append(open_result(path, required=tuple(n for n in NEEDED if n != "time")))
+        except ReportError as err:
+            raise refuse(err) from None
+    a, b = runs
+    try:
+        found = differences(a, b, from_full_speed)
+    except ValueError as err:
+        raise refuse(f"{first} and {second}: {err}") from None
+    table = Table(
+        title=plain(
+            f"{first.name} against {second.name}: {found['outputs']} common outputs, "
+            f"0 … {found['t_end']:.6g} s"
+        )
+    )
+    table.add_column("largest difference of", overflow="fold")
+    table.add_column("value", justify="right")
+    for key, (what, unit) in MEASURES.items():
+        shown, factor = SHOWN_UNITS[unit]
+        value = found[key]
+        text = "n/a" if not math.isfinite(value) else f"{value * factor:.4g} {shown}"
+        table.add_row(plain(what), text)
+    console.print(table)
+    stats = Table(title="solver statistics")
+    stats.add_column("", overflow="fold")
+    stats.add_column(plain(first.name), justify="right")
+    stats.add_column(plain(second.name), justify="right")
+    for attr, label in STATISTICS:
+        stats.add_row(label, *(_stat(run.attrs.get(attr)) for run in runs))
+    console.print(stats)
+
+
+def _stat(value) -> str:
+    """A statistic as printed: n/a when the file has none."""
+    if value is None:
+        return "n/a"
+    return f"{value:.4g}" if isinstance(value, float) else str(value)
