@@ -77,24 +77,31 @@ def compare_command(
         found = differences(a, b, from_full_speed)
     except ValueError as err:
         raise refuse(f"{first} and {second}: {err}") from None
+    _print_differences(found, MEASURES, f"{first.name} against {second.name}")
+    _print_statistics(runs, (first.name, second.name))
+
+
+def _print_differences(found: dict, measures: dict, title: str) -> None:
+    """The table of :func:`rollerdyn.study.agreement.differences`, in µm, mrad and %."""
     table = Table(
-        title=plain(
-            f"{first.name} against {second.name}: {found['outputs']} common outputs, "
-            f"0 … {found['t_end']:.6g} s"
-        )
+        title=plain(f"{title}: {found['outputs']} common outputs, 0 … {found['t_end']:.6g} s")
     )
     table.add_column("largest difference of", overflow="fold")
     table.add_column("value", justify="right")
-    for key, (what, unit) in MEASURES.items():
+    for key, (what, unit) in measures.items():
         shown, factor = SHOWN_UNITS[unit]
         value = found[key]
         text = "n/a" if not math.isfinite(value) else f"{value * factor:.4g} {shown}"
         table.add_row(plain(what), text)
     console.print(table)
+
+
+def _print_statistics(runs: list, names: tuple[str, str]) -> None:
+    """Both runs' :data:`STATISTICS` side by side."""
     stats = Table(title="solver statistics")
     stats.add_column("", overflow="fold")
-    stats.add_column(plain(first.name), justify="right")
-    stats.add_column(plain(second.name), justify="right")
+    for name in names:
+        stats.add_column(plain(name), justify="right")
     for attr, label in STATISTICS:
         stats.add_row(label, *(_stat(run.attrs.get(attr)) for run in runs))
     console.print(stats)
