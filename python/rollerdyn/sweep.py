@@ -556,18 +556,9 @@ def sweep(
         frame = _summarize(out, points, rows)
     from .sweep_figures import write_summary_figure
 
-    write_summary_figure(frame, list(parameters), out, _source_label(config))
+    # titled with the bearing's name, as the operating maps are
+    write_summary_figure(frame, list(parameters), out, str(points[0].data.get("name", "")))
     return frame
-
-
-def _source_label(config: Any) -> str:
-    """What the summary figure calls the swept configuration: its file's name, or its
-    bearing's name."""
-    if isinstance(config, str | Path):
-        return Path(config).name
-    if isinstance(config, BearingConfig):
-        return config.name
-    return str(dict(config).get("name", "configuration"))
 
 
 def _remove_partial_files(out: Path, points) -> None:

@@ -491,7 +491,7 @@ def point_row(spec: RunSpec, ds, rec: dict, rule: SteadyRule) -> dict:
     if t_k - rule.window >= rule.settle - 1e-12:  # a whole window after the ramps
         row.update(window_outputs(ds, t_k - rule.window, t_k, rule.factor))
     forced = str(ds.attrs.get("forced", ""))
-    if forced and forced not in row["note"]:  # run past the point law's load check
+    if forced:  # run past the point law's load check
         row["note"] = f"{row['note']}; {forced}" if row["note"] else forced
     return row
 

@@ -175,8 +175,6 @@ def record(spec: RunSpec, attrs: dict | None, action: str) -> dict:
     state = inspect_run(spec, a)
     if state == FINISHED:
         status, note = COMPLETED, str(a.get("study_done", ""))
-        if a.get("forced"):
-            note = f"{note}; {a['forced']}" if note else str(a["forced"])
     elif state == FAILED:
         status, note = RUN_FAILED, f"failed at t = {reached:.6g} s: {a.get('error', '')}"
     else:
