@@ -7,7 +7,8 @@ the validation cases (:mod:`rollerdyn.validation`), runs of the dynamic model
 (:mod:`rollerdyn.simulation`), the names it shares with the core (:mod:`rollerdyn.names`),
 figures (:mod:`rollerdyn.plots`), the HTML report (:mod:`rollerdyn.report`), parameter
 sweeps (:mod:`rollerdyn.sweep`), the quasi-static analysis (:mod:`rollerdyn.statics`), the
-paper's study and operating maps (:mod:`rollerdyn.study`) and the command line
+paper's study and operating maps (:mod:`rollerdyn.study`), the modes of the equations of
+motion at a run's state (:mod:`rollerdyn.modes`) and the command line
 (:mod:`rollerdyn.cli`).
 
 The names below are imported when first used, so that the command line starts (and can

@@ -38,6 +38,14 @@ CASES: dict[str, tuple[str, dict[str, Any]]] = {
         "the same at 3000 rpm",
         {**_SHORT_RAMPS, "operating.inner_ring_speed": "3000 rpm"},
     ),
+    "hot-3000rpm": (
+        "full-speed-3000rpm with the oil at 120 degC (FVA 3: 6 mPa s against 16.5 at 80 degC)",
+        {
+            **_SHORT_RAMPS,
+            "operating.inner_ring_speed": "3000 rpm",
+            "operating.temperature": "120 degC",
+        },
+    ),
     "equilibrium-500rpm": (
         "full load and 500 rpm from an equilibrium start, to 0.1 s",
         _FROM_EQUILIBRIUM,
@@ -61,6 +69,7 @@ CASES: dict[str, tuple[str, dict[str, Any]]] = {
 _DISTRIBUTED = {"surfaces.flange_law": "distributed"}
 for _name in (
     "whole",
+    "hot-3000rpm",
     "free-tilt",
     "tilt-0.05deg",
     "axial-0N",

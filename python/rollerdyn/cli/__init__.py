@@ -2,9 +2,10 @@
 
 Commands: ``validate`` (every model against published values), ``check`` (validate a
 configuration file and show its derived quantities), ``bench`` (time the hot paths),
-``run``, ``plot``, ``sweep``, ``report``, ``compare`` (two runs output by output) and
-``statics`` (quasi-static analysis); ``rollerdyn
---version`` prints the version and the git commit a result file would record. All inputs
+``run``, ``plot``, ``sweep``, ``report``, ``compare`` (two runs output by output), ``modes``
+(the fastest growing modes at a run's final state) and ``statics`` (quasi-static
+analysis); ``rollerdyn --version`` prints the version and the git commit a result file
+would record. All inputs
 and outputs are SI unless a column says otherwise.
 
 Bad input (an option value, a configuration, a file that is no result, an output path that
@@ -26,7 +27,7 @@ from typing import Annotated
 
 import typer
 
-from . import bench, compare, plot, report, run, statics, study, sweep, validate
+from . import bench, compare, modes, plot, report, run, statics, study, sweep, validate
 from .common import say
 
 # rich_markup_mode=None: help texts are plain text (a "[s]" or "[arrays]" stays as typed)
@@ -74,6 +75,7 @@ app.command("plot")(plot.plot)
 app.command("sweep")(sweep.sweep_command)
 app.command("report")(report.report_command)
 app.command("compare")(compare.compare_command)
+app.command("modes")(modes.modes_command)
 app.command("statics")(statics.statics_command)
 app.add_typer(study.app, name="study")
 

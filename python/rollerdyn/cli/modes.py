@@ -1,0 +1,131 @@
+"""``rollerdyn modes``: the fastest growing modes of the model at a run's final state
+(:mod:`rollerdyn.modes`), with the bodies and states that carry them."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.table import Table
+
+from .common import console, load, refuse, say
+
+
+def modes_command(
+    config: Annotated[
+        Path,
+        typer.Argument(help="The configuration (TOML) the run was made with.", metavar="CONFIG"),
+    ],
+    run: Annotated[
+        Path,
+        typer.Argument(
+            help="A result file (netCDF) of rollerdyn run; its final state is examined "
+            "(a run stopped with --t-end, Ctrl-C or an error ends where it stopped).",
+            metavar="RUN",
+        ),
+    ],
+    count: Annotated[
+        int,
+        typer.Option(
+            "--count", "-n", help="How many modes to print, fastest growing first.", min=1
+        ),
+    ] = 6,
+    settings: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--set",
+            help="PATH=VALUE: evaluate the same state with a configuration value changed, "
+            "written as in the file (e.g. solver.friction=false, "
+            'surfaces.damping_ratio=0, operating.temperature="80 degC"); repeat for more.',
+        ),
+    ] = None,
+) -> None:
+    """Print the modes of the equations of motion at the final state of RUN: the
+    eigenvalues λ of their Jacobian (the matrix of the integrator's Newton iteration),
+    fastest growing first. Re λ > 0 [1/s] is a mode that grows as exp(Re λ · t): the
+    integrator must resolve it, so a run whose steps shrink to microseconds has one; the
+    table names the states that carry each (a share of the largest component: a roller's
+    position x, y, z [m], axis angles theta_y, theta_z [rad], velocities vx, vy, vz [m/s]
+    and angular velocities wx, wy, wz [rad/s], inertial components; the inner ring's
+    likewise) and, for each roller among them, its azimuth [deg] and contact loads [N] at
+    the last output. With --set the same state is evaluated with the changed model, to
+    tell which force makes a mode (docs/dynamics.md, "Hot oil at speed: the point law's
+    radii").
+
+    Exits with status 2 for a missing or unreadable file, a run of another bearing (its
+    state does not fit the configuration) or a bad --set.
+    """
+    from ..modes import modes_of_run
+    from ..report import ReportError, open_result
+    from ..sweep import SweepError, parse_set
+
+    cfg = load(config)
+    try:
+        ds = open_result(run, required=("final_state",))
+    except ReportError as err:
+        raise refuse(err) from None
+    changes = {}
+    for option in settings or []:
+        try:
+            path, values = parse_set(option)
+        except SweepError as err:
+            raise refuse(err) from None
+        if len(values) != 1:
+            raise refuse(f"--set {option}: one value per path (this is no sweep)")
+        changes[path] = values[0]
+    try:
+        modes = modes_of_run(cfg, ds, changes)
+    except (ValueError, SweepError) as err:
+        raise refuse(f"{run}: {' '.join(str(err).split())}") from None
+    t = float(ds.attrs["final_time_s"])
+    changed = ", ".join(f"{k} = {_shown(v)}" for k, v in changes.items())
+    title = f"{cfg.name}: the fastest growing modes at t = {t:.6g} s of {run.name}"
+    table = Table(title=title + (f" with {changed}" if changed else ""))
+    for col in (
+        "growth rate [1/s]",
+        "frequency [Hz]",
+        "states (share)",
+        "rollers at the last output",
+    ):
+        table.add_column(col)
+    last = ds.isel(time=-1) if "time" in ds.dims else None
+    for mode in modes[:count]:
+        states = ", ".join(
+            f"{body.replace('roller ', 'r').replace('inner ring', 'ring')}.{state} {share:.2f}"
+            for body, state, share in mode.states
+        )
+        table.add_row(
+            f"{mode.growth_rate:.4g}",
+            f"{mode.frequency:.4g}",
+            states,
+            "; ".join(_roller_note(last, i) for i in mode.rollers[:2]),
+        )
+    console.print(table)
+    unstable = sum(1 for m in modes if m.growth_rate > 0)
+    say(
+        f"{len(modes)} modes, {unstable} with a positive growth rate; the largest size "
+        f"{max(abs(m.eigenvalue) for m in modes):.3g} 1/s"
+    )
+
+
+def _shown(value: object) -> str:
+    """A --set value as written in a file (true/false for booleans)."""
+    return str(value).lower() if isinstance(value, bool) else str(value)
+
+
+def _roller_note(last, i: int) -> str:
+    """Roller i's azimuth and loads at the last output, in a few words."""
+    if last is None or "roller" not in last.dims or i >= last.sizes["roller"]:
+        return f"roller {i}"
+    r = last.sel(roller=i)
+
+    def value(name: str) -> float:
+        return float(r[name].max()) if name in r else math.nan
+
+    azimuth = math.degrees(float(r["azimuth"]) % (2 * math.pi)) if "azimuth" in r else math.nan
+    return (
+        f"roller {i}: {azimuth:.0f}°, races {value('inner_normal_force'):.3g}/"
+        f"{value('outer_normal_force'):.3g} N, flanges up to {value('flange_normal_force'):.3g} N"
+    )

@@ -1,0 +1,118 @@
+"""The fastest and the unstable modes of the dynamic model at a run's state: the
+eigenvalues of the Jacobian of the equations of motion (the matrix the integrator's Newton
+iteration uses) and, for each, the states that carry it.
+
+A mode with a positive real part λ grows as e^{λt}: the integrator must resolve it, so a
+run whose steps shrink to microseconds usually has one, and the states that carry it name
+the body and the motion (a roller's tilt and skew rates, a spin). ``rollerdyn modes``
+prints them; ``changes`` evaluates the same state with switches of the configuration
+changed (e.g. ``solver.friction = false``) to tell which force makes a mode: the way
+docs/dynamics.md ("Hot oil at speed: the point law's radii") found what slows B1 with the
+oil at 120 °C.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from .config import BearingConfig, parse_config
+
+#: A roller's 11 states (crates/rollerdyn-core/src/bearing/state.rs): centre, axis angles,
+#: velocity, angular velocity (spin included), inertial components.
+ROLLER_STATES = ("x", "y", "z", "theta_y", "theta_z", "vx", "vy", "vz", "wx", "wy", "wz")
+#: The inner ring's states: position and velocity; with the tilt free also its axis angles
+#: and transverse angular velocity.
+RING_STATES = ("x", "y", "z", "vx", "vy", "vz")
+RING_TILT_STATES = ("theta_y", "theta_z", "wx", "wy", "wz")
+
+
+@dataclass(frozen=True)
+class Mode:
+    """One eigenvalue of the Jacobian and the states that carry its eigenvector."""
+
+    #: The eigenvalue [1/s]: real part the growth rate (positive: unstable), imaginary
+    #: part 2π times the frequency.
+    eigenvalue: complex
+    #: (body, state, share): the largest components of the eigenvector, each as a share of
+    #: the largest (1 for the first); body "inner ring" or "roller i".
+    states: tuple[tuple[str, str, float], ...]
+
+    @property
+    def growth_rate(self) -> float:
+        """Re λ [1/s]."""
+        return float(self.eigenvalue.real)
+
+    @property
+    def frequency(self) -> float:
+        """|Im λ|/2π [Hz]."""
+        return float(abs(self.eigenvalue.imag) / (2.0 * np.pi))
+
+    @property
+    def rollers(self) -> list[int]:
+        """The rollers among the carrying states, in order of first appearance."""
+        found: list[int] = []
+        for body, _, _ in self.states:
+            if body.startswith("roller "):
+                i = int(body.split()[1])
+                if i not in found:
+                    found.append(i)
+        return found
+
+
+def state_names(rollers: int, tilt_free: bool) -> list[tuple[str, str]]:
+    """(body, state) of every state of the model, in the state vector's order."""
+    ring = RING_STATES + (RING_TILT_STATES if tilt_free else ())
+    names = [("inner ring", s) for s in ring]
+    for i in range(rollers):
+        names += [(f"roller {i}", s) for s in ROLLER_STATES]
+    return names
+
+
+def modes_at(
+    config: BearingConfig,
+    t: float,
+    state: np.ndarray,
+    changes: Mapping[str, Any] | None = None,
+    shown_states: int = 4,
+) -> list[Mode]:
+    """Every mode of ``config``'s model (with the dotted-path ``changes``) at time ``t`` [s]
+    and ``state``, the fastest growing first (by real part, then by size). Raises
+    ValueError for a state of the wrong length or a change the configuration refuses."""
+    from . import _core
+    from .model import Model
+    from .simulation import model_parameters
+    from .sweep import changed
+
+    if changes:
+        config = parse_config(changed(config.model_dump(), dict(changes)), si_numbers=True)
+    core = _core.Model(model_parameters(config, config.solver.detector), Model(config).traction)
+    n = core.states
+    y = np.asarray(state, dtype=float)
+    if y.shape != (n,):
+        raise ValueError(f"the state has {y.size} values; this model has {n} states")
+    jacobian = np.asarray(core.jacobian(float(t), y.tolist()), dtype=float).reshape(n, n)
+    values, vectors = np.linalg.eig(jacobian)
+    names = state_names(core.rollers, config.inner_ring.tilt == "free")
+    order = sorted(range(n), key=lambda k: (-values[k].real, -abs(values[k])))
+    modes = []
+    for k in order:
+        size = np.abs(vectors[:, k])
+        top = np.argsort(-size)[:shown_states]
+        largest = size[top[0]] if size[top[0]] > 0 else 1.0
+        states = tuple((*names[j], float(size[j] / largest)) for j in top)
+        modes.append(Mode(complex(values[k]), states))
+    return modes
+
+
+def modes_of_run(
+    config: BearingConfig, run: xr.Dataset, changes: Mapping[str, Any] | None = None
+) -> list[Mode]:
+    """:func:`modes_at` at the final state of a run's result ``run``."""
+    if "final_state" not in run or "final_time_s" not in run.attrs:
+        raise ValueError("the result holds no final state")
+    return modes_at(config, float(run.attrs["final_time_s"]), run["final_state"].values, changes)

@@ -1,0 +1,108 @@
+"""``rollerdyn modes``: the modes of the equations of motion at a run's final state
+(python/rollerdyn/modes.py, cli/modes.py)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from b1 import b1_file_with, variant
+from typer.testing import CliRunner
+
+from rollerdyn import _core
+from rollerdyn.cli import app
+from rollerdyn.model import Model
+from rollerdyn.modes import modes_at, state_names
+from rollerdyn.simulation import model_parameters, simulate, write
+
+RUNNER = CliRunner()
+
+
+@pytest.fixture(scope="module")
+def short_run(tmp_path_factory):
+    """B1's first 2 ms (loads rising, rollers settling) and its file."""
+    cfg = variant()
+    ds = simulate(cfg, t_end=0.002, threads=1)
+    path = tmp_path_factory.mktemp("modes") / "b1_2ms.nc"
+    write(ds, path)
+    return cfg, ds, path
+
+
+def _jacobian(cfg, t, y):
+    core = _core.Model(model_parameters(cfg, cfg.solver.detector), Model(cfg).traction)
+    n = core.states
+    return np.asarray(core.jacobian(t, list(y)), dtype=float).reshape(n, n)
+
+
+def test_state_names_follow_the_cores_layout():
+    """The names follow crates/rollerdyn-core/src/bearing/state.rs: the ring's 6 states
+    (11 with the tilt free), then 11 per roller; roller i's spin rate wx at 6 + 11 i + 8."""
+    names = state_names(17, tilt_free=False)
+    assert len(names) == 193 == 6 + 17 * 11
+    assert names[6 + 11 * 4 + 8] == ("roller 4", "wx")
+    assert names[6 + 11 * 16 + 3] == ("roller 16", "theta_y")
+    tilted = state_names(17, tilt_free=True)
+    assert len(tilted) == 198 and tilted[6] == ("inner ring", "theta_y")
+    assert tilted[11 + 11 * 2 + 5] == ("roller 2", "vx")
+
+
+def test_modes_are_the_jacobians_eigenvalues(short_run):
+    """The modes at the final state are the eigenvalues of the core's Jacobian there
+    (numpy's eig of the matrix taken independently, compared as sorted sets, relative
+    1e-9: the same matrix, so only the eigen solver's round-off), fastest growing first,
+    and each mode's first state is its eigenvector's largest component, named by the
+    layout (6 + 11 i + j for roller i's state j)."""
+    cfg, ds, _ = short_run
+    t, y = float(ds.attrs["final_time_s"]), ds["final_state"].values
+    modes = modes_at(cfg, t, y)
+    values, vectors = np.linalg.eig(_jacobian(cfg, t, y))
+    assert len(modes) == len(values) == 193
+    got = np.sort_complex(np.array([m.eigenvalue for m in modes]))
+    want = np.sort_complex(values)
+    scale = np.abs(values).max()
+    assert np.abs(got - want).max() <= 1e-9 * scale
+    rates = [m.growth_rate for m in modes]
+    assert rates == sorted(rates, reverse=True)
+    k = int(np.argmax(values.real))
+    j = int(np.argmax(np.abs(vectors[:, k])))
+    body = "inner ring" if j < 6 else f"roller {(j - 6) // 11}"
+    state = (
+        ("x", "y", "z", "vx", "vy", "vz")[j]
+        if j < 6
+        else ("x", "y", "z", "theta_y", "theta_z", "vx", "vy", "vz", "wx", "wy", "wz")[(j - 6) % 11]
+    )
+    assert modes[0].states[0] == (body, state, 1.0)
+
+
+def test_a_changed_setting_changes_the_model_at_the_same_state(short_run):
+    """--set evaluates the same state with the changed configuration: without friction
+    the spectrum differs (the traction's slope is a large part of the spins' rates)."""
+    cfg, ds, _ = short_run
+    t, y = float(ds.attrs["final_time_s"]), ds["final_state"].values
+    with_friction = np.array([m.eigenvalue for m in modes_at(cfg, t, y)])
+    without = np.array([m.eigenvalue for m in modes_at(cfg, t, y, {"solver.friction": False})])
+    assert np.abs(np.sort_complex(with_friction) - np.sort_complex(without)).max() > 1.0
+
+
+def test_modes_prints_the_table_and_refuses_bad_input(short_run, tmp_path):
+    """The command prints the fastest growing modes with the rollers that carry them;
+    a missing file, a run of another bearing, and a bad or doubled --set exit with status
+    2 and one line, never a traceback."""
+    _, _, run = short_run
+    b1 = str(b1_file_with(tmp_path, "roller_count = 17", "roller_count = 17"))
+    ok = RUNNER.invoke(app, ["modes", b1, str(run), "-n", "3", "--set", "solver.friction=false"])
+    assert ok.exit_code == 0, ok.output
+    assert "fastest growing modes at t = 0.002 s" in ok.output
+    assert "solver.friction = false" in ok.output.replace("\n", " ")
+    assert "193 modes" in ok.output
+    other = str(b1_file_with(tmp_path, "roller_count = 17", "roller_count = 16", "z16.toml"))
+    cases = [
+        ([b1, str(tmp_path / "none.nc")], "none.nc: result file not found"),
+        ([other, str(run)], "the state has 193 values; this model has 182 states"),
+        ([b1, str(run), "--set", "solver.friction"], "expected PATH=VALUE"),
+        ([b1, str(run), "--set", "solver.rtol=1e-5,1e-6"], "one value per path"),
+    ]
+    for args, message in cases:
+        result = RUNNER.invoke(app, ["modes", *args])
+        assert result.exit_code == 2, (args, result.output)
+        assert message in " ".join(result.output.split()), result.output
+        assert "Traceback" not in result.output
