@@ -922,8 +922,9 @@ def test_settled_results_do_not_hinge_on_the_squeeze_film():
 
 
 def test_sigterm_stops_a_run_and_keeps_its_results(tmp_path):
-    """A batch system's SIGTERM stops `rollerdyn run` like Ctrl-C: exit status 143 and the
-    result file holds every output until then (issue 6, point 3)."""
+    """A batch system's SIGTERM stops `rollerdyn run` like Ctrl-C: exit status 143, the
+    result file holds every output until then (issue 6, point 3), and the last line names
+    `rollerdyn modes` for that file."""
     import signal
     import subprocess
     import sys
@@ -944,6 +945,8 @@ def test_sigterm_stops_a_run_and_keeps_its_results(tmp_path):
     proc.send_signal(signal.SIGTERM)
     output = proc.communicate(timeout=120)[0].decode()
     assert proc.returncode == 143, output
+    # and says how to see what grows at its last state (tests/test_modes.py)
+    assert f"rollerdyn modes {B1} {out} names the modes" in " ".join(output.split())
     with xr.open_dataset(out, engine="h5netcdf") as ds:
         assert ds.attrs["completed"] == 0
         assert ds.sizes["time"] >= 2

@@ -213,6 +213,11 @@ def run(
     except OSError as err:
         raise refuse(f"-o {output}: could not write the result ({err})", 1) from None
     say(_run_line(output, ds))
+    if status and ds.sizes.get("time", 0) > 0:
+        say(
+            f"if its steps were small: rollerdyn modes {config} {output} names the modes "
+            "that grow at its last state"
+        )
     if late and not status:
         error("run ended, then interrupted while its result was written; the result is whole")
         status = 143 if late[0] == signal.SIGTERM else 130
