@@ -11,7 +11,7 @@ from typer.testing import CliRunner
 from rollerdyn import _core
 from rollerdyn.cli import app
 from rollerdyn.model import Model
-from rollerdyn.modes import modes_at, state_names
+from rollerdyn.modes import FORCES_OFF, growth_by_force, modes_at, state_names
 from rollerdyn.simulation import model_parameters, simulate, write
 
 RUNNER = CliRunner()
@@ -83,17 +83,34 @@ def test_a_changed_setting_changes_the_model_at_the_same_state(short_run):
     assert np.abs(np.sort_complex(with_friction) - np.sort_complex(without)).max() > 1.0
 
 
+def test_growth_by_force_switches_each_force_off_then_all(short_run):
+    """--by-force: the model as configured, each force of FORCES_OFF off in turn, then all
+    of them off; each row is the fastest mode of modes_at with those changes."""
+    cfg, ds, _ = short_run
+    t, y = float(ds.attrs["final_time_s"]), ds["final_state"].values
+    rows = growth_by_force(cfg, t, y)
+    assert [label for label, _ in rows][1:-1] == list(FORCES_OFF)
+    assert len(rows) == len(FORCES_OFF) + 2
+    everything = {k: v for changes in FORCES_OFF.values() for k, v in changes.items()}
+    assert rows[0][1] == modes_at(cfg, t, y)[0]
+    assert rows[-1][1] == modes_at(cfg, t, y, everything)[0]
+    assert rows[1][1] == modes_at(cfg, t, y, {"solver.friction": False})[0]
+
+
 def test_modes_prints_the_table_and_refuses_bad_input(short_run, tmp_path):
     """The command prints the fastest growing modes with the rollers that carry them;
     a missing file, a run of another bearing, and a bad or doubled --set exit with status
     2 and one line, never a traceback."""
     _, _, run = short_run
     b1 = str(b1_file_with(tmp_path, "roller_count = 17", "roller_count = 17"))
-    ok = RUNNER.invoke(app, ["modes", b1, str(run), "-n", "3", "--set", "solver.friction=false"])
+    ok = RUNNER.invoke(
+        app, ["modes", b1, str(run), "-n", "3", "--set", "solver.friction=false", "--by-force"]
+    )
     assert ok.exit_code == 0, ok.output
     assert "fastest growing modes at t = 0.002 s" in ok.output
     assert "solver.friction = false" in ok.output.replace("\n", " ")
     assert "193 modes" in ok.output
+    assert "with forces switched off" in ok.output and "all of these" in ok.output
     other = str(b1_file_with(tmp_path, "roller_count = 17", "roller_count = 16", "z16.toml"))
     cases = [
         ([b1, str(tmp_path / "none.nc")], "none.nc: result file not found"),

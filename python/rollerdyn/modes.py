@@ -109,6 +109,30 @@ def modes_at(
     return modes
 
 
+#: The forces `rollerdyn modes --by-force` switches off one at a time, then all together:
+#: label -> dotted-path changes of the configuration.
+FORCES_OFF: dict[str, dict[str, Any]] = {
+    "friction (traction, boundary friction, rolling resistance)": {"solver.friction": False},
+    "contact damping": {"surfaces.damping_ratio": 0.0},
+    "race film (oil across the line-contact gaps)": {"surfaces.race_film.enabled": False},
+    "squeeze film at the flanges": {"surfaces.squeeze_film.enabled": False},
+    "drag of the oil-air mixture": {"cavity.oil_fraction": 0.0},
+}
+
+
+def growth_by_force(config: BearingConfig, t: float, state: np.ndarray) -> list[tuple[str, Mode]]:
+    """The fastest growing mode at the state as the model is, with each force of
+    :data:`FORCES_OFF` switched off in turn, and with all of them off: (what is off, the
+    mode). A growth that stays with all of them off comes from the positions (the contacts'
+    elastic laws and their geometry), not from friction, damping, films or drag."""
+    cases = [("nothing (the model as configured)", {})] + list(FORCES_OFF.items())
+    everything: dict[str, Any] = {}
+    for changes in FORCES_OFF.values():
+        everything.update(changes)
+    cases.append(("all of these", everything))
+    return [(label, modes_at(config, t, state, changes)[0]) for label, changes in cases]
+
+
 def modes_of_run(
     config: BearingConfig, run: xr.Dataset, changes: Mapping[str, Any] | None = None
 ) -> list[Mode]:

@@ -21,8 +21,9 @@ def modes_command(
     run: Annotated[
         Path,
         typer.Argument(
-            help="A result file (netCDF) of rollerdyn run; its final state is examined "
-            "(a run stopped with --t-end, Ctrl-C or an error ends where it stopped).",
+            help="A result file (netCDF) of rollerdyn run; its final state is examined: "
+            "where it ended (--t-end), or for a run stopped by Ctrl-C or an error, its last "
+            "output (to look closer to a collapse, run again with --t-end just before it).",
             metavar="RUN",
         ),
     ],
@@ -32,6 +33,16 @@ def modes_command(
             "--count", "-n", help="How many modes to print, fastest growing first.", min=1
         ),
     ] = 6,
+    by_force: Annotated[
+        bool,
+        typer.Option(
+            "--by-force",
+            help="Also print the fastest growing mode with each of friction, contact "
+            "damping, the race film, the squeeze film and drag switched off in turn, and "
+            "with all of them off (a growth that stays comes from the contacts' elastic "
+            "laws and geometry).",
+        ),
+    ] = False,
     settings: Annotated[
         list[str] | None,
         typer.Option(
@@ -51,13 +62,13 @@ def modes_command(
     and angular velocities wx, wy, wz [rad/s], inertial components; the inner ring's
     likewise) and, for each roller among them, its azimuth [deg] and contact loads [N] at
     the last output. With --set the same state is evaluated with the changed model, to
-    tell which force makes a mode (docs/dynamics.md, "Hot oil at speed: the point law's
-    radii").
+    tell which force makes a mode; --by-force does that for each damping and driving force
+    in turn (docs/dynamics.md, "Hot oil at speed: the point law's radii").
 
     Exits with status 2 for a missing or unreadable file, a run of another bearing (its
     state does not fit the configuration) or a bad --set.
     """
-    from ..modes import modes_of_run
+    from ..modes import growth_by_force, modes_of_run
     from ..report import ReportError, open_result
     from ..sweep import SweepError, parse_set
 
@@ -103,11 +114,37 @@ def modes_command(
             "; ".join(_roller_note(last, i) for i in mode.rollers[:2]),
         )
     console.print(table)
+    if by_force:
+        _print_by_force(growth_by_force(_changed_config(cfg, changes), t, ds["final_state"].values))
     unstable = sum(1 for m in modes if m.growth_rate > 0)
     say(
         f"{len(modes)} modes, {unstable} with a positive growth rate; the largest size "
         f"{max(abs(m.eigenvalue) for m in modes):.3g} 1/s"
     )
+
+
+def _changed_config(cfg, changes: dict):
+    """``cfg`` with the --set changes (validated already by the modes above)."""
+    if not changes:
+        return cfg
+    from ..config import parse_config
+    from ..sweep import changed
+
+    return parse_config(changed(cfg.model_dump(), changes), si_numbers=True)
+
+
+def _print_by_force(rows) -> None:
+    """The table of --by-force: what is off, the fastest growth rate and its states."""
+    table = Table(title="the fastest growing mode with forces switched off")
+    for col in ("switched off", "growth rate [1/s]", "frequency [Hz]", "states (share)"):
+        table.add_column(col)
+    for label, mode in rows:
+        states = ", ".join(
+            f"{body.replace('roller ', 'r').replace('inner ring', 'ring')}.{state} {share:.2f}"
+            for body, state, share in mode.states
+        )
+        table.add_row(label, f"{mode.growth_rate:.4g}", f"{mode.frequency:.4g}", states)
+    console.print(table)
 
 
 def _shown(value: object) -> str:
