@@ -117,6 +117,7 @@ def test_modes_prints_the_table_and_refuses_bad_input(short_run, tmp_path):
         ([other, str(run)], "the state has 193 values; this model has 182 states"),
         ([b1, str(run), "--set", "solver.friction"], "expected PATH=VALUE"),
         ([b1, str(run), "--set", "solver.rtol=1e-5,1e-6"], "one value per path"),
+        ([b1, str(run), "--set", "operating.temperature=hot"], "--set: invalid configuration"),
     ]
     for args, message in cases:
         result = RUNNER.invoke(app, ["modes", *args])

@@ -73,6 +73,11 @@ def state_names(rollers: int, tilt_free: bool) -> list[tuple[str, str]]:
     return names
 
 
+def names_of(core, config: BearingConfig) -> list[tuple[str, str]]:
+    """:func:`state_names` of a core model built from ``config``."""
+    return state_names(core.rollers, config.inner_ring.tilt == "free")
+
+
 def modes_at(
     config: BearingConfig,
     t: float,
@@ -95,9 +100,14 @@ def modes_at(
     y = np.asarray(state, dtype=float)
     if y.shape != (n,):
         raise ValueError(f"the state has {y.size} values; this model has {n} states")
+    if not np.all(np.isfinite(y)):
+        raise ValueError("the state holds values that are not finite numbers")
     jacobian = np.asarray(core.jacobian(float(t), y.tolist()), dtype=float).reshape(n, n)
+    if not np.all(np.isfinite(jacobian)):
+        bad = sorted({names_of(core, config)[k] for k in np.argwhere(~np.isfinite(jacobian))[:, 0]})
+        raise ValueError(f"the Jacobian at this state is not finite in the rows of {bad[:4]}")
     values, vectors = np.linalg.eig(jacobian)
-    names = state_names(core.rollers, config.inner_ring.tilt == "free")
+    names = names_of(core, config)
     order = sorted(range(n), key=lambda k: (-values[k].real, -abs(values[k])))
     modes = []
     for k in order:

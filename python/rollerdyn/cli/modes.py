@@ -87,8 +87,12 @@ def modes_command(
             raise refuse(f"--set {option}: one value per path (this is no sweep)")
         changes[path] = values[0]
     try:
-        modes = modes_of_run(cfg, ds, changes)
+        changed_cfg = _changed_config(cfg, changes)
     except (ValueError, SweepError) as err:
+        raise refuse(f"--set: {' '.join(str(err).split())}") from None
+    try:
+        modes = modes_of_run(changed_cfg, ds)
+    except ValueError as err:
         raise refuse(f"{run}: {' '.join(str(err).split())}") from None
     t = float(ds.attrs["final_time_s"])
     changed = ", ".join(f"{k} = {_shown(v)}" for k, v in changes.items())
@@ -103,19 +107,15 @@ def modes_command(
         table.add_column(col)
     last = ds.isel(time=-1) if "time" in ds.dims else None
     for mode in modes[:count]:
-        states = ", ".join(
-            f"{body.replace('roller ', 'r').replace('inner ring', 'ring')}.{state} {share:.2f}"
-            for body, state, share in mode.states
-        )
         table.add_row(
             f"{mode.growth_rate:.4g}",
             f"{mode.frequency:.4g}",
-            states,
+            _states_text(mode),
             "; ".join(_roller_note(last, i) for i in mode.rollers[:2]),
         )
     console.print(table)
     if by_force:
-        _print_by_force(growth_by_force(_changed_config(cfg, changes), t, ds["final_state"].values))
+        _print_by_force(growth_by_force(changed_cfg, t, ds["final_state"].values))
     unstable = sum(1 for m in modes if m.growth_rate > 0)
     say(
         f"{len(modes)} modes, {unstable} with a positive growth rate; the largest size "
@@ -124,7 +124,7 @@ def modes_command(
 
 
 def _changed_config(cfg, changes: dict):
-    """``cfg`` with the --set changes (validated already by the modes above)."""
+    """``cfg`` with the --set changes; ConfigError (a ValueError) naming a bad one."""
     if not changes:
         return cfg
     from ..config import parse_config
@@ -139,12 +139,16 @@ def _print_by_force(rows) -> None:
     for col in ("switched off", "growth rate [1/s]", "frequency [Hz]", "states (share)"):
         table.add_column(col)
     for label, mode in rows:
-        states = ", ".join(
-            f"{body.replace('roller ', 'r').replace('inner ring', 'ring')}.{state} {share:.2f}"
-            for body, state, share in mode.states
-        )
-        table.add_row(label, f"{mode.growth_rate:.4g}", f"{mode.frequency:.4g}", states)
+        table.add_row(label, f"{mode.growth_rate:.4g}", f"{mode.frequency:.4g}", _states_text(mode))
     console.print(table)
+
+
+def _states_text(mode) -> str:
+    """A mode's carrying states, short: ``r7.wy 1.00, r7.wz 0.62, ring.x 0.01``."""
+    return ", ".join(
+        f"{body.replace('roller ', 'r').replace('inner ring', 'ring')}.{state} {share:.2f}"
+        for body, state, share in mode.states
+    )
 
 
 def _shown(value: object) -> str:
