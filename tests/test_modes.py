@@ -71,6 +71,12 @@ def test_modes_are_the_jacobians_eigenvalues(short_run):
         else ("x", "y", "z", "theta_y", "theta_z", "vx", "vy", "vz", "wx", "wy", "wz")[(j - 6) % 11]
     )
     assert modes[0].states[0] == (body, state, 1.0)
+    broken = np.array(y, dtype=float)
+    broken[10] = np.nan
+    with pytest.raises(ValueError, match="not finite numbers"):
+        modes_at(cfg, t, broken)
+    with pytest.raises(ValueError, match="the state has 192 values; this model has 193"):
+        modes_at(cfg, t, y[:-1])
 
 
 def test_a_changed_setting_changes_the_model_at_the_same_state(short_run):
