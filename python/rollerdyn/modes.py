@@ -2,9 +2,10 @@
 eigenvalues of the Jacobian of the equations of motion (the matrix the integrator's Newton
 iteration uses) and, for each, the states that carry it.
 
-A mode with a positive real part λ grows as e^{λt}: the integrator must resolve it, so a
-run whose steps shrink to microseconds usually has one, and the states that carry it name
-the body and the motion (a roller's tilt and skew rates, a spin). ``rollerdyn modes``
+A mode with a positive real part λ grows as e^{λt}: the integrator must resolve it, and
+the states that carry it name the body and the motion (a roller's tilt and skew rates, a
+spin). Steps that shrink with no fast growing mode are held by the jumps of a force law
+instead (docs/dynamics.md, "Free inner ring tilt"). ``rollerdyn modes``
 prints them; ``changes`` evaluates the same state with switches of the configuration
 changed (e.g. ``solver.friction = false``) to tell which force makes a mode: the way
 docs/dynamics.md ("Hot oil at speed: the point law's radii") found what slows B1 with the

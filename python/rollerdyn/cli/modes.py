@@ -56,9 +56,10 @@ def modes_command(
     """Print the modes of the equations of motion at the final state of RUN: the
     eigenvalues λ of their Jacobian (the matrix of the integrator's Newton iteration),
     fastest growing first. Re λ > 0 [1/s] is a mode that grows as exp(Re λ · t): the
-    integrator must resolve it, so a run whose steps shrink to microseconds has one; the
-    table names the states that carry each (a share of the largest component: a roller's
-    position x, y, z [m], axis angles theta_y, theta_z [rad], velocities vx, vy, vz [m/s]
+    integrator must resolve it, so steps far below 1/Re λ follow it; steps that shrink
+    with no fast growing mode are held by a force law's jumps instead. The table names the
+    states that carry each (a share of the largest component: a roller's position x, y, z
+    [m], axis angles theta_y, theta_z [rad], velocities vx, vy, vz [m/s]
     and angular velocities wx, wy, wz [rad/s], inertial components; the inner ring's
     likewise) and, for each roller among them, its azimuth [deg] and contact loads [N] at
     the last output. With --set the same state is evaluated with the changed model, to
