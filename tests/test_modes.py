@@ -130,3 +130,29 @@ def test_modes_prints_the_table_and_refuses_bad_input(short_run, tmp_path):
         assert result.exit_code == 2, (args, result.output)
         assert message in " ".join(result.output.split()), result.output
         assert "Traceback" not in result.output
+
+
+def test_a_crawling_run_says_so_once(capsys):
+    """`rollerdyn run` notes once when its steps average less than 1 µs over 10 s of wall
+    time, 30 s in: it names `rollerdyn modes` for the run and, with the point law, the
+    distributed law. B1's pace (69 µs a step) says nothing."""
+    from rollerdyn.cli.run import CrawlWatch
+    from rollerdyn.simulation import Progress
+
+    def feed(watch, step):
+        # one report a second of wall time for 60 s, `step` seconds simulated per step,
+        # 1000 steps a second
+        for second in range(61):
+            n = 1000 * second
+            watch(Progress(n * step, 1.0, n, 0, 0, step), now=watch.started + second)
+
+    feed(CrawlWatch("rollerdyn modes b1.toml b1.nc", point_law=True), 69e-6)
+    assert capsys.readouterr().out == ""
+    feed(CrawlWatch("rollerdyn modes b1.toml b1.nc", point_law=True), 0.44e-6)
+    out = " ".join(capsys.readouterr().out.split())
+    assert out.count("note: the run crawls") == 1, out
+    assert "its last 10000 steps averaged 4.4e-07 s" in out
+    assert "rollerdyn modes b1.toml b1.nc" in out and 'flange_law = "distributed"' in out
+    feed(CrawlWatch("rollerdyn modes b1.toml b1.nc", point_law=False), 0.44e-6)
+    out = capsys.readouterr().out
+    assert "crawls" in out and "distributed" not in out
