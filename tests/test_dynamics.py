@@ -946,7 +946,7 @@ def test_sigterm_stops_a_run_and_keeps_its_results(tmp_path):
     output = proc.communicate(timeout=120)[0].decode()
     assert proc.returncode == 143, output
     # and says how to see what grows at its last state (tests/test_modes.py)
-    assert f"rollerdyn modes {B1} {out} names the modes" in " ".join(output.split())
+    assert f"rollerdyn modes {out} names the modes" in " ".join(output.split())
     with xr.open_dataset(out, engine="h5netcdf") as ds:
         assert ds.attrs["completed"] == 0
         assert ds.sizes["time"] >= 2

@@ -104,32 +104,59 @@ def test_growth_by_force_switches_each_force_off_then_all(short_run):
 
 
 def test_modes_prints_the_table_and_refuses_bad_input(short_run, tmp_path):
-    """The command prints the fastest growing modes with the rollers that carry them;
-    a missing file, a run of another bearing, and a bad or doubled --set exit with status
-    2 and one line, never a traceback."""
-    _, _, run = short_run
+    """The command prints the fastest growing modes with the rollers that carry them, with
+    the configuration the run records (here its SI values: the run was built in Python)
+    or one given with --config; a missing file, a run that records no configuration, a
+    --config of another bearing, and a bad or doubled --set exit with status 2 and one
+    line, never a traceback."""
+    _, ds, run = short_run
     b1 = str(b1_file_with(tmp_path, "roller_count = 17", "roller_count = 17"))
-    ok = RUNNER.invoke(
-        app, ["modes", b1, str(run), "-n", "3", "--set", "solver.friction=false", "--by-force"]
-    )
+    args = ["-n", "3", "--set", "solver.friction=false"]
+    ok = RUNNER.invoke(app, ["modes", str(run), *args, "--by-force"])
     assert ok.exit_code == 0, ok.output
     assert "fastest growing modes at t = 0.002 s" in ok.output
     assert "solver.friction = false" in ok.output.replace("\n", " ")
     assert "193 modes" in ok.output
     assert "with forces switched off" in ok.output and "all of these" in ok.output
+    given = RUNNER.invoke(app, ["modes", str(run), "--config", b1, *args])
+    assert given.exit_code == 0, given.output
+    first_row = next(line for line in ok.output.splitlines() if line.startswith("│ "))
+    assert first_row in given.output  # the same model from the file as from the record
+    bare = ds.copy()
+    bare.attrs = {k: v for k, v in ds.attrs.items() if not k.startswith("config")}
+    write(bare, tmp_path / "bare.nc")
     other = str(b1_file_with(tmp_path, "roller_count = 17", "roller_count = 16", "z16.toml"))
     cases = [
-        ([b1, str(tmp_path / "none.nc")], "none.nc: result file not found"),
-        ([other, str(run)], "the state has 193 values; this model has 182 states"),
-        ([b1, str(run), "--set", "solver.friction"], "expected PATH=VALUE"),
-        ([b1, str(run), "--set", "solver.rtol=1e-5,1e-6"], "one value per path"),
-        ([b1, str(run), "--set", "operating.temperature=hot"], "--set: invalid configuration"),
+        ([str(tmp_path / "none.nc")], "none.nc: result file not found"),
+        ([str(tmp_path / "bare.nc")], "records no configuration; give it with --config"),
+        ([str(run), "--config", other], "the state has 193 values; this model has 182 states"),
+        ([str(run), "--set", "solver.friction"], "expected PATH=VALUE"),
+        ([str(run), "--set", "solver.rtol=1e-5,1e-6"], "one value per path"),
+        ([str(run), "--set", "operating.temperature=hot"], "--set: invalid configuration"),
     ]
-    for args, message in cases:
-        result = RUNNER.invoke(app, ["modes", *args])
-        assert result.exit_code == 2, (args, result.output)
+    for case, message in cases:
+        result = RUNNER.invoke(app, ["modes", *case])
+        assert result.exit_code == 2, (case, result.output)
         assert message in " ".join(result.output.split()), result.output
         assert "Traceback" not in result.output
+
+
+def test_the_recorded_toml_and_si_values_give_the_same_model(short_run):
+    """A run read from a file records its TOML text, one built in Python its values in
+    SI; both give the same model, eigenvalue for eigenvalue (the SI values are the TOML's
+    after the unit conversion, so the same numbers)."""
+    from b1 import B1_TEXT
+
+    from rollerdyn.modes import run_config
+
+    _, ds, _ = short_run
+    assert not ds.attrs["config_toml"]  # built in Python: only config_resolved
+    with_text = ds.copy()
+    with_text.attrs = {**ds.attrs, "config_toml": B1_TEXT}
+    t, y = float(ds.attrs["final_time_s"]), ds["final_state"].values
+    from_si = [m.eigenvalue for m in modes_at(run_config(ds), t, y)]
+    from_text = [m.eigenvalue for m in modes_at(run_config(with_text), t, y)]
+    assert from_si == from_text
 
 
 def test_a_crawling_run_says_so_once(capsys):
@@ -146,13 +173,13 @@ def test_a_crawling_run_says_so_once(capsys):
             n = 1000 * second
             watch(Progress(n * step, 1.0, n, 0, 0, step), now=watch.started + second)
 
-    feed(CrawlWatch("rollerdyn modes b1.toml b1.nc", point_law=True), 69e-6)
+    feed(CrawlWatch("rollerdyn modes b1.nc", point_law=True), 69e-6)
     assert capsys.readouterr().out == ""
-    feed(CrawlWatch("rollerdyn modes b1.toml b1.nc", point_law=True), 0.44e-6)
+    feed(CrawlWatch("rollerdyn modes b1.nc", point_law=True), 0.44e-6)
     out = " ".join(capsys.readouterr().out.split())
     assert out.count("note: the run crawls") == 1, out
     assert "its last 10000 steps averaged 4.4e-07 s" in out
-    assert "rollerdyn modes b1.toml b1.nc" in out and 'flange_law = "distributed"' in out
-    feed(CrawlWatch("rollerdyn modes b1.toml b1.nc", point_law=False), 0.44e-6)
+    assert "rollerdyn modes b1.nc" in out and 'flange_law = "distributed"' in out
+    feed(CrawlWatch("rollerdyn modes b1.nc", point_law=False), 0.44e-6)
     out = capsys.readouterr().out
     assert "crawls" in out and "distributed" not in out

@@ -144,6 +144,25 @@ def growth_by_force(config: BearingConfig, t: float, state: np.ndarray) -> list[
     return [(label, modes_at(config, t, state, changes)[0]) for label, changes in cases]
 
 
+def run_config(run: xr.Dataset) -> BearingConfig:
+    """The configuration a run's result records: its TOML text as read, or, for a run
+    built in Python (a sweep's), its values resolved to SI (``config_resolved``, moved
+    fields at their present places). ValueError if it records neither, or they no longer
+    validate."""
+    import json
+    import tomllib
+
+    from .provenance import current_layout
+
+    text = run.attrs.get("config_toml")
+    if isinstance(text, str) and text.strip():
+        return parse_config(tomllib.loads(text))
+    resolved = run.attrs.get("config_resolved")
+    if isinstance(resolved, str) and resolved.strip():
+        return parse_config(current_layout(json.loads(resolved)), si_numbers=True)
+    raise ValueError("the result records no configuration; give it with --config")
+
+
 def modes_of_run(
     config: BearingConfig, run: xr.Dataset, changes: Mapping[str, Any] | None = None
 ) -> list[Mode]:

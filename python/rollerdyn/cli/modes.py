@@ -14,10 +14,6 @@ from .common import console, load, refuse, say
 
 
 def modes_command(
-    config: Annotated[
-        Path,
-        typer.Argument(help="The configuration (TOML) the run was made with.", metavar="CONFIG"),
-    ],
     run: Annotated[
         Path,
         typer.Argument(
@@ -27,6 +23,17 @@ def modes_command(
             metavar="RUN",
         ),
     ],
+    config: Annotated[
+        Path | None,
+        typer.Option(
+            "--config",
+            "-c",
+            help="The configuration (TOML) to evaluate the state with. Default: the one "
+            "the run records (its TOML text, or for a run built in Python, e.g. a sweep's, "
+            "its values in SI).",
+            metavar="CONFIG",
+        ),
+    ] = None,
     count: Annotated[
         int,
         typer.Option(
@@ -66,18 +73,25 @@ def modes_command(
     tell which force makes a mode; --by-force does that for each damping and driving force
     in turn (docs/dynamics.md, "Hot oil at speed: the point law's radii").
 
-    Exits with status 2 for a missing or unreadable file, a run of another bearing (its
-    state does not fit the configuration) or a bad --set.
+    Exits with status 2 for a missing or unreadable file, a run without a configuration
+    and no --config, a --config of another bearing (the state does not fit it) or a bad
+    --set.
     """
-    from ..modes import growth_by_force, modes_of_run
+    from ..modes import growth_by_force, modes_of_run, run_config
     from ..report import ReportError, open_result
     from ..sweep import SweepError, parse_set
 
-    cfg = load(config)
     try:
         ds = open_result(run, required=("final_state",))
     except ReportError as err:
         raise refuse(err) from None
+    if config is not None:
+        cfg = load(config)
+    else:
+        try:
+            cfg = run_config(ds)
+        except ValueError as err:
+            raise refuse(f"{run}: {' '.join(str(err).split())}") from None
     changes = {}
     for option in settings or []:
         try:

@@ -176,7 +176,7 @@ def run(
 
     status = 0
     terminated: list[int] = []
-    crawl = CrawlWatch(f"rollerdyn modes {config} {output}", cfg.surfaces.flange_law == "point")
+    crawl = CrawlWatch(f"rollerdyn modes {output}", cfg.surfaces.flange_law == "point")
     with _run_progress(cfg.name, t_start, end) as show:
         # SIGTERM (a batch system or `kill`) stops the run like Ctrl-C: at the next progress
         # report (every output time and 0.2 s of wall time), with everything computed so
@@ -216,7 +216,7 @@ def run(
     say(_run_line(output, ds))
     if status and ds.sizes.get("time", 0) > 0:
         say(
-            f"if its steps were small: rollerdyn modes {config} {output} names the modes "
+            f"if its steps were small: rollerdyn modes {output} names the modes "
             "that grow at its last state"
         )
     if late and not status:
