@@ -183,3 +183,27 @@ def test_a_crawling_run_says_so_once(capsys):
     feed(CrawlWatch("rollerdyn modes b1.nc", point_law=False), 0.44e-6)
     out = capsys.readouterr().out
     assert "crawls" in out and "distributed" not in out
+
+
+def test_a_rollers_note_names_its_flange_pairings():
+    """The table's roller note: azimuth, race and flange loads, and the pairings of its
+    flange contacts by name (rollerdyn.names.PAIRINGS; -1, no contact, left out)."""
+    import xarray as xr
+
+    from rollerdyn.cli.modes import _roller_note
+    from rollerdyn.names import PAIRINGS
+
+    last = xr.Dataset(
+        {
+            "azimuth": ("roller", [np.radians(115.0)]),
+            "inner_normal_force": ("roller", [298.0]),
+            "outer_normal_force": ("roller", [302.0]),
+            "flange_normal_force": (("roller", "flange"), [[275.0, 0.0, 0.0, 50.8]]),
+            "flange_pairing": (("roller", "flange"), np.array([[0, -1, -1, 5]], dtype=np.int8)),
+        }
+    )
+    note = _roller_note(last, 0)
+    assert note == (
+        f"roller 0: 115°, races 298/302 N, flanges up to 275 N ({PAIRINGS[0]}, {PAIRINGS[5]})"
+    )
+    assert _roller_note(last, 3) == "roller 3"  # not in the file

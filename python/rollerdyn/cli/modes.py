@@ -68,8 +68,8 @@ def modes_command(
     states that carry each (a share of the largest component: a roller's position x, y, z
     [m], axis angles theta_y, theta_z [rad], velocities vx, vy, vz [m/s]
     and angular velocities wx, wy, wz [rad/s], inertial components; the inner ring's
-    likewise) and, for each roller among them, its azimuth [deg] and contact loads [N] at
-    the last output. With --set the same state is evaluated with the changed model, to
+    likewise) and, for each roller among them, its azimuth [deg], contact loads [N] and
+    flange pairings at the last output. With --set the same state is evaluated with the changed model, to
     tell which force makes a mode; --by-force does that for each damping and driving force
     in turn (docs/dynamics.md, "Hot oil at speed: the point law's radii").
 
@@ -184,4 +184,15 @@ def _roller_note(last, i: int) -> str:
     return (
         f"roller {i}: {azimuth:.0f}°, races {value('inner_normal_force'):.3g}/"
         f"{value('outer_normal_force'):.3g} N, flanges up to {value('flange_normal_force'):.3g} N"
+        f"{_pairings(r)}"
     )
+
+
+def _pairings(r) -> str:
+    """The pairings of a roller's flange contacts at an output, e.g. `` (TO-CO, TO-CO)``."""
+    from ..names import PAIRINGS
+
+    if "flange_pairing" not in r:
+        return ""
+    found = [PAIRINGS[k] for k in r["flange_pairing"].values.tolist() if 0 <= k < len(PAIRINGS)]
+    return f" ({', '.join(found)})" if found else ""
