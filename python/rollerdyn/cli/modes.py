@@ -69,9 +69,10 @@ def modes_command(
     [m], axis angles theta_y, theta_z [rad], velocities vx, vy, vz [m/s]
     and angular velocities wx, wy, wz [rad/s], inertial components; the inner ring's
     likewise) and, for each roller among them, its azimuth [deg], contact loads [N] and
-    flange pairings at the last output. With --set the same state is evaluated with the changed model, to
-    tell which force makes a mode; --by-force does that for each damping and driving force
-    in turn (docs/dynamics.md, "Hot oil at speed: the point law's radii").
+    flange pairings at the last output. With --set the same state is evaluated with the
+    changed model, to tell which force makes a mode; --by-force does that for each damping
+    and driving force in turn (docs/dynamics.md, "Hot oil at speed: the point law's
+    radii").
 
     Exits with status 2 for a missing or unreadable file, a run without a configuration
     and no --config, a --config of another bearing (the state does not fit it) or a bad
