@@ -74,6 +74,16 @@ def state_names(rollers: int, tilt_free: bool) -> list[tuple[str, str]]:
     return names
 
 
+def changed_config(config: BearingConfig, changes: Mapping[str, Any] | None) -> BearingConfig:
+    """``config`` with dotted-path ``changes`` (values as in a file or SI numbers), validated
+    again; ConfigError (a ValueError) naming a bad one."""
+    if not changes:
+        return config
+    from .sweep import changed
+
+    return parse_config(changed(config.model_dump(), dict(changes)), si_numbers=True)
+
+
 def names_of(core, config: BearingConfig) -> list[tuple[str, str]]:
     """:func:`state_names` of a core model built from ``config``."""
     return state_names(core.rollers, config.inner_ring.tilt == "free")
@@ -92,10 +102,8 @@ def modes_at(
     from . import _core
     from .model import Model
     from .simulation import model_parameters
-    from .sweep import changed
 
-    if changes:
-        config = parse_config(changed(config.model_dump(), dict(changes)), si_numbers=True)
+    config = changed_config(config, changes)
     core = _core.Model(model_parameters(config, config.solver.detector), Model(config).traction)
     n = core.states
     y = np.asarray(state, dtype=float)

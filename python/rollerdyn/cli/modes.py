@@ -78,7 +78,7 @@ def modes_command(
     and no --config, a --config of another bearing (the state does not fit it) or a bad
     --set.
     """
-    from ..modes import growth_by_force, modes_of_run, run_config
+    from ..modes import changed_config, growth_by_force, modes_of_run, run_config
     from ..report import ReportError, open_result
     from ..sweep import SweepError, parse_set
 
@@ -103,7 +103,7 @@ def modes_command(
             raise refuse(f"--set {option}: one value per path (this is no sweep)")
         changes[path] = values[0]
     try:
-        changed_cfg = _changed_config(cfg, changes)
+        changed_cfg = changed_config(cfg, changes)
     except (ValueError, SweepError) as err:
         raise refuse(f"--set: {' '.join(str(err).split())}") from None
     try:
@@ -137,16 +137,6 @@ def modes_command(
         f"{len(modes)} modes, {unstable} with a positive growth rate; the largest size "
         f"{max(abs(m.eigenvalue) for m in modes):.3g} 1/s"
     )
-
-
-def _changed_config(cfg, changes: dict):
-    """``cfg`` with the --set changes; ConfigError (a ValueError) naming a bad one."""
-    if not changes:
-        return cfg
-    from ..config import parse_config
-    from ..sweep import changed
-
-    return parse_config(changed(cfg.model_dump(), changes), si_numbers=True)
 
 
 def _print_by_force(rows) -> None:
