@@ -11,14 +11,13 @@ same lubricant, geometry and solver settings unless they change them.
 from __future__ import annotations
 
 import copy
-import json
-import math
 import tomllib
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
 from rollerdyn.config import BearingConfig, load_config, parse_config
+from rollerdyn.config.loading import dump_toml  # noqa: F401 (the tests' TOML writer)
 
 ROOT = Path(__file__).resolve().parents[1]
 B1 = ROOT / "examples" / "b1.toml"
@@ -66,50 +65,3 @@ def b1_file_with(
     path = tmp_path / name
     path.write_text(B1_TEXT.replace(old, new, count), encoding="utf-8")
     return path
-
-
-# --------------------------------------------------------------------------- TOML writer
-
-
-def _string(text: str) -> str:
-    """A TOML basic string: JSON's escapes plus DEL (TOML forbids it unescaped)."""
-    return json.dumps(text, ensure_ascii=False).replace("\x7f", "\\u007f")
-
-
-def _key(key: str) -> str:
-    return _string(str(key))
-
-
-def _toml_value(value: Any) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        if math.isnan(value):
-            return "nan"
-        if math.isinf(value):
-            return "inf" if value > 0 else "-inf"
-        return repr(value)
-    if isinstance(value, str):
-        return _string(value)
-    if isinstance(value, list):
-        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
-    if isinstance(value, dict):
-        return "{" + ", ".join(f"{_key(k)} = {_toml_value(v)}" for k, v in value.items()) + "}"
-    raise TypeError(type(value))
-
-
-def dump_toml(data: dict, prefix: tuple = ()) -> str:
-    """TOML text of nested dicts (keys always quoted; tables as [headers])."""
-    lines, tables = [], []
-    for key, value in data.items():
-        if isinstance(value, dict) and value:
-            tables.append((key, value))
-        else:
-            lines.append(f"{_key(key)} = {_toml_value(value)}")
-    out = "\n".join(lines) + "\n"
-    for key, value in tables:
-        name = (*prefix, key)
-        out += "\n[" + ".".join(_key(k) for k in name) + "]\n" + dump_toml(value, name)
-    return out

@@ -277,8 +277,9 @@ def test_an_equilibrium_start_before_the_loads_is_noted(tmp_path):
 def test_check_says_when_run_would_refuse_the_point_law(tmp_path):
     """`check` tells what `run` would refuse before its first step: the point law's load
     check (B1 without radial load at 100 N axially puts its most loaded roller end on its
-    end face: docs/dynamics.md, "The whole B1 run"), with the refusal's own words and
-    --force; nothing for B1 itself or for the same loads with the distributed law."""
+    end face: docs/dynamics.md, "The whole B1 run"), with the refusal's own words, --force
+    and the remedy as a --set; nothing for B1 itself or for the same loads with the
+    distributed law (in a file or by --set)."""
     from b1 import variant
 
     from rollerdyn.notes import refusal_note
@@ -293,8 +294,16 @@ def test_check_says_when_run_would_refuse_the_point_law(tmp_path):
     path.write_text(text.replace('axial_load = "1000 N"', 'axial_load = "100 N"'), "utf-8")
     result = RUNNER.invoke(app, ["check", str(path)])
     assert result.exit_code == 0, result.output
-    assert "run refuses this configuration" in " ".join(result.output.split())
+    flat = " ".join(result.output.split())
+    assert "run refuses this configuration" in flat
+    assert "--set surfaces.flange_law=distributed" in flat  # the remedy as a command line
     assert "refuses" not in RUNNER.invoke(app, ["check", str(B1)]).output
+    # the same with --set: the refusal, and none with the remedy it names
+    changed = ["check", str(B1), "--set", "operating.radial_load=0 N"]
+    changed += ["--set", "operating.axial_load=100 N"]
+    assert "run refuses" in " ".join(RUNNER.invoke(app, changed).output.split())
+    remedied = RUNNER.invoke(app, [*changed, "--set", "surfaces.flange_law=distributed"])
+    assert remedied.exit_code == 0 and "refuses" not in remedied.output
 
 
 def test_run_notes_a_load_past_the_flanges_static_limit(tmp_path):
@@ -490,3 +499,57 @@ def test_ctrl_c_stops_the_whole_benchmark(monkeypatch):
     assert calls == ["semi-analytical"]
     with pytest.raises(KeyboardInterrupt):
         rollerdyn.bench_cases.run_case(cfg, "axial-0N", 10.0)
+
+
+def test_run_set_changes_the_configuration_and_resume_needs_the_same(tmp_path):
+    """`run --set PATH=VALUE` runs the file with values changed (here the distributed
+    end-flange law, the remedy the point law's refusals name, and the axial load): the
+    result records the changed configuration, its TOML text headed by the file and the
+    changes, which `rollerdyn modes` reads back; --resume continues only with the same
+    --set and names the field that differs; a bad --set exits 2 in one line before any
+    work."""
+    import tomllib
+
+    import xarray as xr
+
+    from rollerdyn.config import load_config, parse_config
+
+    out = tmp_path / "set.nc"
+    sets = ["--set", "surfaces.flange_law=distributed", "--set", "operating.axial_load=500 N"]
+    args = ["run", str(B1), "-o", str(out), "--t-end", "0.0004", *sets]
+    result = RUNNER.invoke(app, args)
+    assert result.exit_code == 0, result.output
+    expected = load_config(
+        B1, {"surfaces.flange_law": "distributed", "operating.axial_load": "500 N"}
+    )
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        text = ds.attrs["config_toml"]
+        recorded = parse_config(tomllib.loads(text))
+        assert recorded.model_dump() == expected.model_dump()
+        assert '--set operating.axial_load="500 N"' in text.splitlines()[0]
+        assert float(ds.axial_load.isel(time=-1)) == pytest.approx(
+            expected.operating.axial_load_at(4e-4), rel=1e-12
+        )
+    modes = RUNNER.invoke(app, ["modes", str(out), "-n", "1"])
+    assert modes.exit_code == 0, modes.output
+    resume = ["run", str(B1), "-o", str(out), "--t-end", "0.0005", "--resume", str(out)]
+    without = RUNNER.invoke(app, resume)
+    assert without.exit_code == 2
+    assert "surfaces.flange_law: 'distributed' -> 'point'" in without.output
+    assert "--set" in without.output and "Traceback" not in without.output
+    same = RUNNER.invoke(app, [*resume, *sets])
+    assert same.exit_code == 0, same.output
+    for bad, rule in (
+        ("surfaces.flange_law=nope", 'must be one of "point" or "distributed"'),
+        ("surfaces.flange_lw=distributed", "did you mean 'flange_law'"),
+        ("operating.axial_load=500", "no unit"),
+        ("operating.axial_load", "expected PATH=VALUE"),
+        ("operating.axial_load=1 N,2 N", "one value per path"),
+        ("name.first=x", "not a table"),
+    ):
+        refused = RUNNER.invoke(app, ["run", str(B1), "-o", str(tmp_path / "x.nc"), "--set", bad])
+        assert refused.exit_code == 2, (bad, refused.output)
+        assert rule in refused.output and "Traceback" not in refused.output, bad
+        assert not (tmp_path / "x.nc").exists()
+    twice = RUNNER.invoke(app, [*args, "--overwrite", "--set", "operating.axial_load=600 N"])
+    assert twice.exit_code == 2 and "operating.axial_load is set twice" in twice.output

@@ -5,12 +5,15 @@ from __future__ import annotations
 import math
 import re
 import sys
+import tomllib
 import types
 from pathlib import Path
 
 import numpy as np
 import pytest
-from b1 import B1_TEXT, b1_file_with, changed_b1, load_b1
+from b1 import B1_TEXT, b1_data, b1_file_with, changed_b1, load_b1
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from pydantic import BaseModel, ValidationError
 
 from rollerdyn.config import (
@@ -21,6 +24,7 @@ from rollerdyn.config import (
     load_config,
     parse_config,
 )
+from rollerdyn.config.loading import toml_text
 from rollerdyn.units import Integer, Number, Quantity, QuantityError, parse_quantity
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -1149,3 +1153,61 @@ def test_an_unknown_key_that_starts_with_a_bracket_is_named():
     text = str(err.value)
     assert "unknown key '<' in section '<top level>'" in text
     assert "name: nan" in text
+
+
+# --------------------------------------------------------------------------- --set, TOML text
+
+# TOML values as tomllib reads them (64-bit integers, finite floats: a NaN never reads back
+# equal), nested in arrays and tables, with any keys and text but lone surrogates.
+_TOML_TEXT = st.text(st.characters(exclude_categories=("Cs",)), max_size=8)
+_TOML_VALUES = st.recursive(
+    st.booleans() | st.integers(-(2**63), 2**63 - 1) | st.floats(allow_nan=False) | _TOML_TEXT,
+    lambda inner: st.lists(inner, max_size=3) | st.dictionaries(_TOML_TEXT, inner, max_size=3),
+    max_leaves=12,
+)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.dictionaries(_TOML_TEXT, _TOML_VALUES, max_size=5))
+def test_toml_text_reads_back_as_the_table(data: dict) -> None:
+    """The TOML a changed configuration is recorded as (`rollerdyn run --set`) reads back
+    as the table it was written from (tomllib, the reader of every configuration file):
+    any keys (dots, quotes, control characters, DEL), text, floats (±inf, -0.0, 1e-300),
+    integers to 64 bits, arrays of tables and tables in tables."""
+    text = toml_text(data, header="a header\nof two lines")
+    assert text is not None
+    assert text.startswith("# a header\n# of two lines\n")
+    assert tomllib.loads(text) == data
+
+
+def test_toml_text_refuses_what_does_not_read_back() -> None:
+    """A NaN reads back unequal, a set is no TOML value: no text (the result then records
+    the configuration's SI values only)."""
+    assert toml_text({"a": math.nan}) is None
+    assert toml_text({"a": {1, 2}}) is None
+    assert toml_text(b1_data()) is not None
+
+
+def test_load_config_with_changes_records_the_changed_table(tmp_path: Path) -> None:
+    """`load_config(path, changes)` (the command line's --set) changes values written as in
+    the file; its TOML text, headed by the file and the changes, validates to the same
+    configuration; a bad change is refused naming its path (--set) and the rule."""
+    from b1 import B1
+
+    changes = {"surfaces.flange_law": "distributed", "operating.axial_load": "500 N"}
+    cfg = load_config(B1, changes)
+    assert cfg.surfaces.flange_law == "distributed"
+    assert cfg.operating.axial_load == 500.0
+    assert cfg.toml_text is not None
+    first = cfg.toml_text.splitlines()[0]
+    assert first.startswith("# ") and str(B1) in first
+    assert '--set surfaces.flange_law="distributed"' in first
+    again = parse_config(tomllib.loads(cfg.toml_text))
+    assert again.model_dump() == cfg.model_dump()
+    assert load_config(B1).toml_text == B1_TEXT  # no change: the file's text as read
+    with pytest.raises(
+        ConfigError, match=r"(?s)with --set operating\.axial_load .*expected a force"
+    ):
+        load_config(B1, {"operating.axial_load": 500})
+    with pytest.raises(ConfigError, match="name is 'B1' in the configuration, not a table"):
+        load_config(B1, {"name.first": "x"})

@@ -162,5 +162,6 @@ def check_same_configuration(attrs: dict, config: BearingConfig) -> None:
     more = f" and {len(diff) - SHOWN_DIFFERENCES} more" if len(diff) > SHOWN_DIFFERENCES else ""
     raise ValueError(
         "resume: the earlier run was made with another configuration (SI values, earlier -> "
-        f"now): {shown}{more}; a run can only be continued with its own configuration"
+        f"now): {shown}{more}; a run can only be continued with its own configuration (the "
+        "same file and --set options)"
     )

@@ -128,15 +128,44 @@ def default_config() -> Path:
         raise refuse(err) from None
 
 
-def load(path: Path):
-    """The configuration in ``path``; exits with status 2 and its problems if invalid."""
+def load(path: Path, changes: dict[str, Any] | None = None):
+    """The configuration in ``path`` with the ``--set`` ``changes`` (:func:`set_options`);
+    exits with status 2 and its problems if invalid."""
     from ..config import ConfigError, load_config
 
     try:
-        return load_config(path)
+        return load_config(path, changes)
     except ConfigError as err:
         text = str(err)
         error(
             text if text.startswith("invalid configuration") else f"invalid configuration\n{text}"
         )
         raise typer.Exit(2) from None
+
+
+#: The help of a command's ``--set`` option that changes one value each.
+SET_HELP = (
+    "PATH=VALUE: a configuration value changed, written as in the file (e.g. "
+    'surfaces.flange_law=distributed, operating.axial_load="500 N", solver.friction=false); '
+    "repeat for more."
+)
+
+
+def set_options(options: list[str] | None) -> dict[str, Any]:
+    """``--set PATH=VALUE`` options as ``{path: value}`` (values read as in a TOML file);
+    exits with status 2 naming a malformed one, one with more than one value, or a path
+    given twice."""
+    from ..sweep import SweepError, parse_set
+
+    changes: dict[str, Any] = {}
+    for option in options or []:
+        try:
+            path, values = parse_set(option)
+        except SweepError as err:
+            raise refuse(err) from None
+        if len(values) != 1:
+            raise refuse(f"--set {option}: one value per path (this is no sweep)")
+        if path in changes:
+            raise refuse(f"--set {option}: {path} is set twice")
+        changes[path] = values[0]
+    return changes

@@ -10,7 +10,7 @@ from typing import Annotated
 import typer
 from rich.table import Table
 
-from .common import console, load, refuse, say
+from .common import console, load, refuse, say, set_options
 
 
 def modes_command(
@@ -80,7 +80,7 @@ def modes_command(
     """
     from ..modes import changed_config, growth_by_force, modes_of_run, run_config
     from ..report import ReportError, open_result
-    from ..sweep import SweepError, parse_set
+    from ..sweep import SweepError
 
     try:
         ds = open_result(run, required=("final_state",))
@@ -93,15 +93,7 @@ def modes_command(
             cfg = run_config(ds)
         except ValueError as err:
             raise refuse(f"{run}: {' '.join(str(err).split())}") from None
-    changes = {}
-    for option in settings or []:
-        try:
-            path, values = parse_set(option)
-        except SweepError as err:
-            raise refuse(err) from None
-        if len(values) != 1:
-            raise refuse(f"--set {option}: one value per path (this is no sweep)")
-        changes[path] = values[0]
+    changes = set_options(settings)
     try:
         changed_cfg = changed_config(cfg, changes)
     except (ValueError, SweepError) as err:

@@ -15,6 +15,7 @@ import typer
 
 from ..paths import check_output_file, remove_stale_temporaries
 from .common import (
+    SET_HELP,
     check_detector,
     checked,
     console,
@@ -24,6 +25,7 @@ from .common import (
     plain,
     refuse,
     say,
+    set_options,
     time_option,
 )
 
@@ -109,6 +111,15 @@ def run(
             "always uses one). The result does not depend on it, bit for bit.",
         ),
     ] = None,
+    settings: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--set",
+            help=SET_HELP
+            + " The result records the changed configuration (its TOML text, headed by the "
+            "file and the changes); --resume needs the same --set.",
+        ),
+    ] = None,
     force: Annotated[
         bool,
         typer.Option(
@@ -144,7 +155,7 @@ def run(
     interval = time_option("--checkpoint-interval", checkpoint_interval)
     save_every = time_option("--save-interval", save_interval, zero=True) or 0.0  # has a default
     end = time_option("--t-end", t_end)
-    cfg = load(config)
+    cfg = load(config, set_options(settings))
     # after the input checks: a bad option or file is refused before xarray and the
     # simulation's other libraries load (about 0.6 s)
     from ..notes import configuration_notes
@@ -406,8 +417,9 @@ class CrawlWatch:
         self.said = True
         law = (
             "; with the point end-flange law a known cause is a roller end nearly parallel "
-            'to a flange, which surfaces.flange_law = "distributed" avoids (docs/dynamics.md, '
-            '"Hot oil at speed: the point law\'s radii")'
+            'to a flange, which surfaces.flange_law = "distributed" avoids (--set '
+            'surfaces.flange_law=distributed; docs/dynamics.md, "Hot oil at speed: the point '
+            "law's radii\")"
             if self.point_law
             else ""
         )

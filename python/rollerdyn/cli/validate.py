@@ -10,7 +10,7 @@ import typer
 from rich.table import Table
 from rich.text import Text
 
-from .common import ConfigOption, console, default_config, load, say
+from .common import SET_HELP, ConfigOption, console, default_config, load, say, set_options
 
 
 def validate(config: ConfigOption = None) -> None:
@@ -53,6 +53,10 @@ def validate(config: ConfigOption = None) -> None:
 
 def check(
     config: Annotated[Path, typer.Argument(help="Bearing configuration (TOML).", metavar="CONFIG")],
+    settings: Annotated[
+        list[str] | None,
+        typer.Option("--set", help=SET_HELP + " As `rollerdyn run --set` would run it."),
+    ] = None,
 ) -> None:
     """Validate a configuration file and print its derived quantities (SI units).
 
@@ -68,7 +72,7 @@ def check(
     from ..model import Model
     from ..notes import configuration_notes, refusal_note
 
-    cfg = load(config)
+    cfg = load(config, set_options(settings))
     model = Model(cfg)
     g = cfg.geometry
     rows = [

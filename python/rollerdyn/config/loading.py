@@ -5,6 +5,8 @@ mapping), both returning a validated :class:`~rollerdyn.config.BearingConfig` or
 
 from __future__ import annotations
 
+import json
+import math
 import re
 import tomllib
 from collections.abc import Mapping
@@ -18,8 +20,14 @@ from .errors import ConfigError, problems_from
 from .schema import BearingConfig
 
 
-def load_config(path: str | Path) -> BearingConfig:
-    """Read and validate a TOML configuration file; raise :class:`ConfigError` if invalid."""
+def load_config(path: str | Path, changes: Mapping[str, Any] | None = None) -> BearingConfig:
+    """Read and validate a TOML configuration file; raise :class:`ConfigError` if invalid.
+
+    ``changes`` maps dotted paths to values written as in the file (``{"surfaces.flange_law":
+    "distributed", "operating.axial_load": "500 N"}``; the command line's ``--set``); they
+    replace the file's values before validation, and the configuration's
+    :attr:`~BearingConfig.toml_text` is then the changed table written as TOML, headed by a
+    comment naming the file and the changes, so a result records what made it."""
     p = Path(path)
     if not p.exists():
         raise ConfigError(f"{p}: configuration file not found", source=str(p))
@@ -41,9 +49,88 @@ def load_config(path: str | Path) -> BearingConfig:
         where = f"{p}:{m.group(1)}:{m.group(2)}" if m else f"{p}"
         reason = re.sub(r"\s*\(at (line \d+, column \d+|end of document)\)", "", msg)
         raise ConfigError(f"{where}: malformed TOML — {reason}", source=str(p)) from None
-    config = parse_config(data, source=str(p))
-    config._toml = text
+    if not changes:
+        config = parse_config(data, source=str(p))
+        config._toml = text
+        return config
+    from ..sweep import SweepError, changed
+
+    try:
+        data = changed(data, changes)
+    except SweepError as exc:
+        raise ConfigError(str(exc), source=str(p)) from None
+    config = parse_config(data, source=f"{p} with --set {', '.join(changes)}")
+    shown = " ".join(f"--set {k}={_shown(v)}" for k, v in changes.items())
+    config._toml = toml_text(data, header=f"{p} {shown}")
     return config
+
+
+def toml_text(data: Mapping[str, Any], header: str = "") -> str | None:
+    """``data`` written as TOML (:func:`dump_toml`) after ``header`` as a comment; None if
+    it holds a value TOML lacks, or if the text would not read back as ``data`` exactly
+    (a NaN)."""
+    comment = "".join(f"# {line}\n" for line in header.splitlines())
+    try:
+        text = comment + dump_toml(data)
+        same = tomllib.loads(text) == data
+    except (TypeError, tomllib.TOMLDecodeError):
+        return None
+    return text if same else None
+
+
+def dump_toml(data: Mapping[str, Any]) -> str:
+    """A table as :mod:`tomllib` reads it (tables, arrays, strings, numbers, booleans)
+    written as TOML: its values, then its sub-tables as ``[a.b]`` sections. TypeError for a
+    value of another type."""
+    lines: list[str] = []
+    _table_lines(lines, [], data)
+    return "\n".join(lines) + "\n"
+
+
+def _table_lines(lines: list[str], where: list[str], table: Mapping[str, Any]) -> None:
+    """Appends ``table``'s values, then its sub-tables as ``[a.b]`` sections."""
+    for key, value in table.items():
+        if not isinstance(value, Mapping):
+            lines.append(f"{_key(key)} = {_inline(value)}")
+    for key, value in table.items():
+        if isinstance(value, Mapping):
+            lines.extend(["", f"[{'.'.join(_key(k) for k in [*where, key])}]"])
+            _table_lines(lines, [*where, key], value)
+
+
+def _key(key: str) -> str:
+    """A TOML key: bare where it may be, else quoted."""
+    return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else _string(key)
+
+
+def _string(text: str) -> str:
+    """A TOML basic string (JSON's escapes are TOML's; DEL must be escaped too)."""
+    return json.dumps(text, ensure_ascii=False).replace("\x7f", "\\u007f")
+
+
+def _shown(value: Any) -> str:
+    """A changed value as a comment shows it: inline TOML where it is a TOML value."""
+    try:
+        return _inline(value)
+    except TypeError:
+        return repr(value)
+
+
+def _inline(value: Any) -> str:
+    """A value written inline; TypeError for a type TOML (as read by tomllib) lacks."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        return repr(value) if math.isfinite(value) else str(value)  # inf, -inf, nan
+    if isinstance(value, str):
+        return _string(value)
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(_inline(v) for v in value) + "]"
+    if isinstance(value, Mapping):
+        return "{" + ", ".join(f"{_key(k)} = {_inline(v)}" for k, v in value.items()) + "}"
+    raise TypeError(f"{type(value).__name__} is no TOML value")
 
 
 def parse_config(

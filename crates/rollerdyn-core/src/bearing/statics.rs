@@ -26,8 +26,9 @@ use crate::geometry::primitives::Vec3;
 /// What a run with the paper's point law cannot follow, and what to use instead.
 const USE_DISTRIBUTED: &str = "the paper's point contact jumps across the flat end face \
     there and a run's steps creep or collapse (docs/dynamics.md, \"Why the steps collapse at \
-    2000 N\"); use surfaces.flange_law = \"distributed\", or force the run (--force, \
-    force=True) to see it creep or stop";
+    2000 N\"); use surfaces.flange_law = \"distributed\" (rollerdyn run --set \
+    surfaces.flange_law=distributed), or force the run (--force, force=True) to see it creep \
+    or stop";
 
 impl BearingSystem<'_> {
     /// The state of steady rolling at time `t` whose positions balance the normal forces
