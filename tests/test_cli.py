@@ -553,3 +553,17 @@ def test_run_set_changes_the_configuration_and_resume_needs_the_same(tmp_path):
         assert not (tmp_path / "x.nc").exists()
     twice = RUNNER.invoke(app, [*args, "--overwrite", "--set", "operating.axial_load=600 N"])
     assert twice.exit_code == 2 and "operating.axial_load is set twice" in twice.output
+    # bytes that are not UTF-8 (kept by Python as surrogates): in a --set value refused in
+    # one line; in the file's name escaped in the recorded header (a result holds UTF-8 only)
+    odd = RUNNER.invoke(
+        app, ["run", str(B1), "-o", str(tmp_path / "x.nc"), "--set", "name=B\udcff"]
+    )
+    assert odd.exit_code == 2 and "not UTF-8 text" in odd.output
+    odd_name = tmp_path / "b\udcff1.toml"
+    odd_name.write_bytes(B1.read_bytes())
+    named = RUNNER.invoke(
+        app, ["run", str(odd_name), "-o", str(out), "--overwrite", "--t-end", "0.0002", *sets]
+    )
+    assert named.exit_code == 0, named.output
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        assert "b\\xff1.toml --set" in ds.attrs["config_toml"].splitlines()[0]

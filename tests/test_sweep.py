@@ -81,6 +81,10 @@ def test_set_values_are_read_as_in_toml():
     assert values == [{"table": [[0, "0 N"], [1, "5 N"]]}, "9 N"]
     with pytest.raises(SweepError, match="PATH=VALUE"):
         parse_set("operating.axial_load")
+    # bytes of the command line that are not UTF-8 (surrogates in Python): no result file
+    # could record the value, so it is refused, shown with the byte escaped
+    with pytest.raises(SweepError, match=r"--set name=B\\xff: not UTF-8 text"):
+        parse_set("name=B\udcff")
 
 
 def test_set_takes_ranges_a_b_n():

@@ -127,6 +127,13 @@ def parse_set(option: str) -> tuple[str, list[Any]]:
     (values read by :func:`toml_value`)."""
     if not isinstance(option, str):
         raise SweepError(f"--set {option!r}: expected a string PATH=VALUE[,VALUE...]")
+    try:
+        option.encode("utf-8")
+    except UnicodeEncodeError:
+        shown = option.encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace")
+        raise SweepError(
+            f"--set {shown}: not UTF-8 text (a result file could not record it)"
+        ) from None
     path, sep, values = option.partition("=")
     path = path.strip()
     parts = path.split(".")

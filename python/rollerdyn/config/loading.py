@@ -61,7 +61,10 @@ def load_config(path: str | Path, changes: Mapping[str, Any] | None = None) -> B
         raise ConfigError(str(exc), source=str(p)) from None
     config = parse_config(data, source=f"{p} with --set {', '.join(changes)}")
     shown = " ".join(f"--set {k}={_shown(v)}" for k, v in changes.items())
-    config._toml = toml_text(data, header=f"{p} {shown}")
+    # a file name's bytes that are not UTF-8 (kept by Python as surrogates) as \xff escapes:
+    # the text is recorded in a result file, which holds UTF-8 only
+    name = str(p).encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace")
+    config._toml = toml_text(data, header=f"{name} {shown}")
     return config
 
 
