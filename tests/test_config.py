@@ -1168,15 +1168,16 @@ _TOML_VALUES = st.recursive(
 
 
 @settings(max_examples=300, deadline=None)
-@given(st.dictionaries(_TOML_TEXT, _TOML_VALUES, max_size=5))
-def test_toml_text_reads_back_as_the_table(data: dict) -> None:
+@given(st.dictionaries(_TOML_TEXT, _TOML_VALUES, max_size=5), _TOML_TEXT)
+def test_toml_text_reads_back_as_the_table(data: dict, header: str) -> None:
     """The TOML a changed configuration is recorded as (`rollerdyn run --set`) reads back
     as the table it was written from (tomllib, the reader of every configuration file):
     any keys (dots, quotes, control characters, DEL), text, floats (±inf, -0.0, 1e-300),
-    integers to 64 bits, arrays of tables and tables in tables."""
-    text = toml_text(data, header="a header\nof two lines")
+    integers to 64 bits, arrays of tables and tables in tables; any header (a file's name
+    with control characters) is a comment that reads back as nothing."""
+    text = toml_text(data, header=f"{header}\nof two lines")
     assert text is not None
-    assert text.startswith("# a header\n# of two lines\n")
+    assert text.startswith("# ") and "# of two lines\n" in text
     assert tomllib.loads(text) == data
 
 
@@ -1200,8 +1201,8 @@ def test_load_config_with_changes_records_the_changed_table(tmp_path: Path) -> N
     assert cfg.operating.axial_load == 500.0
     assert cfg.toml_text is not None
     first = cfg.toml_text.splitlines()[0]
-    assert first.startswith("# ") and str(B1) in first
-    assert '--set surfaces.flange_law="distributed"' in first
+    assert first.startswith(f"# {B1}, changed: ")
+    assert 'surfaces.flange_law = "distributed", operating.axial_load = "500 N"' in first
     again = parse_config(tomllib.loads(cfg.toml_text))
     assert again.model_dump() == cfg.model_dump()
     assert load_config(B1).toml_text == B1_TEXT  # no change: the file's text as read
@@ -1211,3 +1212,21 @@ def test_load_config_with_changes_records_the_changed_table(tmp_path: Path) -> N
         load_config(B1, {"operating.axial_load": 500})
     with pytest.raises(ConfigError, match="name is 'B1' in the configuration, not a table"):
         load_config(B1, {"name.first": "x"})
+    # from Python: numpy's numbers and tuples are recorded as TOML numbers and arrays
+    numbers = {
+        "materials.roller.poisson_ratio": np.float64(0.29),
+        "geometry.roller.slices": np.int64(10),
+        "solver.pruning": np.bool_(False),
+        "operating.axial_load": {"table": (("0 s", "0 N"), ("0.1 s", "500 N"))},
+    }
+    from_numpy = load_config(B1, numbers)
+    assert from_numpy.toml_text is not None
+    assert parse_config(tomllib.loads(from_numpy.toml_text)) == from_numpy
+    assert from_numpy.geometry.roller.slices == 10 and from_numpy.solver.pruning is False
+    for bad in ({1: 2}, ["surfaces.flange_law=distributed"], {"": 1}):
+        with pytest.raises(ConfigError, match="expected a mapping of dotted paths"):
+            load_config(B1, bad)
+    odd = tmp_path / "b\x01.toml"  # a control character in the file's name
+    odd.write_bytes(B1.read_bytes())
+    recorded = load_config(odd, {"surfaces.flange_law": "distributed"}).toml_text
+    assert recorded is not None and recorded.startswith("# ") and "b\\u0001.toml" in recorded

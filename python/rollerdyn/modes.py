@@ -153,7 +153,7 @@ def growth_by_force(config: BearingConfig, t: float, state: np.ndarray) -> list[
 
 
 def run_config(run: xr.Dataset) -> BearingConfig:
-    """The configuration a run's result records: its TOML text as read, or, for a run
+    """The configuration a run's result records: its TOML text, or, for a run
     built in Python (a sweep's), its values resolved to SI (``config_resolved``, moved
     fields at their present places). ValueError if it records neither, or they no longer
     validate."""

@@ -17,6 +17,7 @@ __all__ = [
     "check_output_dir",
     "check_output_file",
     "is_result_file",
+    "printable",
     "process_alive",
     "remove_stale_temporaries",
     "same_file",
@@ -24,6 +25,17 @@ __all__ = [
 
 #: The first bytes of an HDF5 file (netCDF-4, what rollerdyn writes) and of classic netCDF.
 _SIGNATURES = (b"\x89HDF\r\n\x1a\n", b"CDF\x01", b"CDF\x02")
+
+
+def printable(text: object) -> str:
+    """``text`` as UTF-8 text: bytes of a file name or an argument that are not UTF-8 (kept
+    by Python as surrogates) shown as ``\\xff`` (any other surrogate as ``\\udXXX``), so it
+    can be printed and recorded in a result file."""
+    try:
+        raw = str(text).encode("utf-8", "surrogateescape")
+    except UnicodeEncodeError:  # a surrogate that is no escaped byte
+        raw = str(text).encode("utf-8", "backslashreplace")
+    return raw.decode("utf-8", "backslashreplace")
 
 
 class OutputPathError(ValueError):

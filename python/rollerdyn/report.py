@@ -352,7 +352,7 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
         )
         resolved = ds.attrs.get("config_resolved")
         if text:
-            body.append("<details open><summary>configuration (TOML, as read)</summary>")
+            body.append("<details open><summary>configuration (TOML)</summary>")
             body.append(f"<pre>{html.escape(text)}</pre></details>")
         elif isinstance(resolved, str) and resolved:
             body.append(

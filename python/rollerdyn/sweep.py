@@ -35,6 +35,7 @@ import numpy as np
 
 from .config import BearingConfig, ConfigError, _field_at, parse_config
 from .names import DETECTORS
+from .paths import printable
 from .units import SHORTEST_TIME, IntegerSpec, NumberSpec, QuantitySpec
 
 __all__ = [
@@ -127,13 +128,9 @@ def parse_set(option: str) -> tuple[str, list[Any]]:
     (values read by :func:`toml_value`)."""
     if not isinstance(option, str):
         raise SweepError(f"--set {option!r}: expected a string PATH=VALUE[,VALUE...]")
-    try:
-        option.encode("utf-8")
-    except UnicodeEncodeError:
-        shown = option.encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace")
-        raise SweepError(
-            f"--set {shown}: not UTF-8 text (a result file could not record it)"
-        ) from None
+    if printable(option) != option:
+        shown = printable(option)
+        raise SweepError(f"--set {shown}: not UTF-8 text (a result file could not record it)")
     path, sep, values = option.partition("=")
     path = path.strip()
     parts = path.split(".")

@@ -17,7 +17,7 @@ from rich.console import Console
 from rich.text import Text
 
 from ..names import DETECTORS, SEMI_ANALYTICAL, one_of
-from ..paths import OutputPathError
+from ..paths import OutputPathError, printable
 
 # markup=False: text from files and options (a bearing named "B1 [/x]", a file
 # "nope[/x].nc") is printed as it is, never read as rich markup; colours are set with
@@ -45,13 +45,8 @@ def detector_help(default: str) -> str:
 
 
 def plain(text: object) -> str:
-    """``text`` as printable text: bytes of a file name that are not UTF-8 (kept by
-    Python as surrogates) shown as ``\\xff`` instead of failing to print."""
-    try:
-        raw = str(text).encode("utf-8", "surrogateescape")
-    except UnicodeEncodeError:  # a surrogate that is no escaped byte
-        raw = str(text).encode("utf-8", "backslashreplace")
-    return raw.decode("utf-8", "backslashreplace")
+    """``text`` as printable text (:func:`rollerdyn.paths.printable`)."""
+    return printable(text)
 
 
 def say(text: object, style: str | None = None, out: Console | None = None) -> None:
@@ -164,7 +159,10 @@ def set_options(options: list[str] | None) -> dict[str, Any]:
         except SweepError as err:
             raise refuse(err) from None
         if len(values) != 1:
-            raise refuse(f"--set {option}: one value per path (this is no sweep)")
+            raise refuse(
+                f"--set {option}: one value per path (this is no sweep); a text that holds a "
+                "comma is quoted: --set 'lubricant.name=\"a, b\"'"
+            )
         if path in changes:
             raise refuse(f"--set {option}: {path} is set twice")
         changes[path] = values[0]

@@ -155,7 +155,8 @@ def run(
     interval = time_option("--checkpoint-interval", checkpoint_interval)
     save_every = time_option("--save-interval", save_interval, zero=True) or 0.0  # has a default
     end = time_option("--t-end", t_end)
-    cfg = load(config, set_options(settings))
+    changes = set_options(settings)
+    cfg = load(config, changes)
     # after the input checks: a bad option or file is refused before xarray and the
     # simulation's other libraries load (about 0.6 s)
     from ..notes import configuration_notes
@@ -168,9 +169,9 @@ def run(
         earlier = previous.attrs.get("checkpoint_interval_s")
         if earlier is not None and math.isfinite(float(earlier)) and float(earlier) > 0.0:
             interval = float(earlier)
-    if interval is not None:
-        solver = cfg.solver.model_copy(update={"checkpoint_interval": float(interval)})
-        cfg = cfg.model_copy(update={"solver": solver})
+    if interval is not None:  # a change as --set makes it, so the result records its TOML
+        changes["solver.checkpoint_interval"] = f"{float(interval)!r} s"
+        cfg = load(config, changes)
     for note in configuration_notes(cfg, end):
         say(note, "yellow")
     for tmp, pid in remove_stale_temporaries(output):

@@ -53,26 +53,51 @@ def load_config(path: str | Path, changes: Mapping[str, Any] | None = None) -> B
         config = parse_config(data, source=str(p))
         config._toml = text
         return config
+    from ..paths import printable
     from ..sweep import SweepError, changed
 
+    plain_changes = _plain_changes(changes, str(p))
     try:
-        data = changed(data, changes)
+        data = changed(data, plain_changes)
     except SweepError as exc:
         raise ConfigError(str(exc), source=str(p)) from None
-    config = parse_config(data, source=f"{p} with --set {', '.join(changes)}")
-    shown = " ".join(f"--set {k}={_shown(v)}" for k, v in changes.items())
-    # a file name's bytes that are not UTF-8 (kept by Python as surrogates) as \xff escapes:
-    # the text is recorded in a result file, which holds UTF-8 only
-    name = str(p).encode("utf-8", "surrogateescape").decode("utf-8", "backslashreplace")
-    config._toml = toml_text(data, header=f"{name} {shown}")
+    config = parse_config(data, source=f"{p} with --set {', '.join(plain_changes)}")
+    shown = ", ".join(f"{k} = {_shown(v)}" for k, v in plain_changes.items())
+    # the file's name as UTF-8 (a result file holds nothing else)
+    config._toml = toml_text(data, header=f"{printable(p)}, changed: {shown}")
     return config
+
+
+def _plain_changes(changes: Mapping[str, Any], source: str) -> dict[str, Any]:
+    """``changes`` with numpy's scalars as Python's numbers and tuples as lists (what
+    tomllib reads), so that their TOML text reads back as they are; ConfigError unless a
+    mapping of dotted paths."""
+    if not isinstance(changes, Mapping) or not all(
+        isinstance(k, str) and k.strip() for k in changes
+    ):
+        raise ConfigError(
+            f"changes = {changes!r}: expected a mapping of dotted paths to values written as "
+            'in the file, e.g. {"surfaces.flange_law": "distributed"}',
+            source=source,
+        )
+
+    def plain(value: Any) -> Any:
+        if isinstance(value, Mapping):
+            return {k: plain(v) for k, v in value.items()}
+        if isinstance(value, list | tuple):
+            return [plain(v) for v in value]
+        if not isinstance(value, str | bytes) and hasattr(value, "item"):
+            return value.item()  # a numpy scalar
+        return value
+
+    return {k.strip(): plain(v) for k, v in changes.items()}
 
 
 def toml_text(data: Mapping[str, Any], header: str = "") -> str | None:
     """``data`` written as TOML (:func:`dump_toml`) after ``header`` as a comment; None if
     it holds a value TOML lacks, or if the text would not read back as ``data`` exactly
     (a NaN)."""
-    comment = "".join(f"# {line}\n" for line in header.splitlines())
+    comment = "".join(f"# {_control_escaped(line)}\n" for line in header.splitlines())
     try:
         text = comment + dump_toml(data)
         same = tomllib.loads(text) == data
@@ -101,6 +126,12 @@ def _table_lines(lines: list[str], where: list[str], table: Mapping[str, Any]) -
             _table_lines(lines, [*where, key], value)
 
 
+def _control_escaped(text: str) -> str:
+    """``text`` with the characters a TOML comment must not hold (control characters but
+    the tab, and DEL) as ``\\uXXXX``."""
+    return re.sub(r"[\x00-\x08\x0a-\x1f\x7f]", lambda m: f"\\u{ord(m.group()):04x}", text)
+
+
 def _key(key: str) -> str:
     """A TOML key: bare where it may be, else quoted."""
     return key if re.fullmatch(r"[A-Za-z0-9_-]+", key) else _string(key)
@@ -125,8 +156,8 @@ def _inline(value: Any) -> str:
         return "true" if value else "false"
     if isinstance(value, int):
         return str(value)
-    if isinstance(value, float):
-        return repr(value) if math.isfinite(value) else str(value)  # inf, -inf, nan
+    if isinstance(value, float):  # float's own repr: numpy's shows its type
+        return float.__repr__(value) if math.isfinite(value) else str(float(value))
     if isinstance(value, str):
         return _string(value)
     if isinstance(value, list | tuple):

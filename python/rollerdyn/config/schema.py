@@ -586,8 +586,10 @@ class BearingConfig(BearingDerived, _Section):
 
     @property
     def toml_text(self) -> str | None:
-        """The TOML text this configuration was read from (:func:`load_config`), as read;
-        None for a configuration built in Python."""
+        """The TOML text this configuration was read from (:func:`load_config`): the file as
+        read, or, with changes, the changed table written as TOML (comments dropped) after a
+        comment naming the file and the changes; None for a configuration built in Python,
+        or where the changed table has no TOML text that reads back as it (a NaN)."""
         return self._toml
 
     @model_validator(mode="after")
