@@ -60,7 +60,7 @@ def load_config(path: str | Path, changes: Mapping[str, Any] | None = None) -> B
     try:
         data = changed(data, plain_changes)
     except SweepError as exc:
-        raise ConfigError(str(exc), source=str(p)) from None
+        raise ConfigError(f"invalid configuration {p}: {exc}", source=str(p)) from None
     config = parse_config(data, source=f"{p} with --set {', '.join(plain_changes)}")
     shown = ", ".join(f"{k} = {_shown(v)}" for k, v in plain_changes.items())
     # the file's name as UTF-8 (a result file holds nothing else)
