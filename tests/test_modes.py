@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from b1 import b1_file_with, variant
+from b1 import B1, b1_file_with, variant
 from typer.testing import CliRunner
 
 from rollerdyn import _core
@@ -159,30 +159,68 @@ def test_the_recorded_toml_and_si_values_give_the_same_model(short_run):
     assert from_si == from_text
 
 
-def test_a_crawling_run_says_so_once(capsys):
-    """`rollerdyn run` notes once when its steps average less than 1 µs over 10 s of wall
-    time, 30 s in: it names `rollerdyn modes` for the run and, with the point law, the
-    distributed law. B1's pace (69 µs a step) says nothing."""
-    from rollerdyn.cli.run import CrawlWatch
-    from rollerdyn.simulation import Progress
+def test_a_crawling_run_says_so_once():
+    """A run notes once when its steps average less than 1 µs over 10 s of wall time, 30 s
+    in (rollerdyn.simulation.CrawlWatch): the pace, `rollerdyn modes` and, with the point
+    law, the distributed law as a --set. B1's pace (69 µs a step) says nothing."""
+    from rollerdyn.simulation import CrawlWatch, Progress
 
-    def feed(watch, step):
+    def feed(point_law, step) -> list[str]:
         # one report a second of wall time for 60 s, `step` seconds simulated per step,
         # 1000 steps a second
+        clock = [0.0]
+        watch = CrawlWatch(point_law, clock=lambda: clock[0])
+        notes = []
         for second in range(61):
+            clock[0] = float(second)
             n = 1000 * second
-            watch(Progress(n * step, 1.0, n, 0, 0, step), now=watch.started + second)
+            note = watch(Progress(n * step, 1.0, n, 0, 0, step))
+            if note is not None:
+                notes.append(note)
+        assert watch.note == (notes[0] if notes else None)
+        return notes
 
-    feed(CrawlWatch("rollerdyn modes b1.nc", point_law=True), 69e-6)
-    assert capsys.readouterr().out == ""
-    feed(CrawlWatch("rollerdyn modes b1.nc", point_law=True), 0.44e-6)
-    out = " ".join(capsys.readouterr().out.split())
-    assert out.count("note: the run crawls") == 1, out
-    assert "its last 10000 steps averaged 4.4e-07 s" in out
-    assert "rollerdyn modes b1.nc" in out and 'flange_law = "distributed"' in out
-    feed(CrawlWatch("rollerdyn modes b1.nc", point_law=False), 0.44e-6)
-    out = capsys.readouterr().out
-    assert "crawls" in out and "distributed" not in out
+    assert feed(True, 69e-6) == []
+    (note,) = feed(True, 0.44e-6)
+    assert note.startswith("the run crawled: from t = 0.0088 s its 10000 steps averaged 4.4e-07 s")
+    assert "rollerdyn modes" in note and "--set surfaces.flange_law=distributed" in note
+    (note,) = feed(False, 0.44e-6)
+    assert "crawled" in note and "distributed" not in note
+
+
+def test_a_crawling_run_is_noted_in_its_result_and_by_run(tmp_path, monkeypatch):
+    """`simulate` calls `notice` once with the note and records it in the result,
+    `rollerdyn run` prints it with the command for its file, and a sweep's
+    summary row carries it (`summarize`). A watch that takes every pace for a crawl stands
+    in for a run that crawls for 30 s."""
+    import xarray as xr
+    from typer.testing import CliRunner
+
+    from rollerdyn import simulation
+    from rollerdyn.cli import app
+    from rollerdyn.sweep import summarize
+
+    class Eager(simulation.CrawlWatch):
+        def __init__(self, point_law, **_):
+            super().__init__(point_law, after=0.0, window=0.0, mean_step=1.0)
+
+    real = simulation.CrawlWatch
+    monkeypatch.setattr(simulation, "CrawlWatch", Eager)
+    notes: list[str] = []
+    ds = simulation.simulate(B1, t_end=2e-3, notice=notes.append)
+    assert len(notes) == 1 and notes[0].startswith("the run crawled")
+    assert ds.attrs["crawl_note"] == notes[0]
+    assert summarize(ds)["note"] == notes[0]
+    out = tmp_path / "crawl.nc"
+    result = CliRunner().invoke(app, ["run", str(B1), "-o", str(out), "--t-end", "2e-3"])
+    assert result.exit_code == 0, result.output
+    flat = " ".join(result.output.split())
+    assert flat.count("note: the run crawled") == 1
+    assert f"For this run: rollerdyn modes {out}" in flat
+    with xr.open_dataset(out, engine="h5netcdf") as written:
+        assert written.attrs["crawl_note"].startswith("the run crawled")
+    monkeypatch.setattr(simulation, "CrawlWatch", real)
+    assert "crawl_note" not in simulation.simulate(B1, t_end=2e-3).attrs
 
 
 def test_a_rollers_note_names_its_flange_pairings():

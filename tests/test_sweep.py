@@ -136,6 +136,7 @@ def test_sweep_on_two_workers_equals_the_runs_in_series(swept):
     assert list(frame["operating.axial_load [N]"]) == [0.0, 500.0]
     assert set(SUMMARY_COLUMNS) <= set(frame.columns)
     assert list(frame["status"]) == ["completed", "completed"]
+    assert list(frame["note"]) == ["", ""]  # neither crawled
     assert list(frame["file"]) == ["run_0000.nc", "run_0001.nc"]
     for i, axial in enumerate(AXIAL):
         ref = serial(axial)
@@ -508,3 +509,19 @@ def test_a_sweep_runs_from_a_thread_other_than_the_main_one(tmp_path):
     thread.join(timeout=300)
     assert outcome == [["completed"]], outcome
     assert signal.getsignal(signal.SIGINT) is before
+
+
+def test_the_summary_prints_a_runs_note_below_the_table(tmp_path, capsys):
+    """A run that crawled (its result's crawl_note, the summary's note column) is named
+    below the table with its note, as a failed run is with its error."""
+    import pandas as pd
+
+    from rollerdyn.cli.sweep import _print_summary
+
+    row = {"run": 0, "status": "completed", "error": "", "wall [s]": 1.0, "file": "r.nc"}
+    row |= {"final_time [s]": 0.1, "mean_frictional_torque [N*m]": 0.3, "steps": 9}
+    row |= {"max_race_load [N]": 1.0, "max_flange_normal_force [N]": 1.0}
+    row |= {"max_abs_srr_inner [1]": 0.1, "note": "the run crawled: from t = 0.05 s ..."}
+    failed = _print_summary(pd.DataFrame([row]), tmp_path / "b1.toml", tmp_path, [])
+    out = " ".join(capsys.readouterr().out.split())
+    assert failed == 0 and "run 0: the run crawled: from t = 0.05 s" in out

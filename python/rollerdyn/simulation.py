@@ -470,6 +470,7 @@ def simulate(
     checkpoint: Callable[[xr.Dataset], None] | None = None,
     threads: int | None = None,
     force: bool = False,
+    notice: Callable[[str], None] | None = None,
 ) -> xr.Dataset:
     """Runs ``config`` (a :class:`BearingConfig`, validated again, or the path of a TOML
     file) from its consistent start to ``t_end`` (default: the configuration's end time)
@@ -491,6 +492,11 @@ def simulate(
 
     ``checkpoint(ds)`` is called at every checkpoint (every ``solver.checkpoint_interval``
     of simulated time) with the Dataset so far (``completed`` = 0), e.g. to save it.
+
+    A run that crawls (:class:`CrawlWatch`: its steps averaging less than 1 µs of simulated
+    time over 10 s of wall time, from 30 s on) is noted once: ``notice(note)`` is called
+    then, and the Dataset (also a checkpoint's, a stopped run's) records the note in
+    ``attrs["crawl_note"]``.
 
     ``resume``: the Dataset of an earlier, unfinished run of the same configuration (an
     interrupted or failed run, or one stopped early by ``t_end``). The run continues from
@@ -518,12 +524,18 @@ def simulate(
     params = model_parameters(config, det)
     options = run_options(config, end, force)
 
+    crawl = CrawlWatch(config.surfaces.flange_law == "point")
+
     def callback(t, t_end_, steps, rhs, jac, step, at_output):
+        report = Progress(t, t_end_, steps, rhs, jac, step, at_output)
+        note = crawl(report)
+        if note is not None and notice is not None:
+            notice(note)
         if progress is None:
             return False
         # Only True (Python's or numpy's) stops; any other value, e.g. a count a callback
         # returns by accident, lets the run go on.
-        stop = progress(Progress(t, t_end_, steps, rhs, jac, step, at_output))
+        stop = progress(report)
         return isinstance(stop, (bool, np.bool_)) and bool(stop)
 
     saving = {"seconds": 0.0}
@@ -534,6 +546,7 @@ def simulate(
         if resume is not None:
             ds = _join(resume, ds)
         _stamp_forced(ds, forced)
+        _stamp_crawl(ds, crawl.note, resume)
         checkpoint(ds)
         saving["seconds"] += time.perf_counter() - started
         return False
@@ -548,6 +561,7 @@ def simulate(
     if resume is not None:
         ds = _join(resume, ds)
     _stamp_forced(ds, forced)
+    _stamp_crawl(ds, crawl.note, resume)
     if "interruption" in raw:
         # "KeyboardInterrupt: " (Ctrl-C carries no message) reads as an unfinished sentence
         cause = raw["interruption"].strip().removesuffix(":")
@@ -580,6 +594,67 @@ def _forced_past(
 
     refusal = point_law_refusal(config, end)
     return None if refusal is None else f"{FORCED_MARK}: {refusal}"
+
+
+class CrawlWatch:
+    """Notices once when a run crawls: when its steps over at least ``window`` seconds of
+    wall time, ``after`` seconds into the run, average less than ``mean_step`` of simulated
+    time (B1's whole run averages 69 µs, its full speed at 3000 rpm 12 µs; with the oil at
+    120 °C there the point law averages 0.44 µs: docs/dynamics.md, "Hot oil at speed: the
+    point law's radii"). Called with each :class:`Progress`; returns the note (one line:
+    the pace, how to find the cause, and with the point end-flange law the law that avoids
+    the known one) the first time, else None."""
+
+    def __init__(
+        self,
+        point_law: bool,
+        after: float = 30.0,
+        window: float = 10.0,
+        mean_step: float = 1e-6,
+        clock: Callable[[], float] = time.perf_counter,
+    ):
+        self.point_law, self.clock = point_law, clock
+        self.after, self.window, self.mean_step = after, window, mean_step
+        self.started = clock()
+        self.mark: tuple[float, float, int] | None = None  # (wall, time, steps)
+        self.note: str | None = None
+
+    def __call__(self, p: Progress) -> str | None:
+        now = self.clock()
+        if self.note is not None or now - self.started < self.after - self.window:
+            return None
+        if self.mark is None:
+            self.mark = (now, p.time, p.steps)
+            return None
+        wall, t, steps = self.mark
+        if now - wall < self.window or p.steps <= steps:
+            return None
+        mean = (p.time - t) / (p.steps - steps)
+        self.mark = (now, p.time, p.steps)
+        if mean >= self.mean_step:
+            return None
+        law = (
+            "; with the point end-flange law a known cause is a roller end nearly parallel "
+            'to a flange, which surfaces.flange_law = "distributed" avoids (--set '
+            'surfaces.flange_law=distributed; docs/dynamics.md, "Hot oil at speed: the point '
+            "law's radii\")"
+            if self.point_law
+            else ""
+        )
+        self.note = (
+            f"the run crawled: from t = {t:.6g} s its {p.steps - steps} steps averaged "
+            f"{mean:.2g} s of simulated time each; rollerdyn modes on its result names the "
+            f"modes that grow{law}"
+        )
+        return self.note
+
+
+def _stamp_crawl(ds: xr.Dataset, note: str | None, resume: xr.Dataset | None) -> None:
+    """Records in ``ds.attrs["crawl_note"]`` the note of a run that crawled
+    (:class:`CrawlWatch`; an earlier part's, for a resumed run whose new part did not)."""
+    earlier = None if resume is None else resume.attrs.get("crawl_note")
+    if note or earlier:
+        ds.attrs["crawl_note"] = note or earlier
 
 
 def _stamp_forced(ds: xr.Dataset, forced: str | None) -> None:

@@ -68,6 +68,8 @@ SUMMARY_COLUMNS = {
     "any roller, any output time at which the inner ring turns; NaN outputs ignored; NaN "
     "if the ring never turns: the ratio has no meaning before)",
     "steps": "integrator steps",
+    "note": "what the run noted about itself: that it crawled, with its likely cause "
+    "(attribute crawl_note of its result: rollerdyn.simulate); empty otherwise",
     "wall [s]": "wall time of the run in its worker (simulation and writing its file)",
     "file": "result file in the output directory (empty if none was written)",
 }
@@ -365,6 +367,7 @@ def summarize(ds) -> dict:
         "max_flange_normal_force [N]": finite_max(ds["flange_normal_force"].values),
         "max_abs_srr_inner [1]": max_abs_srr_inner(ds),
         "steps": int(ds.attrs.get("stats_steps", 0)),
+        "note": str(ds.attrs.get("crawl_note", "")),
     }
 
 
@@ -376,6 +379,7 @@ def _empty_numbers() -> dict:
         "max_flange_normal_force [N]": math.nan,
         "max_abs_srr_inner [1]": math.nan,
         "steps": 0,
+        "note": "",
     }
 
 

@@ -139,7 +139,9 @@ def run(
 
     Progress: on a terminal a bar shows simulated time, solver steps, speed (simulated
     time per wall second) and the time left; otherwise (a log, a pipe) one line is
-    printed at every 10 % of the simulated time and at least every 10 s.
+    printed at every 10 % of the simulated time and at least every 10 s. A run whose steps
+    average less than 1 µs of simulated time over 10 s of wall time (from 30 s on) gets one
+    note naming its likely cause (recorded as the result's crawl_note).
 
     The output is checked before the run: its folder must exist and be writable, and an
     existing file is only replaced with --overwrite (or continued with --resume naming
@@ -188,7 +190,11 @@ def run(
 
     status = 0
     terminated: list[int] = []
-    crawl = CrawlWatch(f"rollerdyn modes {output}", cfg.surfaces.flange_law == "point")
+
+    def crawl_notice(note: str) -> None:
+        modes = f"rollerdyn modes {output} (also after Ctrl-C, which keeps the result)"
+        say(f"note: {note}. For this run: {modes}", "yellow")
+
     with _run_progress(cfg.name, t_start, end) as show:
         # SIGTERM (a batch system or `kill`) stops the run like Ctrl-C: at the next progress
         # report (every output time and 0.2 s of wall time), with everything computed so
@@ -203,10 +209,11 @@ def run(
                 cfg,
                 t_end=end,
                 detector=detector,
-                progress=lambda p: _stop_if(terminated) or show(p) or crawl(p) or bool(unsaved),
+                progress=lambda p: _stop_if(terminated) or show(p) or bool(unsaved),
                 resume=previous,
                 checkpoint=checkpoint,
                 threads=threads,
+                notice=crawl_notice,
                 **({"force": True} if force else {}),
             )
         except ValueError as err:
@@ -376,60 +383,6 @@ def _run_progress(name: str, t_start: float, t_end: float):
             bar.update(task, completed=p.time, steps=p.steps, rate=rate)
 
         yield show
-
-
-class CrawlWatch:
-    """Says once, in one line, when a run crawls: when its steps over at least ``window``
-    seconds of wall time, ``after`` seconds into the run, average less than ``mean_step``
-    of simulated time (B1's whole run averages 69 µs, its full speed at 3000 rpm 12 µs;
-    with the oil at 120 °C there the point law averages 0.44 µs: docs/dynamics.md, "Hot
-    oil at speed: the point law's radii"). The line names how to find the cause
-    (``modes``, the command for the run's file) and, with the point end-flange law, the
-    law that avoids that known one."""
-
-    def __init__(
-        self,
-        modes: str,
-        point_law: bool,
-        after: float = 30.0,
-        window: float = 10.0,
-        mean_step: float = 1e-6,
-    ):
-        self.modes, self.point_law = modes, point_law
-        self.after, self.window, self.mean_step = after, window, mean_step
-        self.started = time.perf_counter()
-        self.mark: tuple[float, float, int] | None = None  # (wall, time, steps)
-        self.said = False
-
-    def __call__(self, p, now: float | None = None) -> None:
-        now = time.perf_counter() if now is None else now
-        if self.said or now - self.started < self.after - self.window:
-            return
-        if self.mark is None:
-            self.mark = (now, p.time, p.steps)
-            return
-        wall, t, steps = self.mark
-        if now - wall < self.window or p.steps <= steps:
-            return
-        mean = (p.time - t) / (p.steps - steps)
-        self.mark = (now, p.time, p.steps)
-        if mean >= self.mean_step:
-            return
-        self.said = True
-        law = (
-            "; with the point end-flange law a known cause is a roller end nearly parallel "
-            'to a flange, which surfaces.flange_law = "distributed" avoids (--set '
-            'surfaces.flange_law=distributed; docs/dynamics.md, "Hot oil at speed: the point '
-            "law's radii\")"
-            if self.point_law
-            else ""
-        )
-        say(
-            f"note: the run crawls: its last {p.steps - steps} steps averaged {mean:.2g} s of "
-            f"simulated time each; {self.modes} (after Ctrl-C, which keeps the result) names "
-            f"the modes that grow{law}",
-            "yellow",
-        )
 
 
 def _stop_if(terminated: list[int]) -> None:

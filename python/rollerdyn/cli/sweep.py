@@ -129,7 +129,9 @@ def sweep_command(
     column names: run, each swept value as given and in SI, status, error, final time
     [s], mean frictional torque over the last 20 % of the run [N*m], maximum roller race
     load [N], maximum flange normal force [N], maximum |slide-to-roll ratio| at the inner
-    race while the ring turns [1] (n/a if it never does), steps, wall time [s], file) is
+    race while the ring turns [1] (n/a if it never does), steps, a note (a run that
+    crawled: its steps averaged under 1 µs of simulated time over 10 s of wall time, with
+    its likely cause; printed below the table), wall time [s], file) is
     written to summary.parquet and printed, and drawn over the swept quantity with the most
     values, one line per combination of the others, in summary.png and summary.svg (when a
     numeric value takes two or more values). A failed run keeps its partial result and its
@@ -270,6 +272,8 @@ def _print_summary(frame, config: Path, output: Path, swept: list[str]) -> int:
             cells.append(Text(plain(_fmt(value, ".1f" if col == "wall [s]" else ".6g"))))
         table.add_row(*cells)
     console.print(table)
+    for _, row in frame[frame["note"].astype(bool)].iterrows():
+        say(f"run {row['run']}: {row['note']}", "yellow")
     failed = frame[frame["status"] != "completed"]
     for _, row in failed.iterrows():
         error(f"run {row['run']} failed: {row['error']}")
