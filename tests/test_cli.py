@@ -562,6 +562,12 @@ def test_run_set_changes_the_configuration_and_resume_needs_the_same(tmp_path):
         assert not (tmp_path / "x.nc").exists()
     twice = RUNNER.invoke(app, [*args, "--overwrite", "--set", "operating.axial_load=600 N"])
     assert twice.exit_code == 2 and "operating.axial_load is set twice" in twice.output
+    table = 'operating.load_ramp={start = "0 s", end = "20 ms", shape = "cosine"}'
+    inside = RUNNER.invoke(
+        app, [*args, "--overwrite", "--set", table, "--set", "operating.load_ramp.end=30 ms"]
+    )
+    assert inside.exit_code == 2
+    assert "overlaps --set operating.load_ramp (one sets a table" in " ".join(inside.output.split())
     # bytes that are not UTF-8 (kept by Python as surrogates): in a --set value refused in
     # one line; in the file's name escaped in the recorded header (a result holds UTF-8 only)
     odd = RUNNER.invoke(

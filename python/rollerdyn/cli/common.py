@@ -148,8 +148,8 @@ SET_HELP = (
 
 def set_options(options: list[str] | None) -> dict[str, Any]:
     """``--set PATH=VALUE`` options as ``{path: value}`` (values read as in a TOML file);
-    exits with status 2 naming a malformed one, one with more than one value, or a path
-    given twice."""
+    exits with status 2 naming a malformed one, one with more than one value, a path given
+    twice, or two paths of which one lies inside the other."""
     from ..sweep import SweepError, parse_set
 
     changes: dict[str, Any] = {}
@@ -165,5 +165,11 @@ def set_options(options: list[str] | None) -> dict[str, Any]:
             )
         if path in changes:
             raise refuse(f"--set {option}: {path} is set twice")
+        for other in changes:
+            if path.startswith(f"{other}.") or other.startswith(f"{path}."):
+                raise refuse(
+                    f"--set {option}: overlaps --set {other} (one sets a table, the other a "
+                    "key inside it); set the keys one by one"
+                )
         changes[path] = values[0]
     return changes
