@@ -410,8 +410,10 @@ pub fn line_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
     out
 }
 
-/// The oil film of one slice of a line contact across a gap or within the first σ of
-/// penetration ([`crate::tribology::hydrodynamic`]; not in the paper): Martin's load with
+/// The oil film of one slice of a line contact across a gap or within the first δ_f of
+/// penetration ([`crate::tribology::hydrodynamic`], [`RigidFilm::contact_fade`]: σ, or
+/// longer where the film at contact carries more than the elastic law over σ; not in the
+/// paper): Martin's load with
 /// the squeeze term, bounded below by zero (cavitation), along the normal; Couette shear
 /// against the sliding; and the film's rolling force, applied as the EHL rolling resistance
 /// of [`line_slice`] is (the paper's law: against both bodies' rolling; the balanced one:
@@ -425,13 +427,29 @@ pub fn film_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
         rolling,
         ..
     } = *section;
-    let Some((gap, weight)) = tri.film.gap_and_weight(penetration, kind.roughness) else {
+    let sigma = kind.roughness;
+    if !tri.film.reaches(penetration) {
         return ContactForces::default();
-    };
+    }
     let (ua, ub, rate) = section.speeds();
     let (ua_r, ub_r) = (ua.dot(&rolling), ub.dot(&rolling));
     let u_m = tri.regularised(0.5 * (ua_r + ub_r));
-    let film = film_line(tri.eta0, kind.r_eff, gap, u_m, rate, tri.film.suction_limit);
+    let film_at = |h: f64| film_line(tri.eta0, kind.r_eff, h, u_m, rate, tri.film.suction_limit);
+    // In contact the film's gap is σ: its load there sets how far it fades.
+    let (fade, at_contact) = if penetration > 0.0 {
+        let film = film_at(sigma);
+        let deflection = |q: f64| kind.law.deflection(q, 1.0);
+        (
+            RigidFilm::contact_fade(sigma, film.load, deflection),
+            Some(film),
+        )
+    } else {
+        (sigma, None)
+    };
+    let Some((gap, weight)) = tri.film.gap_and_weight(penetration, sigma, fade) else {
+        return ContactForces::default();
+    };
+    let film = at_contact.unwrap_or_else(|| film_at(gap));
     let scale = weight * length;
     let mut out = ContactForces {
         normal: scale * film.load,

@@ -12,7 +12,7 @@
 //! (`BearingSystem::penetration_bound`) without computing its slices.
 
 use super::contacts::ElementResult;
-use super::forces::{film_slice, line_slice, LineKind, Section};
+use super::forces::{film_slice, line_slice, ContactForces, LineKind, Section};
 use super::params::{BearingParams, SurfacePair};
 use super::state::Kinematics;
 use super::topology::LineContact;
@@ -302,12 +302,13 @@ impl BearingSystem<'_> {
                 self.section_into(&mut out, line, a, b, section, None);
             }
         }
-        let roughness = self.lines.kind(line).roughness;
         for (section, point) in geometry.film().iter().zip(&self.lines.film_points) {
             if geometry.slices().is_empty() {
                 out.penetration = out.penetration.max(section.penetration);
             }
-            if self.tribology.film.acts(section.penetration, roughness) {
+            // in contact a film point acts up to its fade (RigidFilm::contact_fade), which
+            // its own speeds set
+            if self.tribology.film.reaches(section.penetration) {
                 self.section_into(&mut out, line, a, b, section, Some(point.length));
             }
         }
@@ -351,7 +352,10 @@ impl BearingSystem<'_> {
             None => line_slice(tri, kind, &geometry),
             Some(_) => film_slice(tri, kind, &geometry),
         };
-        out.add_forces(&f, n, p, a, b);
+        // a film point past its fade carries nothing (adding its zeros would change no sum)
+        if film.is_none() || f != ContactForces::default() {
+            out.add_forces(&f, n, p, a, b);
+        }
     }
 }
 
@@ -415,7 +419,7 @@ mod tests {
             for (u, rate) in [(0.3, 0.0), (1e-3, 1e-3)] {
                 let load = |s: f64| {
                     let penetration = -(5e-6 - (5e-6 - end) * s / (0.5 * length));
-                    let (h, weight) = film.gap_and_weight(penetration, sigma).unwrap();
+                    let (h, weight) = film.gap_and_weight(penetration, sigma, sigma).unwrap();
                     weight * film_line(eta, r, h, u, rate, 0.0).load
                 };
                 let midpoint = |n: usize| -> f64 {

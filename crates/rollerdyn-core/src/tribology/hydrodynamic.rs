@@ -40,10 +40,16 @@
 //! its traction and rolling resistance all vanish with the load) and Martin's load is
 //! infinite. The film's gap is therefore floored at the composite roughness σ,
 //! h₀ = sqrt(gap² + σ²) for a gap and σ in contact (C¹ at zero gap), and the film's
-//! forces fade out over the first σ of penetration with a C¹ smoothstep (1 at δ = 0 with
-//! zero slope, 0 from δ = σ on), where the asperities and the EHL film carry the load.
+//! forces fade out over the first δ_f of penetration with a C¹ smoothstep (1 at δ = 0 with
+//! zero slope, 0 from δ = δ_f on), where the asperities and the EHL film carry the load.
+//! The fade length δ_f ([`RigidFilm::contact_fade`]) is σ, or longer where the film at
+//! contact carries more than the elastic law over σ (cold oil at speed): the fade never
+//! falls faster than the elastic force rises, so the sum's normal force never falls as
+//! the surfaces approach (a falling one is a negative stiffness: B1 at 8000 rpm with the
+//! oil at 20 °C had a tilting mode of its loaded rollers growing at 1.8e5 1/s with a fade
+//! over σ; docs/dynamics.md, "The film's fade into contact").
 //! The sum of film and EHL forces is therefore continuous with a continuous slope at
-//! contact, and a loaded contact (δ ≫ σ, micrometres for B1) has the paper's forces only.
+//! contact, and a loaded contact (δ ≫ δ_f, micrometres for B1) has the paper's forces only.
 //! Far away the film fades out between half the cutoff and the cutoff (the parabolic gap
 //! needs h₀ ≪ R).
 
@@ -59,6 +65,9 @@ pub const SQUEEZE_LOAD: f64 = 3.0 * SQRT_2 * PI;
 pub const ROLLING_FORCE: f64 = 4.601_34;
 /// Relative width ε of the smooth lower bound (cavitation) of the film's load.
 const CAVITATION_CLIP: f64 = 0.02;
+/// The film fades out in contact no sooner than the elastic law carries this many times
+/// the film's load at contact ([`RigidFilm::contact_fade`]).
+pub const FADE_LOAD_RATIO: f64 = 2.0;
 
 /// The settings of the film in the roller–race and roller–roller gaps.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -87,25 +96,56 @@ impl RigidFilm {
 
     /// The film's gap h₀ and weight at the signed penetration δ (negative: gap −δ) for the
     /// roughness σ: h₀ = sqrt(gap² + σ²) (σ in contact), and the weight 1 in a gap up to half
-    /// the cutoff, falling to 0 at the cutoff and over δ = 0 … σ (C¹ smoothsteps). None
-    /// where the film does not act.
-    pub fn gap_and_weight(&self, penetration: f64, roughness: f64) -> Option<(f64, f64)> {
-        if !self.acts(penetration, roughness) {
+    /// the cutoff, falling to 0 at the cutoff and over δ = 0 … `fade` in contact (C¹
+    /// smoothsteps; `fade` ≥ σ from [`Self::contact_fade`]). None where the film does not
+    /// act.
+    pub fn gap_and_weight(
+        &self,
+        penetration: f64,
+        roughness: f64,
+        fade: f64,
+    ) -> Option<(f64, f64)> {
+        if !self.acts(penetration, fade) {
             return None;
         }
         if penetration > 0.0 {
-            return Some((roughness, 1.0 - unit_smoothstep(penetration / roughness)));
+            return Some((roughness, 1.0 - unit_smoothstep(penetration / fade)));
         }
         let gap = -penetration;
         let h = (gap * gap + roughness * roughness).sqrt();
         Some((h, fade_out(gap, self.cutoff)))
     }
 
-    /// Whether the film acts at the signed penetration δ for the roughness σ: enabled,
-    /// −cutoff < δ < σ.
+    /// Whether the film acts at the signed penetration δ with the fade length δ_f in
+    /// contact: enabled, −cutoff < δ < δ_f.
     #[inline]
-    pub fn acts(&self, penetration: f64, roughness: f64) -> bool {
-        self.enabled && penetration < roughness && penetration > -self.cutoff
+    pub fn acts(&self, penetration: f64, fade: f64) -> bool {
+        self.reaches(penetration) && penetration < fade
+    }
+
+    /// Whether the film may act at the signed penetration δ, whatever its fade in contact:
+    /// enabled and δ > −cutoff.
+    #[inline]
+    pub fn reaches(&self, penetration: f64) -> bool {
+        self.enabled && penetration > -self.cutoff
+    }
+
+    /// The length δ_f over which the film fades out in contact (not in the paper): σ, or
+    /// the penetration δ_k at which the elastic law carries [`FADE_LOAD_RATIO`] times the
+    /// film's load at contact, whichever is longer (joined smoothly: sqrt(σ² + δ_k²)).
+    /// `elastic_deflection(q)` is the elastic law's penetration under q [N/m], `load` the
+    /// film's load per unit length at contact (h₀ = σ) [N/m].
+    ///
+    /// Why: the sum q_el(δ) + q_f·(1 − S(δ/δ_f)) must not fall as δ grows, or the contact
+    /// has a negative stiffness. With q_el ∝ δ^a, a ≥ 1 (eq. 11: a = 1/k₂ ≈ 1.1), its slope
+    /// is at least a·q_el(δ_f)·x^(a−1)/δ_f at x = δ/δ_f, the fade's at most
+    /// q_f·6x(1 − x)/δ_f; with q_el(δ_f) ≥ 2·q_f the first wins for every x in (0, 1),
+    /// since 6x^(2−a)(1 − x) < 2a for a in [1, 1.5] (its largest value is 1.5 for a = 1,
+    /// 1.61 for a = 1.1, 2.31 for a = 1.5; the test
+    /// `contact_fade_keeps_the_normal_force_rising`).
+    pub fn contact_fade(roughness: f64, load: f64, elastic_deflection: impl Fn(f64) -> f64) -> f64 {
+        let reach = elastic_deflection(FADE_LOAD_RATIO * load.max(0.0));
+        (roughness * roughness + reach * reach).sqrt()
     }
 }
 
@@ -359,21 +399,110 @@ mod tests {
             suction_limit: 0.0,
         };
         let sigma = 0.16e-6;
-        let (h0, w0) = film.gap_and_weight(0.0, sigma).unwrap();
+        let (h0, w0) = film.gap_and_weight(0.0, sigma, sigma).unwrap();
         assert_eq!((h0, w0), (sigma, 1.0));
         // Slopes of h and w at δ = 0 from both sides vanish (C¹ join).
         let e = 1e-12;
-        let (hp, wp) = film.gap_and_weight(e, sigma).unwrap();
-        let (hm, wm) = film.gap_and_weight(-e, sigma).unwrap();
+        let (hp, wp) = film.gap_and_weight(e, sigma, sigma).unwrap();
+        let (hm, wm) = film.gap_and_weight(-e, sigma, sigma).unwrap();
         assert!(((hp - hm) / (2.0 * e)).abs() < 1e-4);
         assert!(((wp - wm) / (2.0 * e)).abs() < 1e-2 / sigma * 1e-3);
-        assert!(film.gap_and_weight(sigma, sigma).is_none());
-        assert!(film.gap_and_weight(-100e-6, sigma).is_none());
-        assert_eq!(film.gap_and_weight(-49e-6, sigma).unwrap().1, 1.0);
-        assert!(RigidFilm::OFF.gap_and_weight(-1e-6, sigma).is_none());
+        assert!(film.gap_and_weight(sigma, sigma, sigma).is_none());
+        // a longer fade in contact: the weight at σ is that of σ/fade
+        let (_, w) = film.gap_and_weight(sigma, sigma, 2.0 * sigma).unwrap();
+        assert!((w - 0.5).abs() < 1e-12, "{w}");
+        assert!(film
+            .gap_and_weight(2.0 * sigma, sigma, 2.0 * sigma)
+            .is_none());
+        assert!(film.gap_and_weight(-100e-6, sigma, sigma).is_none());
+        assert_eq!(film.gap_and_weight(-49e-6, sigma, sigma).unwrap().1, 1.0);
+        assert!(RigidFilm::OFF.gap_and_weight(-1e-6, sigma, sigma).is_none());
+    }
+
+    /// The elastic law of eq. 11 per unit length with the exponent 1/k₂ = `a`, carrying
+    /// `q1` [N/m] at 1 µm (Palmgren's line contact: about 3.7e4 N/m for steel).
+    fn elastic_law(a: f64, q1: f64) -> crate::tribology::line_contact::LinePowerLaw {
+        // q = δ^a / k₁ with q(1 µm) = q1
+        crate::tribology::line_contact::LinePowerLaw {
+            k1: 1e-6f64.powf(a) / q1,
+            k2: 1.0 / a,
+        }
+    }
+
+    /// The normal force per unit length of elastic law and film together at the
+    /// penetrations δ ∈ (0, 1.2·fade], the film at contact (h₀ = σ) faded over `fade`.
+    fn contact_loads(
+        law: &crate::tribology::line_contact::LinePowerLaw,
+        film_load: f64,
+        sigma: f64,
+        fade: f64,
+    ) -> Vec<f64> {
+        let film = RigidFilm {
+            enabled: true,
+            cutoff: 100e-6,
+            suction_limit: 0.1e6,
+        };
+        (1..=600)
+            .map(|k| {
+                let delta = 1.2 * fade * k as f64 / 600.0;
+                let weight = film
+                    .gap_and_weight(delta, sigma, fade)
+                    .map_or(0.0, |(_, w)| w);
+                law.force(delta, 1.0) + weight * film_load
+            })
+            .collect()
+    }
+
+    /// B1's inner race at 8000 rpm with the oil at 20 °C (η₀ = 0.266 Pa s, u_m = 8.4 m/s,
+    /// R' = 1.75 mm, σ = 0.16 µm): Martin's load at contact, 1.1e5 N/m, is 30 times the
+    /// elastic law's over σ (about 4e3 N/m), and faded over σ the sum falls by nearly all
+    /// of it (a negative stiffness: the loaded rollers tilted unstably, 1.8e5 1/s;
+    /// docs/dynamics.md); faded over [`RigidFilm::contact_fade`] it rises throughout.
+    #[test]
+    fn the_contact_fade_of_cold_oil_at_speed_keeps_the_force_rising() {
+        let (sigma, law) = (0.16e-6, elastic_law(1.0 / 0.9, 3.7e4));
+        let load = film_line(0.266, 1.75e-3, sigma, 8.4, 0.0, 0.1e6).load;
+        assert!(load > 20.0 * law.force(sigma, 1.0), "{load}");
+        let over_sigma = contact_loads(&law, load, sigma, sigma);
+        let drop = over_sigma
+            .windows(2)
+            .map(|w| w[0] - w[1])
+            .fold(0.0, f64::max);
+        assert!(
+            drop > 0.0 && over_sigma[599] < 0.2 * over_sigma[0],
+            "{drop}"
+        );
+        let fade = RigidFilm::contact_fade(sigma, load, |q| law.deflection(q, 1.0));
+        assert!(fade > 5.0 * sigma, "{fade}");
+        let faded = contact_loads(&law, load, sigma, fade);
+        assert!(faded.windows(2).all(|w| w[1] > w[0]));
+        // where the film is weak (B1: 80 °C, 500 rpm: 460 N/m, a tenth of the elastic law's
+        // over σ) the fade is σ but for 2.5 %: sqrt(1 + (δ_k/σ)²), δ_k = 0.036 µm
+        let weak = film_line(0.0165, 1.75e-3, sigma, 0.52, 0.0, 0.1e6).load;
+        let fade = RigidFilm::contact_fade(sigma, weak, |q| law.deflection(q, 1.0));
+        assert!((fade / sigma - 1.025).abs() < 0.002, "{}", fade / sigma);
     }
 
     proptest! {
+        /// Whatever the oil, speed, roughness and elastic law (exponent 1/k₂ from 1 to 1.5,
+        /// stiffness over a decade about steel's), the normal force per unit length of the
+        /// elastic law and the film faded over [`RigidFilm::contact_fade`] rises strictly with
+        /// the penetration through the whole fade (the proof in its doc comment).
+        #[test]
+        fn contact_fade_keeps_the_normal_force_rising(
+            log_eta in -3.0..0.0f64, u in 0.0..30.0f64, r in 1e-3..5e-3f64,
+            sigma in 0.05e-6..0.5e-6f64, a in 1.0..1.5f64, log_q1 in 4.0..5.5f64,
+        ) {
+            let law = elastic_law(a, 10f64.powf(log_q1));
+            let load = film_line(10f64.powf(log_eta), r, sigma, u, 0.0, 0.1e6).load;
+            let fade = RigidFilm::contact_fade(sigma, load, |q| law.deflection(q, 1.0));
+            prop_assert!(fade >= sigma);
+            let loads = contact_loads(&law, load, sigma, fade);
+            for w in loads.windows(2) {
+                prop_assert!(w[1] > w[0], "{} then {}", w[0], w[1]);
+            }
+        }
+
         #[test]
         fn load_is_non_negative_and_falls_as_the_gap_opens(
             log_h in -7.0..-4.5f64, u in 0.0..5.0f64, rate in 0.0..0.1f64,
