@@ -130,8 +130,8 @@ def parse_set(option: str) -> tuple[str, list[Any]]:
     (values read by :func:`toml_value`)."""
     if not isinstance(option, str):
         raise SweepError(f"--set {option!r}: expected a string PATH=VALUE[,VALUE...]")
-    if printable(option) != option:
-        shown = printable(option)
+    shown = printable(option)
+    if shown != option:
         raise SweepError(f"--set {shown}: not UTF-8 text (a result file could not record it)")
     path, sep, values = option.partition("=")
     path = path.strip()

@@ -17,7 +17,8 @@ from rich.console import Console
 from rich.text import Text
 
 from ..names import DETECTORS, SEMI_ANALYTICAL, one_of
-from ..paths import OutputPathError, printable
+from ..paths import OutputPathError
+from ..paths import printable as plain  # text as printable (non-UTF-8 bytes escaped)
 
 # markup=False: text from files and options (a bearing named "B1 [/x]", a file
 # "nope[/x].nc") is printed as it is, never read as rich markup; colours are set with
@@ -42,11 +43,6 @@ def detector_help(default: str) -> str:
         f"Roller end / flange detector: {one_of(DETECTORS)}. "
         f"Default: solver.detector of {default} ({SEMI_ANALYTICAL})."
     )
-
-
-def plain(text: object) -> str:
-    """``text`` as printable text (:func:`rollerdyn.paths.printable`)."""
-    return printable(text)
 
 
 def say(text: object, style: str | None = None, out: Console | None = None) -> None:
