@@ -236,6 +236,18 @@ def test_bad_cases_are_refused_with_a_message(b1):
     )
 
 
+def test_a_value_may_be_quoted_as_in_the_configuration_file():
+    """`rollerdyn run --set` takes values as the TOML file writes them ("30 kN", quoted);
+    `rollerdyn statics --set` takes the same text, quoted or not, whole or value by value."""
+    expected = [0.0, 1000.0, 2000.0]
+    for text in ('"0 N":"2 kN":3', '"0 N:2 kN:3"', "'0 N':'2 kN':'3'", "0 N:2 kN:3"):
+        assert parse_range("operating.axial_load", text) == pytest.approx(expected), text
+    assert parse_range("operating.axial_load", '"30 kN"') == [pytest.approx(30e3)]
+    assert parse_range("operating.axial_load", '"1 kN", "2 kN"') == pytest.approx([1e3, 2e3])
+    with pytest.raises(StaticsError, match="empty value"):
+        parse_range("operating.axial_load", '""')
+
+
 def test_loads_the_bearing_cannot_carry_are_refused_with_the_level_reached(b1):
     """Issue 18's bad input: a load past what B1 carries gives one message with the load
     level reached and the residual (no equilibrium: 3 kN axially, past the flat position

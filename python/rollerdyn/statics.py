@@ -210,14 +210,25 @@ def check_range(
         raise StaticsError(f"{label or f'--set {path}={text}'}: {v:.6g} (SI) {rule}")
 
 
+def _unquoted(text: str) -> str:
+    """``text`` without one pair of quotes around it (``"500 rpm"`` as the configuration
+    file and ``rollerdyn run --set`` write a quantity), and without surrounding blanks."""
+    text = text.strip()
+    quote = text[:1]
+    if len(text) >= 2 and quote in ("'", '"') and text[-1] == quote and quote not in text[1:-1]:
+        return text[1:-1].strip()
+    return text
+
+
 def parse_range(path: str, text: str) -> list[float]:
     """The SI values of a sweep option: ``"a:b:n"`` (n values from a to b) or a comma list,
-    each value a quantity with its unit (``"500 rpm"``) or a bare number in the field's SI
-    unit (N, rad/s, rad, N*m)."""
+    each value a quantity with its unit (``"500 rpm"``, quoted or not) or a bare number in
+    the field's SI unit (N, rad/s, rad, N*m)."""
     _check_path(path)
     family = STATIC_FIELDS[path][1]
 
     def value(item: str) -> float:
+        item = _unquoted(item)
         try:
             number = float(item)
         except ValueError:
@@ -233,11 +244,11 @@ def parse_range(path: str, text: str) -> list[float]:
         except QuantityError as err:
             raise StaticsError(f"--set {path}={text}: {err}") from None
 
-    parts = text.split(":")
+    parts = _unquoted(text).split(":")
     if len(parts) == 3:
         a, b = value(parts[0]), value(parts[1])
         try:
-            n = int(parts[2])
+            n = int(_unquoted(parts[2]))
         except ValueError:
             raise StaticsError(
                 f"--set {path}={text}: the count after the second ':' must be an integer"
@@ -247,7 +258,7 @@ def parse_range(path: str, text: str) -> list[float]:
         return list(np.linspace(a, b, n))
     if len(parts) != 1:
         raise StaticsError(f"--set {path}={text}: expected START:STOP:COUNT or a comma list")
-    items = text.split(",")
+    items = _unquoted(text).split(",")
     if not text.strip():
         raise StaticsError(f"--set {path}={text}: no value given")
     if not all(v.strip() for v in items):

@@ -26,7 +26,8 @@ def statics_command(
             "one of operating.radial_load, operating.axial_load [N], "
             "operating.inner_ring_speed [rad/s], inner_ring.misalignment [rad], moment_y, "
             'moment_z [N*m]. Values carry a unit ("3000 rpm", "0.05 deg") or are bare '
-            'numbers in the SI unit in brackets: --set operating.radial_load="0:10000:101". '
+            'numbers in the SI unit in brackets: --set operating.radial_load="0:10000:101"; '
+            "quoted as in the configuration file or not. "
             "One value changes the case; more make a sweep (the cartesian product of all "
             "--set). Default: the configuration's loads and speed after its ramps.",
         ),
