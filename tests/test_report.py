@@ -258,6 +258,9 @@ def test_missing_or_foreign_files_exit_with_status_2_and_a_clear_message(tmp_pat
     missing = RUNNER.invoke(app, ["report", str(tmp_path / "none.nc"), "-o", "x.html"])
     assert missing.exit_code == 2 and "result file not found" in missing.output
     assert isinstance(missing.exception, SystemExit)  # no traceback
+    # a device exists but holds no result: said so, not "not found" (and never read)
+    device = RUNNER.invoke(app, ["report", "/dev/null", "-o", str(tmp_path / "x.html")])
+    assert device.exit_code == 2 and "/dev/null: not a regular file" in device.output
     garbage = tmp_path / "garbage.nc"
     garbage.write_text("not a netCDF file")
     res = RUNNER.invoke(app, ["report", str(garbage), "-o", str(tmp_path / "x.html")])

@@ -89,6 +89,8 @@ def open_result(path: Path, required: tuple[str, ...] = REQUIRED) -> xr.Dataset:
     path = Path(path)
     if path.is_dir():
         raise ReportError(f"{path}: is a folder, not a result file")
+    if path.exists() and not path.is_file():
+        raise ReportError(f"{path}: not a regular file (a device or a pipe), not a result file")
     if not path.is_file():
         raise ReportError(f"{path}: result file not found")
     if path.stat().st_size == 0:
