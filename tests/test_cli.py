@@ -138,6 +138,22 @@ def test_bench_model_times_rhs_and_jacobian(tmp_path):
     assert bad.exit_code == 2 and "--state" in bad.output and "Traceback" not in bad.output
 
 
+def test_bench_model_times_a_state_with_the_configuration_its_run_records(tmp_path):
+    """bench model --state: the run's own configuration (here the distributed end-flange
+    law, given to `run` with --set), not the default file's point law, unless --config
+    names one; the title says which law was timed."""
+    out = tmp_path / "distributed.nc"
+    args = ["run", str(B1), "-o", str(out), "--t-end", "0.0004"]
+    made = RUNNER.invoke(app, [*args, "--set", "surfaces.flange_law=distributed"])
+    assert made.exit_code == 0, made.output
+    own = RUNNER.invoke(app, ["bench", "model", "--state", str(out)])
+    assert own.exit_code == 0, own.output
+    assert "B1 (distributed end-flange law)" in " ".join(own.output.split())
+    other = RUNNER.invoke(app, ["bench", "model", "--state", str(out), "-c", str(B1)])
+    assert other.exit_code == 0, other.output
+    assert "B1 (point end-flange law)" in " ".join(other.output.split())
+
+
 def test_bench_thread_counts_are_capped_at_the_cores_and_not_repeated(monkeypatch, capsys):
     # On a machine whose process may use 2 cores, "--threads 1,4,all,2" runs each case on
     # 1 and 2 threads once each (a run never uses more threads than cores), and says that

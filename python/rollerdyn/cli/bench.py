@@ -115,9 +115,10 @@ def bench(
         Path | None,
         typer.Option(
             "--state",
-            help="model: a result file (netCDF from `rollerdyn run`) of the same "
-            "configuration whose final state is timed (default: the consistent initial "
-            "state, where nothing is loaded yet).",
+            help="model: a result file (netCDF from `rollerdyn run`) whose final state is "
+            "timed, with the configuration the run records (its TOML text, --set changes "
+            "included) unless --config names another of the same bearing (default: the "
+            "consistent initial state of --config, where nothing is loaded yet).",
         ),
     ] = None,
     statics_cases: Annotated[
@@ -180,7 +181,7 @@ def bench(
     if target in ("contact", "all"):
         bench_contact(cfg, steps)
     if target == "model":
-        bench_model(cfg, state)
+        bench_model(cfg, state, config_given=config is not None)
     if target == "statics":
         bench_statics(cfg, statics_cases)
     if target == "mbs" and cases is not None:

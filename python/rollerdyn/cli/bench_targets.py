@@ -30,32 +30,44 @@ def bench_traction(cfg, repetitions: int) -> None:
     console.print(table)
 
 
-def bench_model(cfg, state: Path | None) -> None:
-    """One right-hand side and one Jacobian of the model, timed at a state."""
+def bench_model(cfg, state: Path | None, config_given: bool = False) -> None:
+    """One right-hand side and one Jacobian of the model, timed at a state: the final state
+    of the result ``state`` with the configuration it records (``cfg`` if
+    ``config_given``), or the initial state of ``cfg``."""
     import numpy as np
 
     from .. import _core
     from ..model import Model
     from ..simulation import model_parameters
 
-    model = _core.Model(model_parameters(cfg, cfg.solver.detector), Model(cfg).traction)
     if state is None:
-        t, y, where = 0.0, model.initial_state(), "the initial state"
+        y = None
+        where = "the initial state"
     else:
+        from ..modes import run_config
         from ..report import ReportError, open_result
 
         try:
             ds = open_result(state, required=("final_state",))
         except ReportError as err:
             raise refuse(f"--state {err}") from None
+        if not config_given:
+            try:
+                cfg = run_config(ds)
+            except ValueError as err:
+                raise refuse(f"--state {state}: {' '.join(str(err).split())}") from None
         y = np.asarray(ds["final_state"].values, dtype=float).tolist()
         t = float(ds.attrs["final_time_s"])
         where = f"the final state of {state} (t = {t:.6g} s)"
+    model = _core.Model(model_parameters(cfg, cfg.solver.detector), Model(cfg).traction)
+    if y is None:
+        t, y = 0.0, model.initial_state()
     try:
         r = model.timing(t, y, 2000, 200)
     except ValueError as err:
         raise refuse(f"--state {state}: {err}") from None
-    table = Table(title=f"{cfg.name}: the model at {where}, one core")
+    law = f"{cfg.surfaces.flange_law} end-flange law"
+    table = Table(title=f"{cfg.name} ({law}): the model at {where}, one core")
     for col in ("", "time [µs]"):
         table.add_column(col)
     table.add_row("right-hand side", f"{r['rhs_seconds'] * 1e6:.1f}")
