@@ -300,6 +300,9 @@ def test_parse_quantity(text: str, family: str, expected: float) -> None:
         ("-300 degC", "temperature", "above 0 K"),
         ("nan mm", "length", "must be finite"),
         ("20 parsecz", "length", "unknown unit"),
+        # pint does not read a run-together "Nm" as newton times metre
+        ("5 Nm", "torque", 'write newton metres with a product, e.g. "5 N*m"'),
+        ("2 kNm", "torque", '"2 kN*m"'),
         (None, "length", "expected a string"),
     ],
 )

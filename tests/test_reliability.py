@@ -191,6 +191,55 @@ def test_a_bad_end_time_is_refused(b1, t_end):
         simulate(b1, t_end=t_end, threads=1)
 
 
+def test_an_end_time_of_any_real_number_type_is_taken(b1):
+    # numpy's scalars and 0-d arrays, Fraction and Decimal are numbers of seconds like a
+    # float (they were refused as "must be a finite time"); booleans and arrays are not
+    from decimal import Decimal
+    from fractions import Fraction
+
+    import numpy as np
+
+    from rollerdyn.units import parse_time
+
+    for value in (np.float32(0.5), np.int64(1), Fraction(1, 500), Decimal("0.002")):
+        assert parse_time(value, "t_end") == pytest.approx(float(value), rel=1e-7)
+    assert parse_time(np.array(0.002), "t_end") == 0.002
+    for value in (np.True_, np.array([0.002]), Decimal("NaN")):
+        with pytest.raises(ValueError, match="t_end"):
+            parse_time(value, "t_end")
+    ds = simulate(b1, t_end=np.float64(0.001), threads=1)
+    assert float(ds.attrs["final_time_s"]) == pytest.approx(0.001)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"progress": 5}, "progress = 5: must be a function"),
+        ({"checkpoint": "file.nc"}, "checkpoint = 'file.nc': must be a function"),
+        ({"notice": print, "force": "no"}, "force = 'no': must be True or False"),
+    ],
+)
+def test_bad_callbacks_and_flags_are_refused_before_the_run(b1, kwargs, match):
+    # a progress of 5 failed only at the first report, as "interrupted ... TypeError",
+    # and force="no" counted as true
+    with pytest.raises(ValueError, match=match):
+        simulate(b1, t_end=0.001, threads=1, **kwargs)
+
+
+@pytest.mark.parametrize(
+    ("path", "match"),
+    [
+        (None, "path = None: expected the configuration file's path"),
+        (5, "got int"),
+        ({"name": "B1"}, "got dict"),
+        ("", "no configuration file named"),
+    ],
+)
+def test_load_config_names_a_path_of_the_wrong_type(path, match):
+    with pytest.raises(ConfigError, match=match):
+        load_config(path)
+
+
 @pytest.mark.parametrize(
     ("option", "value"),
     [

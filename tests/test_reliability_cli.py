@@ -483,6 +483,10 @@ def test_statics_moments_take_a_torque_unit():
     one_line_saying(res.output, "moment_z", "expected a torque", "got a force")
     res = invoke("statics", B1, "--set", "operating.radial_load=3000,,7000", code=2)
     one_line_saying(res.output, "an empty value")
+    # a path given twice replaced its first values without a word (run and sweep refuse)
+    twice = ("--set", "operating.radial_load=1000 N,5 kN", "--set", "operating.radial_load=2 kN")
+    res = invoke("statics", B1, *twice, code=2)
+    one_line_saying(res.output, "operating.radial_load", "given twice")
 
 
 def test_bench_cases_refuse_t_end(tmp_path):

@@ -85,6 +85,11 @@ def test_set_values_are_read_as_in_toml():
     # could record the value, so it is refused, shown with the byte escaped
     with pytest.raises(SweepError, match=r"--set name=B\\xff: not UTF-8 text"):
         parse_set("name=B\udcff")
+    # a line break would let TOML read a second key, which the value's reading drops:
+    # refused, whatever follows it
+    for option in ("solver.rtol=1e-5\nsolver.atol=3", 'name="a"\nb=1', "solver.rtol=1e-5\t"):
+        with pytest.raises(SweepError, match="line break or control character"):
+            parse_set(option)
 
 
 def test_set_takes_ranges_a_b_n():
@@ -483,6 +488,51 @@ def test_ctrl_c_in_the_terminal_stops_the_sweep_with_one_line(tmp_path, presses)
     on_disk = {p.name for p in folder.glob("run_*.nc")}
     assert on_disk == listed, (on_disk, listed)
     assert not list(folder.glob(".run_*")), list(folder.iterdir())
+
+
+def test_sigterm_stops_the_sweep_as_ctrl_c_does(tmp_path):
+    # SIGTERM to the command alone (as `kill`, `timeout` or a batch system send it; the
+    # workers are separate processes and get nothing): the command closes the workers and
+    # writes the summary as after Ctrl-C, ends with one line naming it, exit status 143.
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    command = Path(sys.executable).parent / "rollerdyn"
+    args = [str(command), "sweep", str(B1), "--set", "operating.axial_load=500 N,1000 N,1500 N"]
+    args += ["--t-end", "0.2 s", "--workers", "2", "-o", str(tmp_path / "sw")]
+    proc = subprocess.Popen(
+        args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True
+    )
+    lines = []
+    for line in proc.stdout:  # until the runs are out on the workers
+        lines.append(line)
+        if "submitted" in line:
+            break
+    time.sleep(2.0)
+    os.kill(proc.pid, signal.SIGTERM)
+    out, _ = proc.communicate(timeout=60)
+    out = "".join(lines) + out
+    assert proc.returncode == 143, out
+    for noise in ("Traceback", "WARNING", "Exception ignored"):
+        assert noise not in out, out
+    assert "terminated (SIGTERM)" in out.strip().splitlines()[-1], out
+    frame = pd.read_parquet(tmp_path / "sw" / "summary.parquet")
+    assert set(frame["status"]) <= {"interrupted", "completed"}, frame
+    assert (frame["status"] == "interrupted").any(), frame
+
+
+def test_a_sweep_removes_what_an_earlier_sweep_wrote(tmp_path):
+    # An earlier, larger grid's run_0001.nc and run_0002.nc and its figure must not stay
+    # beside the new sweep's summary of one run (which draws no figure: one value).
+    for name in ("run_0000.nc", "run_0001.nc", "run_0002.nc", "summary.png", "summary.svg"):
+        (tmp_path / name).write_text("an earlier sweep's")
+    frame = rollerdyn.sweep(SHORT_DATA, {"operating.axial_load": ["500 N"]}, tmp_path, workers=1)
+    assert list(frame["status"]) == ["completed"]
+    assert [p.name for p in tmp_path.glob("run_*.nc")] == ["run_0000.nc"]
+    assert not (tmp_path / "summary.png").exists() and not (tmp_path / "summary.svg").exists()
 
 
 def test_a_sweep_runs_from_a_thread_other_than_the_main_one(tmp_path):

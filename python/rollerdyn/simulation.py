@@ -514,6 +514,12 @@ def simulate(
     if isinstance(threads, bool) or not isinstance(threads, numbers.Integral) or threads < 1:
         raise ValueError(f"threads = {threads!r}: must be a whole number >= 1")
     threads = int(threads)
+    for name, given in (("progress", progress), ("checkpoint", checkpoint), ("notice", notice)):
+        if given is not None and not callable(given):
+            raise ValueError(f"{name} = {given!r}: must be a function (or None)")
+    if not isinstance(force, bool | np.bool_):
+        raise ValueError(f"force = {force!r}: must be True or False")
+    force = bool(force)
     start = None
     if resume is not None:
         start = _resume_point(resume, config, det, end)

@@ -133,6 +133,11 @@ def parse_set(option: str) -> tuple[str, list[Any]]:
     shown = printable(option)
     if shown != option:
         raise SweepError(f"--set {shown}: not UTF-8 text (a result file could not record it)")
+    if any(ord(c) < 32 or ord(c) == 127 for c in option):
+        raise SweepError(
+            f"--set {option!r}: a line break or control character; one PATH=VALUE per --set "
+            "(repeat --set for more)"
+        )
     path, sep, values = option.partition("=")
     path = path.strip()
     parts = path.split(".")
@@ -480,8 +485,10 @@ def sweep(
     fields, its SI value in ``"<path> [<unit>]"``), also written to
     ``outdir/summary.parquet``, and a figure of the summary over the swept quantity with
     the most values (``outdir/summary.png``, ``.svg``; :mod:`rollerdyn.sweep_figures`;
-    none when no numeric value is swept). A scheduler that cannot be reached (within
-    ``connect_timeout`` seconds) raises :class:`SweepError` before ``outdir`` is touched.
+    none when no numeric value is swept). What an earlier sweep wrote into ``outdir``
+    (``run_XXXX.nc``, the summary and its figure) is removed first. A scheduler that cannot
+    be reached (within ``connect_timeout`` seconds) raises :class:`SweepError` before
+    ``outdir`` is touched.
     """
     from distributed import as_completed
 
@@ -506,8 +513,7 @@ def sweep(
     rows: dict[int, dict] = {}
     try:
         out.mkdir(parents=True, exist_ok=True)
-        for p in points:  # no stale result of an earlier sweep can pass for this one's
-            (out / p.file).unlink(missing_ok=True)
+        _remove_earlier_results(out)
         futures, by_key = [], {}
         for p in points:
             fut = client.submit(
@@ -567,6 +573,18 @@ def sweep(
     # titled with the bearing's name, as the operating maps are
     write_summary_figure(frame, list(parameters), out, str(points[0].data.get("name", "")))
     return frame
+
+
+def _remove_earlier_results(out: Path) -> None:
+    """Removes what an earlier sweep into ``out`` wrote (its result files, summary and
+    figure), so that none of it can pass for this sweep's: a larger earlier grid's
+    ``run_0002.nc`` beside a summary of two runs, or a figure this sweep does not draw."""
+    from .sweep_figures import FIGURE_NAME
+
+    for earlier in out.glob("run_[0-9][0-9][0-9][0-9].nc"):
+        earlier.unlink(missing_ok=True)
+    for name in (SUMMARY_FILE, f"{FIGURE_NAME}.png", f"{FIGURE_NAME}.svg"):
+        (out / name).unlink(missing_ok=True)
 
 
 def _remove_partial_files(out: Path, points) -> None:

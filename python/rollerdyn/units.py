@@ -246,6 +246,11 @@ def _show(value: Any) -> str:
     return repr(value)
 
 
+#: Newton metres written without a product sign ("Nm", "kNm", "Nmm"), which pint does not
+#: read as newton times metre.
+_RUN_TOGETHER_NEWTON_METRE = re.compile(r"^[kKmM]?Nm{1,2}$")
+
+
 def parse_quantity(value: Any, fam: str | Family, *, si_numbers: bool = False) -> float:
     """Convert ``value`` (``"20 mm"`` or a pint quantity) of family ``fam`` to an SI float.
 
@@ -278,6 +283,13 @@ def parse_quantity(value: Any, fam: str | Family, *, si_numbers: bool = False) -
             raise QuantityError(
                 f"{value.strip()!r}: one number and its unit (no thousands separators, no "
                 f"lists); {hint}"
+            )
+        if _RUN_TOGETHER_NEWTON_METRE.match(unit_text):
+            # pint reads "Nm" as one unknown-to-the-user unit, not newton times metre
+            product = unit_text.replace("Nm", "N*m", 1)
+            raise QuantityError(
+                f"unit {unit_text!r}: write newton metres with a product, e.g. "
+                f'"{text} {product}"; {hint}'
             )
         if not _plain_exponents(unit_text):
             raise QuantityError(
@@ -335,8 +347,15 @@ def parse_time(value: Any, name: str, zero: bool = False) -> float:
     shown = repr(value) if len(repr(value)) <= 40 else repr(value)[:37] + "..."
     least = "0 s" if zero else "1 ns"
     rule = f"must be a finite time of at least {least}, e.g. 50 ms, 0.05 s or 0.05 (seconds)"
-    if isinstance(value, bool) or not isinstance(value, int | float | str):
+    if isinstance(value, bool) or type(value).__name__ == "bool_":
         raise ValueError(f"{name} = {shown}: {rule}")
+    if not isinstance(value, int | float | str):
+        if not _real_scalar(value):
+            raise ValueError(f"{name} = {shown}: {rule}")
+        try:  # numpy's scalars and 0-d arrays, Fraction, Decimal: their value
+            value = float(value)
+        except (OverflowError, ValueError, TypeError):
+            raise ValueError(f"{name} = {shown}: is not finite; {rule}") from None
     try:
         seconds = float(value)
     except OverflowError:  # an int beyond any float
@@ -352,6 +371,19 @@ def parse_time(value: Any, name: str, zero: bool = False) -> float:
     if not seconds >= (0.0 if zero else SHORTEST_TIME):
         raise ValueError(f"{name} = {shown}: {rule}")
     return seconds
+
+
+def _real_scalar(value: Any) -> bool:
+    """Whether ``value`` is one real number of another type than int and float: numpy's
+    integer and floating scalars and 0-d arrays, ``fractions.Fraction``,
+    ``decimal.Decimal``."""
+    import decimal
+    import numbers
+
+    if isinstance(value, numbers.Real | decimal.Decimal):
+        return True
+    dtype, shape = getattr(value, "dtype", None), getattr(value, "shape", None)
+    return shape == () and getattr(dtype, "kind", "") in ("i", "u", "f")
 
 
 def _pint_reason(exc: Exception) -> str:

@@ -91,6 +91,8 @@ def statics_command(
         path, sep, text = option.partition("=")
         if not sep:
             raise refuse(f"--set {option!r}: expected PATH=VALUES")
+        if path.strip() in grid:
+            raise refuse(f"--set {path.strip()}: given twice; list all its values in one --set")
         try:
             grid[path.strip()] = st.parse_range(path.strip(), text)
             st.check_range(cfg, path.strip(), text, grid[path.strip()])

@@ -136,7 +136,9 @@ def sweep_command(
     values, one line per combination of the others, in summary.png and summary.svg (when a
     numeric value takes two or more values). A failed run keeps its partial result and its
     error in the summary (a cross in the figure), and the sweep goes on; the command then
-    exits with status 1.
+    exits with status 1. Ctrl-C or SIGTERM stops the sweep: the summary lists the runs that
+    finished and the others as interrupted (exit status 130 or 143). --overwrite first
+    removes the earlier sweep's result files, summary and figure.
     """
     from ..sweep import SUMMARY_FILE, SweepError, build_grid, sweep
     from ..sweep_figures import FIGURE_NAME
@@ -153,20 +155,29 @@ def sweep_command(
         overwrite=overwrite,
         hint="; pass --overwrite to replace them, or choose another folder",
     )
-    with refusing(SweepError, output):
+    with refusing(SweepError, output), _terminated_as_interrupted() as terminated:
         build_grid(config, parameters, end)  # every grid point before the cluster starts
         with _sweep_progress(console, scheduler) as progress:
-            frame = sweep(
-                config,
-                parameters,
-                output,
-                scheduler=scheduler,
-                workers=workers,
-                t_end=end,
-                detector=detector,
-                progress=progress,
-                force=force,
-            )
+            try:
+                frame = sweep(
+                    config,
+                    parameters,
+                    output,
+                    scheduler=scheduler,
+                    workers=workers,
+                    t_end=end,
+                    detector=detector,
+                    progress=progress,
+                    force=force,
+                )
+            except KeyboardInterrupt:
+                if not terminated:
+                    raise
+                error(
+                    f"rollerdyn sweep: terminated (SIGTERM); {output / SUMMARY_FILE} lists the "
+                    "runs that finished and the others as interrupted"
+                )
+                raise typer.Exit(143) from None
     failed = _print_summary(frame, config, output, list(parameters))
     figure = output / f"{FIGURE_NAME}.png"
     drawn = f", {figure} (and .svg)" if figure.is_file() else ""
@@ -176,6 +187,31 @@ def sweep_command(
     )
     if failed:
         raise typer.Exit(1)
+
+
+@contextlib.contextmanager
+def _terminated_as_interrupted():
+    """SIGTERM (a batch system's stop, `kill`, `timeout`) stops the sweep as Ctrl-C does:
+    the workers are closed and the summary written with the runs that finished. Yields the
+    list that records it; a second SIGTERM while the summary is written is only recorded."""
+    import signal
+    import threading
+
+    received: list[int] = []
+
+    def stop(signum, _frame):
+        received.append(signum)
+        if len(received) == 1:
+            raise KeyboardInterrupt("terminated by SIGTERM")
+
+    if threading.current_thread() is not threading.main_thread():
+        yield received
+        return
+    previous = signal.signal(signal.SIGTERM, stop)
+    try:
+        yield received
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 def _parameters(sets: list[str]) -> dict[str, list[Any]]:

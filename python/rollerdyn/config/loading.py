@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 import tomllib
 from collections.abc import Mapping
@@ -28,6 +29,13 @@ def load_config(path: str | Path, changes: Mapping[str, Any] | None = None) -> B
     replace the file's values before validation, and the configuration's
     :attr:`~BearingConfig.toml_text` is then the changed table written as TOML, headed by a
     comment naming the file and the changes, so a result records what made it."""
+    if not isinstance(path, str | os.PathLike) or isinstance(path, bytes):
+        raise ConfigError(
+            f"path = {path!r}: expected the configuration file's path (a str or a "
+            f"pathlib.Path), got {type(path).__name__}"
+        )
+    if isinstance(path, str) and not path.strip():
+        raise ConfigError("path = '': no configuration file named")
     p = Path(path)
     if not p.exists():
         raise ConfigError(f"{p}: configuration file not found", source=str(p))
