@@ -133,6 +133,10 @@ def test_modes_prints_the_table_and_refuses_bad_input(short_run, tmp_path):
         ([str(run), "--set", "solver.friction"], "expected PATH=VALUE"),
         ([str(run), "--set", "solver.rtol=1e-5,1e-6"], "one value per path"),
         ([str(run), "--set", "operating.temperature=hot"], "--set: invalid configuration"),
+        # read as `run --set` reads it: a bare number of a dimensional field has no unit
+        # (it was taken as SI: 90 for a temperature as 90 K)
+        ([str(run), "--set", "operating.temperature=90"], "a bare number is ambiguous"),
+        ([str(run), "--config", b1, "--set", "operating.radial_load=50"], "bare number"),
     ]
     for case, message in cases:
         result = RUNNER.invoke(app, ["modes", *case])
@@ -157,6 +161,11 @@ def test_the_recorded_toml_and_si_values_give_the_same_model(short_run):
     from_si = [m.eigenvalue for m in modes_at(run_config(ds), t, y)]
     from_text = [m.eigenvalue for m in modes_at(run_config(with_text), t, y)]
     assert from_si == from_text
+    # changes read as in the file from either record: with its unit, or refused without
+    for run in (ds, with_text):
+        assert run_config(run, {"operating.axial_load": "0.5 kN"}).operating.axial_load == 500
+        with pytest.raises(ValueError, match="bare number is ambiguous"):
+            run_config(run, {"operating.axial_load": 500})
 
 
 def test_a_crawling_run_says_so_once():

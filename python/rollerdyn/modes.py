@@ -152,23 +152,43 @@ def growth_by_force(config: BearingConfig, t: float, state: np.ndarray) -> list[
     return [(label, modes_at(config, t, state, changes)[0]) for label, changes in cases]
 
 
-def run_config(run: xr.Dataset) -> BearingConfig:
+def run_config(run: xr.Dataset, changes: Mapping[str, Any] | None = None) -> BearingConfig:
     """The configuration a run's result records: its TOML text, or, for a run
     built in Python (a sweep's), its values resolved to SI (``config_resolved``, moved
-    fields at their present places). ValueError if it records neither, or they no longer
-    validate."""
+    fields at their present places); with ``changes`` (dotted paths, values written as in
+    the file, as ``rollerdyn run --set`` takes them: a dimensional value needs its unit)
+    applied. ValueError if it records neither, or they no longer validate."""
     import json
     import tomllib
 
     from .provenance import current_layout
+    from .sweep import changed
 
+    changes = dict(changes or {})
     text = run.attrs.get("config_toml")
     if isinstance(text, str) and text.strip():
-        return parse_config(tomllib.loads(text))
+        return parse_config(changed(tomllib.loads(text), changes))
     resolved = run.attrs.get("config_resolved")
     if isinstance(resolved, str) and resolved.strip():
-        return parse_config(current_layout(json.loads(resolved)), si_numbers=True)
+        _refuse_bare_numbers(changes)
+        data = changed(current_layout(json.loads(resolved)), changes)
+        return parse_config(data, si_numbers=True)
     raise ValueError("the result records no configuration; give it with --config")
+
+
+def _refuse_bare_numbers(changes: Mapping[str, Any]) -> None:
+    """A bare number for a dimensional field is ambiguous, as in a file (the SI values of a
+    sweep's record would take it as SI without a word)."""
+    from .sweep import _si_unit
+
+    for path, value in changes.items():
+        unit = _si_unit(path)
+        number = isinstance(value, int | float) and not isinstance(value, bool)
+        if number and unit not in (None, "1", ""):
+            raise ValueError(
+                f"{path} = {value!r}: a bare number is ambiguous (no unit); write it with its "
+                f'unit, e.g. "{value} {unit}"'
+            )
 
 
 def modes_of_run(

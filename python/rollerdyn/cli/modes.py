@@ -78,7 +78,7 @@ def modes_command(
     and no --config, a --config of another bearing (the state does not fit it) or a bad
     --set.
     """
-    from ..modes import changed_config, growth_by_force, modes_of_run, run_config
+    from ..modes import growth_by_force, modes_of_run, run_config
     from ..report import ReportError, open_result
     from ..sweep import SweepError
 
@@ -86,18 +86,18 @@ def modes_command(
         ds = open_result(run, required=("final_state",))
     except ReportError as err:
         raise refuse(err) from None
+    changes = set_options(settings)
     if config is not None:
-        cfg = load(config)
+        changed_cfg = cfg = load(config, changes)  # --set read as `run` reads it
     else:
         try:
             cfg = run_config(ds)
         except ValueError as err:
             raise refuse(f"{run}: {' '.join(str(err).split())}") from None
-    changes = set_options(settings)
-    try:
-        changed_cfg = changed_config(cfg, changes)
-    except (ValueError, SweepError) as err:
-        raise refuse(f"--set: {' '.join(str(err).split())}") from None
+        try:
+            changed_cfg = run_config(ds, changes)
+        except (ValueError, SweepError) as err:
+            raise refuse(f"--set: {' '.join(str(err).split())}") from None
     try:
         modes = modes_of_run(changed_cfg, ds)
     except ValueError as err:
