@@ -154,6 +154,28 @@ def test_bench_model_times_a_state_with_the_configuration_its_run_records(tmp_pa
     assert "B1 (point end-flange law)" in " ".join(other.output.split())
 
 
+def test_compare_and_modes_note_runs_of_another_bearing(tmp_path):
+    """Two runs of different bearings (here 5 and 6 mm rollers, the same roller count) are
+    compared, and a state evaluated with another bearing's --config, with a note naming
+    what differs: the differences are then not a method's or round-off's."""
+    runs = {}
+    for name, sets in (("b1", []), ("long", ["--set", 'geometry.roller.length="6 mm"'])):
+        runs[name] = tmp_path / f"{name}.nc"
+        args = ["run", str(B1), "-o", str(runs[name]), "--t-end", "0.0004", *sets]
+        made = RUNNER.invoke(app, args)
+        assert made.exit_code == 0, made.output
+    other = RUNNER.invoke(app, ["compare", str(runs["b1"]), str(runs["long"])])
+    assert other.exit_code == 0, other.output
+    assert "runs of different bearings (geometry.roller.length: 0.005 -> 0.006)" in " ".join(
+        other.output.split()
+    )
+    same = RUNNER.invoke(app, ["compare", str(runs["b1"]), str(runs["b1"])])
+    assert same.exit_code == 0 and "different bearings" not in same.output
+    modes = RUNNER.invoke(app, ["modes", str(runs["long"]), "-c", str(B1), "-n", "1"])
+    assert modes.exit_code == 0, modes.output
+    assert "--config describes another bearing" in modes.output
+
+
 def test_bench_thread_counts_are_capped_at_the_cores_and_not_repeated(monkeypatch, capsys):
     # On a machine whose process may use 2 cores, "--threads 1,4,all,2" runs each case on
     # 1 and 2 threads once each (a run never uses more threads than cores), and says that

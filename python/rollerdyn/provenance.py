@@ -134,6 +134,37 @@ def differences(earlier: dict, now: dict) -> list[str]:
     ]
 
 
+#: What makes the bearing itself (its run's operating point, oil, surfaces and solver
+#: aside): the parts a comparison of two runs or a state evaluated with another
+#: configuration assumes the same.
+BEARING_SECTIONS = ("geometry", "materials", "inner_ring")
+
+
+def bearing_differences(a: dict, b: dict, shown: int = 3) -> list[str]:
+    """'field: a -> b' for the first ``shown`` fields of :data:`BEARING_SECTIONS` in which
+    the resolved configurations ``a`` and ``b`` (:func:`resolved`, or a result's
+    ``config_resolved``) differ; with more, a last entry says how many more."""
+    found = [
+        line
+        for line in differences(a, b)
+        if line.split(".", 1)[0].split(":", 1)[0] in BEARING_SECTIONS
+    ]
+    more = len(found) - shown
+    return found[:shown] + ([f"and {more} more"] if more > 0 else [])
+
+
+def recorded_bearing(attrs: dict) -> dict | None:
+    """A result's ``config_resolved`` (None if it records none, or not as JSON)."""
+    text = attrs.get("config_resolved")
+    if not isinstance(text, str) or not text.strip():
+        return None
+    try:
+        data = json.loads(text)
+    except ValueError:
+        return None
+    return current_layout(data) if isinstance(data, dict) else None
+
+
 def check_same_configuration(attrs: dict, config: BearingConfig) -> None:
     """Raises ValueError unless the result with ``attrs`` was made by ``config`` (same
     hash, or the same values once moved fields are at their new places), naming the first

@@ -11,7 +11,7 @@ from typing import Annotated
 import typer
 from rich.table import Table
 
-from .common import console, plain, refuse, time_option
+from .common import console, plain, refuse, say, time_option
 
 #: How each unit of :data:`rollerdyn.study.agreement.MEASURES` is shown: unit, factor.
 SHOWN_UNITS = {"m": ("µm", 1e6), "rad": ("mrad", 1e3), "-": ("%", 100.0)}
@@ -57,7 +57,8 @@ def compare_command(
     normal forces [% of the largest of either run] and the frictional torque at full speed
     (its mean, relative [%], and output by output [% of the largest]); n/a where no output
     qualifies (no full speed in a short run). Then both runs' steps, right-hand sides,
-    gradient fallbacks and wall time.
+    gradient fallbacks and wall time. A note first names the fields in which the two runs'
+    bearings (geometry, materials, inner ring) differ, if they do.
 
     Exits with status 2 if a file is missing or not a rollerdyn run's result, if the two
     runs share no output or differ in their roller count, or for a bad --full-speed.
@@ -77,8 +78,26 @@ def compare_command(
         found = differences(a, b, from_full_speed)
     except ValueError as err:
         raise refuse(f"{first} and {second}: {err}") from None
+    _note_other_bearings(a.attrs, b.attrs, first, second)
     _print_differences(found, MEASURES, f"{first.name} against {second.name}")
     _print_statistics(runs, (first.name, second.name))
+
+
+def _note_other_bearings(a: dict, b: dict, first: Path, second: Path) -> None:
+    """A line when the two runs record bearings that differ (geometry, materials, inner
+    ring): their differences are then not those of a method or of round-off."""
+    from ..provenance import bearing_differences, recorded_bearing
+
+    ra, rb = recorded_bearing(a), recorded_bearing(b)
+    if ra is None or rb is None:
+        return
+    differ = bearing_differences(ra, rb)
+    if differ:
+        say(
+            f"note: {first.name} and {second.name} are runs of different bearings "
+            f"({'; '.join(differ)}); the differences below include that",
+            "yellow",
+        )
 
 
 def _print_differences(found: dict, measures: dict, title: str) -> None:

@@ -89,6 +89,7 @@ def modes_command(
     changes = set_options(settings)
     if config is not None:
         changed_cfg = cfg = load(config, changes)  # --set read as `run` reads it
+        _note_another_bearing(ds.attrs, cfg, run)
     else:
         try:
             cfg = run_config(ds)
@@ -129,6 +130,23 @@ def modes_command(
         f"{len(modes)} modes, {unstable} with a positive growth rate; the largest size "
         f"{max(abs(m.eigenvalue) for m in modes):.3g} 1/s"
     )
+
+
+def _note_another_bearing(attrs: dict, cfg, run: Path) -> None:
+    """A line when --config describes another bearing than the one the run records (the
+    state fits any of the same roller count; its modes are then those of that bearing)."""
+    from ..provenance import bearing_differences, recorded_bearing, resolved
+
+    recorded = recorded_bearing(attrs)
+    if recorded is None:
+        return
+    differ = bearing_differences(recorded, resolved(cfg))
+    if differ:
+        say(
+            f"note: --config describes another bearing than {run.name} records "
+            f"({'; '.join(differ)}); its state is evaluated with the --config one",
+            "yellow",
+        )
 
 
 def _print_by_force(rows) -> None:
