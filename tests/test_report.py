@@ -300,3 +300,26 @@ def test_only_an_earlier_report_is_replaced(page, result, tmp_path):
     res = RUNNER.invoke(app, ["report", str(result), "-o", str(notes)])
     assert res.exit_code == 2 and "only an earlier report of rollerdyn" in res.output
     assert notes.read_text(encoding="utf-8") == "<html><body>my notes</body></html>"
+
+
+def test_legends_name_the_load_case_and_tell_runs_of_the_same_name_apart():
+    """A run stopped in its load ramp (0 N reached of 1000 N) is labelled with its load
+    case's axial load, not the load it reached; two sweeps' run_0000 are told apart by
+    their paths (they were both "run_0000")."""
+    import json
+
+    import numpy as np
+    import xarray as xr
+
+    from rollerdyn.report import configured_axial_load, run_names
+
+    ramping = xr.Dataset(
+        {"axial_load": ("time", np.array([0.0, 0.0]))},
+        attrs={"config_resolved": json.dumps({"operating": {"axial_load": 1000.0}})},
+    )
+    assert configured_axial_load(ramping) == 1000.0
+    unrecorded = xr.Dataset({"axial_load": ("time", np.array([0.0, 250.0]))})
+    assert configured_axial_load(unrecorded) == 250.0  # no record: the load reached
+    same = [Path("sweep/run_0000.nc"), Path("sweep3/run_0000.nc")]
+    assert run_names(same) == ["sweep/run_0000.nc", "sweep3/run_0000.nc"]
+    assert run_names([Path("a/b1.nc"), Path("a/tilt.nc")]) == ["b1", "tilt"]

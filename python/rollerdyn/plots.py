@@ -11,10 +11,13 @@ from .names import PAIRINGS, flange_indices
 from .simulation import carried_axial_force, full_speed
 
 
-def _label(ds: xr.Dataset, path: Path) -> str:
-    """The legend entry of a run: its file's name, axial load and tilt, and where a study
-    stopped it (its attribute ``study_stopped``), how far it got."""
-    label = f"{path.stem} (F_a = {float(ds.axial_load[-1]):.0f} N"
+def _label(ds: xr.Dataset, name: str) -> str:
+    """The legend entry of a run: its name (:func:`report.run_names`), the axial load of its
+    load case and its tilt, and where a study stopped it (its attribute ``study_stopped``),
+    how far it got."""
+    from .report import configured_axial_load
+
+    label = f"{name} (F_a = {configured_axial_load(ds):.0f} N"
     tilt = np.degrees(float(np.abs(ds.ring_tilt.isel(time=-1)).max()))
     if tilt > 0:
         label += f", IR tilt {tilt:.3g} deg"
@@ -44,13 +47,16 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
     is wrong) for one that is missing or not a rollerdyn result, before any figure."""
     import matplotlib
 
-    from .report import REQUIRED, open_result
+    from .report import REQUIRED, open_result, run_names
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     paths = [Path(p) for p in paths]
-    sets = [(p, open_result(p, required=(*REQUIRED, "ring_tilt"))) for p in paths]
+    sets = [
+        (n, open_result(p, required=(*REQUIRED, "ring_tilt")))
+        for n, p in zip(run_names(paths), paths, strict=True)
+    ]
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     written: list[Path] = []

@@ -153,7 +153,7 @@ def bearing_differences(a: dict, b: dict, shown: int = 3) -> list[str]:
     return found[:shown] + ([f"and {more} more"] if more > 0 else [])
 
 
-def recorded_bearing(attrs: dict) -> dict | None:
+def recorded_configuration(attrs: dict) -> dict | None:
     """A result's ``config_resolved`` (None if it records none, or not as JSON)."""
     text = attrs.get("config_resolved")
     if not isinstance(text, str) or not text.strip():

@@ -129,11 +129,30 @@ def _listed(names: list[str], most: int = 4) -> str:
     return shown + (f" and {len(names) - most} more" if len(names) > most else "")
 
 
+def run_names(paths: list[Path]) -> list[str]:
+    """The names that tell runs apart in legends: the files' names without extension, or
+    their paths where two of those are the same (``sweep/run_0000`` and ``sweep3/run_0000``)."""
+    stems = [Path(p).stem for p in paths]
+    return stems if len(set(stems)) == len(stems) else [str(p) for p in paths]
+
+
+def configured_axial_load(ds: xr.Dataset) -> float:
+    """The axial load [N] the run's configuration applies once its ramp is up (its record,
+    ``config_resolved``), or, without one, the load at the last output: a run stopped
+    during the load ramp is labelled with its load case, not with the load reached."""
+    from .provenance import recorded_configuration
+
+    recorded = recorded_configuration(ds.attrs) or {}
+    value = recorded.get("operating", {}).get("axial_load")
+    if isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value):
+        return float(value)
+    return float(ds.axial_load[-1])
+
+
 def _labels(paths: list[Path], sets: list[xr.Dataset]) -> list[str]:
-    stems = [p.stem for p in paths]
-    names = stems if len(set(stems)) == len(stems) else [str(p) for p in paths]
     return [
-        f"{n} (F_a = {float(ds.axial_load[-1]):.0f} N)" for n, ds in zip(names, sets, strict=True)
+        f"{n} (F_a = {configured_axial_load(ds):.0f} N)"
+        for n, ds in zip(run_names(paths), sets, strict=True)
     ]
 
 

@@ -86,9 +86,9 @@ def compare_command(
 def _note_other_bearings(a: dict, b: dict, first: Path, second: Path) -> None:
     """A line when the two runs record bearings that differ (geometry, materials, inner
     ring): their differences are then not those of a method or of round-off."""
-    from ..provenance import bearing_differences, recorded_bearing
+    from ..provenance import bearing_differences, recorded_configuration
 
-    ra, rb = recorded_bearing(a), recorded_bearing(b)
+    ra, rb = recorded_configuration(a), recorded_configuration(b)
     if ra is None or rb is None:
         return
     differ = bearing_differences(ra, rb)

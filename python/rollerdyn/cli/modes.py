@@ -135,9 +135,9 @@ def modes_command(
 def _note_another_bearing(attrs: dict, cfg, run: Path) -> None:
     """A line when --config describes another bearing than the one the run records (the
     state fits any of the same roller count; its modes are then those of that bearing)."""
-    from ..provenance import bearing_differences, recorded_bearing, resolved
+    from ..provenance import bearing_differences, recorded_configuration, resolved
 
-    recorded = recorded_bearing(attrs)
+    recorded = recorded_configuration(attrs)
     if recorded is None:
         return
     differ = bearing_differences(recorded, resolved(cfg))
