@@ -190,6 +190,8 @@ def test_sweep_is_monotonic_and_keeps_every_case(b1):
     assert ds.attrs["failed_cases"] == 0
     assert np.all(np.diff(ds.max_roller_load.values) > 0)
     assert np.all(np.diff(ds.l10r.values) < 0)
+    # the swept values carry their SI unit, as every other variable does
+    assert ds.radial_load.attrs == {"units": "N", "long_name": "operating.radial_load"}
 
 
 def test_an_axial_load_sweep_in_large_steps_keeps_every_case(b1):

@@ -27,7 +27,7 @@ from .model import Model
 from .names import FLANGES, PAIRINGS, SEMI_ANALYTICAL
 from .provenance import record_attrs
 from .simulation import as_config, model_parameters
-from .units import QuantityError, parse_quantity
+from .units import QuantityError, family, parse_quantity
 
 __all__ = ["STATIC_FIELDS", "StaticCase", "StaticsError", "parse_range", "statics", "statics_sweep"]
 
@@ -318,7 +318,9 @@ def statics_sweep(
         column = [
             getattr(c, name) if name != "misalignment" else (c.misalignment or 0.0) for c in cases
         ]
-        ds = ds.assign_coords({path.split(".")[-1]: ("case", np.asarray(column, float))})
+        unit = family(STATIC_FIELDS[path][1]).si_unit
+        coordinate = ("case", np.asarray(column, float), {"units": unit, "long_name": path})
+        ds = ds.assign_coords({path.split(".")[-1]: coordinate})
     ds["error"] = ("case", np.asarray(errors, dtype=object))
     ds.attrs.update(record_attrs(cfg))
     ds.attrs["swept"] = ",".join(p.split(".")[-1] for p in paths)

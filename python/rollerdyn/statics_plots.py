@@ -31,6 +31,8 @@ def draw(ds: xr.Dataset, path: Path) -> None:
     else:
         x_name = ds.attrs["swept"].split(",")[0]
         x = ds[x_name].values
+        unit = ds[x_name].attrs.get("units", "")
+        x_name = f"{x_name} [{unit}]" if unit else x_name
         fig, (a, b, c) = plt.subplots(1, 3, figsize=(14, 4))
         a.plot(x, ds.max_roller_load.values)
         a.set(xlabel=x_name, ylabel="heaviest roller [N]")

@@ -185,7 +185,8 @@ def _print_sweep(ds) -> None:
     swept = ds.attrs["swept"].split(",")
     table = Table(title=f"quasi-static sweep: {ds.sizes['case']} cases")
     columns = ["heaviest roller [N]", "ring y [um]", "s_0 (ISO 76)", "s_0 races", "L_10r [1e6 rev]"]
-    for name in [*swept, *columns]:
+    units = [ds[s].attrs.get("units", "") for s in swept]
+    for name in [*(f"{s} [{u}]" if u else s for s, u in zip(swept, units, strict=True)), *columns]:
         table.add_column(name)
     n = ds.sizes["case"]
     shown = sorted({0, n // 4, n // 2, 3 * n // 4, n - 1})
