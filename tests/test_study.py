@@ -688,6 +688,12 @@ def test_map_point_stops_when_steady(tmp_path, client):
     again = run_map()
     assert again.points.iloc[0]["steady at [s]"] == steady_at
     assert not stale.exists()
+    # the points are numbered in their grid: another grid in the same folder (here one
+    # more axial load; point_0001 would be a new point, and a smaller grid rewrote the
+    # table without the rest) is refused before any run, naming both grids
+    grids = r"axial loads 0 N; now speeds 3000 rpm, radial loads 5000 N, axial loads 0, 500 N"
+    with pytest.raises(StudyError, match=f"holds a map of another grid .*{grids}"):
+        _b1_map(tmp_path, client, axial_load="0,500", start="equilibrium", max_time=0.03)
 
 
 def _map_frame(rows):

@@ -267,7 +267,7 @@ def map_command(
         output_option(
             help="Map folder (created with its parents if missing): study.json, points/ "
             "(one netCDF result per grid point), map.csv, map.parquet and figures/. An "
-            "earlier map of the same configuration and criterion is continued; another "
+            "earlier map of the same configuration, criterion and grid is continued; another "
             "is refused (exit status 2) unless --overwrite.",
         ),
     ] = Path("results/map"),

@@ -42,6 +42,22 @@ def _remove_written(out: Path) -> None:
             f.unlink(missing_ok=True)
 
 
+def _grid_text(grid: list) -> str:
+    """A map's grid (speeds [rad/s], radial and axial loads [N]) as its values, in rpm
+    and N."""
+    import math
+
+    try:
+        speeds, radial, axial = grid
+        rpm = [f"{v * 30 / math.pi:.6g}" for v in speeds]
+        return (
+            f"speeds {', '.join(rpm)} rpm, radial loads {', '.join(f'{v:.6g}' for v in radial)}"
+            f" N, axial loads {', '.join(f'{v:.6g}' for v in axial)} N"
+        )
+    except (TypeError, ValueError):
+        return "unreadable"
+
+
 def prepare_folder(
     outdir: Path,
     kind: str,
@@ -95,6 +111,12 @@ def prepare_folder(
             )
         earlier = old.get("settings", {})
         changed = [k for k in settings if k in earlier and earlier[k] != settings[k]]
+        if "grid" in changed:
+            raise StudyError(
+                f"-o {out}: holds a map of another grid ({_grid_text(earlier['grid'])}; "
+                f"now {_grid_text(settings['grid'])}); its points are numbered in their grid, "
+                "so a map continues only its own grid: use another folder or --overwrite"
+            )
         if changed:
             k = changed[0]
             raise StudyError(

@@ -274,6 +274,8 @@ def operating_map(
     specs, rules = _map_points(cfg, (speeds, radial, axial), start, ramp, window, tol, max_time)
     check_scheduler(scheduler)
     settings = {"start": start, "ramp": ramp, "window": window, "tol": tol, "max_time": max_time}
+    # the points are files by number: a folder continues only the grid it was made with
+    settings["grid"] = [[float(v) for v in axis] for axis in (speeds, radial, axial)]
     run = {
         "max_wall": float(max_wall),
         "scheduler": scheduler,
