@@ -288,6 +288,13 @@ def test_cli_prints_the_equilibrium_and_refuses_bad_options(tmp_path):
         refused = runner.invoke(app, ["statics", str(B1), "--set", option])
         assert refused.exit_code == 2, refused.output
         assert f"--set {option}" in refused.output and rule in refused.output
+    # a sweep with a case the bearing cannot carry (no radial load, 1000 N axially) keeps
+    # the others and writes everything, then exits with status 1 as a failed sweep does
+    swept = tmp_path / "sweep.nc"
+    sweep = ["statics", str(B1), "--set", "operating.radial_load=5000,0,3000", "-o", str(swept)]
+    partly = runner.invoke(app, sweep)
+    assert partly.exit_code == 1, partly.output
+    assert "1 cases without equilibrium" in partly.output and swept.is_file()
 
 
 def test_the_traction_table_does_not_enter_the_equilibrium(b1):

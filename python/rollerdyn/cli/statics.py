@@ -65,7 +65,9 @@ def statics_command(
     displacement, the heaviest roller, the load zone, the stiffness, the static safety
     (ISO 76 s_0 = C_0r / F_r, and by stress the load factor to 4 000 MPa at the races and
     at the flanges) and the rating lives (ISO 281 L_10, ISO/TS 16281 L_10r and L_nmr, in
-    10^6 revolutions).
+    10^6 revolutions). A sweep keeps its cases without equilibrium as NaN with their
+    message, writes everything, and then exits with status 1; one case without
+    equilibrium exits with status 1 naming the load level reached and the residual.
     """
     from .. import statics as st
 
@@ -126,6 +128,8 @@ def statics_command(
     except OSError as err:  # checked before the work; a disk that filled up since
         error(f"rollerdyn statics: could not write the result ({err.strerror or err})")
         raise typer.Exit(1) from None
+    if not single and ds.attrs["failed_cases"]:
+        raise typer.Exit(1)  # as a sweep with a failed run: written, and said by the status
 
 
 def _check_image_format(path: Path) -> None:
