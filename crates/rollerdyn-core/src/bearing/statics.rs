@@ -85,10 +85,10 @@ impl BearingSystem<'_> {
                         format!(
                             "at the loads of t = {t:.4} s (radial {} N, axial {} N) {}{why}; \
                              {USE_DISTRIBUTED}",
-                            full.radial_load,
-                            full.axial_load,
+                            shown(full.radial_load),
+                            shown(full.axial_load),
                             if fraction < 1.0 {
-                                format!("and already at {} N axially ", case.axial_load)
+                                format!("and already at {} N axially ", shown(case.axial_load))
                             } else {
                                 String::new()
                             },
@@ -151,4 +151,26 @@ fn end_on_its_face(solution: &StaticSolution) -> Option<String> {
             pairing.label()
         )
     })
+}
+
+/// A load in a message: as written for everyday magnitudes (5000), in exponent form
+/// beyond them (1e-320, not three hundred zeros).
+fn shown(x: f64) -> String {
+    if x == 0.0 || (1e-3..1e9).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// A refusal once printed a load of 1e-320 N as three hundred zeros and a digit.
+    #[test]
+    fn loads_in_messages_are_short_at_any_magnitude() {
+        assert_eq!(super::shown(5000.0), "5000");
+        assert_eq!(super::shown(0.0), "0");
+        assert_eq!(super::shown(1e-320), "1e-320");
+        assert_eq!(super::shown(2.5e12), "2.5e12");
+    }
 }
