@@ -300,6 +300,12 @@ def test_only_an_earlier_report_is_replaced(page, result, tmp_path):
     res = RUNNER.invoke(app, ["report", str(result), "-o", str(notes)])
     assert res.exit_code == 2 and "only an earlier report of rollerdyn" in res.output
     assert notes.read_text(encoding="utf-8") == "<html><body>my notes</body></html>"
+    # a report written under another extension is still the report (it was refused the
+    # second time as "only an earlier report of rollerdyn is replaced")
+    odd = tmp_path / "report.txt"
+    shutil.copyfile(page, odd)
+    res = RUNNER.invoke(app, ["report", str(result), "-o", str(odd), "--max-frames", "2"])
+    assert res.exit_code == 0, res.output
 
 
 def test_legends_name_the_load_case_and_tell_runs_of_the_same_name_apart():

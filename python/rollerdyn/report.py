@@ -461,12 +461,12 @@ def is_report_page(path: Path) -> bool:
 def check_report_output(results: list[Path], output: Path) -> Path:
     """Checks before any work that ``output`` may take the report (see
     :mod:`rollerdyn.paths`): not an input, its folder there and writable, and if it
-    exists an earlier report (``.html``/``.htm`` that rollerdyn wrote), not a result, a
-    page of someone else's or any other file."""
+    exists an earlier report (a page rollerdyn wrote, whatever its name's extension), not a
+    result, a page of someone else's or any other file."""
     from .paths import check_output_file
 
     output = Path(output)
-    replaceable = output.suffix.lower() in (".html", ".htm") and is_report_page(output)
+    replaceable = output.is_file() and is_report_page(output)
     return check_output_file(
         output,
         "-o",
