@@ -146,5 +146,8 @@ def prepare_folder(
         tmp.write_text(json.dumps(data, indent=1, sort_keys=True), encoding="utf-8")
         os.replace(tmp, manifest)
     except OSError as err:
-        raise StudyError(f"-o {out}: {err.strerror or err}") from None
+        raise StudyError(
+            f"-o {out}: cannot create the folder or write its manifest there "
+            f"({err.strerror or err}); choose a folder you can write"
+        ) from None
     return out
