@@ -200,6 +200,7 @@ def test_plot_report_sweep_check_their_outputs_first(tmp_path, result):
         # before the work, not when its result is written (a run's was lost)
         (("run", B1, "-o", Path("/proc/r.nc"), "--t-end", "0.001"), ("cannot create a file",)),
         (("statics", B1, "-o", Path("/proc/s.nc")), ("cannot create a file",)),
+        (("study", "map", B1, "--speed", "3000", "-o", Path("/proc/m")), ("cannot create",)),
     ):
         res = invoke(*args, code=2)
         one_line_saying(res.output, "-o", *texts)
