@@ -575,3 +575,23 @@ def test_the_summary_prints_a_runs_note_below_the_table(tmp_path, capsys):
     failed = _print_summary(pd.DataFrame([row]), tmp_path / "b1.toml", tmp_path, [])
     out = " ".join(capsys.readouterr().out.split())
     assert failed == 0 and "run 0: the run crawled: from t = 0.05 s" in out
+
+
+def test_sigterm_while_the_summary_is_written_is_taken_after_it():
+    # the command's SIGTERM handler raises KeyboardInterrupt; raised while summary.parquet
+    # is written, it would leave half a file: within the block it is only recorded, and
+    # its handler runs once the block is done
+    import os
+    import signal
+
+    from rollerdyn.sweep import _sigterm_deferred
+
+    calls: list[int] = []
+    previous = signal.signal(signal.SIGTERM, lambda signum, _: calls.append(signum))
+    try:
+        with _sigterm_deferred():
+            os.kill(os.getpid(), signal.SIGTERM)
+            assert calls == []  # the summary would be written here
+        assert calls == [signal.SIGTERM]
+    finally:
+        signal.signal(signal.SIGTERM, previous)

@@ -553,7 +553,7 @@ def sweep(
         # stopped first; then the summary lists the runs that finished, those that finished
         # while the workers stopped among them (from their files), and the others as
         # interrupted. A summary that cannot be written must not hide the interrupt.
-        with _ctrl_c_ignored():
+        with _ctrl_c_ignored(), _sigterm_deferred():
             disconnect(client, cluster, scheduler)
             if out.is_dir():
                 _remove_partial_files(out, points)
@@ -565,7 +565,7 @@ def sweep(
         raise
     finally:
         disconnect(client, cluster, scheduler)  # a no-op once closed (Ctrl-C above)
-    with _ctrl_c_ignored():
+    with _ctrl_c_ignored(), _sigterm_deferred():
         _remove_partial_files(out, points)
         frame = _summarize(out, points, rows)
     from .sweep_figures import write_summary_figure
@@ -754,6 +754,28 @@ def _ctrl_c_ignored():
     finally:
         # None: a handler not installed from Python; Python's own is the nearest
         signal.signal(signal.SIGINT, signal.default_int_handler if previous is None else previous)
+
+
+@contextlib.contextmanager
+def _sigterm_deferred():
+    """SIGTERM within the block (the summary being written) taken once it is done: what its
+    handler does then (``rollerdyn sweep``'s: stop as Ctrl-C; Python's default: end the
+    process) comes when the file is whole. Nothing changes outside the main thread."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    pending: list[int] = []
+    previous = signal.signal(signal.SIGTERM, lambda signum, _: pending.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+        if pending and callable(previous):
+            previous(signal.SIGTERM, None)
+        elif pending and previous == signal.SIG_DFL:
+            os.kill(os.getpid(), signal.SIGTERM)
 
 
 # Their names before they were shared, kept for the callers that still use them
