@@ -595,3 +595,28 @@ def test_sigterm_while_the_summary_is_written_is_taken_after_it():
         assert calls == [signal.SIGTERM]
     finally:
         signal.signal(signal.SIGTERM, previous)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"progress": 5}, "progress = 5: must be a function"),
+        ({"force": "yes"}, "force = 'yes': must be True or False"),
+        ({"workers": "2"}, "workers = '2': must be a whole number"),
+        ({"workers": 1.5}, "workers = 1.5: must be a whole number"),
+        ({"t_end": "abc"}, "t_end = 'abc': must be a time"),
+        ({"retries": "x"}, "retries = 'x': must be a whole number"),
+    ],
+)
+def test_bad_arguments_are_refused_before_an_earlier_sweep_is_touched(tmp_path, kwargs, match):
+    # a progress of 5 started the cluster, removed the earlier sweep's files and then
+    # failed with "TypeError: 'int' object is not callable"
+    earlier = ["run_0000.nc", "run_0001.nc", "summary.parquet"]
+    for name in earlier:
+        (tmp_path / name).write_text("an earlier sweep's")
+    with pytest.raises(SweepError, match=match):
+        rollerdyn.sweep(SHORT_DATA, {"operating.axial_load": ["0 N"]}, tmp_path, **kwargs)
+    assert sorted(p.name for p in tmp_path.iterdir()) == earlier
+    a_file = tmp_path / "run_0000.nc"
+    with pytest.raises(SweepError, match="is a file, not a folder"):
+        rollerdyn.sweep(SHORT_DATA, {"operating.axial_load": ["0 N"]}, a_file)

@@ -494,16 +494,13 @@ def sweep(
 
     from .simulation import failure_note
 
-    if detector is not None and detector not in DETECTORS:
-        raise SweepError(f"detector = {detector!r}: must be {', '.join(DETECTORS)}")
-    if t_end is not None and not (t_end >= SHORTEST_TIME and math.isfinite(t_end)):
-        raise SweepError(f"t_end = {t_end}: must be a time of at least 1 ns, in seconds")
-    if scheduler is None and workers < 1:
-        raise SweepError(f"workers = {workers}: must be at least 1")
-    if retries < 0:
-        raise SweepError(f"retries = {retries}: must be 0 or more")
+    _check_sweep_arguments(detector, t_end, scheduler, workers, retries, progress, force)
     points = build_grid(config, parameters, t_end)
+    if not isinstance(outdir, str | os.PathLike):
+        raise SweepError(f"outdir = {outdir!r}: must be a folder's path")
     out = Path(outdir).resolve()
+    if out.exists() and not out.is_dir():
+        raise SweepError(f"outdir = {outdir}: is a file, not a folder")
     # What writes the summary, loaded before the runs: a Ctrl-C must not land in its
     # imports (a second of them) while the summary of an interrupted sweep is written.
     import pandas  # noqa: F401
@@ -573,6 +570,29 @@ def sweep(
     # titled with the bearing's name, as the operating maps are
     write_summary_figure(frame, list(parameters), out, str(points[0].data.get("name", "")))
     return frame
+
+
+def _check_sweep_arguments(detector, t_end, scheduler, workers, retries, progress, force):
+    """Refuses (:class:`SweepError`, naming the argument) what :func:`sweep` cannot take,
+    before anything starts or an earlier sweep's files are removed."""
+    if detector is not None and detector not in DETECTORS:
+        raise SweepError(f"detector = {detector!r}: must be {', '.join(DETECTORS)}")
+    number = (int, float)
+    if t_end is not None and (
+        isinstance(t_end, bool)
+        or not isinstance(t_end, number)
+        or not (t_end >= SHORTEST_TIME and math.isfinite(t_end))
+    ):
+        raise SweepError(f"t_end = {t_end!r}: must be a time of at least 1 ns, in seconds")
+    whole = isinstance(workers, int) and not isinstance(workers, bool)
+    if scheduler is None and not (whole and workers >= 1):
+        raise SweepError(f"workers = {workers!r}: must be a whole number, at least 1")
+    if isinstance(retries, bool) or not isinstance(retries, int) or retries < 0:
+        raise SweepError(f"retries = {retries!r}: must be a whole number, 0 or more")
+    if progress is not None and not callable(progress):
+        raise SweepError(f"progress = {progress!r}: must be a function (or None)")
+    if not isinstance(force, bool):
+        raise SweepError(f"force = {force!r}: must be True or False")
 
 
 def _remove_earlier_results(out: Path) -> None:
