@@ -75,6 +75,18 @@ def test_resume_refuses_another_configuration_naming_the_field(short_run, b1):
     assert "operating.radial_load: 5000.0 -> 100.0" in str(err.value)
 
 
+def test_resume_makes_the_point_laws_load_check_at_its_new_end_time(b1):
+    # B1 at 2000 N run for 1 ms (the loads then are light: not refused) and resumed to
+    # 0.6 s: the resumed run reaches the loads a fresh run to 0.6 s is refused at, and
+    # was let through (its steps then stalled at 0.503 s)
+    heavy = _changed(b1, "operating", axial_load=2000.0)
+    first = simulate(heavy, t_end=0.001, threads=1)
+    with pytest.raises(ValueError, match=r"surfaces.flange_law = point: at the loads of t = 0"):
+        simulate(heavy, t_end=0.6, threads=1)
+    with pytest.raises(ValueError, match=r"surfaces.flange_law = point: at the loads of t = 0"):
+        simulate(heavy, t_end=0.6, resume=first, threads=1)
+
+
 def test_resume_refuses_a_result_without_a_configuration_record(short_run, b1):
     stripped = short_run.copy()
     del stripped.attrs["config_sha256"]

@@ -528,7 +528,9 @@ def simulate(
     forced = _forced_past(config, end, force, resume)
     model = Model(config)
     params = model_parameters(config, det)
-    options = run_options(config, end, force)
+    # the point law's load check is made for a resumed run too (at its new end time),
+    # unless its first part was forced past it
+    options = run_options(config, end, force or forced is not None)
 
     crawl = CrawlWatch(config.surfaces.flange_law == "point")
 

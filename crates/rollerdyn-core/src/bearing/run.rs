@@ -381,30 +381,29 @@ pub fn run(
 
 /// The run's start: `start` (a checkpoint's) or the consistent initial state at t = 0
 /// (from rest, or from the quasi-static equilibrium with
-/// [`RunOptions::start_from_equilibrium`]; a point-law run the flanges cannot carry is
-/// refused first, [`BearingSystem::check_point_law`]), checked: the model's number of
-/// finite states, every body inside the bearing, a positive step.
+/// [`RunOptions::start_from_equilibrium`]), checked: the model's number of finite states,
+/// every body inside the bearing, a positive step. A point-law run the flanges cannot
+/// carry at its end time is refused first ([`BearingSystem::check_point_law`]), a resumed
+/// one too: continued to a later end time, it reaches loads its first part did not.
 fn checked_start(
     system: &BearingSystem<'_>,
     start: Option<Start>,
     options: &RunOptions,
 ) -> crate::Result<Start> {
+    if options.check_flange_law {
+        system.check_point_law(options.t_end)?;
+    }
     let start = match start {
         Some(s) => s,
-        None => {
-            if options.check_flange_law {
-                system.check_point_law(options.t_end)?;
-            }
-            Start {
-                time: 0.0,
-                state: if options.start_from_equilibrium {
-                    system.equilibrium_state(0.0)?
-                } else {
-                    system.initial_state()?
-                },
-                step: None,
-            }
-        }
+        None => Start {
+            time: 0.0,
+            state: if options.start_from_equilibrium {
+                system.equilibrium_state(0.0)?
+            } else {
+                system.initial_state()?
+            },
+            step: None,
+        },
     };
     let (t0, y0) = (start.time, &start.state);
     let n = system.layout.len();
