@@ -1035,3 +1035,35 @@ def test_timing_counts_a_run_refused_at_its_start_as_costing_nothing():
     assert t["runs run"] == 3
     assert t["sum of run walls [s]"] == 40.0
     assert t["parallel efficiency"] == pytest.approx(40.0 / 50.0)
+
+
+def test_sigterm_stops_a_study_as_ctrl_c_does(tmp_path):
+    # SIGTERM to the command alone (`kill`, `timeout`, a batch system) ended it at once
+    # with no line, left its lock and lost the runs in flight; now it stops as after
+    # Ctrl-C: the workers closed, each run's file as far as it got, exit status 143
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    command = Path(sys.executable).parent / "rollerdyn"
+    args = [str(command), "study", "paper", str(B1), "--t-end", "0.3", "-o", str(tmp_path / "st")]
+    args += ["--no-distributed", "--loads", "none", "--no-free-tilt", "--dt-max", "none"]
+    proc = subprocess.Popen(
+        args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True
+    )
+    lines = []
+    for line in proc.stdout:  # until the runs have started and passed a checkpoint
+        lines.append(line)
+        if "steps" in line and " 0 steps" not in line:
+            break
+    time.sleep(3.0)
+    proc.send_signal(signal.SIGTERM)
+    out, _ = proc.communicate(timeout=60)
+    out = "".join(lines) + out
+    assert proc.returncode == 143, out
+    assert "terminated (SIGTERM)" in out.strip().splitlines()[-1], out
+    for noise in ("Traceback", "Exception ignored"):
+        assert noise not in out, out
+    assert list((tmp_path / "st" / "runs").glob("*.nc")), out
+    assert not (tmp_path / "st" / ".study.lock").exists()

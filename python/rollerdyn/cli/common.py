@@ -169,3 +169,29 @@ def set_options(options: list[str] | None) -> dict[str, Any]:
                 )
         changes[path] = values[0]
     return changes
+
+
+@contextlib.contextmanager
+def terminated_as_interrupted():
+    """SIGTERM (a batch system's stop, `kill`, `timeout`) within the block is Ctrl-C: a
+    KeyboardInterrupt, so that a sweep or a study closes its workers and keeps what they
+    computed as it does after Ctrl-C. Yields the list that records it (the command then
+    exits with status 143); a second SIGTERM is only recorded."""
+    import signal
+    import threading
+
+    received: list[int] = []
+
+    def stop(signum, _frame):
+        received.append(signum)
+        if len(received) == 1:
+            raise KeyboardInterrupt("terminated by SIGTERM")
+
+    if threading.current_thread() is not threading.main_thread():
+        yield received
+        return
+    previous = signal.signal(signal.SIGTERM, stop)
+    try:
+        yield received
+    finally:
+        signal.signal(signal.SIGTERM, previous)

@@ -18,12 +18,14 @@ from ..limits import DEFAULT_MAX_WALL
 from .common import (
     console,
     default_config,
+    error,
     load,
     output_option,
     plain,
     refuse,
     refusing,
     say,
+    terminated_as_interrupted,
     time_option,
 )
 
@@ -201,7 +203,7 @@ def paper_command(
 
     Exit status: 0 when the study ran (runs that did not finish and findings that FAIL
     are results, in the tables); 1 when a run could not be run at all; 2 for bad input
-    (nothing run); 130 after Ctrl-C (finished runs and checkpoints stay on disk).
+    (nothing run); 130 after Ctrl-C, 143 after SIGTERM (finished runs and checkpoints stay on disk).
     """
     from ..study import paper
 
@@ -386,8 +388,19 @@ def _run_study(title: str, study, config: Path, output: Path, **options):
     bad input exits with status 2, a folder that cannot be written with 1."""
     from ..study import StudyError
 
-    with refusing(StudyError, output), _progress(title, options.get("scheduler")) as show:
-        return study(config, output, progress=show, **options)
+    with terminated_as_interrupted() as terminated:
+        try:
+            with refusing(StudyError, output), _progress(title, options.get("scheduler")) as show:
+                return study(config, output, progress=show, **options)
+        except KeyboardInterrupt:
+            if not terminated:
+                raise
+            # as after Ctrl-C: the workers closed, the runs' files as far as they got
+            error(
+                f"rollerdyn study: terminated (SIGTERM); {output} keeps the runs as far as "
+                "they got, and the same command continues them"
+            )
+            raise typer.Exit(143) from None
 
 
 def _finish(output: Path, files, frame, figures: list, timing: dict, started: float) -> None:

@@ -27,6 +27,7 @@ from .common import (
     refuse,
     refusing,
     say,
+    terminated_as_interrupted,
     time_option,
 )
 
@@ -155,7 +156,7 @@ def sweep_command(
         overwrite=overwrite,
         hint="; pass --overwrite to replace them, or choose another folder",
     )
-    with refusing(SweepError, output), _terminated_as_interrupted() as terminated:
+    with refusing(SweepError, output), terminated_as_interrupted() as terminated:
         build_grid(config, parameters, end)  # every grid point before the cluster starts
         with _sweep_progress(console, scheduler) as progress:
             try:
@@ -187,31 +188,6 @@ def sweep_command(
     )
     if failed:
         raise typer.Exit(1)
-
-
-@contextlib.contextmanager
-def _terminated_as_interrupted():
-    """SIGTERM (a batch system's stop, `kill`, `timeout`) stops the sweep as Ctrl-C does:
-    the workers are closed and the summary written with the runs that finished. Yields the
-    list that records it; a second SIGTERM while the summary is written is only recorded."""
-    import signal
-    import threading
-
-    received: list[int] = []
-
-    def stop(signum, _frame):
-        received.append(signum)
-        if len(received) == 1:
-            raise KeyboardInterrupt("terminated by SIGTERM")
-
-    if threading.current_thread() is not threading.main_thread():
-        yield received
-        return
-    previous = signal.signal(signal.SIGTERM, stop)
-    try:
-        yield received
-    finally:
-        signal.signal(signal.SIGTERM, previous)
 
 
 def _parameters(sets: list[str]) -> dict[str, list[Any]]:
