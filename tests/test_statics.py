@@ -233,6 +233,15 @@ def test_bad_cases_are_refused_with_a_message(b1):
         parse_range("geometry.roller_count", "10:20:3")
     with pytest.raises(StaticsError, match="count"):
         parse_range("operating.radial_load", "0:10:x")
+    # 1e8 cases filled 7 GB of memory before anything was printed
+    many = {"operating.radial_load": [1e3] * 10_000, "operating.axial_load": [0.0] * 10_000}
+    with pytest.raises(StaticsError, match=r"= 100000000 cases, more than 100000"):
+        statics_sweep(b1, many)
+    for grid in ("abc", [1, 2], None):
+        with pytest.raises(StaticsError, match="must be a mapping of paths"):
+            statics_sweep(b1, grid)
+    with pytest.raises(StaticsError, match="stiffness = 'no'"):
+        statics_sweep(b1, {"operating.radial_load": [1e3]}, stiffness="no")
     assert parse_range("operating.inner_ring_speed", "0 rpm:3000 rpm:3")[-1] == pytest.approx(
         100 * math.pi
     )

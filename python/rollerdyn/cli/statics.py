@@ -100,6 +100,10 @@ def statics_command(
             st.check_range(cfg, path.strip(), text, grid[path.strip()])
         except st.StaticsError as err:
             raise refuse(err) from None
+    try:
+        st.check_grid_size({p: len(v) for p, v in grid.items()})
+    except st.StaticsError as err:
+        raise refuse(err) from None
     single = all(len(v) == 1 for v in grid.values())
     try:
         if single:
