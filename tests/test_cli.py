@@ -620,3 +620,22 @@ def test_run_set_changes_the_configuration_and_resume_needs_the_same(tmp_path):
     assert named.exit_code == 0, named.output
     with xr.open_dataset(out, engine="h5netcdf") as ds:
         assert "b\\xff1.toml, changed:" in ds.attrs["config_toml"].splitlines()[0]
+
+
+def test_resume_refuses_a_checkpoint_interval_changed_by_hand(tmp_path):
+    # a result whose checkpoint_interval_s had been edited to 'abc' ended --resume with
+    # a traceback (could not convert string to float)
+    import xarray as xr
+
+    out = tmp_path / "a.nc"
+    made = RUNNER.invoke(app, ["run", str(B1), "-o", str(out), "--t-end", "0.0004"])
+    assert made.exit_code == 0, made.output
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        edited = ds.load()
+    edited.attrs["checkpoint_interval_s"] = "abc"
+    changed = tmp_path / "edited.nc"
+    edited.to_netcdf(changed, engine="h5netcdf")
+    args = ["run", str(B1), "-o", str(changed), "--resume", str(changed), "--t-end", "0.0006"]
+    res = RUNNER.invoke(app, args)
+    assert res.exit_code == 2, res.output
+    assert "checkpoint_interval_s = 'abc' is no positive number" in " ".join(res.output.split())

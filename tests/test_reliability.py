@@ -87,6 +87,25 @@ def test_resume_makes_the_point_laws_load_check_at_its_new_end_time(b1):
         simulate(heavy, t_end=0.6, resume=first, threads=1)
 
 
+def test_resume_refuses_a_result_changed_after_its_run(short_run, b1):
+    # each was a traceback (KeyError), a silent loss of outputs, or a start from the wrong
+    # state, found by editing result files by hand
+    import numpy as np
+
+    no_time = short_run.drop_vars("checkpoint_time")
+    with pytest.raises(ValueError, match="has checkpoint_state, checkpoint_step but no "):
+        simulate(b1, t_end=0.006, resume=no_time, threads=1)
+    times = short_run.time.values.copy()
+    times[1] = np.nan
+    with pytest.raises(ValueError, match="output times are not finite and increasing"):
+        simulate(b1, t_end=0.006, resume=short_run.assign_coords(time=times), threads=1)
+    fresh = short_run.copy()
+    fresh["checkpoint_step"] = np.nan  # the fresh start's mark, at a later time
+    fresh["checkpoint_time"] = 0.0015
+    with pytest.raises(ValueError, match="has no step"):
+        simulate(b1, t_end=0.006, resume=fresh, threads=1)
+
+
 def test_resume_refuses_a_result_without_a_configuration_record(short_run, b1):
     stripped = short_run.copy()
     del stripped.attrs["config_sha256"]

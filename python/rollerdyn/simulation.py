@@ -708,6 +708,7 @@ def _resume_point(previous: xr.Dataset, config: BearingConfig, detector: str, en
         )
     if "final_state" not in previous:
         raise ValueError("resume: the earlier result has no final_state to continue from")
+    _check_resume_record(previous)
     t_final = float(previous.attrs["final_time_s"])
     if not end > t_final:
         raise ValueError(
@@ -718,12 +719,36 @@ def _resume_point(previous: xr.Dataset, config: BearingConfig, detector: str, en
         raise ValueError(
             f"resume: the earlier result's checkpoint time {t0} s must lie in [0, {t_final}] s"
         )
+    if step is None and "checkpoint_state" in previous and t0 != 0.0:
+        raise ValueError(
+            f"resume: the earlier result's checkpoint at t = {t0} s has no step (the mark of "
+            "the run's fresh start at t = 0): the file was changed after its run"
+        )
     longest = max(t_final, config.solver.dt_max)
     if step is not None and not (math.isfinite(step) and 0.0 < step <= longest):
         raise ValueError(
             f"resume: the earlier result's checkpoint step {step} s must lie in (0, {longest}] s"
         )
     return t0, [float(v) for v in state], step
+
+
+def _check_resume_record(previous: xr.Dataset) -> None:
+    """Refuses (ValueError, naming what) an earlier result whose record of its checkpoint
+    is incomplete or whose output times are not finite and increasing: a file changed
+    after its run, from which no continuation equals the uninterrupted run."""
+    present = [name for name in _STATE_VARS[1:] if name in previous]
+    if present and len(present) < len(_STATE_VARS) - 1:
+        missing = [name for name in _STATE_VARS[1:] if name not in previous]
+        raise ValueError(
+            f"resume: the earlier result has {', '.join(present)} but no {', '.join(missing)}: "
+            "the file was changed after its run"
+        )
+    times = np.asarray(previous["time"].values, dtype=float) if "time" in previous.coords else []
+    if len(times) and not (np.all(np.isfinite(times)) and np.all(np.diff(times) > 0)):
+        raise ValueError(
+            "resume: the earlier result's output times are not finite and increasing: the "
+            "file was changed after its run"
+        )
 
 
 def resume_state(previous: xr.Dataset) -> tuple[float, float | None, np.ndarray]:

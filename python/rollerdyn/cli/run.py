@@ -168,9 +168,7 @@ def run(
     _check_run_output(output, config, resume, overwrite)
     previous = None if resume is None else _open_resume(resume, end)
     if interval is None and previous is not None:
-        earlier = previous.attrs.get("checkpoint_interval_s")
-        if earlier is not None and math.isfinite(float(earlier)) and float(earlier) > 0.0:
-            interval = float(earlier)
+        interval = _earlier_interval(previous, resume)
     if interval is not None:  # a change as --set makes it, so the result records its TOML
         changes["solver.checkpoint_interval"] = f"{float(interval)!r} s"
         cfg = load(config, changes)
@@ -282,6 +280,24 @@ def _check_run_output(output: Path, config: Path, resume: Path | None, overwrite
         overwrite=overwrite or in_place,
         hint="; pass --overwrite to replace it, or --resume with the same file to continue its run",
     )
+
+
+def _earlier_interval(previous, resume: Path) -> float | None:
+    """The checkpoint interval [s] the earlier run of ``--resume`` recorded (None: none
+    recorded); exits with status 2 if the record is no positive number."""
+    earlier = previous.attrs.get("checkpoint_interval_s")
+    if earlier is None:
+        return None
+    try:
+        value = float(earlier)
+    except (TypeError, ValueError):
+        value = math.nan
+    if not (math.isfinite(value) and value > 0.0):
+        raise refuse(
+            f"--resume {resume}: its checkpoint_interval_s = {earlier!r} is no positive "
+            "number of seconds: the file was changed after its run"
+        )
+    return value
 
 
 def _open_resume(resume: Path, end: float):
