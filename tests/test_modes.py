@@ -195,6 +195,20 @@ def test_a_crawling_run_says_so_once():
     assert "rollerdyn modes" in note and "--set surfaces.flange_law=distributed" in note
     (note,) = feed(False, 0.44e-6)
     assert "crawled" in note and "distributed" not in note
+    # a checkpoint interval below the pace ends every step: named as the cause (a run with
+    # --checkpoint-interval 0.0005ms was told to look at its roller ends and flange law)
+    clock = [0.0]
+    capped = CrawlWatch(
+        True, clock=lambda: clock[0], step_caps={"solver.checkpoint_interval": 5e-7}
+    )
+    found = []
+    for second in range(61):
+        clock[0] = float(second)
+        n = 1000 * second
+        found.append(capped(Progress(n * 5e-7, 1.0, n, 0, 0, 5e-7)))
+    (note,) = [n for n in found if n]
+    assert "held below solver.checkpoint_interval = 5e-07 s" in note
+    assert "distributed" not in note
 
 
 def test_a_crawling_run_is_noted_in_its_result_and_by_run(tmp_path, monkeypatch):

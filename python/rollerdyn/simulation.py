@@ -26,7 +26,7 @@ import numbers
 import os
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -532,7 +532,12 @@ def simulate(
     # unless its first part was forced past it
     options = run_options(config, end, force or forced is not None)
 
-    crawl = CrawlWatch(config.surfaces.flange_law == "point")
+    crawl = CrawlWatch(
+        config.surfaces.flange_law == "point",
+        # the run stops at every checkpoint time, saved or not (a resumed run takes the
+        # same path as the uninterrupted one)
+        step_caps={"solver.checkpoint_interval": config.solver.checkpoint_interval},
+    )
 
     def callback(t, t_end_, steps, rhs, jac, step, at_output):
         report = Progress(t, t_end_, steps, rhs, jac, step, at_output)
@@ -611,7 +616,9 @@ class CrawlWatch:
     120 °C there the point law averages 0.44 µs: docs/dynamics.md, "Hot oil at speed: the
     point law's radii"). Called with each :class:`Progress`; returns the note (one line:
     the pace, how to find the cause, and with the point end-flange law the law that avoids
-    the known one) the first time, else None."""
+    the known one) the first time, else None. ``step_caps``: the intervals that end a step
+    wherever the physics would let it go on (the checkpoint interval); one below
+    ``mean_step`` is named as the cause instead."""
 
     def __init__(
         self,
@@ -620,8 +627,10 @@ class CrawlWatch:
         window: float = 10.0,
         mean_step: float = 1e-6,
         clock: Callable[[], float] = time.perf_counter,
+        step_caps: Mapping[str, float] | None = None,
     ):
         self.point_law, self.clock = point_law, clock
+        self.step_caps = dict(step_caps or {})
         self.after, self.window, self.mean_step = after, window, mean_step
         self.started = clock()
         self.mark: tuple[float, float, int] | None = None  # (wall, time, steps)
@@ -641,6 +650,15 @@ class CrawlWatch:
         self.mark = (now, p.time, p.steps)
         if mean >= self.mean_step:
             return None
+        capped = [(name, cap) for name, cap in self.step_caps.items() if cap < self.mean_step]
+        if capped:
+            name, cap = min(capped, key=lambda item: item[1])
+            self.note = (
+                f"the run crawled: from t = {t:.6g} s its {p.steps - steps} steps averaged "
+                f"{mean:.2g} s of simulated time each, held below {name} = {cap:.2g} s, "
+                "which ends a step at every multiple of it; a longer one lets the steps grow"
+            )
+            return self.note
         law = (
             "; with the point end-flange law a known cause is a roller end nearly parallel "
             'to a flange, which surfaces.flange_law = "distributed" avoids (--set '
