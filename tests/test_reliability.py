@@ -196,6 +196,12 @@ def test_a_run_far_beyond_a_normal_one_is_refused_with_its_estimate(b1):
 def test_simulate_takes_a_path(tmp_path):
     ds = rollerdyn.simulate(B1, t_end="2 ms", threads=1)
     assert float(ds.attrs["final_time_s"]) == pytest.approx(0.002)
+    # the package's simulate takes every argument of rollerdyn.simulation.simulate, whose
+    # documentation it points to (checkpoint and notice were refused as unknown)
+    saved = []
+    every_ms = load_config(B1, {"solver.checkpoint_interval": "1 ms"})
+    rollerdyn.simulate(every_ms, t_end="2 ms", threads=1, checkpoint=saved.append, notice=print)
+    assert [float(s.attrs["final_time_s"]) for s in saved] == pytest.approx([0.001, 0.002])
     with pytest.raises(ConfigError, match="not found"):
         rollerdyn.simulate(tmp_path / "nope.toml", t_end=0.001)
 

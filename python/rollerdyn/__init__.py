@@ -83,10 +83,18 @@ sys.modules[__name__].__class__ = _Package
 
 
 def simulate(
-    config, t_end=None, detector=None, progress=None, resume=None, threads=None, force=False
+    config,
+    t_end=None,
+    detector=None,
+    progress=None,
+    resume=None,
+    checkpoint=None,
+    threads=None,
+    force=False,
+    notice=None,
 ):
     """Run the dynamic model of ``config`` (a BearingConfig or the path of a TOML file);
-    see :func:`rollerdyn.simulation.simulate`."""
+    see :func:`rollerdyn.simulation.simulate`, whose arguments it takes."""
     from .simulation import simulate as _simulate
 
     return _simulate(
@@ -95,8 +103,10 @@ def simulate(
         detector=detector,
         progress=progress,
         resume=resume,
+        checkpoint=checkpoint,
         threads=threads,
         force=force,
+        notice=notice,
     )
 
 
