@@ -329,3 +329,26 @@ def test_legends_name_the_load_case_and_tell_runs_of_the_same_name_apart():
     same = [Path("sweep/run_0000.nc"), Path("sweep3/run_0000.nc")]
     assert run_names(same) == ["sweep/run_0000.nc", "sweep3/run_0000.nc"]
     assert run_names([Path("a/b1.nc"), Path("a/tilt.nc")]) == ["b1", "tilt"]
+
+
+def test_the_report_function_checks_its_arguments_before_the_work(result, tmp_path):
+    # a Dataset was taken as a list of files ("ring_speed: result file not found"), a
+    # folder as out failed with IsADirectoryError after the work, and max_frames of 0 or
+    # NaN were taken without a word
+    import xarray as xr
+
+    from rollerdyn.report import ReportError, report
+
+    with xr.open_dataset(result, engine="h5netcdf") as ds:
+        with pytest.raises(ReportError, match="paths = <xarray.Dataset> .*: must be result"):
+            report(ds, tmp_path / "r.html")
+    for kwargs, match in (
+        ({"out": None}, "out = None: must be the report's file path"),
+        ({"out": tmp_path}, "is a folder; name the report's file in it"),
+        ({"out": tmp_path / "r.html", "max_frames": 0}, "max_frames = 0: must be a whole"),
+        ({"out": tmp_path / "r.html", "max_frames": float("nan")}, "max_frames = nan"),
+        ({"out": tmp_path / "r.html", "max_frames": 1.5}, "max_frames = 1.5"),
+    ):
+        with pytest.raises(ReportError, match=match):
+            report([result], **kwargs)
+    assert not (tmp_path / "r.html").exists()

@@ -15,6 +15,7 @@ from __future__ import annotations
 import html
 import json
 import math
+import os
 from pathlib import Path
 
 import numpy as np
@@ -422,13 +423,25 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
 def report(paths, out, max_frames: int = MAX_FRAMES) -> Path:
     """Writes one self-contained HTML report of the result files ``paths`` (netCDF written
     by ``rollerdyn run``) to ``out`` and returns its path. Raises :class:`ReportError` for
-    a missing file or one that is not a rollerdyn result, and for ``out`` naming one of
-    them."""
+    a missing file or one that is not a rollerdyn result, for ``out`` naming one of them
+    or a folder, and for arguments of the wrong kind (``paths`` of files, ``max_frames`` a
+    whole number of at least 1), before the work."""
     from .paths import same_file
 
-    if isinstance(paths, str | Path):
+    if isinstance(paths, str | os.PathLike):
         paths = [paths]
+    if isinstance(paths, xr.Dataset) or not all(isinstance(p, str | os.PathLike) for p in paths):
+        raise ReportError(
+            f"paths = {_short(paths)}: must be result files' paths (a path or a list of them)"
+        )
+    if not isinstance(out, str | os.PathLike):
+        raise ReportError(f"out = {out!r}: must be the report's file path")
+    whole = isinstance(max_frames, int | np.integer) and not isinstance(max_frames, bool)
+    if not (whole and max_frames >= 1):
+        raise ReportError(f"max_frames = {max_frames!r}: must be a whole number, at least 1")
     paths, out = [Path(p) for p in paths], Path(out)
+    if out.is_dir():
+        raise ReportError(f"-o {out}: is a folder; name the report's file in it")
     for p in paths:
         if same_file(out, p):
             raise ReportError(f"-o {out}: is the result file {p}, an input; choose another")
@@ -440,6 +453,12 @@ def report(paths, out, max_frames: int = MAX_FRAMES) -> Path:
 
 #: The page's generator (``<meta name="generator">``): what marks an earlier report.
 REPORT_GENERATOR = "rollerdyn"
+
+
+def _short(value: object) -> str:
+    """``repr(value)`` on one line, cut to 60 characters, for messages."""
+    text = " ".join(repr(value).split())
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def is_report_page(path: Path) -> bool:
