@@ -130,7 +130,7 @@ def _hertz_cases() -> Iterator[Case]:
     for alpha, limit in ((1.0, 0.10), (10.0, 0.01), (50.0, 0.04), (200.0, 0.11), (1000.0, 0.23)):
         yield Case(
             "Hertz point",
-            f"Brewe-Hamrock force error at Ry/Rx = {alpha:g} (same penetration)",
+            f"Brewe-Hamrock force [N] at Ry/Rx = {alpha:g}, 1 um penetration, vs exact",
             "exact solution (the fit's known error)",
             float(tri.hertz_point_force(1e-3, 1e-3 * alpha, E_PRIME_STEEL, 1e-6, "exact")),
             lambda a=alpha: tri.hertz_point_force(
