@@ -488,6 +488,15 @@ def test_statics_moments_take_a_torque_unit():
     twice = ("--set", "operating.radial_load=1000 N,5 kN", "--set", "operating.radial_load=2 kN")
     res = invoke("statics", B1, *twice, code=2)
     one_line_saying(res.output, "operating.radial_load", "given twice")
+    # a prescribed misalignment holds the tilt a moment would act on: the moment was
+    # silently ignored
+    both = ("--set", "inner_ring.misalignment=0.03 deg", "--set", "moment_y=5 N*m")
+    res = invoke("statics", B1, *both, code=2)
+    one_line_saying(res.output, "moment_y", "misalignment", "act on nothing")
+    from rollerdyn.statics import StaticsError, statics
+
+    with pytest.raises(StaticsError, match="would act on nothing"):
+        statics(B1, misalignment=5e-4, moment=(5.0, 0.0))
 
 
 def test_bench_cases_refuse_t_end(tmp_path):

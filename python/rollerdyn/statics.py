@@ -171,7 +171,13 @@ def _case_with(case: StaticCase, *, moment=None, **values) -> StaticCase:
         if not (math.isfinite(my) and math.isfinite(mz)):
             raise StaticsError(f"moment = ({my}, {mz}) N*m: must be finite")
         case = replace(case, moment_y=my, moment_z=mz)
-        if (my or mz) and "misalignment" not in changes:
+        if (my or mz) and "misalignment" in changes:
+            raise StaticsError(
+                f"moment = ({my:g}, {mz:g}) N*m with misalignment = {changes['misalignment']:g} "
+                "rad: a prescribed misalignment holds the ring's tilt, so a tilting moment "
+                "would act on nothing; give one or the other"
+            )
+        if my or mz:
             case = replace(case, misalignment=None)
     return case
 

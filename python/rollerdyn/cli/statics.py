@@ -104,6 +104,13 @@ def statics_command(
         st.check_grid_size({p: len(v) for p, v in grid.items()})
     except st.StaticsError as err:
         raise refuse(err) from None
+    moments = [p for p in ("moment_y", "moment_z") if any(grid.get(p, []))]
+    if moments and "inner_ring.misalignment" in grid:
+        raise refuse(
+            f"--set {moments[0]} with --set inner_ring.misalignment: a prescribed misalignment "
+            "holds the ring's tilt, so a tilting moment would act on nothing; give one or the "
+            "other"
+        )
     single = all(len(v) == 1 for v in grid.values())
     try:
         if single:
