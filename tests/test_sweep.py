@@ -439,6 +439,28 @@ def test_ctrl_c_keeps_the_summary_of_the_finished_runs(tmp_path):
     assert {p.name for p in tmp_path.glob("run_*.nc")} == set(finished["file"])
 
 
+def _sweep_with_runs_out(folder: Path):
+    """`rollerdyn sweep` of three runs of 0.2 s on two workers into ``folder``, in its own
+    session, 2 s after its runs are out on the workers: the process and its lines so far."""
+    import subprocess
+    import sys
+    import time
+
+    command = Path(sys.executable).parent / "rollerdyn"
+    args = [str(command), "sweep", str(B1), "--set", "operating.axial_load=500 N,1000 N,1500 N"]
+    args += ["--t-end", "0.2 s", "--workers", "2", "-o", str(folder)]
+    proc = subprocess.Popen(
+        args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True
+    )
+    lines = []
+    for line in proc.stdout:  # until the runs are out on the workers
+        lines.append(line)
+        if "submitted" in line:
+            break
+    time.sleep(2.0)
+    return proc, lines
+
+
 @pytest.mark.parametrize("presses", [1, 2])
 def test_ctrl_c_in_the_terminal_stops_the_sweep_with_one_line(tmp_path, presses):
     # A terminal's Ctrl-C reaches the whole process group, the Dask workers too: the
@@ -451,22 +473,9 @@ def test_ctrl_c_in_the_terminal_stops_the_sweep_with_one_line(tmp_path, presses)
     # a loaded machine.
     import os
     import signal
-    import subprocess
-    import sys
     import time
 
-    command = Path(sys.executable).parent / "rollerdyn"
-    args = [str(command), "sweep", str(B1), "--set", "operating.axial_load=500 N,1000 N,1500 N"]
-    args += ["--t-end", "0.2 s", "--workers", "2", "-o", str(tmp_path / "sw")]
-    proc = subprocess.Popen(
-        args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True
-    )
-    lines = []
-    for line in proc.stdout:  # until the runs are out on the workers
-        lines.append(line)
-        if "submitted" in line:
-            break
-    time.sleep(2.0)
+    proc, lines = _sweep_with_runs_out(tmp_path / "sw")
     os.killpg(proc.pid, signal.SIGINT)
     sent = time.monotonic()
     if presses == 2:
@@ -496,22 +505,8 @@ def test_sigterm_stops_the_sweep_as_ctrl_c_does(tmp_path):
     # writes the summary as after Ctrl-C, ends with one line naming it, exit status 143.
     import os
     import signal
-    import subprocess
-    import sys
-    import time
 
-    command = Path(sys.executable).parent / "rollerdyn"
-    args = [str(command), "sweep", str(B1), "--set", "operating.axial_load=500 N,1000 N,1500 N"]
-    args += ["--t-end", "0.2 s", "--workers", "2", "-o", str(tmp_path / "sw")]
-    proc = subprocess.Popen(
-        args, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, start_new_session=True
-    )
-    lines = []
-    for line in proc.stdout:  # until the runs are out on the workers
-        lines.append(line)
-        if "submitted" in line:
-            break
-    time.sleep(2.0)
+    proc, lines = _sweep_with_runs_out(tmp_path / "sw")
     os.kill(proc.pid, signal.SIGTERM)
     out, _ = proc.communicate(timeout=60)
     out = "".join(lines) + out

@@ -203,7 +203,8 @@ def paper_command(
 
     Exit status: 0 when the study ran (runs that did not finish and findings that FAIL
     are results, in the tables); 1 when a run could not be run at all; 2 for bad input
-    (nothing run); 130 after Ctrl-C, 143 after SIGTERM (finished runs and checkpoints stay on disk).
+    (nothing run); 130 after Ctrl-C, 143 after SIGTERM (finished runs and checkpoints stay
+    on disk).
     """
     from ..study import paper
 
