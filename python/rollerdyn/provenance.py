@@ -144,11 +144,7 @@ def bearing_differences(a: dict, b: dict, shown: int = 3) -> list[str]:
     """'field: a -> b' for the first ``shown`` fields of :data:`BEARING_SECTIONS` in which
     the resolved configurations ``a`` and ``b`` (:func:`resolved`, or a result's
     ``config_resolved``) differ; with more, a last entry says how many more."""
-    found = [
-        line
-        for line in differences(a, b)
-        if line.split(".", 1)[0].split(":", 1)[0] in BEARING_SECTIONS
-    ]
+    found = differences(*({s: c.get(s) for s in BEARING_SECTIONS} for c in (a, b)))
     more = len(found) - shown
     return found[:shown] + ([f"and {more} more"] if more > 0 else [])
 

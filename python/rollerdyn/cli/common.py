@@ -172,14 +172,17 @@ def set_options(options: list[str] | None) -> dict[str, Any]:
 
 
 @contextlib.contextmanager
-def terminated_as_interrupted():
+def terminated_as_interrupted(message: str):
     """SIGTERM (a batch system's stop, `kill`, `timeout`) within the block is Ctrl-C: a
     KeyboardInterrupt, so that a sweep or a study closes its workers and keeps what they
-    computed as it does after Ctrl-C. Yields the list that records it (the command then
-    exits with status 143); a second SIGTERM is only recorded."""
+    computed as it does after Ctrl-C; the command then prints ``message`` and exits with
+    status 143 (a second SIGTERM meanwhile is only recorded). Ctrl-C itself passes on."""
     import signal
     import threading
 
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
     received: list[int] = []
 
     def stop(signum, _frame):
@@ -187,11 +190,13 @@ def terminated_as_interrupted():
         if len(received) == 1:
             raise KeyboardInterrupt("terminated by SIGTERM")
 
-    if threading.current_thread() is not threading.main_thread():
-        yield received
-        return
     previous = signal.signal(signal.SIGTERM, stop)
     try:
-        yield received
+        yield
+    except KeyboardInterrupt:
+        if not received:
+            raise
+        error(message)
+        raise typer.Exit(143) from None
     finally:
         signal.signal(signal.SIGTERM, previous)

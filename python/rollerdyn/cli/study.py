@@ -18,7 +18,6 @@ from ..limits import DEFAULT_MAX_WALL
 from .common import (
     console,
     default_config,
-    error,
     load,
     output_option,
     plain,
@@ -389,19 +388,17 @@ def _run_study(title: str, study, config: Path, output: Path, **options):
     bad input exits with status 2, a folder that cannot be written with 1."""
     from ..study import StudyError
 
-    with terminated_as_interrupted() as terminated:
-        try:
-            with refusing(StudyError, output), _progress(title, options.get("scheduler")) as show:
-                return study(config, output, progress=show, **options)
-        except KeyboardInterrupt:
-            if not terminated:
-                raise
-            # as after Ctrl-C: the workers closed, the runs' files as far as they got
-            error(
-                f"rollerdyn study: terminated (SIGTERM); {output} keeps the runs as far as "
-                "they got, and the same command continues them"
-            )
-            raise typer.Exit(143) from None
+    # after SIGTERM as after Ctrl-C: the workers closed, the runs' files as far as they got
+    terminated = (
+        f"rollerdyn study: terminated (SIGTERM); {output} keeps the runs as far as they got, "
+        "and the same command continues them"
+    )
+    with (
+        terminated_as_interrupted(terminated),
+        refusing(StudyError, output),
+        _progress(title, options.get("scheduler")) as show,
+    ):
+        return study(config, output, progress=show, **options)
 
 
 def _finish(output: Path, files, frame, figures: list, timing: dict, started: float) -> None:

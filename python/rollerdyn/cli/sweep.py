@@ -156,29 +156,24 @@ def sweep_command(
         overwrite=overwrite,
         hint="; pass --overwrite to replace them, or choose another folder",
     )
-    with refusing(SweepError, output), terminated_as_interrupted() as terminated:
+    terminated = (
+        f"rollerdyn sweep: terminated (SIGTERM); {output / SUMMARY_FILE} lists the runs that "
+        "finished and the others as interrupted"
+    )
+    with refusing(SweepError, output), terminated_as_interrupted(terminated):
         build_grid(config, parameters, end)  # every grid point before the cluster starts
         with _sweep_progress(console, scheduler) as progress:
-            try:
-                frame = sweep(
-                    config,
-                    parameters,
-                    output,
-                    scheduler=scheduler,
-                    workers=workers,
-                    t_end=end,
-                    detector=detector,
-                    progress=progress,
-                    force=force,
-                )
-            except KeyboardInterrupt:
-                if not terminated:
-                    raise
-                error(
-                    f"rollerdyn sweep: terminated (SIGTERM); {output / SUMMARY_FILE} lists the "
-                    "runs that finished and the others as interrupted"
-                )
-                raise typer.Exit(143) from None
+            frame = sweep(
+                config,
+                parameters,
+                output,
+                scheduler=scheduler,
+                workers=workers,
+                t_end=end,
+                detector=detector,
+                progress=progress,
+                force=force,
+            )
     failed = _print_summary(frame, config, output, list(parameters))
     figure = output / f"{FIGURE_NAME}.png"
     drawn = f", {figure} (and .svg)" if figure.is_file() else ""

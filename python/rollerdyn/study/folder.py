@@ -7,6 +7,7 @@ written beside the runs.
 from __future__ import annotations
 
 import json
+import math
 import os
 from pathlib import Path
 
@@ -45,8 +46,6 @@ def _remove_written(out: Path) -> None:
 def _grid_text(grid: list) -> str:
     """A map's grid (speeds [rad/s], radial and axial loads [N]) as its values, in rpm
     and N."""
-    import math
-
     try:
         speeds, radial, axial = grid
         rpm = [f"{v * 30 / math.pi:.6g}" for v in speeds]
