@@ -8,6 +8,7 @@ use super::roller::{RollerForces, RollerPose, ROLLER_UNKNOWNS};
 use super::{RingTilt, StaticCase, StaticSolution};
 use crate::bearing::contacts::Wrench;
 use crate::bearing::model::LineContact;
+use crate::bearing::params::FlangeLaw;
 use crate::bearing::state::Kinematics;
 use crate::bearing::topology::FLANGE_NAMES;
 use crate::bearing::workspace::BearingSystem;
@@ -506,6 +507,8 @@ impl<'a> Problem<'a> {
         });
         let (mut reached, mut step, mut iterations): (f64, f64, usize) = (0.0, 1.0, 0);
         let mut halvings = 0;
+        // The unknowns of the last load level reached, if any.
+        let mut held: Option<Vec<f64>> = None;
         loop {
             self.load_factor = (reached + step).min(1.0);
             let (found, r, converged, taken) = self.newton(u.clone());
@@ -517,22 +520,52 @@ impl<'a> Problem<'a> {
                     return Ok((u, r, iterations));
                 }
                 if iterations > MAX_TOTAL_ITERATIONS {
-                    return Err(self.failure(reached, &r));
+                    return Err(self.failure(reached, &r, Some(&u)));
                 }
-                step *= 2.0;
+                held = Some(u.clone());
+                // A halving of a doubled step past the whole load must change the level.
+                step = (2.0 * step).min(1.0 - reached);
                 continue;
             }
             halvings += 1;
             let spent = !self.careful && self.evaluations > FAST_PATH_EVALUATIONS;
             if halvings > MAX_BISECTIONS || iterations > MAX_TOTAL_ITERATIONS || spent {
-                return Err(self.failure(reached, &r));
+                return Err(self.failure(reached, &r, held.as_deref()));
             }
             step *= 0.5;
         }
     }
 
-    /// The error of a case whose equilibrium was not found.
-    fn failure(&self, reached: f64, r: &DVector<f64>) -> Error {
+    /// The error of a case whose equilibrium was not found, `reached` the share of the
+    /// load carried at the unknowns `held`. Where the flanges at that level are already
+    /// pressed past ISO 76's limit, that is the reason given (the load is past what the
+    /// flanges carry whether or not its equilibrium could be found); where the residual
+    /// left is within the tolerance, the iteration budget ran out in ever smaller load
+    /// steps. With the ring's tilt free and the point law, the message names the
+    /// distributed law, whose contact does not jump along the rims.
+    fn failure(&mut self, reached: f64, r: &DVector<f64>, held: Option<&[f64]>) -> Error {
+        if let Some(u) = held {
+            let forces = self.evaluate(u, true);
+            if let Err(e) = check_flange_pressures(&self.case, &forces, reached) {
+                return e;
+            }
+        }
+        let hint = if self.case.tilt == RingTilt::Free
+            && self.model.model.params.flange_law == FlangeLaw::Point
+        {
+            "; with the ring's tilt free, the point law's flange contact jumps along the rims \
+             (docs/dynamics.md, \"Free inner ring tilt\"): try surfaces.flange_law = \
+             \"distributed\""
+        } else {
+            ""
+        };
+        self.no_equilibrium(reached, r, hint)
+    }
+
+    /// The "no quasi-static equilibrium" error: the load level reached, and the largest
+    /// residual left with its body, or the iteration budget where that residual is within
+    /// the tolerance.
+    pub(super) fn no_equilibrium(&self, reached: f64, r: &DVector<f64>, hint: &str) -> Error {
         let active = self.active();
         let worst = active
             .iter()
@@ -543,22 +576,32 @@ impl<'a> Problem<'a> {
                     .total_cmp(&(r[b] / self.weight(b)).abs())
             })
             .unwrap_or(0);
+        let tolerance = self.tolerance() * self.weight(worst);
+        let unit = if self.is_angle(worst) { "N m" } else { "N" };
+        let why = if r[worst].abs() < tolerance {
+            format!(
+                "no quasi-static equilibrium within {MAX_TOTAL_ITERATIONS} Newton iterations: \
+                 reached {:.0} % of the load in ever smaller load steps (each level balanced \
+                 to the tolerance, {tolerance:.1e} {unit}); the bearing may not carry this load",
+                100.0 * reached,
+            )
+        } else {
+            format!(
+                "no quasi-static equilibrium: reached {:.0} % of the load; at the next level the \
+                 residual is {:.3e} on {} (tolerance {tolerance:.1e} {unit}); the bearing may not \
+                 carry this load",
+                100.0 * reached,
+                r[worst],
+                self.unknown_name(worst),
+            )
+        };
         Error::invalid(
             "load",
             format!(
                 "radial {} N, axial {} N",
                 self.case.radial_load, self.case.axial_load
             ),
-            format!(
-                "no quasi-static equilibrium: reached {:.0} % of the load; at the next level the \
-                 residual is {:.3e} on {} (tolerance {:.1e} {}); the bearing may not carry this \
-                 load",
-                100.0 * reached,
-                r[worst],
-                self.unknown_name(worst),
-                self.tolerance() * self.weight(worst),
-                if self.is_angle(worst) { "N m" } else { "N" },
-            ),
+            format!("{why}{hint}"),
         )
     }
 
@@ -602,7 +645,7 @@ impl BearingSystem<'_> {
         let from = start.map(|s| unknowns_of(s, &problem));
         let (u, r, iterations) = problem.solve(from)?;
         let forces = problem.evaluate(&u, true);
-        check_flange_pressures(case, &forces)?;
+        check_flange_pressures(case, &forces, 1.0)?;
         let mut ring_load = Wrench::default();
         for f in &forces {
             ring_load.add(&f.on_ring);
@@ -631,8 +674,9 @@ impl BearingSystem<'_> {
 /// rims, states of a bearing that has failed.
 pub const FLANGE_PRESSURE_LIMIT: f64 = 4.0e9;
 
-/// Refuses an equilibrium whose flange contacts exceed [`FLANGE_PRESSURE_LIMIT`].
-fn check_flange_pressures(case: &StaticCase, forces: &[RollerForces]) -> Result<()> {
+/// Refuses an equilibrium whose flange contacts exceed [`FLANGE_PRESSURE_LIMIT`], found at
+/// the share `reached` of the case's load (1: the whole load).
+fn check_flange_pressures(case: &StaticCase, forces: &[RollerForces], reached: f64) -> Result<()> {
     let worst = super::flange_loads(forces)
         .map(|(i, k, x)| (i, k, x.pressure))
         .max_by(|a, b| a.2.total_cmp(&b.2));
@@ -641,8 +685,13 @@ fn check_flange_pressures(case: &StaticCase, forces: &[RollerForces]) -> Result<
             "load",
             format!("radial {} N, axial {} N", case.radial_load, case.axial_load),
             format!(
-                "the flanges cannot carry it: at equilibrium roller {i} presses the {} flange \
+                "the flanges cannot carry it: at equilibrium{} roller {i} presses the {} flange \
                  at {:.1} GPa, above the {:.0} GPa of ISO 76's static limit",
+                if reached < 1.0 {
+                    format!(" under {:.0} % of the load", 100.0 * reached)
+                } else {
+                    String::new()
+                },
                 FLANGE_NAMES[k],
                 pressure / 1e9,
                 FLANGE_PRESSURE_LIMIT / 1e9
