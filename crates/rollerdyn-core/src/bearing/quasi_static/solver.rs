@@ -38,7 +38,7 @@ pub(super) const MAX_MOVE: f64 = 4e-6;
 /// while the ring is far from its own (inexact Newton).
 const FORCING: f64 = 0.01;
 /// Evaluations of one roller's contacts after which the fast path gives way to the
-/// careful one: three times what B1's cold start takes on it (1 162), a third of what the
+/// careful one: three times what B1's cold start takes on it (1 159), a third of what the
 /// careful path takes.
 const FAST_PATH_EVALUATIONS: usize = 3500;
 /// The largest fall of the ring's residual per step for which the Jacobian is kept for

@@ -538,3 +538,42 @@ fn a_spent_iteration_budget_is_not_reported_as_a_residual() {
         "{e}"
     );
 }
+
+/// A moment about y on the free ring without axial load (docs/statics.md): the ring tilts
+/// about y, which lifts the unloaded rollers at the top off their race but for their
+/// weight and centrifugal force (B1 at 500 rpm: 1.7 mN net on roller 10, a penetration of
+/// picometres). Their own searches converge only with difference steps below that depth
+/// (`light_contact_shrink`); with the 0.1 nm step they cycled between the race and the gap
+/// and no equilibrium was found at 0.1 or 0.3 N·m. Checked against the prescribed-tilt
+/// path: with the tilt found prescribed and no moment applied, the lock holds the ring
+/// with the applied moment (to 1e-3 of it); and the tilt grows with the moment.
+#[test]
+fn a_moment_about_y_tilts_the_free_ring_with_lightly_held_rollers() {
+    let m = model(&B1);
+    let workspace = Workspace::single(&m);
+    let m = m.system(&workspace);
+    let speed = 500.0 * std::f64::consts::PI / 30.0;
+    let case = |moment: f64, tilt: RingTilt| StaticCase {
+        moment: [moment, 0.0],
+        speed,
+        tilt,
+        ..at_rest(5000.0, 0.0)
+    };
+    let mut last = 0.0;
+    for moment in [0.1, 0.3, 1.0] {
+        let s = m.statics(&case(moment, RingTilt::Free), None).unwrap();
+        let tilt = s.ring[3];
+        assert!(tilt > last, "{moment} N m: {tilt} rad after {last} rad");
+        last = tilt;
+        let held = m
+            .statics(&case(0.0, RingTilt::Prescribed(tilt, 0.0)), None)
+            .unwrap()
+            .ring_load
+            .moment
+            .y;
+        assert!(
+            (held + moment).abs() < 1e-3 * moment,
+            "{moment} N m: held {held} N m"
+        );
+    }
+}
