@@ -247,10 +247,17 @@ def test_the_point_laws_load_check_is_a_rule_of_thumb_that_force_overrides() -> 
 
 
 def test_a_case_that_cannot_start_is_reported_not_raised() -> None:
+    """B1 at 30 kN axially: the point law's check refuses it before the start (no
+    equilibrium at the full load, one past ISO 76 at 16.5 kN); with the distributed law the
+    start from equilibrium finds none. Both are reported as the case's message."""
     cfg = variant(**{"operating.axial_load": "30 kN"})
     result = run_case(cfg, "equilibrium-500rpm", max_wall=10.0)
     assert not result.completed and result.steps == 0
-    assert "no equilibrium found" in result.message
+    assert "the point law finds no quasi-static equilibrium" in result.message
+    distributed = variant(**{"operating.axial_load": "30 kN", "surfaces.flange_law": "distributed"})
+    result = run_case(distributed, "equilibrium-500rpm", max_wall=10.0)
+    assert not result.completed and result.steps == 0
+    assert "no equilibrium found" in result.message, result.message
 
 
 def test_more_threads_than_cores_are_not_started() -> None:
