@@ -81,65 +81,55 @@ impl BearingSystem<'_> {
         if full.axial_load == 0.0 {
             return Ok(());
         }
-        let mut reason = None;
+        // Why the full load has no equilibrium, once a level below it is tried.
+        let mut reason = String::new();
         for fraction in [1.0, 0.85, 0.7, 0.55, 0.4] {
             let case = StaticCase {
                 axial_load: fraction * full.axial_load,
                 ..full
             };
-            let found = self.elastic_equilibrium(&case, None);
-            if let Err(e) = &found {
-                reason.get_or_insert_with(|| match e {
-                    Error::Invalid { rule, .. } => rule.clone(),
-                    other => other.to_string(),
-                });
+            let solution = match self.elastic_equilibrium(&case, None) {
+                Ok(solution) => solution,
+                Err(e) => {
+                    if reason.is_empty() {
+                        reason = match e {
+                            Error::Invalid { rule, .. } => rule,
+                            other => other.to_string(),
+                        };
+                    }
+                    continue;
+                }
+            };
+            let already = if fraction < 1.0 {
+                format!("and already at {} N axially ", shown(case.axial_load))
+            } else {
+                String::new()
+            };
+            if let Some(why) = end_on_its_face(&solution) {
+                return Err(point_law_refusal(
+                    t,
+                    &full,
+                    format!("{already}{why}; {USE_DISTRIBUTED}"),
+                ));
             }
-            if let Ok(solution) = found {
-                return match end_on_its_face(&solution) {
-                    Some(why) => Err(Error::invalid(
-                        "surfaces.flange_law",
-                        "point",
-                        format!(
-                            "at the loads of t = {t:.4} s (radial {} N, axial {} N) {}{why}; \
-                             {USE_DISTRIBUTED}",
-                            shown(full.radial_load),
-                            shown(full.axial_load),
-                            if fraction < 1.0 {
-                                format!("and already at {} N axially ", shown(case.axial_load))
-                            } else {
-                                String::new()
-                            },
-                        ),
-                    )),
-                    None => match (fraction < 1.0, past_the_flanges_limit(&solution)) {
-                        (true, Some(why)) => Err(Error::invalid(
-                            "surfaces.flange_law",
-                            "point",
-                            format!(
-                                "at the loads of t = {t:.4} s (radial {} N, axial {} N) the \
-                                 point law finds no quasi-static equilibrium (at the full load: \
-                                 {}), and already at {} N axially {why}; {NO_POINT_EQUILIBRIUM}",
-                                shown(full.radial_load),
-                                shown(full.axial_load),
-                                reason.unwrap_or_default(),
-                                shown(case.axial_load),
-                            ),
-                        )),
-                        _ => Ok(()),
-                    },
-                };
-            }
+            return match (fraction < 1.0, past_the_flanges_limit(&solution)) {
+                (true, Some(why)) => Err(point_law_refusal(
+                    t,
+                    &full,
+                    format!(
+                        "the point law finds no quasi-static equilibrium (at the full load: \
+                         {reason}), {already}{why}; {NO_POINT_EQUILIBRIUM}"
+                    ),
+                )),
+                _ => Ok(()),
+            };
         }
-        Err(Error::invalid(
-            "surfaces.flange_law",
-            "point",
+        Err(point_law_refusal(
+            t,
+            &full,
             format!(
-                "at the loads of t = {t:.4} s (radial {} N, axial {} N) the point law finds \
-                 no quasi-static equilibrium, nor at 40 % of the axial load (at the full \
-                 load: {}); {NO_POINT_EQUILIBRIUM}",
-                shown(full.radial_load),
-                shown(full.axial_load),
-                reason.unwrap_or_default(),
+                "the point law finds no quasi-static equilibrium, nor at 40 % of the axial load \
+                 (at the full load: {reason}); {NO_POINT_EQUILIBRIUM}"
             ),
         ))
     }
@@ -194,6 +184,19 @@ fn end_on_its_face(solution: &StaticSolution) -> Option<String> {
             pairing.label()
         )
     })
+}
+
+/// The point law's refusal of a run whose loads at time `t` are `full`, for `why`.
+fn point_law_refusal(t: f64, full: &StaticCase, why: String) -> Error {
+    Error::invalid(
+        "surfaces.flange_law",
+        "point",
+        format!(
+            "at the loads of t = {t:.4} s (radial {} N, axial {} N) {why}",
+            shown(full.radial_load),
+            shown(full.axial_load),
+        ),
+    )
 }
 
 /// Where the most loaded flange contact of `solution` is pressed past ISO 76's limit

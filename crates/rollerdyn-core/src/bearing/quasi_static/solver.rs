@@ -646,8 +646,9 @@ impl BearingSystem<'_> {
     }
 
     /// [`Self::statics`] without ISO 76's flange limit: the elastic equilibrium, however
-    /// hard its roller ends press the flanges (B1 at 10 kN axially: 15.6 GPa, the rollers
-    /// tipped onto their end faces), for a judgement of where the rollers lie.
+    /// hard its roller ends press the flanges (B1 at 10 kN axially: 15.6 GPa, the most
+    /// loaded end's edge torus on a flange rim), for a judgement of where the rollers lie
+    /// ([`BearingSystem::check_point_law`]).
     pub(crate) fn elastic_equilibrium(
         &self,
         case: &StaticCase,
