@@ -126,7 +126,8 @@ def run(
             "--force",
             help="Run even when the estimated result size or cost is far beyond a normal "
             "run (the refusal prints the estimate), or when the point end-flange law's load "
-            "check refuses it (a roller end pressed onto its end face: the run's steps "
+            "check refuses it (a roller end pressed onto its end face, or a load the point "
+            "law has no equilibrium for: the run's steps "
             "creep or collapse).",
         ),
     ] = False,

@@ -328,7 +328,8 @@ def map_command(
         typer.Option(
             "--force",
             help="Run the points the point end-flange law's load check refuses (a roller "
-            "end pressed onto its end face: the run's steps may creep or collapse), as "
+            "end pressed onto its end face, or a load the point law has no equilibrium for: "
+            "the run's steps may creep or collapse), as "
             "rollerdyn run --force does; their rows' notes say so. Without it such a point "
             "is not run (exit status 1), and the map invoked again with --force runs it.",
         ),

@@ -117,7 +117,8 @@ def sweep_command(
             "--force",
             help="Run every point as rollerdyn run --force would: also those whose estimated "
             "result size or cost is far beyond a normal run, and those the point end-flange "
-            "law's load check refuses (a roller end pressed onto its end face: the run's "
+            "law's load check refuses (a roller end pressed onto its end face, or a load the "
+            "point law has no equilibrium for: the run's "
             "steps creep or collapse).",
         ),
     ] = False,
