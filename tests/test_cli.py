@@ -248,6 +248,31 @@ def test_runtime_study_writes_table_csv_and_plot(tmp_path):
     assert bad.exit_code == 2 and "comma-separated positive" in bad.output
 
 
+def test_bench_mbs_judges_the_detectors_agreement_and_takes_set():
+    """bench mbs prints, after the runtime table, how far the two detectors' runs agree
+    against issue 15's bounds (every roller's position 0.1 µm, flange forces 1 % of the
+    largest, mean torque 0.1 %), n/a where a measure has no output (no full speed in 2 ms);
+    --set changes the configuration it runs (a tolerance ten times tighter takes more
+    steps), and is refused with --state unless --config names the configuration."""
+
+    def semi_steps(output: str) -> int:
+        row = next(line for line in output.splitlines() if line.startswith("│ semi-analytical"))
+        return int(row.split("│")[3])
+
+    base = RUNNER.invoke(app, ["bench", "mbs", "--t-end", "2 ms"])
+    assert base.exit_code == 0, base.output
+    flat = " ".join(base.output.split())
+    assert "agreement of the two runs over 0 … 0.002 s (full speed not reached)" in flat
+    for row in ("roller position in the load zone (±60°), whole run │", "│ 0.1 µm │"):
+        assert row in base.output, base.output
+    assert "mean frictional torque at full speed, relative │ n/a │ 0.1 % │ n/a" in flat
+    tight = RUNNER.invoke(app, ["bench", "mbs", "--t-end", "2 ms", "--set", "solver.rtol=1e-6"])
+    assert tight.exit_code == 0, tight.output
+    assert semi_steps(tight.output) > semi_steps(base.output)
+    state = RUNNER.invoke(app, ["bench", "model", "--state", "x.nc", "--set", "solver.rtol=1e-6"])
+    assert state.exit_code == 2 and "give --config as well" in state.output
+
+
 def test_run_notes_the_slow_free_tilt_with_the_point_law(tmp_path):
     """B1 with `inner_ring.tilt = "free"` and the point end-flange law stalls in the load
     ramp, at t = 0.0226 s (docs/dynamics.md, "Free inner ring tilt"), and with a prescribed

@@ -21,12 +21,14 @@ from .bench_targets import (
     runtime_study,
 )
 from .common import (
+    SET_HELP,
     ConfigOption,
     checked,
     default_config,
     load,
     output_option,
     refuse,
+    set_options,
     time_option,
 )
 
@@ -132,6 +134,14 @@ def bench(
         ),
     ] = 1000,
     config: ConfigOption = None,
+    settings: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--set",
+            help=SET_HELP + " Changes the configuration of --config (or B1's) for every "
+            "target, e.g. mbs with solver.rtol=1e-6 and solver.atol=1e-10.",
+        ),
+    ] = None,
 ) -> None:
     """Time the hot paths and print tables (times in ns per evaluation unless a column
     says otherwise).
@@ -156,8 +166,10 @@ def bench(
     right-hand-side and Jacobian evaluations, and where the time goes: detection, line
     contacts and flange forces (summed over every contact evaluation, in right-hand sides
     and Jacobians alike), the time inside Jacobians, and the rest (linear algebra and the
-    solver's own work). With --sweep-dt-max: the runtime study of the paper's fig. 14;
-    with --cases: whole runs of operating points.
+    solver's own work); then how far the two runs agree (as `rollerdyn compare`), against
+    0.1 µm for every roller's position, 1 % of the largest flange force and 0.1 % of the
+    mean torque at full speed. With --sweep-dt-max: the runtime study of the paper's
+    fig. 14; with --cases: whole runs of operating points.
 
     statics: one quasi-static equilibrium of the configuration's load case (ms, median of
     20) and a sweep of --statics-cases radial loads (s), in the core and with datasets.
@@ -175,7 +187,13 @@ def bench(
         )
     if target == "mbs" and (cases is not None or dt_max_values is not None):
         checked(check_output_dir, output, "-o")
-    cfg = load(config if config is not None else default_config())
+    changes = set_options(settings)
+    if changes and state is not None and config is None:
+        raise refuse(
+            "--set with --state: the state is timed with the configuration its run records; "
+            "give --config as well to time it with a changed one"
+        )
+    cfg = load(config if config is not None else default_config(), changes)
     if target in ("traction", "all"):
         bench_traction(cfg, repetitions)
     if target in ("contact", "all"):

@@ -97,7 +97,7 @@ def _mbs_runs(cfg, t_end: float | None, label: str = "") -> list:
                 raise  # Ctrl-C stops the benchmark, not only this run
             except SimulationError as err:
                 ds = err.dataset
-        rows.append((detector, ds.attrs))
+        rows.append((detector, ds))
     return rows
 
 
@@ -111,7 +111,8 @@ def runtime_study(cfg, t_end: float | None, dt_max_values: list, out: Path) -> N
     for dt_max in dt_max_values:
         solver = cfg.solver.model_copy(update={"dt_max": dt_max})
         variant = cfg.model_copy(update={"solver": solver})
-        for detector, a in _mbs_runs(variant, t_end, f" (dt_max = {dt_max:g} s)"):
+        for detector, ds in _mbs_runs(variant, t_end, f" (dt_max = {dt_max:g} s)"):
+            a = ds.attrs
             records.append(
                 {
                     "dt_max_s": dt_max,
@@ -234,7 +235,8 @@ def bench_cases(cfg, cases: str, thread_counts: list, max_wall: float, out: Path
 
 def bench_mbs(cfg, t_end: float | None) -> None:
     """Whole runs (to ``t_end``) with each detector on one core: where the time goes."""
-    rows = _mbs_runs(cfg, t_end)
+    runs = _mbs_runs(cfg, t_end)
+    rows = [(detector, ds.attrs) for detector, ds in runs]
     reached = rows[0][1]["final_time_s"]
     table = Table(title=f"{cfg.name}: whole run to t = {reached:.4g} s, one core")
     cols = (
@@ -277,6 +279,55 @@ def bench_mbs(cfg, t_end: float | None) -> None:
         f"{SEMI_ANALYTICAL} run time {100 * (1 - semi / grad):.0f} % below the {GRADIENT} method's "
         "(paper sect. 5.3: 35 %)"
     )
+    _detector_agreement(cfg, runs[0][1], runs[1][1])
+
+
+#: How far the two detectors' whole runs may differ (issue 15's figures): every roller's
+#: position [m], the flange normal forces [share of the largest], the mean frictional
+#: torque at full speed [share of itself].
+AGREEMENT_BOUNDS = {
+    "position_load_zone": 0.1e-6,
+    "position_outside": 0.1e-6,
+    "flange_force": 0.01,
+    "torque_mean_full_speed": 0.001,
+}
+
+
+def _detector_agreement(cfg, semi, grad) -> None:
+    """How far the two detectors' runs agree (:func:`rollerdyn.study.agreement.differences`,
+    as `rollerdyn compare` prints it), each against :data:`AGREEMENT_BOUNDS`; full speed
+    from the first output at which the inner ring turns at 99 % of its final speed."""
+    import math
+
+    import numpy as np
+
+    from ..study.agreement import MEASURES, differences
+    from .compare import SHOWN_UNITS
+
+    final = abs(cfg.operating.final_inner_ring_speed)
+    turning = (np.abs(semi.ring_speed.values) >= 0.99 * final) & (final > 0)
+    full_speed = float(semi.time.values[np.argmax(turning)]) if turning.any() else math.inf
+    try:
+        found = differences(semi, grad, full_speed)
+    except ValueError as err:
+        say(f"the two runs cannot be compared: {err}", "yellow")
+        return
+    speed = (
+        f"full speed from {full_speed:.4g} s"
+        if math.isfinite(full_speed)
+        else "full speed not reached"
+    )
+    table = Table(title=f"agreement of the two runs over 0 … {found['t_end']:.4g} s ({speed})")
+    for col in ("largest difference of", "value", "bound", "within"):
+        table.add_column(col)
+    for key, bound in AGREEMENT_BOUNDS.items():
+        what, unit = MEASURES[key]
+        shown, factor = SHOWN_UNITS[unit]
+        value = found[key]
+        within = "n/a" if not math.isfinite(value) else ("yes" if value <= bound else "no")
+        text = "n/a" if not math.isfinite(value) else f"{value * factor:.4g} {shown}"
+        table.add_row(what, text, f"{bound * factor:g} {shown}", within)
+    console.print(table)
 
 
 def bench_contact(cfg, steps: int) -> None:
