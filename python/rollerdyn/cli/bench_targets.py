@@ -282,9 +282,9 @@ def bench_mbs(cfg, t_end: float | None) -> None:
     _detector_agreement(cfg, runs[0][1], runs[1][1])
 
 
-#: How far the two detectors' whole runs may differ (issue 15's figures): every roller's
-#: position [m], the flange normal forces [share of the largest], the mean frictional
-#: torque at full speed [share of itself].
+#: How far the two detectors' whole runs may differ (docs/dynamics.md, "Agreement of the
+#: two detectors in whole B1 runs"): every roller's position [m], the flange normal forces
+#: [share of the largest], the mean frictional torque at full speed [share of itself].
 AGREEMENT_BOUNDS = {
     "position_load_zone": 0.1e-6,
     "position_outside": 0.1e-6,
