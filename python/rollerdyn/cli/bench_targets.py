@@ -296,17 +296,15 @@ AGREEMENT_BOUNDS = {
 def _detector_agreement(cfg, semi, grad) -> None:
     """How far the two detectors' runs agree (:func:`rollerdyn.study.agreement.differences`,
     as `rollerdyn compare` prints it), each against :data:`AGREEMENT_BOUNDS`; full speed
-    from the first output at which the inner ring turns at 99 % of its final speed."""
+    from the first output at which the inner ring turns at 99 % of its final speed, as the
+    study's detector check counts it."""
     import math
 
-    import numpy as np
-
-    from ..study.agreement import MEASURES, differences
+    from ..study.agreement import MEASURES, differences, full_speed_time
+    from ..study.findings import FULL_SPEED
     from .compare import SHOWN_UNITS
 
-    final = abs(cfg.operating.final_inner_ring_speed)
-    turning = (np.abs(semi.ring_speed.values) >= 0.99 * final) & (final > 0)
-    full_speed = float(semi.time.values[np.argmax(turning)]) if turning.any() else math.inf
+    full_speed = full_speed_time(semi, cfg.operating.final_inner_ring_speed, FULL_SPEED)
     try:
         found = differences(semi, grad, full_speed)
     except ValueError as err:

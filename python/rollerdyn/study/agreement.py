@@ -21,6 +21,16 @@ import xarray as xr
 #: whose speed ramp ends later use their own end (:func:`differences`).
 FULL_SPEED = 0.75
 
+
+def full_speed_time(ds: xr.Dataset, final_speed: float, share: float) -> float:
+    """The first output time of ``ds`` at which the inner ring turns at ``share`` of its
+    final speed ``final_speed`` [rad/s] or more (the ``full_speed`` of
+    :func:`differences`); infinity if it never does."""
+    final = abs(final_speed)
+    turning = (np.abs(ds.ring_speed.values) >= share * final) & (final > 0)
+    return float(ds.time.values[np.argmax(turning)]) if turning.any() else float("inf")
+
+
 #: Half-width of the load zone about its centre (the roller azimuth pi: radial load along
 #: -y, azimuth measured from +y towards +z) [rad].
 LOAD_ZONE_HALF_WIDTH = np.radians(60.0)

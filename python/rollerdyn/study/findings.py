@@ -19,7 +19,7 @@ from ..config import BearingConfig, TimeTable
 from ..names import GRADIENT, SEMI_ANALYTICAL
 from ..report_figures import pairing_shares
 from ..simulation import carried_axial_force
-from .agreement import MEASURES, common_outputs, differences
+from .agreement import MEASURES, common_outputs, differences, full_speed_time
 from .plan import Plan
 from .runs import COMPLETED
 
@@ -555,9 +555,7 @@ def same_kinematics(c: _Context) -> Finding:
     a, b, t = c.ds(semi), c.ds(grad), c.ds(twin)
     if grad is None or twin is None or a is None or b is None or t is None:
         return Finding(key, statement, NOT_RUN, "no gradient run or no round-off twin")
-    final = abs(c.cfg.operating.final_inner_ring_speed)
-    turning = (np.abs(a.ring_speed.values) >= FULL_SPEED * final) & (final > 0)
-    full_speed = float(a.time.values[np.argmax(turning)]) if turning.any() else math.inf
+    full_speed = full_speed_time(a, c.cfg.operating.final_inner_ring_speed, FULL_SPEED)
     try:
         methods = differences(a, b, full_speed)
         roundoff = differences(a, t, full_speed)

@@ -225,14 +225,8 @@ impl Problem<'_> {
     /// secant to the open gap and the search cycles between the race and the gap), so
     /// that a step is a twentieth of that depth; 1 otherwise (every loaded roller).
     fn light_contact_shrink(&self, ring: &Kinematics, u: &[f64], i: usize) -> f64 {
-        let kin = self.pose(u, i).kinematics(self.pitch);
-        let depth = self
-            .model
-            .deepest_slice(LineContact::InnerRace, ring, &kin)
-            .max(
-                self.model
-                    .deepest_slice(LineContact::OuterRace, &Kinematics::fixed(), &kin),
-            );
+        let (inner, outer) = self.race_depths(ring, u, i);
+        let depth = inner.max(outer);
         if depth > 0.0 {
             (0.05 * depth / self.step(RING_UNKNOWNS)).clamp(1e-4, 1.0)
         } else {
@@ -282,6 +276,17 @@ impl Problem<'_> {
         Vector3::from_fn(|a, _| scaled_step[a] / w[a])
     }
 
+    /// Roller i's deepest slice penetration at the inner race (the ring at `ring`) and at
+    /// the outer race [m], at the unknowns `u` (negative: the smallest gap).
+    fn race_depths(&self, ring: &Kinematics, u: &[f64], i: usize) -> (f64, f64) {
+        let kin = self.pose(u, i).kinematics(self.pitch);
+        (
+            self.model.deepest_slice(LineContact::InnerRace, ring, &kin),
+            self.model
+                .deepest_slice(LineContact::OuterRace, &Kinematics::fixed(), &kin),
+        )
+    }
+
     /// Sets roller i, if it touches neither race and a radial force `radial` [N] pushes
     /// it, onto the race it is pushed to (module doc): whether it moved. `pinched`: two
     /// flanges hold it (the flanges give Newton no radial stiffness to go by either).
@@ -296,12 +301,7 @@ impl Problem<'_> {
         if radial == 0.0 {
             return false;
         }
-        let kin = self.pose(u, i).kinematics(self.pitch);
-        let outer = Kinematics::fixed();
-        let mut inner_depth = self.model.deepest_slice(LineContact::InnerRace, ring, &kin);
-        let mut outer_depth = self
-            .model
-            .deepest_slice(LineContact::OuterRace, &outer, &kin);
+        let (mut inner_depth, mut outer_depth) = self.race_depths(ring, u, i);
         if inner_depth > 0.0 || outer_depth > 0.0 {
             return false;
         }
@@ -329,11 +329,7 @@ impl Problem<'_> {
         };
         if !pinched && level != pose.tilt {
             u[s + 2] = level;
-            let kin = self.pose(u, i).kinematics(self.pitch);
-            inner_depth = self.model.deepest_slice(LineContact::InnerRace, ring, &kin);
-            outer_depth = self
-                .model
-                .deepest_slice(LineContact::OuterRace, &outer, &kin);
+            (inner_depth, outer_depth) = self.race_depths(ring, u, i);
         }
         // The inner penetration falls as the roller moves out, the outer one rises.
         u[s] += match line {
