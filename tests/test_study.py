@@ -93,7 +93,7 @@ def _attrs(out: Path, name: str) -> dict:
 def test_plan_holds_each_run_once_with_its_role():
     plan = build_plan(load_b1(), 0.01)
     names = [s.name for s in plan.specs]
-    assert len(names) == len(set(names)) == 15
+    assert len(names) == len(set(names)) == 17
     assert plan.reference == "axial-1000N" and plan.loads[1000.0] == "axial-1000N"
     assert sorted(plan.loads) == [0.0, 500.0, 1000.0, 2000.0]
     assert plan.reference_gradient == "axial-1000N-gradient"
@@ -103,6 +103,18 @@ def test_plan_holds_each_run_once_with_its_role():
     assert twin.data["solver"]["atol"] == pytest.approx(1e-9 * (1 + 1e-10), rel=1e-15)
     assert twin.data["solver"]["atol"] != 1e-9
     assert twin.meta["changes"] == "solver.atol: 1e-09 -> 1.0000000001e-09"
+    # the tight pair: both detectors with solver.rtol and solver.atol ten times tighter
+    assert plan.tight == {
+        SEMI_ANALYTICAL: "axial-1000N-tight",
+        GRADIENT: "axial-1000N-gradient-tight",
+    }
+    for detector, name in plan.tight.items():
+        spec = plan.spec(name)
+        assert spec.detector == detector
+        assert spec.data["solver"]["rtol"] == pytest.approx(1e-6, rel=1e-15)
+        assert spec.data["solver"]["atol"] == pytest.approx(1e-10, rel=1e-15)
+        assert spec.data["operating"] == plan.spec(plan.reference).data["operating"]
+    assert build_plan(load_b1(), 0.01, tight=False).tight == {}
     # figs. 8, 9: B1's point law cannot run the free tilt; the pair runs the distributed law
     assert plan.free_tilt == "free-tilt-distributed"
     assert plan.tilt_locked == "axial-1000N-distributed"
@@ -137,6 +149,7 @@ def test_plan_holds_each_run_once_with_its_role():
     )
     assert [s.name for s in none.specs] == ["axial-1000N", "axial-0N"]
     assert none.free_tilt is None and none.runtime == {} and none.reference_twin is None
+    assert none.tight == {}
     with pytest.raises(StudyError, match="--loads"):
         build_plan(load_b1(), 0.01, loads=(-5.0,))
     # a load the configuration's rules refuse: the option, the field, the value, the rule
@@ -148,21 +161,25 @@ def test_plan_holds_each_run_once_with_its_role():
 
 def test_runs_start_longest_first_and_are_reported_in_plan_order():
     """The gradient runs (4-5 times a semi-analytical run's wall time) start first, the
-    smallest Δt_max first; the rest keep the plan's order."""
+    tightest tolerance first, then the smallest Δt_max; the rest keep the plan's order
+    but for the distributed law's runs and then the tight tolerance's, which go first."""
     from rollerdyn.study.schedule import _longest_first
 
     plan = build_plan(load_b1(), 0.01)
     order = [s.name for s in _longest_first(plan.specs)]
-    assert order[:3] == [
+    assert order[:4] == [
+        "axial-1000N-gradient-tight",
         "dt-max-0.0002s-gradient",
         "dt-max-0.0005s-gradient",
         "axial-1000N-gradient",
     ]
     # then the distributed law's runs (about twice the point law's time), then the rest
     law = {s.name: s.data["surfaces"]["flange_law"] for s in plan.specs}
+    rtol = {s.name: s.data["solver"]["rtol"] for s in plan.specs}
     rest = [s.name for s in plan.specs if s.detector != GRADIENT]
-    assert order[3:] == sorted(rest, key=lambda name: law[name] != "distributed")
-    assert order[3] == "axial-1000N-distributed" and law[order[8]] == "point"
+    assert order[4:] == sorted(rest, key=lambda name: (law[name] != "distributed", rtol[name]))
+    assert order[4] == "axial-1000N-distributed" and law[order[9]] == "point"
+    assert order[9:11] == ["axial-1000N-tight", "axial-1000N"]
     assert sorted(order) == sorted(s.name for s in plan.specs)
 
 
@@ -173,11 +190,11 @@ def test_every_run_completes_and_equals_the_same_run_in_series(study):
     out, result, events = study
     runs = result.runs
     assert list(runs["name"]) == [s.name for s in result.plan.specs]
-    assert len(runs) == 9 and set(runs["status"]) == {"completed"}
+    assert len(runs) == 11 and set(runs["status"]) == {"completed"}
     assert set(runs["action"]) == {"ran"}
-    assert list(runs["reached [s]"]) == pytest.approx([T_END] * 9)
+    assert list(runs["reached [s]"]) == pytest.approx([T_END] * 11)
     plan = events[0]
-    assert plan["kind"] == "plan" and plan["reused"] == [] and len(plan["pending"]) == 9
+    assert plan["kind"] == "plan" and plan["reused"] == [] and len(plan["pending"]) == 11
     assert sorted(e["name"] for e in events if e["kind"] == "done") == sorted(runs["name"])
     # two workers: the k-th run of the start order reports only once k - 1 runs have ended
     from rollerdyn.study.schedule import _longest_first
@@ -205,7 +222,7 @@ def test_every_run_completes_and_equals_the_same_run_in_series(study):
 def test_findings_carry_the_numbers_of_the_runs(study):
     out, result, _ = study
     found = {f.key: f for f in result.findings}
-    assert len(found) == 12  # 9 and the 3 load checks on the distributed law's series
+    assert len(found) == 13  # 10 and the 3 load checks on the distributed law's series
     wall = {n: _attrs(out, n)["stats_total_seconds"] for n in result.runs["name"]}
     saving = 1.0 - wall["axial-1000N"] / wall["axial-1000N-gradient"]
     semi = found["semi_faster"]
@@ -525,6 +542,39 @@ def test_kinematics_comparison_is_judged_against_the_round_off_twin(judged):
     assert beyond_the_twin.status == FAIL  # 1 µm beyond 3 x 0.3 µm
     no_twin = _check(judged, "same_kinematics", lambda sets: sets.pop("axial-1000N-roundoff"))
     assert no_twin.status == NOT_RUN and "round-off twin" in no_twin.numbers
+
+
+def test_the_tight_pair_is_judged_against_absolute_bounds(judged):
+    """The two methods at ten times tighter tolerances pass where every roller's position
+    is within 0.1 µm (whatever the twin says), and fail beyond it."""
+    plan, sets, _ = judged
+    azimuth = np.mod(sets["axial-1000N-tight"].azimuth.values[0], 2 * np.pi)
+    top = int(np.argmax(np.abs(azimuth - np.pi)))  # a roller outside the load zone
+
+    def moved(gradient: float):
+        def change(sets):
+            sets["axial-1000N-gradient-tight"] = sets["axial-1000N-tight"].copy(deep=True)
+            sets["axial-1000N-gradient-tight"]["position"][:, top, 0] += gradient
+
+        return change
+
+    same = _check(judged, "tight_agreement", moved(0.0))
+    assert same.status == PASS and same.values["measures"]["position_outside"] == 0.0
+    within = _check(judged, "tight_agreement", moved(0.09e-6))
+    assert within.status == PASS
+    assert within.values["measures"]["position_outside"] == pytest.approx(0.09e-6)
+    apart = _check(judged, "tight_agreement", moved(0.2e-6))
+    assert apart.status == FAIL and "over the bound: position_outside" in apart.numbers
+
+    # a round-off twin that drifts by 1 µm does not excuse it (it would the same_kinematics)
+    def twin_apart(sets):
+        moved(0.2e-6)(sets)
+        sets["axial-1000N-roundoff"] = sets["axial-1000N"].copy(deep=True)
+        sets["axial-1000N-roundoff"]["position"][:, top, 0] += 1e-6
+
+    assert _check(judged, "tight_agreement", twin_apart).status == FAIL
+    gone = _check(judged, "tight_agreement", lambda s: s.pop("axial-1000N-gradient-tight"))
+    assert gone.status == NOT_RUN and "tighter tolerances" in gone.numbers
 
 
 def test_run_differences_split_a_shift_into_its_directions(judged):

@@ -594,6 +594,58 @@ def same_kinematics(c: _Context) -> Finding:
     )
 
 
+#: The measures :func:`tight_agreement` judges, each against its absolute bound: issue 15's
+#: figures of the two methods (every roller's position, the flange forces, the torque).
+TIGHT_MEASURES: dict[str, float] = {
+    "position_load_zone": POSITION_TOL,
+    "position_outside": POSITION_TOL,
+    "flange_force": FLANGE_FORCE_TOL,
+    "torque_mean_full_speed": TORQUE_TOL,
+}
+
+
+def tight_agreement(c: _Context) -> Finding:
+    statement = (
+        "At ten times tighter tolerances (solver.rtol and solver.atol × 0.1) the two "
+        "methods' whole runs agree within absolute bounds: every roller's position within "
+        f"{POSITION_TOL * 1e6:g} µm over the whole run, the roller end–flange forces within "
+        f"{FLANGE_FORCE_TOL:.0%} of the largest, the mean torque at full speed within "
+        f"{TORQUE_TOL:.1%} (not in the paper: issue 15's figures; at the configuration's "
+        "tolerances the round-off twin itself drifts further)."
+    )
+    key = "tight_agreement"
+    semi, grad = c.plan.tight.get(SEMI_ANALYTICAL), c.plan.tight.get(GRADIENT)
+    a, b = c.ds(semi), c.ds(grad)
+    if semi is None or grad is None or a is None or b is None:
+        return Finding(key, statement, NOT_RUN, "no pair of runs at the tighter tolerances")
+    full_speed = full_speed_time(a, c.cfg.operating.final_inner_ring_speed, FULL_SPEED)
+    try:
+        found = differences(a, b, full_speed)
+    except ValueError as error:
+        return Finding(key, statement, NOT_RUN, str(error))
+    span = (
+        f"over 0 … {found['t_end']:.4g} s{_mark(c.rec(semi), 'semi-analytical run ')}"
+        f"{_mark(c.rec(grad), 'gradient run ')}"
+    )
+    judged = {k: found[k] for k in TIGHT_MEASURES if math.isfinite(found[k])}
+    if not judged:
+        return Finding(key, statement, NOT_RUN, f"{span}: nothing to compare")
+    failed = [k for k, d in judged.items() if d > TIGHT_MEASURES[k]]
+    parts = [f"{MEASURES[k][0]}: {_measure_text(k, d)}" for k, d in judged.items()]
+    if "flange_force" in judged:
+        parts[list(judged).index("flange_force")] += f" of {found['flange_force_largest']:.3g} N"
+    skipped = [MEASURES[k][0] for k in TIGHT_MEASURES if k not in judged]
+    missing = f"; not judged (no output qualifies): {', '.join(skipped)}" if skipped else ""
+    exceeded = f"; over the bound: {', '.join(failed)}" if failed else ""
+    return _verdict(
+        key,
+        statement,
+        not failed,
+        f"{span}: {'; '.join(parts)}{exceeded}{missing}",
+        {"full speed from [s]": full_speed, "measures": judged, "bounds": TIGHT_MEASURES},
+    )
+
+
 #: The checks of the axial-load series (the first of :data:`CHECKS`), also made on the
 #: distributed law's series when the configuration's law is the point law.
 LOAD_CHECKS: tuple[Callable[[_Context], Finding], ...] = (
@@ -611,6 +663,7 @@ CHECKS: tuple[Callable[[_Context], Finding], ...] = (
     advantage_shrinks,
     same_contacts,
     same_kinematics,
+    tight_agreement,
 )
 
 

@@ -70,6 +70,7 @@ def paper(
     free_tilt: bool = True,
     gradient: bool = True,
     distributed: bool = True,
+    tight: bool = True,
     max_wall: float = DEFAULT_MAX_WALL,
     scheduler: Any = None,
     workers: int | None = None,
@@ -88,9 +89,11 @@ def paper(
     the free-tilt run (figs. 8, 9) and the gradient-detector runs (sect. 5.1, 5.3, fig.
     14). ``distributed``: with the point law, run the axial loads once more with the
     distributed flange law (a second series of figs. 10-13; the free tilt's pair of figs.
-    8, 9 has that law in any case). ``max_wall``: wall-time cap of each run in this
-    invocation [s]; a run stopped by it is reported as not finished and continued at the
-    next invocation. ``scheduler``:
+    8, 9 has that law in any case). ``tight``: with the gradient runs, run the
+    configuration with both detectors once more at ten times tighter tolerances
+    (``solver.rtol`` and ``solver.atol`` × 0.1; the check ``tight_agreement``).
+    ``max_wall``: wall-time cap of each run in this invocation [s]; a run stopped by it is
+    reported as not finished and continued at the next invocation. ``scheduler``:
     None (a ``LocalCluster`` of ``workers`` processes, default all cores), an address or a
     ``distributed.Client``. ``overwrite``: start afresh (removes the study's own files).
     ``run=False``: run nothing, analyse what the folder holds. ``report``/``figures``:
@@ -116,7 +119,14 @@ def paper(
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise StudyError(f"--workers = {workers!r}: must be a whole number >= 1")
     plan = build_plan(
-        cfg, t_end, loads, dt_max, free_tilt=free_tilt, gradient=gradient, distributed=distributed
+        cfg,
+        t_end,
+        loads,
+        dt_max,
+        free_tilt=free_tilt,
+        gradient=gradient,
+        distributed=distributed,
+        tight=tight,
     )
     if run:
         check_scheduler(scheduler)
