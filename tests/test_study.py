@@ -111,8 +111,7 @@ def test_plan_holds_each_run_once_with_its_role():
     for detector, name in plan.tight.items():
         spec = plan.spec(name)
         assert spec.detector == detector
-        assert spec.data["solver"]["rtol"] == pytest.approx(1e-6, rel=1e-15)
-        assert spec.data["solver"]["atol"] == pytest.approx(1e-10, rel=1e-15)
+        assert (spec.data["solver"]["rtol"], spec.data["solver"]["atol"]) == (1e-6, 1e-10)
         assert spec.data["operating"] == plan.spec(plan.reference).data["operating"]
     assert build_plan(load_b1(), 0.01, tight=False).tight == {}
     # figs. 8, 9: B1's point law cannot run the free tilt; the pair runs the distributed law
@@ -573,6 +572,22 @@ def test_the_tight_pair_is_judged_against_absolute_bounds(judged):
         sets["axial-1000N-roundoff"]["position"][:, top, 0] += 1e-6
 
     assert _check(judged, "tight_agreement", twin_apart).status == FAIL
+
+    # flange forces are judged only where the largest carries load (1 N): here, 2 ms into
+    # the load ramp, it is mN of grazing contact, and 50 % of it is no verdict
+    def forces(largest: float):
+        def change(sets):
+            moved(0.0)(sets)
+            sets["axial-1000N-tight"]["flange_normal_force"][:] = largest
+            sets["axial-1000N-gradient-tight"]["flange_normal_force"][:] = 0.5 * largest
+
+        return change
+
+    grazing = _check(judged, "tight_agreement", forces(2e-3))
+    assert grazing.status == PASS and "flange_force" not in grazing.values["measures"]
+    assert "largest flange force is below 1 N" in grazing.numbers
+    loaded = _check(judged, "tight_agreement", forces(100.0))
+    assert loaded.status == FAIL and loaded.values["measures"]["flange_force"] == 0.5
     gone = _check(judged, "tight_agreement", lambda s: s.pop("axial-1000N-gradient-tight"))
     assert gone.status == NOT_RUN and "tighter tolerances" in gone.numbers
 

@@ -628,14 +628,26 @@ def tight_agreement(c: _Context) -> Finding:
         f"{_mark(c.rec(grad), 'gradient run ')}"
     )
     judged = {k: found[k] for k in TIGHT_MEASURES if math.isfinite(found[k])}
+    if found["flange_force_largest"] < LOADED_FORCE:  # mN of grazing contact: no share of it
+        judged.pop("flange_force", None)
     if not judged:
         return Finding(key, statement, NOT_RUN, f"{span}: nothing to compare")
     failed = [k for k, d in judged.items() if d > TIGHT_MEASURES[k]]
     parts = [f"{MEASURES[k][0]}: {_measure_text(k, d)}" for k, d in judged.items()]
     if "flange_force" in judged:
         parts[list(judged).index("flange_force")] += f" of {found['flange_force_largest']:.3g} N"
+    at_speed = [
+        f"{MEASURES[k][0]}: {_measure_text(k, found[k])}"
+        for k in ("position_load_zone_full_speed", "position_outside_full_speed")
+    ]
+    parts.append(f"not judged: {'; '.join(at_speed)}")
     skipped = [MEASURES[k][0] for k in TIGHT_MEASURES if k not in judged]
-    missing = f"; not judged (no output qualifies): {', '.join(skipped)}" if skipped else ""
+    missing = (
+        f"; not judged (no output qualifies, or the largest flange force is below "
+        f"{LOADED_FORCE:g} N): {', '.join(skipped)}"
+        if skipped
+        else ""
+    )
     exceeded = f"; over the bound: {', '.join(failed)}" if failed else ""
     return _verdict(
         key,
