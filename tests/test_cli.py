@@ -1,5 +1,6 @@
 """The command line: exit codes, clean errors, and the commands' output."""
 
+import numpy as np
 import pytest
 from b1 import B1, b1_file_with
 from typer.testing import CliRunner
@@ -64,10 +65,10 @@ def test_version_names_the_release_and_the_commit():
         assert re.fullmatch(r"[0-9a-f]{40}(\+dirty)?", git_commit())
 
 
-def _row(output: str, label: str) -> str:
-    """The value cell of the table row that begins with ``label``."""
+def _row(output: str, label: str, cell: int = 2) -> str:
+    """Cell ``cell`` (2: the value) of the table row that begins with ``label``."""
     line = next(line for line in output.splitlines() if label in line)
-    return line.split("│")[-2].strip()
+    return line.split("│")[cell].strip()
 
 
 def test_compare_prints_the_largest_differences(tmp_path):
@@ -102,6 +103,15 @@ def test_compare_prints_the_largest_differences(tmp_path):
         _row(out, "outside the load zone, whole run"),
     )
     assert sorted(whole) == ["0 µm", "1 µm"]  # roller 3 is in one of the two
+    # where: the first output at which roller 3's 1 µm (and roller 5's tilt) is largest
+    azimuth = np.degrees(np.mod(ds.azimuth.values[0], 2 * np.pi))
+    assert _row(out, "position along the axis, full speed", 3) == (
+        f"t = {ds.time.values[0]:.4g} s, roller 3 at {azimuth[3]:.1f}°"
+    )
+    assert _row(out, "roller tilt, full speed", 3).startswith(
+        f"t = {ds.time.values[0]:.4g} s, roller 5"
+    )
+    assert _row(out, "mean frictional torque at full speed, relative", 3) == ""
     same = RUNNER.invoke(app, ["compare", a, a])
     assert (
         same.exit_code == 0

@@ -613,6 +613,19 @@ def test_run_differences_split_a_shift_into_its_directions(judged):
             assert d[name] == pytest.approx(expected, abs=1e-15), (direction, name)
         assert d["position_outside"] == pytest.approx(2e-7, rel=1e-9)
         assert d["flange_force"] == 0.0 or math.isnan(d["flange_force"])
+    # where the largest difference lies: one roller moved at one output only
+    b = a.copy(deep=True)
+    outside = np.abs(psi - np.pi) > np.radians(60.0)
+    k, roller = 1, int(np.argmax(outside[1]))
+    b["position"][k, roller, 0] += 3e-7
+    d = differences(a, b, full_speed=0.0)
+    assert d["position_outside"] == pytest.approx(3e-7)
+    assert d["where"]["position_outside"] == {
+        "time": float(a.time.values[k]),
+        "roller": roller,
+        "azimuth_deg": pytest.approx(float(np.degrees(psi[k, roller]))),
+    }
+    assert d["where"]["position_load_zone"]["time"] == float(a.time.values[0])  # all zero
 
 
 def test_axial_force_check_uses_the_load_zone(judged):

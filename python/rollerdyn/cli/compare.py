@@ -56,7 +56,9 @@ def compare_command(
     circumferential), tilt and skew at full speed [mrad], the roller end-flange
     normal forces [% of the largest of either run] and the frictional torque at full speed
     (its mean, relative [%], and output by output [% of the largest]); n/a where no output
-    qualifies (no full speed in a short run). Then both runs' steps, right-hand sides,
+    qualifies (no full speed in a short run). Beside each roller's measure, where its
+    largest difference lies: the output time, the roller and its azimuth in A (0° at +y,
+    the load zone's centre at 180°). Then both runs' steps, right-hand sides,
     gradient fallbacks and wall time. A note first names the fields in which the two runs'
     bearings (geometry, materials, inner ring) differ, if they do.
 
@@ -101,17 +103,22 @@ def _note_other_bearings(a: dict, b: dict, first: Path, second: Path) -> None:
 
 
 def _print_differences(found: dict, measures: dict, title: str) -> None:
-    """The table of :func:`rollerdyn.study.agreement.differences`, in µm, mrad and %."""
+    """The table of :func:`rollerdyn.study.agreement.differences`, in µm, mrad and %, with
+    where each roller's largest difference lies."""
+    from ..study.agreement import where_text
+
     table = Table(
         title=plain(f"{title}: {found['outputs']} common outputs, 0 … {found['t_end']:.6g} s")
     )
     table.add_column("largest difference of", overflow="fold")
     table.add_column("value", justify="right")
+    table.add_column("where (output, roller, its azimuth in A)", overflow="fold")
     for key, (what, unit) in measures.items():
         shown, factor = SHOWN_UNITS[unit]
         value = found[key]
         text = "n/a" if not math.isfinite(value) else f"{value * factor:.4g} {shown}"
-        table.add_row(plain(what), text)
+        place = where_text(found["where"].get(key)) if math.isfinite(value) else ""
+        table.add_row(plain(what), text, plain(place))
     console.print(table)
 
 

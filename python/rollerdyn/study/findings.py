@@ -19,7 +19,7 @@ from ..config import BearingConfig, TimeTable
 from ..names import GRADIENT, SEMI_ANALYTICAL
 from ..report_figures import pairing_shares
 from ..simulation import carried_axial_force
-from .agreement import MEASURES, common_outputs, differences, full_speed_time
+from .agreement import MEASURES, common_outputs, differences, full_speed_time, where_text
 from .plan import Plan
 from .runs import COMPLETED
 
@@ -604,6 +604,12 @@ TIGHT_MEASURES: dict[str, float] = {
 }
 
 
+def _at(found: dict, key: str) -> str:
+    """' (at t = …, roller … at …°)' where a roller's largest difference lies, if known."""
+    place = where_text(found.get("where", {}).get(key))
+    return f" (at {place})" if place else ""
+
+
 def tight_agreement(c: _Context) -> Finding:
     statement = (
         "At ten times tighter tolerances (solver.rtol and solver.atol × 0.1) the two "
@@ -633,7 +639,7 @@ def tight_agreement(c: _Context) -> Finding:
     if not judged:
         return Finding(key, statement, NOT_RUN, f"{span}: nothing to compare")
     failed = [k for k, d in judged.items() if d > TIGHT_MEASURES[k]]
-    parts = [f"{MEASURES[k][0]}: {_measure_text(k, d)}" for k, d in judged.items()]
+    parts = [f"{MEASURES[k][0]}: {_measure_text(k, d)}{_at(found, k)}" for k, d in judged.items()]
     if "flange_force" in judged:
         parts[list(judged).index("flange_force")] += f" of {found['flange_force_largest']:.3g} N"
     at_speed = [
