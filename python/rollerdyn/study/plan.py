@@ -21,8 +21,9 @@ each is for (its role), and their names and files.
   differences in kinematics, forces and torque;
 - issue 15's figures of the two methods (not in the paper): the pair once more at ten
   times tighter tolerances (``solver.rtol`` and ``solver.atol`` × :data:`TIGHT`), where
-  the integration error of the weakly held rollers falls below 0.1 µm, so that the two
-  methods' whole runs are judged against absolute bounds rather than the twin;
+  the integration error of the weakly held rollers at full speed falls below 0.1 µm, so
+  that the two methods' whole runs are judged against absolute bounds rather than the
+  twin;
 - fig. 14: both detectors at each Δt_max (default 0.2, 0.5 and 1 times the
   configuration's ``solver.dt_max``).
 
