@@ -182,7 +182,7 @@ def paper_command(
             "ten times tighter tolerances (solver.rtol and solver.atol x 0.1; for B1 1e-6 "
             "and 1e-10 m), where the two methods are judged against absolute bounds: every "
             "roller's position 0.1 µm, flange forces 1 % of the largest, mean torque 0.1 % "
-            "(not in the paper; B1's pair takes about 1 and 4 minutes on one core each).",
+            "(not in the paper; B1's pair took 36-68 s and 198-280 s on one core).",
         ),
     ] = True,
     scheduler: SchedulerOption = None,
