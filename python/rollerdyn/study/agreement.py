@@ -14,6 +14,8 @@ can go."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import xarray as xr
 
@@ -159,6 +161,26 @@ def where_text(place: dict | None) -> str:
     if place is None:
         return ""
     return f"t = {place['time']:.4g} s, roller {place['roller']} at {place['azimuth_deg']:.1f}°"
+
+
+def where_suffix(found: dict, key: str) -> str:
+    """' (at t = …, roller … at …°)' for measure ``key`` of :func:`differences`' result
+    ``found``, or '' where it is not known."""
+    place = where_text(found.get("where", {}).get(key))
+    return f" (at {place})" if place else ""
+
+
+def measure_text(key: str, value: float) -> str:
+    """The value of measure ``key`` of :data:`MEASURES` as the checks print it (µm, mrad
+    or %; 'n/a' where not finite)."""
+    unit = MEASURES[key][1]
+    if not math.isfinite(value):
+        return "n/a"
+    if unit == "m":
+        return f"{value * 1e6:.3g} µm"
+    if unit == "rad":
+        return f"{value * 1e3:.3g} mrad"
+    return f"{100 * value:.3g} %"
 
 
 def _largest(values: np.ndarray) -> float:

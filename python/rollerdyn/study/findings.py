@@ -19,7 +19,14 @@ from ..config import BearingConfig, TimeTable
 from ..names import GRADIENT, SEMI_ANALYTICAL
 from ..report_figures import pairing_shares
 from ..simulation import carried_axial_force
-from .agreement import MEASURES, common_outputs, differences, full_speed_time, where_text
+from .agreement import (
+    MEASURES,
+    common_outputs,
+    differences,
+    full_speed_time,
+    measure_text,
+    where_suffix,
+)
 from .plan import Plan
 from .runs import COMPLETED
 
@@ -533,17 +540,6 @@ def _kinematics_bounds(cfg: BearingConfig) -> dict[str, float]:
     }
 
 
-def _measure_text(key: str, value: float) -> str:
-    unit = MEASURES[key][1]
-    if not math.isfinite(value):
-        return "n/a"
-    if unit == "m":
-        return f"{value * 1e6:.3g} µm"
-    if unit == "rad":
-        return f"{value * 1e3:.3g} mrad"
-    return f"{100 * value:.3g} %"
-
-
 def same_kinematics(c: _Context) -> Finding:
     statement = (
         "The differences in the resultant forces and torques and the consequent kinematics "
@@ -568,7 +564,7 @@ def same_kinematics(c: _Context) -> Finding:
             continue
         bound = max(TWIN_FACTOR * r if math.isfinite(r) else 0.0, tol)
         judged[name] = {"methods": d, "round-off twin": r, "bound": bound}
-        text = f"{MEASURES[name][0]}: {_measure_text(name, d)} (twin {_measure_text(name, r)})"
+        text = f"{MEASURES[name][0]}: {measure_text(name, d)} (twin {measure_text(name, r)})"
         if name == "flange_force":  # relative to a largest force that may be mN in short runs
             largest = (methods["flange_force_largest"], roundoff["flange_force_largest"])
             text += f" of {largest[0]:.3g} N (twin: of {largest[1]:.3g} N)"
@@ -604,12 +600,6 @@ TIGHT_MEASURES: dict[str, float] = {
 }
 
 
-def _at(found: dict, key: str) -> str:
-    """' (at t = …, roller … at …°)' where a roller's largest difference lies, if known."""
-    place = where_text(found.get("where", {}).get(key))
-    return f" (at {place})" if place else ""
-
-
 def tight_agreement(c: _Context) -> Finding:
     statement = (
         "At ten times tighter tolerances (solver.rtol and solver.atol × 0.1) the two "
@@ -639,11 +629,13 @@ def tight_agreement(c: _Context) -> Finding:
     if not judged:
         return Finding(key, statement, NOT_RUN, f"{span}: nothing to compare")
     failed = [k for k, d in judged.items() if d > TIGHT_MEASURES[k]]
-    parts = [f"{MEASURES[k][0]}: {_measure_text(k, d)}{_at(found, k)}" for k, d in judged.items()]
+    parts = [
+        f"{MEASURES[k][0]}: {measure_text(k, d)}{where_suffix(found, k)}" for k, d in judged.items()
+    ]
     if "flange_force" in judged:
         parts[list(judged).index("flange_force")] += f" of {found['flange_force_largest']:.3g} N"
     at_speed = [
-        f"{MEASURES[k][0]}: {_measure_text(k, found[k])}"
+        f"{MEASURES[k][0]}: {measure_text(k, found[k])}"
         for k in ("position_load_zone_full_speed", "position_outside_full_speed")
     ]
     parts.append(f"not judged: {'; '.join(at_speed)}")
