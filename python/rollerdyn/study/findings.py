@@ -610,9 +610,9 @@ def tight_agreement(c: _Context) -> Finding:
         "tolerances the round-off twin itself drifts further)."
     )
     key = "tight_agreement"
-    semi, grad = c.plan.tight.get(c.cfg.solver.detector), c.plan.tight.get(GRADIENT)
-    a, b = c.ds(semi), c.ds(grad)
-    if semi is None or grad is None or a is None or b is None:
+    own, grad = c.plan.tight.get(c.cfg.solver.detector), c.plan.tight.get(GRADIENT)
+    a, b = c.ds(own), c.ds(grad)
+    if own is None or grad is None or a is None or b is None:
         return Finding(key, statement, NOT_RUN, "no pair of runs at the tighter tolerances")
     full_speed = full_speed_time(a, c.cfg.operating.final_inner_ring_speed, FULL_SPEED)
     try:
@@ -620,7 +620,7 @@ def tight_agreement(c: _Context) -> Finding:
     except ValueError as error:
         return Finding(key, statement, NOT_RUN, str(error))
     span = (
-        f"over 0 … {found['t_end']:.4g} s{_mark(c.rec(semi), f'{c.cfg.solver.detector} run ')}"
+        f"over 0 … {found['t_end']:.4g} s{_mark(c.rec(own), f'{c.cfg.solver.detector} run ')}"
         f"{_mark(c.rec(grad), 'gradient run ')}"
     )
     judged = {k: found[k] for k in TIGHT_MEASURES if math.isfinite(found[k])}
