@@ -282,26 +282,16 @@ def bench_mbs(cfg, t_end: float | None) -> None:
     _detector_agreement(cfg, runs[0][1], runs[1][1])
 
 
-#: How far the two detectors' whole runs may differ (docs/dynamics.md, "Agreement of the
-#: two detectors in whole B1 runs"): every roller's position [m], the flange normal forces
-#: [share of the largest], the mean frictional torque at full speed [share of itself].
-AGREEMENT_BOUNDS = {
-    "position_load_zone": 0.1e-6,
-    "position_outside": 0.1e-6,
-    "flange_force": 0.01,
-    "torque_mean_full_speed": 0.001,
-}
-
-
 def _detector_agreement(cfg, semi, grad) -> None:
     """How far the two detectors' runs agree (:func:`rollerdyn.study.agreement.differences`,
-    as `rollerdyn compare` prints it), each against :data:`AGREEMENT_BOUNDS`; full speed
+    as `rollerdyn compare` prints it), each against the issue's bounds that the study's
+    check judges (:data:`rollerdyn.study.findings.TIGHT_MEASURES`); full speed
     from the first output at which the inner ring turns at 99 % of its final speed, as the
     study's detector check counts it."""
     import math
 
     from ..study.agreement import MEASURES, differences, full_speed_time
-    from ..study.findings import FULL_SPEED
+    from ..study.findings import FULL_SPEED, TIGHT_MEASURES
     from .compare import SHOWN_UNITS
 
     full_speed = full_speed_time(semi, cfg.operating.final_inner_ring_speed, FULL_SPEED)
@@ -318,7 +308,7 @@ def _detector_agreement(cfg, semi, grad) -> None:
     table = Table(title=f"agreement of the two runs over 0 … {found['t_end']:.4g} s ({speed})")
     for col in ("largest difference of", "value", "bound", "within"):
         table.add_column(col)
-    for key, bound in AGREEMENT_BOUNDS.items():
+    for key, bound in TIGHT_MEASURES.items():
         what, unit = MEASURES[key]
         shown, factor = SHOWN_UNITS[unit]
         value = found[key]

@@ -227,8 +227,9 @@ impl Problem<'_> {
     fn light_contact_shrink(&self, ring: &Kinematics, u: &[f64], i: usize) -> f64 {
         let (inner, outer) = self.race_depths(ring, u, i);
         let depth = inner.max(outer);
+        let radial_step = self.step(RING_UNKNOWNS + ROLLER_UNKNOWNS * i);
         if depth > 0.0 {
-            (0.05 * depth / self.step(RING_UNKNOWNS)).clamp(1e-4, 1.0)
+            (0.05 * depth / radial_step).clamp(1e-4, 1.0)
         } else {
             1.0
         }
