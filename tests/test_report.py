@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import html
 import json
+import math
 import os
 import re
 import shutil
@@ -221,6 +222,15 @@ def test_summary_matches_the_data(result):
         shares = pairing_shares(ds, ring)
         assert sum(shares.values()) == pytest.approx(1.0)
         assert shares["none"] < 1.0  # some roller end touched a flange
+    power = float(ds.power_loss[last].mean())
+    assert s["mean_power_loss"] == pytest.approx(power)
+    assert s["torque_from_power"] == pytest.approx(power / float(ds.ring_speed[last].mean()))
+    # four shares in per cent, flanges first, that add up to the whole loss
+    shares = [float(x) for x in s["power_shares"].split(" / ")]
+    assert len(shares) == 4 and sum(shares) == pytest.approx(100.0, abs=0.3)
+    # a result written before power losses were recorded: n/a, no error
+    old = summary(ds.drop_vars([v for v in ds.data_vars if "power_loss" in v]))
+    assert math.isnan(old["mean_power_loss"]) and old["power_shares"] == "n/a"
 
 
 def test_animation_is_subsampled_to_at_most_max_frames(result):

@@ -37,6 +37,7 @@ __all__ = [
     "LAST_SHARE",
     "MAX_FRAMES",
     "MAX_POINTS",
+    "POWER_SOURCES",
     "REQUIRED",
     "SUMMARY_ROWS",
     "ReportError",
@@ -49,6 +50,7 @@ __all__ = [
     "max_abs_srr_inner",
     "open_result",
     "pairing_shares",
+    "power_summary",
     "report",
     "summary",
     "table",
@@ -171,6 +173,17 @@ def max_abs_srr_inner(ds: xr.Dataset) -> float:
 
 SUMMARY_ROWS = (
     ("mean_torque", "mean bearing frictional torque, last 20 % of the run", "N*m"),
+    (
+        "mean_power_loss",
+        "mean power loss of the contacts and the drag, last 20 % of the run",
+        "W",
+    ),
+    ("power_shares", "of it: flanges / races / roller pairs / drag", "%"),
+    (
+        "torque_from_power",
+        "frictional torque from the power loss (mean power loss / ring speed)",
+        "N*m",
+    ),
     ("max_race_load", "max. roller-race load (inner and outer race)", "N"),
     ("max_flange_force", "max. roller end / flange normal force", "N"),
     ("max_srr_inner", "max. |slide-to-roll ratio| at the inner race", "-"),
@@ -206,6 +219,7 @@ def summary(ds: xr.Dataset) -> dict:
         status += f": {a['error']}"
     return {
         "mean_torque": float(np.mean(ds.frictional_torque.values[last])),
+        **power_summary(ds, last),
         "max_race_load": max(
             nanmax(ds.inner_normal_force.values), nanmax(ds.outer_normal_force.values)
         ),
@@ -215,6 +229,42 @@ def summary(ds: xr.Dataset) -> dict:
         "steps": (int(a.get("stats_steps", -1)), int(a.get("stats_error_test_failures", 0))),
         "wall": float(a.get("stats_total_seconds", float("nan"))),
         "status": status,
+    }
+
+
+#: The power losses a result records, by where they arise: (share's name, variables).
+POWER_SOURCES = (
+    ("flanges", ("flange_power_loss",)),
+    ("races", ("inner_power_loss", "outer_power_loss")),
+    ("roller pairs", ("roller_roller_power_loss",)),
+    ("drag", ("drag_power_loss",)),
+)
+
+
+def power_summary(ds: xr.Dataset, last: np.ndarray) -> dict:
+    """The mean power loss over the outputs ``last`` [W], its shares by source [%] (as
+    text) and the torque it means at the mean ring speed [N*m]; NaN (and "n/a") for a
+    result written before power losses were recorded, and the torque NaN where the ring
+    stands. In steady running the mean power loss is the friction power, torque times ring
+    speed; it is the steadier estimate of the two where the torque is small
+    (docs/dynamics.md, "Where the power goes")."""
+    if "power_loss" not in ds:
+        return {"mean_power_loss": math.nan, "power_shares": "n/a", "torque_from_power": math.nan}
+    power = float(np.mean(ds.power_loss.values[last]))
+
+    def mean_total(name: str) -> float:
+        values = ds[name].values[last]
+        return float(np.mean(values.reshape(values.shape[0], -1).sum(axis=1)))
+
+    shares = []
+    for _, names in POWER_SOURCES:
+        part = sum(mean_total(n) for n in names)
+        shares.append(100.0 * part / power if power > 0.0 else math.nan)
+    speed = float(np.mean(ds.ring_speed.values[last]))
+    return {
+        "mean_power_loss": power,
+        "power_shares": " / ".join("n/a" if math.isnan(x) else f"{x:.1f}" for x in shares),
+        "torque_from_power": power / speed if speed != 0.0 else math.nan,
     }
 
 

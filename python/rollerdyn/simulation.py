@@ -88,7 +88,7 @@ def estimated_cost(config: BearingConfig, t_end: float, t_start: float = 0.0) ->
     span = max(t_end - t_start, 0.0)
     outputs = math.ceil(span / min(config.solver.output_interval, t_end)) + 1
     z = config.geometry.roller_count
-    per_output = 8 * (14 + z * (16 + 4 * 8))  # scalars, ring; per roller and per flange
+    per_output = 8 * (15 + z * (20 + 4 * 9))  # scalars, ring; per roller and per flange
     return {
         "outputs": outputs,
         "bytes": outputs * per_output,
@@ -340,6 +340,11 @@ _SCALARS = {
         "its axis, positive when it resists the rotation",
     ),
     "outer_ring_torque": ("N*m", "moment of the contact forces on the outer ring about +x"),
+    "power_loss": (
+        "W",
+        "power taken from the bodies' motion by every contact and the oil-air drag; its mean "
+        "in steady running is the friction power, frictional_torque times ring_speed",
+    ),
 }
 _PER_ROLLER = {
     "azimuth": ("rad", "roller azimuth, from +y towards +z (load zone centre at pi, -y)"),
@@ -355,6 +360,14 @@ _PER_ROLLER = {
     "outer_tangential_force": ("N", "roller-outer race tangential force on the roller"),
     "roller_roller_normal_force": ("N", "normal force between this roller and the next"),
     "roller_roller_tangential_force": ("N", "tangential force between this roller and the next"),
+    "inner_power_loss": (
+        "W",
+        "power the roller-inner race contact takes from the motion (friction, rolling "
+        "resistance, damping, oil film; plus its rate of elastic energy, which averages out)",
+    ),
+    "outer_power_loss": ("W", "the same for the roller-outer race contact"),
+    "roller_roller_power_loss": ("W", "the same for the contact between this roller and the next"),
+    "drag_power_loss": ("W", "power the oil-air drag takes from the roller's motion"),
 }
 _PER_FLANGE = {
     "flange_pairing": ("1", "active pairing index into the 'pairing' coordinate, -1 if none"),
@@ -362,6 +375,10 @@ _PER_FLANGE = {
     "flange_normal_force": ("N", "roller end / flange normal force"),
     "flange_friction_force": ("N", "roller end / flange friction force"),
     "flange_axial_force": ("N", "axial (x) force of the flange contact on the roller"),
+    "flange_power_loss": (
+        "W",
+        "power the roller end / flange contact takes from the motion (as inner_power_loss)",
+    ),
 }
 
 
@@ -817,8 +834,9 @@ def _join(previous: xr.Dataset, continued: xr.Dataset) -> xr.Dataset:
 
 
 #: Lossless compression of a result's numeric arrays: HDF5's byte shuffle and gzip at level
-#: 1. B1's whole run (1 289 outputs): 8.0 MB -> 4.7 MB, written in about 0.2 s instead of
-#: 0.1 s and read in 0.12 s instead of 0.09 s (level 4: 1 % smaller, 20 % slower).
+#: 1. B1's whole run (1 289 outputs): 9.4 MB -> 5.7 MB, written in about 0.3 s instead of
+#: 0.2 s (2026-11-30, with the power losses; before them 8.0 -> 4.7 MB, read in 0.12 s
+#: instead of 0.09 s; level 4: 1 % smaller, 20 % slower).
 COMPRESSION = {"compression": "gzip", "compression_opts": 1, "shuffle": True}
 #: Arrays smaller than this [bytes] are stored as they are: a compressed array is stored in
 #: chunks, whose index costs a few kB per array (a result of 5 outputs: 113 kB plain,

@@ -60,6 +60,9 @@ SUMMARY_COLUMNS = {
     "final_time [s]": "simulated time reached",
     "mean_frictional_torque [N*m]": "mean bearing frictional torque over the last 20 % "
     "of the simulated time (outputs with t >= t0 + 0.8 (t_final - t0))",
+    "mean_power_loss [W]": "mean power the contacts and the oil-air drag take from the "
+    "motion over the same outputs: in steady running the friction power, torque times ring "
+    "speed (NaN for a result written before power losses were recorded)",
     "max_race_load [N]": "largest roller-race normal force (inner or outer, any roller, "
     "any output time)",
     "max_flange_normal_force [N]": "largest roller end / flange normal force (any roller, "
@@ -352,13 +355,13 @@ def summarize(ds) -> dict:
         return float(arr.max()) if arr.size else math.nan
 
     time_ = np.asarray(ds["time"].values, dtype=float)
-    torque = math.nan
+    torque = power = math.nan
     if time_.size:
         t0, t1 = time_[0], time_[-1]
         last = time_ >= t0 + 0.8 * (t1 - t0)
-        sel = np.asarray(ds["frictional_torque"].values, dtype=float)[last]
-        sel = sel[np.isfinite(sel)]
-        torque = float(sel.mean()) if sel.size else math.nan
+        torque = _finite_mean(ds["frictional_torque"].values, last)
+        if "power_loss" in ds:
+            power = _finite_mean(ds["power_loss"].values, last)
     race = np.concatenate(
         [
             np.ravel(ds["inner_normal_force"].values),
@@ -368,6 +371,7 @@ def summarize(ds) -> dict:
     return {
         "final_time [s]": float(ds.attrs.get("final_time_s", math.nan)),
         "mean_frictional_torque [N*m]": torque,
+        "mean_power_loss [W]": power,
         "max_race_load [N]": finite_max(race),
         "max_flange_normal_force [N]": finite_max(ds["flange_normal_force"].values),
         "max_abs_srr_inner [1]": max_abs_srr_inner(ds),
@@ -376,10 +380,18 @@ def summarize(ds) -> dict:
     }
 
 
+def _finite_mean(values, where) -> float:
+    """The mean of the finite ``values[where]``; NaN if there are none."""
+    sel = np.asarray(values, dtype=float)[where]
+    sel = sel[np.isfinite(sel)]
+    return float(sel.mean()) if sel.size else math.nan
+
+
 def _empty_numbers() -> dict:
     return {
         "final_time [s]": math.nan,
         "mean_frictional_torque [N*m]": math.nan,
+        "mean_power_loss [W]": math.nan,
         "max_race_load [N]": math.nan,
         "max_flange_normal_force [N]": math.nan,
         "max_abs_srr_inner [1]": math.nan,

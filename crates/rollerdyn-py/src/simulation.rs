@@ -367,6 +367,7 @@ fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py,
     per_record!("axial_load", |r| r.loads.1);
     per_record!("frictional_torque", |r| r.frictional_torque);
     per_record!("outer_ring_torque", |r| r.outer_ring_torque);
+    per_record!("power_loss", |r| r.power_loss);
     macro_rules! per_roller {
         ($name:literal, $f:expr) => {
             put(
@@ -388,6 +389,10 @@ fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py,
     per_roller!("outer_tangential_force", |x| x.outer_tangential);
     per_roller!("roller_roller_normal_force", |x| x.pair_normal);
     per_roller!("roller_roller_tangential_force", |x| x.pair_tangential);
+    per_roller!("inner_power_loss", |x| x.inner_power_loss);
+    per_roller!("outer_power_loss", |x| x.outer_power_loss);
+    per_roller!("roller_roller_power_loss", |x| x.pair_power_loss);
+    per_roller!("drag_power_loss", |x| x.drag_power_loss);
     put(
         "position",
         recs.iter()
@@ -417,6 +422,7 @@ fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py,
     per_flange!("flange_normal_force", |f| f.normal_force);
     per_flange!("flange_friction_force", |f| f.friction_force);
     per_flange!("flange_axial_force", |f| f.axial_force);
+    per_flange!("flange_power_loss", |f| f.power_loss);
     put(
         "flange_location",
         recs.iter()

@@ -259,6 +259,7 @@ def _print_summary(frame, config: Path, output: Path, swept: list[str]) -> int:
     headers = {
         "final_time [s]": "final t [s]",
         "mean_frictional_torque [N*m]": "mean torque, last 20 % [N*m]",
+        "mean_power_loss [W]": "mean power loss [W]",
         "max_race_load [N]": "max race load [N]",
         "max_flange_normal_force [N]": "max flange force [N]",
         "max_abs_srr_inner [1]": "max |SRR| inner, ring turning",
@@ -266,7 +267,9 @@ def _print_summary(frame, config: Path, output: Path, swept: list[str]) -> int:
         "wall [s]": "wall [s]",
         "file": "file",
     }
-    shown = ["run", *swept, "status", *headers]  # swept values as given; SI in the parquet
+    # swept values as given (SI in the parquet); a column a summary lacks (one written
+    # before it existed) is left out
+    shown = [c for c in ["run", *swept, "status", *headers] if c in frame.columns]
     for col in shown:
         table.add_column(headers.get(col, col), overflow="fold")
     for _, row in frame.iterrows():

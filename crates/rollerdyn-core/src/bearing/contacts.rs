@@ -42,6 +42,12 @@ impl Wrench {
         self.force += scale * other.force;
         self.moment += scale * other.moment;
     }
+    /// The power this wrench delivers to a body moving with `k` [W]: F·v + M·ω (about
+    /// the body's centre, where the wrench is taken).
+    pub fn power(&self, k: &Kinematics) -> f64 {
+        self.force.dot(&k.velocity) + self.moment.dot(&k.omega)
+    }
+
     /// Force `f` at point `p` on a body centred at `c`, plus a pure moment.
     fn at(f: Vec3, p: &Vec3, c: &Vec3, pure: Vec3) -> Self {
         Self {
@@ -79,6 +85,17 @@ impl ElementResult {
             penetration: f64::NEG_INFINITY,
             ..Default::default()
         }
+    }
+
+    /// The power this contact takes from the motion of its bodies `a` and `b` [W]: minus
+    /// what its wrenches deliver to them (not in the paper). It is what the contact
+    /// dissipates (friction, traction, rolling resistance, damping, the oil films) plus
+    /// the rate at which it stores elastic energy; the latter averages out over steady
+    /// running, so the time mean is the contact's power loss. Since every force acts on
+    /// both bodies at one point, only the relative motion there does work: F·(v_B − v_A)
+    /// at the contact, plus the couples' work on each body.
+    pub fn power_loss(&self, a: &Kinematics, b: &Kinematics) -> f64 {
+        -(self.on_a.power(a) + self.on_b.power(b))
     }
 
     /// Adds the forces `f` of one section (normal `n` from A to B, location `p`) between

@@ -173,6 +173,8 @@ pub struct FlangeRecord {
     pub friction_force: f64,
     /// Axial force on the roller (x) [N].
     pub axial_force: f64,
+    /// Power the contact takes from the bodies' motion [W] ([`ElementResult::power_loss`]).
+    pub power_loss: f64,
 }
 
 /// Outputs of one roller at one time.
@@ -206,6 +208,15 @@ pub struct RollerRecord {
     pub pair_normal: f64,
     /// Tangential force between this roller and the next [N].
     pub pair_tangential: f64,
+    /// Power the inner race contact takes from the motion [W]
+    /// ([`ElementResult::power_loss`]; its time mean is the contact's power loss).
+    pub inner_power_loss: f64,
+    /// The same of the outer race contact [W].
+    pub outer_power_loss: f64,
+    /// The same of the contact between this roller and the next [W].
+    pub pair_power_loss: f64,
+    /// Power the drag of the oil–air mixture takes from this roller's motion [W].
+    pub drag_power_loss: f64,
     /// The four roller end / flange contacts (see [`FLANGE_NAMES`]).
     pub flanges: [FlangeRecord; 4],
 }
@@ -228,6 +239,9 @@ pub struct Record {
     pub frictional_torque: f64,
     /// The same taken from the outer ring's contact forces (reaction, about +x) [N m].
     pub outer_ring_torque: f64,
+    /// Power taken from the bodies' motion by every contact and the drag [W]: in steady
+    /// running its mean is the friction power, the frictional torque times the ring speed.
+    pub power_loss: f64,
     /// Per roller.
     pub rollers: Vec<RollerRecord>,
 }
@@ -446,11 +460,18 @@ pub fn record(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> Record {
         (0.0, system.params.inner_ring_misalignment)
     };
     let mut rollers = vec![RollerRecord::default(); layout.rollers];
+    let fixed = Kinematics::fixed();
+    let mut power_loss = 0.0;
     for (element, r) in system.elements().iter().zip(&results) {
-        fill(&mut rollers, element, r);
+        let [a, b] = element.bodies(layout.rollers);
+        let loss = r.power_loss(kin.of(a, &fixed), kin.of(b, &fixed));
+        power_loss += loss;
+        fill(&mut rollers, element, r, loss);
     }
     for (i, rec) in rollers.iter_mut().enumerate() {
         let k = &kin.rollers[i];
+        rec.drag_power_loss = -system.roller_drag(k).power(k);
+        power_loss += rec.drag_power_loss;
         rec.azimuth = azimuth(&k.center);
         rec.position = k.center;
         (rec.tilt, rec.skew) = tilt_and_skew(&k.center, &k.axis);
@@ -470,23 +491,28 @@ pub fn record(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> Record {
         ),
         frictional_torque: -loads.inner_ring.moment.dot(&ring.axis),
         outer_ring_torque: loads.outer_ring.moment.x,
+        power_loss,
         rollers,
     }
 }
 
-fn fill(rollers: &mut [RollerRecord], element: &Element, r: &ElementResult) {
+/// Roller records from the result `r` of `element`, which takes `power_loss` [W].
+fn fill(rollers: &mut [RollerRecord], element: &Element, r: &ElementResult, power_loss: f64) {
     match *element {
         Element::Inner(i) => {
             rollers[i].inner_normal = r.normal;
             rollers[i].inner_tangential = r.tangential.norm();
+            rollers[i].inner_power_loss = power_loss;
         }
         Element::Outer(i) => {
             rollers[i].outer_normal = r.normal;
             rollers[i].outer_tangential = r.tangential.norm();
+            rollers[i].outer_power_loss = power_loss;
         }
         Element::Pair(i) => {
             rollers[i].pair_normal = r.normal;
             rollers[i].pair_tangential = r.tangential.norm();
+            rollers[i].pair_power_loss = power_loss;
         }
         Element::End(i, k) => {
             rollers[i].flanges[k] = FlangeRecord {
@@ -496,6 +522,7 @@ fn fill(rollers: &mut [RollerRecord], element: &Element, r: &ElementResult) {
                 normal_force: r.normal,
                 friction_force: r.tangential.norm(),
                 axial_force: r.on_b.force.x,
+                power_loss,
             };
         }
     }
