@@ -688,6 +688,9 @@ def test_steady_rule_needs_three_calm_windows_after_the_ramps():
     assert out == pytest.approx(
         {"torque [N*m]": 0.3, "speed loss [1]": 0.2, "max flange force [N]": 50.0}
     )
+    # with the power losses recorded, the torque is their mean over the ring speed
+    lossy = calm.assign(power_loss=("time", np.full(calm.sizes["time"], 25.0)))
+    assert window_outputs(lossy, 0.04, 0.05, 0.5)["torque [N*m]"] == pytest.approx(0.25)
     drifting = _series(lambda t: 0.3 + 1.2 * t)  # 3 % per window at t = 0.1 s
     steady, _, last = rule.verdict(drifting)
     assert not steady and last["torque [N*m]"] == pytest.approx(0.3 + 1.2 * 0.0955)
@@ -749,7 +752,9 @@ def test_map_point_stops_when_steady(tmp_path, client):
     # give about 6 here): the spacing of the outputs, to round-off
     assert np.diff(t).max() <= window / 100 * (1 + 1e-9)
     last = (t > steady_at - window + 1e-12) & (t <= steady_at + 1e-12)
-    assert row["torque [N*m]"] == pytest.approx(float(ds.frictional_torque.values[last].mean()))
+    # the torque the window's mean power loss means at its mean ring speed
+    power = float(ds.power_loss.values[last].mean())
+    assert row["torque [N*m]"] == pytest.approx(power / float(ds.ring_speed.values[last].mean()))
     loss = 1 - ds.orbital_speed.values[last].mean() / (
         ds.ring_speed.values[last].mean() * (1 - 4.495 / 24.5) / 2
     )
