@@ -212,11 +212,8 @@ fn the_power_taken_by_contacts_and_drag_balances_the_input() {
     for axial in [true, false] {
         let (model, y) = loaded_sliding_state(RollingResistance::Paper, axial);
         let mut p = model.params.clone();
-        // the oil-air mixture of examples/b1.toml's order (5 % oil)
-        p.mixture = crate::tribology::drag::Mixture {
-            density: 45.0,
-            viscosity: 1e-3,
-        };
+        // examples/b1.toml's mixture: 3 % of an oil of 850 kg/m³ and 16.5 mPa s in air
+        p.mixture = crate::tribology::drag::Mixture::new(0.03, 850.0, 16.5e-3, 1.2, 1.8e-5);
         let model = BearingModel::new(p).unwrap();
         let (input, taken, scale) = power_balance(&model, &y);
         assert!(
