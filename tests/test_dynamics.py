@@ -488,6 +488,7 @@ def test_run_writes_netcdf_with_units_and_plot_draws_every_figure(tmp_path):
         "fig10_frictional_torque",
         "fig12_axial_force_over_azimuth",
         "fig8_pairings_inner",
+        "roller_power_loss_over_azimuth",
     } <= names
     bad = CliRunner().invoke(app, ["run", str(B1), "--detector", "magic", "--t-end", "0.001"])
     assert bad.exit_code == 2 and "semi-analytical, gradient or mesh" in bad.output

@@ -41,6 +41,18 @@ def save_figure(fig, out: Path, name: str) -> list[Path]:
     return written
 
 
+def roller_power_loss(ds: xr.Dataset) -> xr.DataArray:
+    """The power taken at each roller [W] (time, roller): its two race contacts, its four
+    end-flange contacts, its contact with the next roller and its drag."""
+    return (
+        ds.inner_power_loss
+        + ds.outer_power_loss
+        + ds.flange_power_loss.sum("flange")
+        + ds.roller_roller_power_loss
+        + ds.drag_power_loss
+    )
+
+
 def plot_results(paths: list[Path], out: Path) -> list[Path]:
     """Writes every figure for the given results into ``out``; returns the files. Every
     file is read first: :class:`rollerdyn.report.ReportError` (naming the file and what
@@ -98,13 +110,26 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
             "roller-inner race load [N]",
             "roller loads",
         ),
+        (
+            "roller_power_loss_over_azimuth",
+            "power",
+            "power taken at the roller [W]",
+            "where the power goes: the roller's race, end and next-pair contacts and drag\n"
+            "(instantaneous, with what the contacts store and give back; its mean is the loss)",
+        ),
     ):
+        # results written before power losses were recorded have no such figure
+        with_data = [(p, ds) for p, ds in sets if var != "power" or "power_loss" in ds]
+        if not with_data:
+            continue
         fig, ax = plt.subplots(figsize=(7, 4))
-        for p, ds in sets:
+        for p, ds in with_data:
             d = full_speed(ds)
             psi = np.degrees(d.azimuth.values.ravel())
             if var == "axial":
                 v = carried_axial_force(d).values.ravel()
+            elif var == "power":
+                v = roller_power_loss(d).values.ravel()
             else:
                 v = d[var].values.ravel()
             ax.plot(psi, v, ".", ms=2, label=_label(ds, p))
