@@ -691,6 +691,11 @@ def test_steady_rule_needs_three_calm_windows_after_the_ramps():
     # with the power losses recorded, the torque is their mean over the ring speed
     lossy = calm.assign(power_loss=("time", np.full(calm.sizes["time"], 25.0)))
     assert window_outputs(lossy, 0.04, 0.05, 0.5)["torque [N*m]"] == pytest.approx(0.25)
+    # a window that reaches back before a resume from a result without them: the torque
+    partly = lossy.copy(deep=True)
+    partly["power_loss"][:45] = np.nan
+    assert window_outputs(partly, 0.04, 0.05, 0.5)["torque [N*m]"] == pytest.approx(0.3)
+    assert window_outputs(partly, 0.05, 0.06, 0.5)["torque [N*m]"] == pytest.approx(0.25)
     drifting = _series(lambda t: 0.3 + 1.2 * t)  # 3 % per window at t = 0.1 s
     steady, _, last = rule.verdict(drifting)
     assert not steady and last["torque [N*m]"] == pytest.approx(0.3 + 1.2 * 0.0955)

@@ -4,10 +4,10 @@ The outputs, each averaged over a window of simulated time W:
 
 - friction torque: the mean power loss over the mean ring speed, mean(``power_loss``) /
   mean(``ring_speed``) [N*m] (the mean of ``frictional_torque`` for a result without
-  power losses, or where the ring stands): in steady running the two agree, but at light
-  loads the torque's mean is pulled up by the velocity errors the tolerances allow (B1
-  without axial load: 15 % at its tolerances) and the power loss's is not
-  (docs/dynamics.md, "Where the power goes");
+  power losses over the whole window, or where the ring stands): in steady running the
+  two agree, but at light loads the torque's mean is pulled up by the velocity errors the
+  tolerances allow (B1 without axial load: 15 % at its tolerances) and the power loss's
+  is not (docs/dynamics.md, "Where the power goes");
 - roller-set speed loss (skidding): ``1 - cage-equivalent speed / epicyclic speed``, where
   the cage-equivalent speed is the mean of every roller's ``orbital_speed`` and the
   epicyclic speed is ``omega_i (1 - D / d_m) / 2`` of the mean inner ring speed
@@ -68,8 +68,11 @@ def window_outputs(ds, t0: float, t1: float, factor: float) -> dict:
     flange = np.asarray(ds.flange_normal_force.values[sel], dtype=float)
     flange = flange[np.isfinite(flange)]
     torque = float(np.mean(ds.frictional_torque.values[sel]))
-    if "power_loss" in ds and ring != 0.0:
-        torque = float(np.mean(ds.power_loss.values[sel])) / ring
+    power = np.asarray(ds.power_loss.values[sel], dtype=float) if "power_loss" in ds else []
+    # a window reaching back into a result continued from one without power losses (NaN
+    # there) keeps the torque's mean
+    if len(power) and np.isfinite(power).all() and ring != 0.0:
+        torque = float(np.mean(power)) / ring
     return {
         "torque [N*m]": torque,
         "speed loss [1]": loss,
