@@ -226,11 +226,13 @@ def test_summary_matches_the_data(result):
     assert s["mean_power_loss"] == pytest.approx(power)
     assert s["torque_from_power"] == pytest.approx(power / float(ds.ring_speed[last].mean()))
     # four shares in per cent, flanges first, that add up to the whole loss
-    shares = [float(x) for x in s["power_shares"].split(" / ")]
-    assert len(shares) == 4 and sum(shares) == pytest.approx(100.0, abs=0.3)
+    for key in ("power_shares", "power_mechanisms"):
+        shares = [float(x) for x in s[key].split(" / ")]
+        assert len(shares) == 4 and sum(shares) == pytest.approx(100.0, abs=0.3), key
     # a result written before power losses were recorded: n/a, no error
     old = summary(ds.drop_vars([v for v in ds.data_vars if "power_loss" in v]))
     assert math.isnan(old["mean_power_loss"]) and old["power_shares"] == "n/a"
+    assert old["power_mechanisms"] == "n/a"
 
 
 def test_animation_is_subsampled_to_at_most_max_frames(result):

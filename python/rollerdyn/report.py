@@ -37,6 +37,7 @@ __all__ = [
     "LAST_SHARE",
     "MAX_FRAMES",
     "MAX_POINTS",
+    "POWER_MECHANISMS",
     "POWER_SOURCES",
     "REQUIRED",
     "SUMMARY_ROWS",
@@ -180,6 +181,11 @@ SUMMARY_ROWS = (
     ),
     ("power_shares", "of it: flanges / races / roller pairs / drag", "%"),
     (
+        "power_mechanisms",
+        "of it: sliding / normal forces / rolling resistance / drag",
+        "%",
+    ),
+    (
         "torque_from_power",
         "frictional torque from the power loss (mean power loss / ring speed)",
         "N*m",
@@ -232,6 +238,15 @@ def summary(ds: xr.Dataset) -> dict:
     }
 
 
+#: The power losses a result records, by mechanism (the contacts' sliding, normal forces
+#: and rolling resistance; the drag): (share's name, variables).
+POWER_MECHANISMS = (
+    ("sliding", ("sliding_power_loss",)),
+    ("normal forces", ("normal_power_loss",)),
+    ("rolling resistance", ("rolling_power_loss",)),
+    ("drag", ("drag_power_loss",)),
+)
+
 #: The power losses a result records, by where they arise: (share's name, variables).
 POWER_SOURCES = (
     ("flanges", ("flange_power_loss",)),
@@ -249,21 +264,29 @@ def power_summary(ds: xr.Dataset, last: np.ndarray) -> dict:
     speed; it is the steadier estimate of the two where the torque is small
     (docs/dynamics.md, "Where the power goes")."""
     if "power_loss" not in ds:
-        return {"mean_power_loss": math.nan, "power_shares": "n/a", "torque_from_power": math.nan}
+        return {
+            "mean_power_loss": math.nan,
+            "power_shares": "n/a",
+            "power_mechanisms": "n/a",
+            "torque_from_power": math.nan,
+        }
     power = float(np.mean(ds.power_loss.values[last]))
 
     def mean_total(name: str) -> float:
         values = ds[name].values[last]
         return float(np.mean(values.reshape(values.shape[0], -1).sum(axis=1)))
 
-    shares = []
-    for _, names in POWER_SOURCES:
-        part = sum(mean_total(n) for n in names)
-        shares.append(100.0 * part / power if power > 0.0 else math.nan)
+    def shares(groups) -> str:
+        if any(n not in ds for _, names in groups for n in names):
+            return "n/a"
+        parts = [sum(mean_total(n) for n in names) for _, names in groups]
+        return " / ".join(f"{100.0 * x / power:.1f}" if power > 0.0 else "n/a" for x in parts)
+
     speed = float(np.mean(ds.ring_speed.values[last]))
     return {
         "mean_power_loss": power,
-        "power_shares": " / ".join("n/a" if math.isnan(x) else f"{x:.1f}" for x in shares),
+        "power_shares": shares(POWER_SOURCES),
+        "power_mechanisms": shares(POWER_MECHANISMS),
         "torque_from_power": power / speed if speed != 0.0 else math.nan,
     }
 

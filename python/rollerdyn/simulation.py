@@ -88,7 +88,7 @@ def estimated_cost(config: BearingConfig, t_end: float, t_start: float = 0.0) ->
     span = max(t_end - t_start, 0.0)
     outputs = math.ceil(span / min(config.solver.output_interval, t_end)) + 1
     z = config.geometry.roller_count
-    per_output = 8 * (15 + z * (20 + 4 * 9))  # scalars, ring; per roller and per flange
+    per_output = 8 * (18 + z * (20 + 4 * 9))  # scalars, ring; per roller and per flange
     return {
         "outputs": outputs,
         "bytes": outputs * per_output,
@@ -344,6 +344,22 @@ _SCALARS = {
         "W",
         "power taken from the bodies' motion by every contact and the oil-air drag; its mean "
         "in steady running is the friction power, frictional_torque times ring_speed",
+    ),
+    "sliding_power_loss": (
+        "W",
+        "of power_loss, the sliding's part over every contact (traction, boundary friction, "
+        "the films' shear)",
+    ),
+    "normal_power_loss": (
+        "W",
+        "of power_loss, the normal forces' part over every contact (elastic energy stored, "
+        "contact damping, the films' normal load; its mean in steady running: the damping and "
+        "the films')",
+    ),
+    "rolling_power_loss": (
+        "W",
+        "of power_loss, the rolling resistance's part over every contact (its couples and "
+        "forces); power_loss less these three is the drag's",
     ),
 }
 _PER_ROLLER = {

@@ -368,6 +368,9 @@ fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py,
     per_record!("frictional_torque", |r| r.frictional_torque);
     per_record!("outer_ring_torque", |r| r.outer_ring_torque);
     per_record!("power_loss", |r| r.power_loss);
+    per_record!("sliding_power_loss", |r| r.power_by_mechanism.sliding);
+    per_record!("normal_power_loss", |r| r.power_by_mechanism.normal);
+    per_record!("rolling_power_loss", |r| r.power_by_mechanism.rolling);
     macro_rules! per_roller {
         ($name:literal, $f:expr) => {
             put(

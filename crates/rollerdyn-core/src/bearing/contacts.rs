@@ -76,6 +76,11 @@ pub struct ElementResult {
     pub pairing: Option<usize>,
     /// Contact location (roller end / flange) [m].
     pub location: Vec3,
+    /// Of [`Self::power_loss`], the sliding's part [W] ([`ContactForces::sliding_power`]).
+    pub sliding_power: f64,
+    /// Of [`Self::power_loss`], the normal forces' part [W]
+    /// ([`ContactForces::normal_power`]); the rest is the rolling resistance's.
+    pub normal_power: f64,
 }
 
 impl ElementResult {
@@ -113,6 +118,8 @@ impl ElementResult {
         self.on_a.add(&Wrench::at(-on_b, p, &a.center, f.moment_a));
         self.normal += f.normal;
         self.tangential += f.tangential;
+        self.sliding_power += f.sliding_power;
+        self.normal_power += f.normal_power;
     }
 }
 

@@ -58,6 +58,7 @@ impl BearingSystem<'_> {
             out.pairing = Pairing::ALL.iter().position(|q| *q == c.pairing);
         }
         f.normal += squeeze_force;
+        f.normal_power += squeeze_force * penetration_rate(ring, roller, &location, &normal);
         out.add_forces(&f, &normal, &location, ring, roller);
         self.workspace
             .profiler

@@ -134,6 +134,13 @@ pub struct ContactForces {
     pub moment_b: Vec3,
     /// Central film thickness h_c (thermally corrected) [m].
     pub film: f64,
+    /// Power the tangential force of sliding (traction, boundary friction, film shear)
+    /// takes from the relative motion [W]: −F_t·(u_B − u_A) ≥ 0. Not the rolling
+    /// resistance's forces and couples.
+    pub sliding_power: f64,
+    /// Power the normal force takes from the approach of the surfaces [W]: F_n·δ̇ (the
+    /// elastic energy stored, the contact damping, the oil film's normal load).
+    pub normal_power: f64,
 }
 
 impl ContactForces {
@@ -145,6 +152,8 @@ impl ContactForces {
         self.tangential += other.tangential;
         self.moment_a += other.moment_a;
         self.moment_b += other.moment_b;
+        self.sliding_power += other.sliding_power;
+        self.normal_power += other.normal_power;
     }
 
     /// Total force on B.
@@ -357,17 +366,18 @@ pub fn line_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
     }
     let elastic = kind.law.force(penetration, length);
     let stiffness = elastic / (kind.law.k2 * penetration);
-    let (ua, ub, rate) = section.speeds();
+    let (ua, ub, approach) = section.speeds();
     let f_n = damped_normal_force(
         elastic,
         stiffness,
         kind.mass_per_length * length,
         tri.damping_ratio,
-        rate,
+        approach,
     );
     if !tri.friction {
         return ContactForces {
             normal: f_n,
+            normal_power: f_n * approach,
             ..Default::default()
         };
     }
@@ -400,6 +410,8 @@ pub fn line_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
         normal: f_n,
         tangential: -(f_t / slip_norm) * slip,
         film: h,
+        sliding_power: f_t * slip.norm_squared() / slip_norm,
+        normal_power: f_n * approach,
         ..Default::default()
     };
     if kind.rolling_resistance {
@@ -454,12 +466,14 @@ pub fn film_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
     let mut out = ContactForces {
         normal: scale * film.load,
         film: gap,
+        normal_power: scale * film.load * rate,
         ..Default::default()
     };
     if !tri.friction {
         return out;
     }
     out.tangential = -(scale * film.shear) * (ub - ua);
+    out.sliding_power = scale * film.shear * (ub - ua).norm_squared();
     section.rolling_resistance(
         &mut out,
         tri,
@@ -564,17 +578,18 @@ pub fn flange_friction(
     frame: &Vec3,
     ellipse: impl Fn(f64) -> (f64, f64, f64),
 ) -> ContactForces {
-    let (ua, ub, rate) = tangential_speeds(ring, roller, location, normal, frame);
+    let (ua, ub, approach) = tangential_speeds(ring, roller, location, normal, frame);
     let f_n = damped_normal_force(
         load.elastic,
         load.stiffness,
         kind.mass,
         tri.damping_ratio,
-        rate,
+        approach,
     );
     if !tri.friction {
         return ContactForces {
             normal: f_n,
+            normal_power: f_n * approach,
             ..Default::default()
         };
     }
@@ -601,6 +616,8 @@ pub fn flange_friction(
         normal: f_n,
         tangential: -(f_t / slip_norm) * slip,
         film: h,
+        sliding_power: f_t * slip.norm_squared() / slip_norm,
+        normal_power: f_n * approach,
         ..Default::default()
     }
 }

@@ -242,8 +242,23 @@ pub struct Record {
     /// Power taken from the bodies' motion by every contact and the drag [W]: in steady
     /// running its mean is the friction power, the frictional torque times the ring speed.
     pub power_loss: f64,
+    /// Of it, by mechanism over every contact [W]: sliding (traction, boundary friction,
+    /// film shear), the normal forces (elastic storage, damping, the films' normal load)
+    /// and the rest, the rolling resistance's couples and forces; the drag is the remainder.
+    pub power_by_mechanism: PowerByMechanism,
     /// Per roller.
     pub rollers: Vec<RollerRecord>,
+}
+
+/// What the contacts take from the motion, by mechanism [W] ([`Record::power_loss`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PowerByMechanism {
+    /// Sliding: traction, boundary friction and the films' shear ([`ElementResult::sliding_power`]).
+    pub sliding: f64,
+    /// The normal forces ([`ElementResult::normal_power`]).
+    pub normal: f64,
+    /// Rolling resistance: what remains of the contacts' power.
+    pub rolling: f64,
 }
 
 /// The result of a run, complete or not.
@@ -462,10 +477,14 @@ pub fn record(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> Record {
     let mut rollers = vec![RollerRecord::default(); layout.rollers];
     let fixed = Kinematics::fixed();
     let mut power_loss = 0.0;
+    let mut by_mechanism = PowerByMechanism::default();
     for (element, r) in system.elements().iter().zip(&results) {
         let [a, b] = element.bodies(layout.rollers);
         let loss = r.power_loss(kin.of(a, &fixed), kin.of(b, &fixed));
         power_loss += loss;
+        by_mechanism.sliding += r.sliding_power;
+        by_mechanism.normal += r.normal_power;
+        by_mechanism.rolling += loss - r.sliding_power - r.normal_power;
         fill(&mut rollers, element, r, loss);
     }
     for (i, rec) in rollers.iter_mut().enumerate() {
@@ -492,6 +511,7 @@ pub fn record(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> Record {
         frictional_torque: -loads.inner_ring.moment.dot(&ring.axis),
         outer_ring_torque: loads.outer_ring.moment.x,
         power_loss,
+        power_by_mechanism: by_mechanism,
         rollers,
     }
 }
