@@ -42,6 +42,7 @@ impl Wrench {
         self.force += scale * other.force;
         self.moment += scale * other.moment;
     }
+
     /// The power this wrench delivers to a body moving with `k` [W]: F·v + M·ω (about
     /// the body's centre, where the wrench is taken).
     pub fn power(&self, k: &Kinematics) -> f64 {
