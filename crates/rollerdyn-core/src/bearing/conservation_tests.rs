@@ -8,6 +8,7 @@
 //! with the paper's it shows the moment the race contacts create.
 
 use super::contacts::Wrench;
+use super::run::record;
 use super::state::Kinematics;
 use super::test_b1::{in_workspace, params, B1};
 use super::topology::Element;
@@ -152,30 +153,22 @@ fn assert_round_off(value: f64, scale: f64) {
 /// The power balance of the whole bearing at one instant, from Newton–Euler: what the
 /// drive (the ring's prescribed spin against the frictional torque T_f), gravity and the
 /// external load put in, less the rate of the bodies' kinetic energy (from the model's own
-/// accelerations), is what the contacts and the drag take from the motion
-/// ([`super::contacts::ElementResult::power_loss`], the drag's −F·v − M·ω). Returns
-/// (input, taken, scale): scale sums the terms' magnitudes, for round-off.
+/// accelerations), is what the contacts and the drag take from the motion, as a result
+/// records it ([`super::run::record`]: `power_loss`). Returns (input, taken, scale):
+/// scale sums the terms' magnitudes, for round-off.
 fn power_balance(model: &BearingModel, y: &[f64]) -> (f64, f64, f64) {
     let workspace = Workspace::single(model);
     let system = model.system(&workspace);
     let t = 0.0;
+    let recorded = record(&system, t, y);
     let kin = system.kinematics(t, y);
-    let results = system.evaluate_all(&kin);
-    let fixed = Kinematics::fixed();
-    let mut taken = 0.0;
-    let mut scale = 0.0;
-    for (element, r) in system.elements().iter().zip(&results) {
-        let [a, b] = element.bodies(system.layout.rollers);
-        let loss = r.power_loss(kin.of(a, &fixed), kin.of(b, &fixed));
-        taken += loss;
-        scale += loss.abs();
-    }
     let mut dy = vec![0.0; y.len()];
     system.rhs(t, y, &mut dy);
     let (m, g) = (&system.roller_mass, system.params.gravity);
-    let mut input = 0.0;
+    let drive = recorded.frictional_torque * recorded.ring_speed;
+    let mut input = drive;
+    let mut scale = recorded.power_loss.abs() + drive.abs();
     for (i, k) in kin.rollers.iter().enumerate() {
-        let drag = -system.roller_drag(k).power(k);
         let s = system.layout.roller(i);
         let (dv, dw) = (
             Vec3::from_column_slice(&dy[s + 5..s + 8]),
@@ -184,25 +177,21 @@ fn power_balance(model: &BearingModel, y: &[f64]) -> (f64, f64, f64) {
         let i_dw = angular_momentum(&k.axis, &dw, m.axial_inertia, m.transverse_inertia);
         let kinetic = m.mass * k.velocity.dot(&dv) + k.omega.dot(&i_dw);
         let gravity = m.mass * g.dot(&k.velocity);
-        taken += drag;
         input += gravity - kinetic;
-        scale += drag.abs() + kinetic.abs() + gravity.abs();
+        scale += kinetic.abs() + gravity.abs();
     }
     let ring = &kin.inner_ring;
-    let loads = system.loads(&results);
-    let torque = -loads.inner_ring.moment.dot(&ring.axis);
-    let drive = torque * ring.omega.dot(&ring.axis);
     let mr = system.params.inner_ring_mass;
     let kinetic = mr * ring.velocity.dot(&Vec3::from_column_slice(&dy[3..6]));
     let external = (system.external_load(t) + mr * g).dot(&ring.velocity);
-    input += drive + external - kinetic;
-    scale += drive.abs() + external.abs() + kinetic.abs();
-    (input, taken, scale)
+    input += external - kinetic;
+    scale += external.abs() + kinetic.abs();
+    (input, recorded.power_loss, scale)
 }
 
 /// Energy: what the drive, gravity and the load put into B1 less the rate of its kinetic
 /// energy equals what its contacts and the drag take from the motion, to round-off
-/// (measured 0.8e-16 and 1.7e-16 of the terms' magnitudes; bound 1e-12), with and without the axial
+/// (measured 1.4e-16 and 1.5e-16 of the terms' magnitudes; bound 1e-12), with and without the axial
 /// load, the films, the squeeze film and the drag on, every contact sliding. It guards the
 /// power that a result records ([`super::run::record`]): a contact's or the drag's power
 /// counted on one body only, or with the wrong sign, would fail it by the size of that

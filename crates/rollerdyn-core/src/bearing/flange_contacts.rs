@@ -41,8 +41,9 @@ impl BearingSystem<'_> {
         }
         let start = self.workspace.profiler.stopwatch();
         let p = c.location();
-        let squeeze_force = squeeze.damping(self.tribology.eta0, c.rx, c.ry, c.penetration)
-            * penetration_rate(ring, roller, &p, &c.normal);
+        let approach = penetration_rate(ring, roller, &p, &c.normal);
+        let squeeze_force =
+            squeeze.damping(self.tribology.eta0, c.rx, c.ry, c.penetration) * approach;
         let (mut f, normal, location) = match &geometry.overlap {
             Some(overlap) => (
                 self.distributed_forces(ring, roller, overlap, geometry.foundation_modulus),
@@ -58,7 +59,13 @@ impl BearingSystem<'_> {
             out.pairing = Pairing::ALL.iter().position(|q| *q == c.pairing);
         }
         f.normal += squeeze_force;
-        f.normal_power += squeeze_force * penetration_rate(ring, roller, &location, &normal);
+        // the squeeze film's force acts where the law puts the contact: at the detected
+        // point (its approach rate is the film's own), or at the overlap's centre
+        let applied = match geometry.overlap {
+            Some(_) => penetration_rate(ring, roller, &location, &normal),
+            None => approach,
+        };
+        f.normal_power += squeeze_force * applied;
         out.add_forces(&f, &normal, &location, ring, roller);
         self.workspace
             .profiler

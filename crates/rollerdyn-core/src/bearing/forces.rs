@@ -383,7 +383,8 @@ pub fn line_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
     }
     let (ua_r, ub_r) = (ua.dot(&rolling), ub.dot(&rolling));
     let slip = ub - ua;
-    let slip_norm = (slip.norm_squared() + SLIP_FLOOR * SLIP_FLOOR).sqrt();
+    let slip_squared = slip.norm_squared();
+    let slip_norm = (slip_squared + SLIP_FLOOR * SLIP_FLOOR).sqrt();
     let u0 = tri.regularised(0.5 * (ua_r + ub_r));
     let q = f_n / length;
     let film = tri.film(kind.e_prime);
@@ -410,7 +411,7 @@ pub fn line_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
         normal: f_n,
         tangential: -(f_t / slip_norm) * slip,
         film: h,
-        sliding_power: f_t * slip.norm_squared() / slip_norm,
+        sliding_power: f_t / slip_norm * slip_squared,
         normal_power: f_n * approach,
         ..Default::default()
     };
@@ -595,7 +596,8 @@ pub fn flange_friction(
     }
     let (max_pressure, semi_major, semi_minor) = ellipse(f_n);
     let slip = ub - ua;
-    let slip_norm = (slip.norm_squared() + SLIP_FLOOR * SLIP_FLOOR).sqrt();
+    let slip_squared = slip.norm_squared();
+    let slip_norm = (slip_squared + SLIP_FLOOR * SLIP_FLOOR).sqrt();
     let entrainment = 0.5 * (ua + ub);
     let u0 = tri.regularised(entrainment.norm());
     // ξ from the major axis; only cos²ξ = (u₀·m)²/u₀² enters eq. 45, smooth in u₀ (u₀ is
@@ -616,7 +618,7 @@ pub fn flange_friction(
         normal: f_n,
         tangential: -(f_t / slip_norm) * slip,
         film: h,
-        sliding_power: f_t * slip.norm_squared() / slip_norm,
+        sliding_power: f_t / slip_norm * slip_squared,
         normal_power: f_n * approach,
         ..Default::default()
     }
