@@ -25,8 +25,15 @@ from typer.testing import CliRunner
 
 import rollerdyn
 from rollerdyn.cli import app
-from rollerdyn.report import MAX_FRAMES, animation_figure, pairing_shares, summary
-from rollerdyn.simulation import simulate, write
+from rollerdyn.report import (
+    MAX_FRAMES,
+    POWER_COLUMNS,
+    animation_figure,
+    pairing_shares,
+    power_by_contact,
+    summary,
+)
+from rollerdyn.simulation import numbers_per_output, simulate, write
 
 RUNNER = CliRunner()
 
@@ -233,6 +240,44 @@ def test_summary_matches_the_data(result):
     old = summary(ds.drop_vars([v for v in ds.data_vars if "power_loss" in v]))
     assert math.isnan(old["mean_power_loss"]) and old["power_shares"] == "n/a"
     assert old["power_mechanisms"] == "n/a"
+
+
+def test_the_power_by_contact_adds_up_and_says_when_it_is_not_recorded(result, tmp_path):
+    """The report's table of where the power goes: per contact kind its sliding, normal
+    forces' and rolling resistance's parts add up to its total (with the drag's, for all
+    of them), the rows to the bearing's mean loss (round-off: 1e-9 relative), with the
+    flanges' rolling resistance nil; a file written before the parts were recorded gets
+    None and a note on the page, no error."""
+    with xr.open_dataset(result, engine="h5netcdf") as ds:
+        ds = ds.load()
+    last = ds.time.values >= 0.8 * ds.time.values[-1]
+    rows = dict(power_by_contact(ds, last))
+    assert list(rows) == ["inner race", "outer race", "roller pairs", "flanges", "drag", "all"]
+    for name, values in rows.items():
+        assert len(values) == len(POWER_COLUMNS)
+        parts = sum(values[:3]) + (rows["drag"][3] if name == "all" else 0.0)
+        if name != "drag":
+            assert parts == pytest.approx(values[3], rel=1e-9, abs=1e-15), name
+    assert rows["flanges"][2] == 0.0
+    loss = float(ds.power_loss[last].mean())
+    assert rows["all"][3] == pytest.approx(loss, rel=1e-9)
+    assert rows["all"][0] == pytest.approx(float(ds.sliding_power_loss[last].mean()), rel=1e-9)
+    old = ds.drop_vars([v for v in ds.data_vars if "sliding_power_loss" in v])
+    assert power_by_contact(old, last) is None
+    write(old, tmp_path / "old.nc")
+    page = rollerdyn.report([result, tmp_path / "old.nc"], tmp_path / "p.html", max_frames=2)
+    text = page.read_text(encoding="utf-8")
+    assert "Where the power goes" in text and "not recorded (an older file)" in text
+    assert "<th>rolling resistance</th>" in text
+
+
+def test_the_cost_estimate_counts_every_number_a_result_holds_per_output(result):
+    """``estimated_cost``'s result size (a run is refused far beyond a normal one) counts
+    what a result holds per output time: every time-dependent number, exactly."""
+    with xr.open_dataset(result, engine="h5netcdf") as ds:
+        nt, z = ds.sizes["time"], ds.sizes["roller"]
+        held = sum(v.size for v in ds.variables.values() if "time" in v.dims)
+    assert held == nt * numbers_per_output(z)
 
 
 def test_animation_is_subsampled_to_at_most_max_frames(result):

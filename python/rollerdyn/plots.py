@@ -142,6 +142,8 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
         ax.legend(markerscale=5)
         save(fig, name)
 
+    race_sliding_power(sets, save)
+
     for ring, title in (("inner", "fig. 8"), ("outer", "fig. 9")):
         fig, ax = plt.subplots(figsize=(7, 4))
         width = 0.8 / max(1, len(sets))
@@ -157,6 +159,32 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
         ax.legend()
         save(fig, f"fig{8 if ring == 'inner' else 9}_pairings_{ring}")
     return written
+
+
+def race_sliding_power(sets: list, save) -> None:
+    """Where the rollers slip, in watts: the sliding's part of each roller's power loss at
+    the inner and the outer race over its azimuth, at full speed; ``save(fig, name)``
+    keeps the figure. None for results written before the contacts' parts were recorded."""
+    import matplotlib.pyplot as plt
+
+    with_split = [(p, ds) for p, ds in sets if "inner_sliding_power_loss" in ds]
+    if not with_split:
+        return
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for p, ds in with_split:
+        d = full_speed(ds)
+        psi = np.degrees(d.azimuth.values.ravel())
+        for race, marker in (("inner", "."), ("outer", "x")):
+            v = d[f"{race}_sliding_power_loss"].values.ravel()
+            ax.plot(psi, v, marker, ms=2, label=f"{_label(ds, p)}, {race} race")
+    ax.axvline(180.0, color="0.6", lw=0.8, ls="--")
+    ax.set(
+        xlabel="roller azimuth psi [deg] (load zone centre at 180 deg)",
+        ylabel="power taken by sliding [W]",
+        title="where the rollers slip: the sliding's part of the race contacts' power",
+    )
+    ax.legend(markerscale=5)
+    save(fig, "race_sliding_power_over_azimuth")
 
 
 def plot_runtime_study(frame, out: Path, title: str = "runtime over Δt_max") -> list[Path]:

@@ -38,6 +38,8 @@ __all__ = [
     "MAX_FRAMES",
     "MAX_POINTS",
     "POWER_MECHANISMS",
+    "POWER_COLUMNS",
+    "POWER_CONTACTS",
     "POWER_SOURCES",
     "REQUIRED",
     "SUMMARY_ROWS",
@@ -51,6 +53,7 @@ __all__ = [
     "max_abs_srr_inner",
     "open_result",
     "pairing_shares",
+    "power_by_contact",
     "power_summary",
     "report",
     "summary",
@@ -272,14 +275,10 @@ def power_summary(ds: xr.Dataset, last: np.ndarray) -> dict:
         }
     power = float(np.mean(ds.power_loss.values[last]))
 
-    def mean_total(name: str) -> float:
-        values = ds[name].values[last]
-        return float(np.mean(values.reshape(values.shape[0], -1).sum(axis=1)))
-
     def shares(groups) -> str:
         if any(n not in ds for _, names in groups for n in names):
             return "n/a"
-        parts = [sum(mean_total(n) for n in names) for _, names in groups]
+        parts = [sum(_mean_total(ds, n, last) for n in names) for _, names in groups]
         return " / ".join(f"{100.0 * x / power:.1f}" if power > 0.0 else "n/a" for x in parts)
 
     speed = float(np.mean(ds.ring_speed.values[last]))
@@ -289,6 +288,54 @@ def power_summary(ds: xr.Dataset, last: np.ndarray) -> dict:
         "power_mechanisms": shares(POWER_MECHANISMS),
         "torque_from_power": power / speed if speed != 0.0 else math.nan,
     }
+
+
+def _mean_total(ds: xr.Dataset, name: str, last: np.ndarray) -> float:
+    """The mean over the outputs ``last`` of variable ``name`` summed over its rollers
+    and flanges."""
+    values = ds[name].values[last]
+    return float(np.mean(values.reshape(values.shape[0], -1).sum(axis=1)))
+
+
+#: The contacts' power losses and their parts: (source, total, sliding part, rolling
+#: resistance part or None where the contact has none; the normal forces' part is the rest).
+POWER_CONTACTS = (
+    ("inner race", "inner_power_loss", "inner_sliding_power_loss", "inner_rolling_power_loss"),
+    ("outer race", "outer_power_loss", "outer_sliding_power_loss", "outer_rolling_power_loss"),
+    (
+        "roller pairs",
+        "roller_roller_power_loss",
+        "roller_roller_sliding_power_loss",
+        "roller_roller_rolling_power_loss",
+    ),
+    ("flanges", "flange_power_loss", "flange_sliding_power_loss", None),
+)
+
+#: The columns of :func:`power_by_contact`'s rows.
+POWER_COLUMNS = ("sliding", "normal forces", "rolling resistance", "total")
+
+
+def power_by_contact(ds: xr.Dataset, last: np.ndarray) -> list[tuple[str, list[float]]] | None:
+    """Where the power goes, contact kind by contact kind: for the inner race, the outer
+    race, the roller pairs, the flanges, the drag and all of them, the mean over the
+    outputs ``last`` [W] of the power taken by sliding, by the normal forces (damping,
+    squeeze, the films' load; in steady running their elastic part averages out), by the
+    rolling resistance, and in all (:data:`POWER_COLUMNS`; NaN where a mechanism does not
+    apply). None for a result written before the contacts' parts were recorded."""
+    needed = [n for row in POWER_CONTACTS for n in row[1:] if n] + ["drag_power_loss"]
+    if any(n not in ds for n in needed):
+        return None
+    rows = []
+    for name, total_name, sliding_name, rolling_name in POWER_CONTACTS:
+        total = _mean_total(ds, total_name, last)
+        sliding = _mean_total(ds, sliding_name, last)
+        rolling = _mean_total(ds, rolling_name, last) if rolling_name else 0.0
+        rows.append((name, [sliding, total - sliding - rolling, rolling, total]))
+    drag = _mean_total(ds, "drag_power_loss", last)
+    rows.append(("drag", [math.nan, math.nan, math.nan, drag]))
+    sums = [float(np.nansum([r[1][k] for r in rows])) for k in range(len(POWER_COLUMNS))]
+    rows.append(("all", sums))
+    return rows
 
 
 def _fmt(key: str, value) -> str:
@@ -420,6 +467,8 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
         "in brackets); wall time: the run's, on one core.</p>"
     )
 
+    body += _power_section(labels, sets)
+
     # Inputs.
     body.append('<h2 id="inputs">Inputs</h2>')
     for p, label, ds in zip(paths, labels, sets, strict=True):
@@ -491,6 +540,27 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
         body.append(f"<h3>{html.escape(label)} ({n} frames of {ds.sizes['time']} outputs)</h3>")
         body.append(embed(fig, f"animation{j}"))
     return html_page("rollerdyn report: " + ", ".join(str(p) for p in paths), body)
+
+
+def _power_section(labels: list[str], sets: list[xr.Dataset]) -> list[str]:
+    """The page's tables of :func:`power_by_contact`, one per result that records it."""
+    out = ['<h3 id="power">Where the power goes</h3>']
+    for label, ds in zip(labels, sets, strict=True):
+        t = ds.time.values
+        rows = power_by_contact(ds, t >= t[-1] - LAST_SHARE * (t[-1] - t[0]))
+        if rows is None:
+            out.append(f'<p class="note">{html.escape(label)}: not recorded (an older file).</p>')
+            continue
+        cells = [[name, *(_fmt("", v) for v in values)] for name, values in rows]
+        out.append(f"<p>{html.escape(label)}: mean power [W], last {LAST_SHARE:.0%} of the run</p>")
+        out.append(table(["contact", *POWER_COLUMNS], cells))
+    out.append(
+        '<p class="note">Each contact\'s power is minus what its forces deliver to its two '
+        "bodies; sliding is traction, boundary friction and film shear, the normal forces' "
+        "part their damping, squeeze and film load (with the elastic energy's rate, which "
+        "averages out), and the rolling resistance the rest.</p>"
+    )
+    return out
 
 
 def report(paths, out, max_frames: int = MAX_FRAMES) -> Path:

@@ -88,13 +88,21 @@ def estimated_cost(config: BearingConfig, t_end: float, t_start: float = 0.0) ->
     span = max(t_end - t_start, 0.0)
     outputs = math.ceil(span / min(config.solver.output_interval, t_end)) + 1
     z = config.geometry.roller_count
-    per_output = 8 * (18 + z * (20 + 4 * 9))  # scalars, ring; per roller and per flange
+    per_output = 8 * numbers_per_output(z)
     return {
         "outputs": outputs,
         "bytes": outputs * per_output,
         "min_steps": span / config.solver.dt_max,
         "checkpoints": span / config.solver.checkpoint_interval,
     }
+
+
+def numbers_per_output(z: int) -> int:
+    """How many numbers a result holds per output time for ``z`` rollers: the time, the
+    scalars, the ring's position and tilt; per roller its variables and position; per
+    roller end and flange its variables and contact location."""
+    per_flange = len(_PER_FLANGE) + 3
+    return 1 + len(_SCALARS) + 3 + 2 + z * (len(_PER_ROLLER) + 3 + 4 * per_flange)
 
 
 def check_cost(
@@ -383,6 +391,22 @@ _PER_ROLLER = {
     ),
     "outer_power_loss": ("W", "the same for the roller-outer race contact"),
     "roller_roller_power_loss": ("W", "the same for the contact between this roller and the next"),
+    "inner_sliding_power_loss": (
+        "W",
+        "of inner_power_loss, the sliding's part (traction, boundary friction, film shear)",
+    ),
+    "outer_sliding_power_loss": ("W", "of outer_power_loss, the sliding's part"),
+    "roller_roller_sliding_power_loss": ("W", "of roller_roller_power_loss, the sliding's part"),
+    "inner_rolling_power_loss": (
+        "W",
+        "of inner_power_loss, the rolling resistance's part (the rest after the sliding and "
+        "the normal forces)",
+    ),
+    "outer_rolling_power_loss": ("W", "of outer_power_loss, the rolling resistance's part"),
+    "roller_roller_rolling_power_loss": (
+        "W",
+        "of roller_roller_power_loss, the rolling resistance's part (the film's rolling force)",
+    ),
     "drag_power_loss": ("W", "power the oil-air drag takes from the roller's motion"),
 }
 _PER_FLANGE = {
@@ -394,6 +418,11 @@ _PER_FLANGE = {
     "flange_power_loss": (
         "W",
         "power the roller end / flange contact takes from the motion (as inner_power_loss)",
+    ),
+    "flange_sliding_power_loss": (
+        "W",
+        "of flange_power_loss, the sliding's part (the rest is the normal forces': damping "
+        "and squeeze film)",
     ),
 }
 

@@ -392,9 +392,15 @@ fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py,
     per_roller!("outer_tangential_force", |x| x.outer_tangential);
     per_roller!("roller_roller_normal_force", |x| x.pair_normal);
     per_roller!("roller_roller_tangential_force", |x| x.pair_tangential);
-    per_roller!("inner_power_loss", |x| x.inner_power_loss);
-    per_roller!("outer_power_loss", |x| x.outer_power_loss);
-    per_roller!("roller_roller_power_loss", |x| x.pair_power_loss);
+    per_roller!("inner_power_loss", |x| x.inner_power.loss);
+    per_roller!("outer_power_loss", |x| x.outer_power.loss);
+    per_roller!("roller_roller_power_loss", |x| x.pair_power.loss);
+    per_roller!("inner_sliding_power_loss", |x| x.inner_power.sliding);
+    per_roller!("outer_sliding_power_loss", |x| x.outer_power.sliding);
+    per_roller!("roller_roller_sliding_power_loss", |x| x.pair_power.sliding);
+    per_roller!("inner_rolling_power_loss", |x| x.inner_power.rolling);
+    per_roller!("outer_rolling_power_loss", |x| x.outer_power.rolling);
+    per_roller!("roller_roller_rolling_power_loss", |x| x.pair_power.rolling);
     per_roller!("drag_power_loss", |x| x.drag_power_loss);
     put(
         "position",
@@ -425,7 +431,8 @@ fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py,
     per_flange!("flange_normal_force", |f| f.normal_force);
     per_flange!("flange_friction_force", |f| f.friction_force);
     per_flange!("flange_axial_force", |f| f.axial_force);
-    per_flange!("flange_power_loss", |f| f.power_loss);
+    per_flange!("flange_power_loss", |f| f.power.loss);
+    per_flange!("flange_sliding_power_loss", |f| f.power.sliding);
     put(
         "flange_location",
         recs.iter()

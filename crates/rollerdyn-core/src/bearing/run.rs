@@ -173,8 +173,36 @@ pub struct FlangeRecord {
     pub friction_force: f64,
     /// Axial force on the roller (x) [N].
     pub axial_force: f64,
-    /// Power the contact takes from the bodies' motion [W] ([`ElementResult::power_loss`]).
-    pub power_loss: f64,
+    /// Power the contact takes from the bodies' motion, and its parts [W].
+    pub power: ContactPower,
+}
+
+/// The power one contact takes from the motion of its two bodies [W]
+/// ([`ElementResult::power_loss`]; its time mean is the contact's power loss), and its
+/// parts by mechanism; the normal forces' part is the rest, `loss − sliding − rolling`.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ContactPower {
+    /// All of it.
+    pub loss: f64,
+    /// Sliding: traction, boundary friction and the films' shear
+    /// ([`ElementResult::sliding_power`]).
+    pub sliding: f64,
+    /// Rolling resistance: what the sliding and the normal forces
+    /// ([`ElementResult::normal_power`]) leave (round-off where the contact has none, as at
+    /// the flanges).
+    pub rolling: f64,
+}
+
+impl ContactPower {
+    /// The power the contact with result `r` takes from bodies `a` and `b`, split.
+    fn of(r: &ElementResult, a: &Kinematics, b: &Kinematics) -> Self {
+        let loss = r.power_loss(a, b);
+        Self {
+            loss,
+            sliding: r.sliding_power,
+            rolling: loss - r.sliding_power - r.normal_power,
+        }
+    }
 }
 
 /// Outputs of one roller at one time.
@@ -208,13 +236,12 @@ pub struct RollerRecord {
     pub pair_normal: f64,
     /// Tangential force between this roller and the next [N].
     pub pair_tangential: f64,
-    /// Power the inner race contact takes from the motion [W]
-    /// ([`ElementResult::power_loss`]; its time mean is the contact's power loss).
-    pub inner_power_loss: f64,
+    /// Power the inner race contact takes from the motion, and its parts [W].
+    pub inner_power: ContactPower,
     /// The same of the outer race contact [W].
-    pub outer_power_loss: f64,
+    pub outer_power: ContactPower,
     /// The same of the contact between this roller and the next [W].
-    pub pair_power_loss: f64,
+    pub pair_power: ContactPower,
     /// Power the drag of the oil–air mixture takes from this roller's motion [W].
     pub drag_power_loss: f64,
     /// The four roller end / flange contacts (see [`FLANGE_NAMES`]).
@@ -480,12 +507,12 @@ pub fn record(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> Record {
     let mut by_mechanism = PowerByMechanism::default();
     for (element, r) in system.elements().iter().zip(&results) {
         let [a, b] = element.bodies(layout.rollers);
-        let loss = r.power_loss(kin.of(a, &fixed), kin.of(b, &fixed));
-        power_loss += loss;
-        by_mechanism.sliding += r.sliding_power;
+        let power = ContactPower::of(r, kin.of(a, &fixed), kin.of(b, &fixed));
+        power_loss += power.loss;
+        by_mechanism.sliding += power.sliding;
         by_mechanism.normal += r.normal_power;
-        by_mechanism.rolling += loss - r.sliding_power - r.normal_power;
-        fill(&mut rollers, element, r, loss);
+        by_mechanism.rolling += power.rolling;
+        fill(&mut rollers, element, r, power);
     }
     for (i, rec) in rollers.iter_mut().enumerate() {
         let k = &kin.rollers[i];
@@ -516,23 +543,23 @@ pub fn record(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> Record {
     }
 }
 
-/// Roller records from the result `r` of `element`, which takes `power_loss` [W].
-fn fill(rollers: &mut [RollerRecord], element: &Element, r: &ElementResult, power_loss: f64) {
+/// Roller records from the result `r` of `element`, which takes `power` [W].
+fn fill(rollers: &mut [RollerRecord], element: &Element, r: &ElementResult, power: ContactPower) {
     match *element {
         Element::Inner(i) => {
             rollers[i].inner_normal = r.normal;
             rollers[i].inner_tangential = r.tangential.norm();
-            rollers[i].inner_power_loss = power_loss;
+            rollers[i].inner_power = power;
         }
         Element::Outer(i) => {
             rollers[i].outer_normal = r.normal;
             rollers[i].outer_tangential = r.tangential.norm();
-            rollers[i].outer_power_loss = power_loss;
+            rollers[i].outer_power = power;
         }
         Element::Pair(i) => {
             rollers[i].pair_normal = r.normal;
             rollers[i].pair_tangential = r.tangential.norm();
-            rollers[i].pair_power_loss = power_loss;
+            rollers[i].pair_power = power;
         }
         Element::End(i, k) => {
             rollers[i].flanges[k] = FlangeRecord {
@@ -542,7 +569,7 @@ fn fill(rollers: &mut [RollerRecord], element: &Element, r: &ElementResult, powe
                 normal_force: r.normal,
                 friction_force: r.tangential.norm(),
                 axial_force: r.on_b.force.x,
-                power_loss,
+                power,
             };
         }
     }
