@@ -879,9 +879,9 @@ def _join(previous: xr.Dataset, continued: xr.Dataset) -> xr.Dataset:
 
 
 #: Lossless compression of a result's numeric arrays: HDF5's byte shuffle and gzip at level
-#: 1. B1's whole run (1 289 outputs): 9.4 MB -> 5.7 MB, written in about 0.3 s instead of
-#: 0.2 s (2026-11-30, with the power losses; before them 8.0 -> 4.7 MB, read in 0.12 s
-#: instead of 0.09 s; level 4: 1 % smaller, 20 % slower).
+#: 1. B1's whole run (1 289 outputs): 11.2 MB -> 7.0 MB, written in 0.35-0.53 s instead of
+#: 0.21 s, read in 0.29 s instead of 0.25 s (2026-12-01, with each contact's power loss by
+#: mechanism; level 4 was 1 % smaller and 20 % slower when measured with fewer outputs).
 COMPRESSION = {"compression": "gzip", "compression_opts": 1, "shuffle": True}
 #: Arrays smaller than this [bytes] are stored as they are: a compressed array is stored in
 #: chunks, whose index costs a few kB per array (a result of 5 outputs: 113 kB plain,
