@@ -713,7 +713,7 @@ def test_results_are_written_compressed_and_read_back_bit_for_bit(tmp_path):
     file is smaller than the uncompressed one and reads back equal bit for bit."""
     import h5py
 
-    from rollerdyn.simulation import COMPRESS_FROM
+    from rollerdyn.simulation import COMPRESS_FROM, write
 
     _, short = resume_base()
     # a result of 500 outputs: the short run's outputs repeated (the writer does not care)
@@ -737,6 +737,13 @@ def test_results_are_written_compressed_and_read_back_bit_for_bit(tmp_path):
         for name in ("final_state", "frictional_torque"):  # small: stored as they are
             assert ds[name].nbytes < COMPRESS_FROM and f[name].compression is None, name
     assert (tmp_path / "packed.nc").stat().st_size < 0.8 * plain.stat().st_size
+    # a checkpoint (compress=False) of a result read back from a compressed file, as a
+    # resumed run's are: stored plain, whatever the file it came from
+    write(back, tmp_path / "checkpoint.nc", compress=False)
+    with h5py.File(tmp_path / "checkpoint.nc") as f:
+        for name in ("position", "flange_normal_force", "final_state"):
+            assert f[name].compression is None, name
+    assert_bit_identical(xr.open_dataset(tmp_path / "checkpoint.nc").load(), ds)
 
 
 def test_kill_9_loses_at_most_a_checkpoint_interval_and_resume_finishes_the_run(tmp_path):

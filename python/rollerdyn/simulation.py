@@ -956,10 +956,13 @@ def write(ds: xr.Dataset, path, compress: bool = True) -> None:
     path = os.fspath(path)
     tmp = f"{path}.tmp{os.getpid()}"
     _check_free_space(ds, path)
+    # Every variable's encoding set here: one read back from a file would keep that file's
+    # (its compression, chunks) otherwise.
     encoding = {
         name: dict(COMPRESSION)
-        for name, var in ds.data_vars.items()
         if compress and var.ndim > 0 and var.dtype.kind in "fiub" and var.nbytes >= COMPRESS_FROM
+        else {}
+        for name, var in ds.data_vars.items()
     }
     try:
         # The synchronous scheduler: in a Dask worker (a sweep's or a study's run), xarray
