@@ -679,6 +679,20 @@ BAD = [
     ),
     ("rtol >= 1", "solver.rtol", 1.0, "solver.rtol", "must be >= 1e-12 and < 1"),
     (
+        "unknown output group",
+        "solver.outputs",
+        ["rollers", "cage"],
+        "solver.outputs.1",
+        'must be one of "rollers", "flanges" or "power"',
+    ),
+    (
+        "output groups not an array",
+        "solver.outputs",
+        "rollers",
+        "solver.outputs",
+        "expected an array",
+    ),
+    (
         "line fit range half given",
         "solver.line_fit.load_min",
         "3000 N/mm",
@@ -1233,3 +1247,14 @@ def test_load_config_with_changes_records_the_changed_table(tmp_path: Path) -> N
     odd.write_bytes(B1.read_bytes())
     recorded = load_config(odd, {"surfaces.flange_law": "distributed"}).toml_text
     assert recorded is not None and recorded.startswith("# ") and "b\\u0001.toml" in recorded
+
+
+def test_output_groups_are_taken_once_each_in_their_order():
+    """``solver.outputs``: the groups as a set (order and repeats do not matter), kept in
+    the order of OUTPUT_GROUPS; the default records them all, and [] none."""
+    from rollerdyn.config.solver import OUTPUT_GROUPS
+
+    assert load_b1().solver.outputs == OUTPUT_GROUPS == ("rollers", "flanges", "power")
+    changed = parse_config(changed_b1({"solver.outputs": ["power", "rollers", "power"]}))
+    assert changed.solver.outputs == ("rollers", "power")
+    assert parse_config(changed_b1({"solver.outputs": []})).solver.outputs == ()

@@ -18,7 +18,7 @@ from b1 import B1, changed_b1, dump_toml, variant
 
 from rollerdyn import _core
 from rollerdyn.model import Model
-from rollerdyn.simulation import PAIRINGS, SimulationError, model_parameters, simulate
+from rollerdyn.simulation import PAIRINGS, SimulationError, model_parameters, simulate, write
 
 
 def brentq(f, a, b, xtol=1e-12):
@@ -628,6 +628,46 @@ def test_checkpoint_saver_writes_the_first_then_one_per_save_interval(tmp_path, 
             CheckpointSaver(path, bad)
 
 
+def test_selected_outputs_keep_the_bearings_own_resume_exactly_and_are_named_when_missing(
+    tmp_path,
+):
+    """``solver.outputs``: a result holds the bearing's outputs and only the groups
+    selected (none, here: the torque and power as in the full result, bit for bit, at
+    15 numbers per output instead of 1 137); resumed, it equals its uninterrupted run bit
+    for bit; continued with other groups it is refused, naming the field; the report
+    names the groups it lacks and the setting that records them; a sweep's summary has
+    NaN for them."""
+    from rollerdyn.report import ReportError, open_result
+    from rollerdyn.simulation import numbers_per_output
+    from rollerdyn.sweep import summarize
+
+    cfg, base = resume_base()
+    bare_cfg = variant(**RESUMED, **{"solver.outputs": []})
+    bare = simulate(bare_cfg, t_end=0.004)
+    assert bare.attrs["outputs"] == ""
+    for name in ("frictional_torque", "power_loss", "sliding_power_loss", "ring_position"):
+        assert np.array_equal(bare[name].values, base[name].values), name
+    assert not [v for v in bare.data_vars if "roller" in bare[v].dims]
+    held = sum(v.size for v in bare.variables.values() if "time" in v.dims)
+    assert held == bare.sizes["time"] * numbers_per_output(17, ()) == bare.sizes["time"] * 15
+    assert numbers_per_output(17) == 1137
+    whole, reference = simulate(bare_cfg, resume=bare), resumed_reference()
+    for name in whole.variables:
+        a, b = whole[name].values, reference[name].values
+        assert a.shape == b.shape and np.array_equal(a, b, equal_nan=a.dtype.kind == "f"), name
+    assert whole.attrs["stats_steps"] == reference.attrs["stats_steps"]
+    with pytest.raises(ValueError, match=r"solver\.outputs: \[\] -> \['flanges'\]"):
+        simulate(variant(**RESUMED, **{"solver.outputs": ["flanges"]}), resume=bare)
+    write(bare, tmp_path / "bare.nc")
+    with pytest.raises(ReportError, match=r'needs rollers and flanges.*= \["rollers", "flanges"\]'):
+        open_result(tmp_path / "bare.nc")
+    # a sweep's summary: NaN for what the run did not record
+    row = summarize(bare)
+    assert row["mean_frictional_torque [N*m]"] == summarize(base)["mean_frictional_torque [N*m]"]
+    for column in ("max_race_load [N]", "max_flange_normal_force [N]", "max_abs_srr_inner [1]"):
+        assert math.isnan(row[column]), column
+
+
 def test_gradient_detector_runs_resume_bit_for_bit():
     """The gradient detector keeps warm starts between calls; the restart at every
     checkpoint clears them, so its resumed runs are exact too. Also a run stopped before its
@@ -713,7 +753,7 @@ def test_results_are_written_compressed_and_read_back_bit_for_bit(tmp_path):
     file is smaller than the uncompressed one and reads back equal bit for bit."""
     import h5py
 
-    from rollerdyn.simulation import COMPRESS_FROM, write
+    from rollerdyn.simulation import COMPRESS_FROM
 
     _, short = resume_base()
     # a result of 500 outputs: the short run's outputs repeated (the writer does not care)

@@ -90,6 +90,32 @@ def _attrs(out: Path, name: str) -> dict:
 # --------------------------------------------------------------------------- the plan
 
 
+def test_studies_record_the_outputs_their_figures_read_whatever_the_configuration_says():
+    """``solver.outputs``: the paper study's runs record every group; a map's points at
+    least the rollers and flanges its steadiness windows read, plus what the configuration
+    asks for; with the default outputs both are the configuration's own (its hash too)."""
+    from rollerdyn.config.solver import OUTPUT_GROUPS
+    from rollerdyn.provenance import config_hash
+    from rollerdyn.study.maps import point_config
+
+    bare = variant(**{"solver.outputs": []})
+    for spec in build_plan(bare, 0.01, gradient=False, distributed=False).specs:
+        assert tuple(spec.data["solver"]["outputs"]) == OUTPUT_GROUPS, spec.name
+    point, _ = point_config(bare, 52.36, 5000.0, 0.0, "equilibrium", 0.02)
+    assert point.solver.outputs == ("rollers", "flanges")
+    powered = variant(**{"solver.outputs": ["power"]})
+    assert point_config(powered, 52.36, 5000.0, 0.0, "equilibrium", 0.02)[0].solver.outputs == (
+        "rollers",
+        "flanges",
+        "power",
+    )
+    plan = build_plan(load_b1(), 0.01, gradient=False, distributed=False)
+    reference = plan.spec(plan.reference)
+    assert reference.config_sha256 == config_hash(load_b1()) and reference.meta["changes"] == "none"
+    default, _ = point_config(load_b1(), 52.36, 5000.0, 0.0, "equilibrium", 0.02)
+    assert default.solver.outputs == OUTPUT_GROUPS
+
+
 def test_plan_holds_each_run_once_with_its_role():
     plan = build_plan(load_b1(), 0.01)
     names = [s.name for s in plan.specs]

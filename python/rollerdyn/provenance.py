@@ -9,6 +9,8 @@ interval``), the end time (a run may be extended) and the free-text description.
 A result recorded before some fields moved to another section
 (:data:`~rollerdyn.config.schema.MOVED_FIELDS`) is compared with its values at their new
 places: a run of B1 made with ``surfaces.friction`` continues with ``solver.friction``.
+A field added later (:data:`ADDED_FIELDS`) counts only where it differs from what every
+earlier result did.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ from typing import Any
 
 from .config import BearingConfig
 from .config.schema import MOVED_FIELDS
+from .config.solver import OUTPUT_GROUPS
 
 #: Dotted fields left out of the configuration hash (see the module's doc).
 NOT_HASHED = ("solver.checkpoint_interval", "operating.end_time", "description")
@@ -47,8 +50,18 @@ def flatten(data: Any, prefix: str = "") -> dict[str, Any]:
     return out
 
 
+#: Fields added since results began to record their configuration, with the value every
+#: result recorded before had: left out of the hash (and of the differences) at that
+#: value, so that a configuration that keeps it hashes as it did before the field existed.
+ADDED_FIELDS = {"solver.outputs": list(OUTPUT_GROUPS)}
+
+
 def _hashed(flat: dict[str, Any]) -> dict[str, Any]:
-    return {k: v for k, v in flat.items() if k not in NOT_HASHED}
+    return {
+        k: v
+        for k, v in flat.items()
+        if k not in NOT_HASHED and not (k in ADDED_FIELDS and v == ADDED_FIELDS[k])
+    }
 
 
 def _hash_of(values: dict) -> str:

@@ -89,10 +89,15 @@ class ReportError(ValueError):
 # --------------------------------------------------------------------------- reading
 
 
-def open_result(path: Path, required: tuple[str, ...] = REQUIRED) -> xr.Dataset:
+def open_result(
+    path: Path, required: tuple[str, ...] = REQUIRED, recorded_only: bool = False
+) -> xr.Dataset:
     """The result in ``path``, loaded into memory; :class:`ReportError` (one line naming
     the file and what is wrong) if it is missing, unreadable or not a rollerdyn result
-    (one of the ``required`` variables or its final time missing, or no outputs)."""
+    (one of the ``required`` variables or its final time missing, or no outputs), or if
+    it lacks required variables because its run did not record them (``solver.outputs``).
+    ``recorded_only``: require only those of ``required`` that its run recorded (to
+    continue the run, say)."""
     path = Path(path)
     if path.is_dir():
         raise ReportError(f"{path}: is a folder, not a result file")
@@ -110,12 +115,18 @@ def open_result(path: Path, required: tuple[str, ...] = REQUIRED) -> xr.Dataset:
         raise ReportError(
             f"{path}: not a rollerdyn result (cannot be read as netCDF: {reason})"
         ) from None
+    if recorded_only and "outputs" in ds.attrs:
+        from .simulation import output_group_of
+
+        recorded = str(ds.attrs["outputs"]).split()
+        required = tuple(v for v in required if output_group_of(v) in (None, *recorded))
     missing = [v for v in required if v not in ds]
     if missing and "inner_slice_load" in ds and "time" not in ds.dims:
         raise ReportError(
             f"{path}: is a quasi-static result (rollerdyn statics); this needs a dynamic "
             "run's result (rollerdyn run)"
         )
+    _refuse_unrecorded(path, ds, missing)
     if missing or "final_time_s" not in ds.attrs:
         what = _listed(missing) if missing else "attribute final_time_s"
         raise ReportError(f"{path}: not a rollerdyn result (missing {what})")
@@ -128,6 +139,30 @@ def open_result(path: Path, required: tuple[str, ...] = REQUIRED) -> xr.Dataset:
     if ds.sizes.get("time", 0) == 0:
         raise ReportError(f"{path}: the result holds no outputs (empty time axis)")
     return ds
+
+
+def _refuse_unrecorded(path: Path, ds: xr.Dataset, missing: list[str]) -> None:
+    """:class:`ReportError` if ``missing`` variables belong to output groups the run did
+    not record (its ``solver.outputs``, attribute ``outputs``), naming them."""
+    from .config.solver import OUTPUT_GROUPS
+    from .simulation import output_group_of
+
+    if not missing or "final_time_s" not in ds.attrs or "outputs" not in ds.attrs:
+        return
+    recorded = str(ds.attrs["outputs"]).split()
+    needed = {output_group_of(v) for v in missing}
+    absent = [g for g in OUTPUT_GROUPS if g in needed and g not in recorded]
+    if absent:
+
+        def listed(groups) -> str:
+            return "[" + ", ".join(f'"{g}"' for g in groups) + "]"
+
+        wanted = [g for g in OUTPUT_GROUPS if g in recorded or g in absent]
+        raise ReportError(
+            f"{path}: the run recorded solver.outputs = {listed(recorded)} (and the "
+            f"bearing's own outputs); this needs {' and '.join(absent)} as well: run it "
+            f"again with solver.outputs = {listed(wanted)}"
+        )
 
 
 def _listed(names: list[str], most: int = 4) -> str:

@@ -34,6 +34,7 @@ import xarray as xr
 
 from . import _core
 from .config import BearingConfig, RampConfig, TimeTable
+from .config.solver import OUTPUT_GROUPS
 from .model import Model
 from .names import DETECTORS, FLANGES, GRADIENT, PAIRINGS, flange_indices
 from .provenance import check_same_configuration, record_attrs
@@ -88,7 +89,7 @@ def estimated_cost(config: BearingConfig, t_end: float, t_start: float = 0.0) ->
     span = max(t_end - t_start, 0.0)
     outputs = math.ceil(span / min(config.solver.output_interval, t_end)) + 1
     z = config.geometry.roller_count
-    per_output = 8 * numbers_per_output(z)
+    per_output = 8 * numbers_per_output(z, config.solver.outputs)
     return {
         "outputs": outputs,
         "bytes": outputs * per_output,
@@ -97,12 +98,15 @@ def estimated_cost(config: BearingConfig, t_end: float, t_start: float = 0.0) ->
     }
 
 
-def numbers_per_output(z: int) -> int:
-    """How many numbers a result holds per output time for ``z`` rollers: the time, the
-    scalars, the ring's position and tilt; per roller its variables and position; per
-    roller end and flange its variables and contact location."""
-    per_flange = len(_PER_FLANGE) + 3
-    return 1 + len(_SCALARS) + 3 + 2 + z * (len(_PER_ROLLER) + 3 + 4 * per_flange)
+def numbers_per_output(z: int, groups: tuple[str, ...] = OUTPUT_GROUPS) -> int:
+    """How many numbers a result of ``z`` rollers and the ``solver.outputs`` ``groups``
+    holds per output time: the time, the scalars, the ring's position and tilt; per roller
+    its variables (and position); per roller end and flange its variables (and contact
+    location)."""
+    per_roller, per_flange = output_variables(groups)
+    per_roller_count = len(per_roller) + (3 if "rollers" in groups else 0)
+    per_flange_count = len(per_flange) + (3 if "flanges" in groups else 0)
+    return 1 + len(_SCALARS) + 3 + 2 + z * (per_roller_count + 4 * per_flange_count)
 
 
 def check_cost(
@@ -384,6 +388,9 @@ _PER_ROLLER = {
     "outer_tangential_force": ("N", "roller-outer race tangential force on the roller"),
     "roller_roller_normal_force": ("N", "normal force between this roller and the next"),
     "roller_roller_tangential_force": ("N", "tangential force between this roller and the next"),
+}
+#: Per roller, the ``power`` group of ``solver.outputs``.
+_PER_ROLLER_POWER = {
     "inner_power_loss": (
         "W",
         "power the roller-inner race contact takes from the motion (friction, rolling "
@@ -409,12 +416,16 @@ _PER_ROLLER = {
     ),
     "drag_power_loss": ("W", "power the oil-air drag takes from the roller's motion"),
 }
+
 _PER_FLANGE = {
     "flange_pairing": ("1", "active pairing index into the 'pairing' coordinate, -1 if none"),
     "flange_penetration": ("m", "penetration of the composite end/flange contact (<0: gap)"),
     "flange_normal_force": ("N", "roller end / flange normal force"),
     "flange_friction_force": ("N", "roller end / flange friction force"),
     "flange_axial_force": ("N", "axial (x) force of the flange contact on the roller"),
+}
+#: Per roller end and flange, the ``power`` group of ``solver.outputs``.
+_PER_FLANGE_POWER = {
     "flange_power_loss": (
         "W",
         "power the roller end / flange contact takes from the motion (as inner_power_loss)",
@@ -425,6 +436,33 @@ _PER_FLANGE = {
         "and squeeze film)",
     ),
 }
+
+
+def output_variables(groups: tuple[str, ...]) -> tuple[dict, dict]:
+    """The per-roller and the per-flange variables (name: (units, text)) a result of the
+    ``solver.outputs`` ``groups`` holds, besides the bearing's own (:data:`_SCALARS`, the
+    ring's position and tilt) and, with "rollers" and "flanges", the roller positions and
+    flange contact locations."""
+    per_roller = {
+        **(_PER_ROLLER if "rollers" in groups else {}),
+        **(_PER_ROLLER_POWER if "power" in groups else {}),
+    }
+    per_flange = {
+        **(_PER_FLANGE if "flanges" in groups else {}),
+        **(_PER_FLANGE_POWER if "power" in groups else {}),
+    }
+    return per_roller, per_flange
+
+
+def output_group_of(name: str) -> str | None:
+    """The group of ``solver.outputs`` that variable ``name`` belongs to (None: one every
+    result holds, or no output at all)."""
+    groups = {
+        "rollers": (*_PER_ROLLER, "position"),
+        "flanges": (*_PER_FLANGE, "flange_location"),
+        "power": (*_PER_ROLLER_POWER, *_PER_FLANGE_POWER),
+    }
+    return next((g for g, names in groups.items() if name in names), None)
 
 
 def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
@@ -447,22 +485,25 @@ def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
         "rad",
         "inner ring axis angles (theta_y, theta_z)",
     )
-    for name, (units, text) in _PER_ROLLER.items():
+    per_roller, per_flange = output_variables(config.solver.outputs)
+    for name, (units, text) in per_roller.items():
         var(name, ("time", "roller"), (nt, z), units, text)
-    var("position", ("time", "roller", "xyz"), (nt, z, 3), "m", "roller centre")
-    for name, (units, text) in _PER_FLANGE.items():
+    if "rollers" in config.solver.outputs:
+        var("position", ("time", "roller", "xyz"), (nt, z, 3), "m", "roller centre")
+    for name, (units, text) in per_flange.items():
         var(name, ("time", "roller", "flange"), (nt, z, 4), units, text)
-    var(
-        "flange_location",
-        ("time", "roller", "flange", "xyz"),
-        (nt, z, 4, 3),
-        "m",
-        "roller end / flange contact location P_m (eq. 1)",
-    )
-    data["flange_pairing"] = data["flange_pairing"].astype(np.int8)
-    data["flange_pairing"].attrs.update(
-        {"units": "1", "long_name": _PER_FLANGE["flange_pairing"][1]}
-    )
+    if "flanges" in config.solver.outputs:
+        var(
+            "flange_location",
+            ("time", "roller", "flange", "xyz"),
+            (nt, z, 4, 3),
+            "m",
+            "roller end / flange contact location P_m (eq. 1)",
+        )
+        data["flange_pairing"] = data["flange_pairing"].astype(np.int8)
+        data["flange_pairing"].attrs.update(
+            {"units": "1", "long_name": _PER_FLANGE["flange_pairing"][1]}
+        )
     coords = {
         "time": ("time", time, {"units": "s", "long_name": "simulated time"}),
         "roller": ("roller", np.arange(z)),
@@ -486,6 +527,7 @@ def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
         "jacobian_at_latest_iterate": int(config.solver.jacobian_at_latest_iterate),
         "partial_jacobians": config.solver.partial_jacobians,
         "output_interval_s": config.solver.output_interval,
+        "outputs": " ".join(config.solver.outputs),
         "checkpoint_interval_s": config.solver.checkpoint_interval,
         "final_time_s": float(raw["final_time"]),
         "completed": int(raw["error"] is None and not raw["interrupted"]),

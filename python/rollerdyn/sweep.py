@@ -64,12 +64,13 @@ SUMMARY_COLUMNS = {
     "motion over the same outputs: in steady running the friction power, torque times ring "
     "speed (NaN for a result written before power losses were recorded)",
     "max_race_load [N]": "largest roller-race normal force (inner or outer, any roller, "
-    "any output time)",
+    "any output time; NaN if the runs do not record the rollers: solver.outputs)",
     "max_flange_normal_force [N]": "largest roller end / flange normal force (any roller, "
-    "any flange, any output time)",
+    "any flange, any output time; NaN if the runs do not record the flanges)",
     "max_abs_srr_inner [1]": "largest |slide-to-roll ratio| at the inner race (eq. 49, "
     "any roller, any output time at which the inner ring turns; NaN outputs ignored; NaN "
-    "if the ring never turns: the ratio has no meaning before)",
+    "if the ring never turns: the ratio has no meaning before, or if the runs do not record "
+    "the rollers)",
     "steps": "integrator steps",
     "note": "what the run noted about itself: that it crawled, with its likely cause "
     "(attribute crawl_note of its result: rollerdyn.simulate); empty otherwise",
@@ -362,19 +363,20 @@ def summarize(ds) -> dict:
         torque = _finite_mean(ds["frictional_torque"].values, last)
         if "power_loss" in ds:
             power = _finite_mean(ds["power_loss"].values, last)
-    race = np.concatenate(
-        [
-            np.ravel(ds["inner_normal_force"].values),
-            np.ravel(ds["outer_normal_force"].values),
-        ]
-    )
+    # NaN for what the run did not record (solver.outputs)
+    race = [
+        np.ravel(ds[name].values)
+        for name in ("inner_normal_force", "outer_normal_force")
+        if name in ds
+    ]
+    flange = ds["flange_normal_force"].values if "flange_normal_force" in ds else []
     return {
         "final_time [s]": float(ds.attrs.get("final_time_s", math.nan)),
         "mean_frictional_torque [N*m]": torque,
         "mean_power_loss [W]": power,
-        "max_race_load [N]": finite_max(race),
-        "max_flange_normal_force [N]": finite_max(ds["flange_normal_force"].values),
-        "max_abs_srr_inner [1]": max_abs_srr_inner(ds),
+        "max_race_load [N]": finite_max(np.concatenate(race) if race else []),
+        "max_flange_normal_force [N]": finite_max(flange),
+        "max_abs_srr_inner [1]": max_abs_srr_inner(ds) if "srr_inner" in ds else math.nan,
         "steps": int(ds.attrs.get("stats_steps", 0)),
         "note": str(ds.attrs.get("crawl_note", "")),
     }

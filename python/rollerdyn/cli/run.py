@@ -307,7 +307,7 @@ def _open_resume(resume: Path, end: float):
     from ..report import REQUIRED, ReportError, open_result
 
     try:
-        previous = open_result(resume, required=(*REQUIRED, "final_state"))
+        previous = open_result(resume, required=(*REQUIRED, "final_state"), recorded_only=True)
     except ReportError as err:
         raise refuse(f"--resume {err}") from None
     t_prev = float(previous.attrs["final_time_s"])

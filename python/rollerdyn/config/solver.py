@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Literal
 
-from pydantic import Field, StrictBool, model_validator
+from pydantic import Field, StrictBool, field_validator, model_validator
 
 from ..names import DETECTORS, SEMI_ANALYTICAL
 from ..units import Integer, Number, Quantity, format_si
@@ -45,6 +45,12 @@ class LineFitConfig(_Section):
         return self
 
 
+#: The groups of outputs a result can hold besides the bearing's own (``solver.outputs``):
+#: per roller its kinematics and race and roller-roller forces; per roller end and flange
+#: its pairing, penetration, forces and location; per contact its power loss and parts.
+OUTPUT_GROUPS = ("rollers", "flanges", "power")
+
+
 #: A run whose steps average dt_max / STALL_FRACTION or less over 10 000 steps has stalled
 #: (the default of ``solver.min_mean_step``).
 STALL_FRACTION = 20000.0
@@ -65,6 +71,7 @@ class SolverConfig(_Section):
     atol_time_scale: Quantity("time", positive=True, le="1 s") = "1e-5 s"
     dt_max: Quantity("time", ge="1 ns") = "1e-3 s"
     output_interval: Quantity("time", ge="1 ns") = "1e-4 s"
+    outputs: tuple[Literal[OUTPUT_GROUPS], ...] = OUTPUT_GROUPS
     checkpoint_interval: Quantity("time", ge="1 ns") = "100 ms"
     detector: Literal[DETECTORS] = SEMI_ANALYTICAL
     start: Literal["rest", "equilibrium"] = "rest"
@@ -92,6 +99,12 @@ class SolverConfig(_Section):
         if self.min_mean_step is not None:
             return float(self.min_mean_step)
         return float(self.dt_max) / STALL_FRACTION
+
+    @field_validator("outputs")
+    @classmethod
+    def _in_order(cls, value: tuple[str, ...]) -> tuple[str, ...]:
+        """The groups once each, in the order of :data:`OUTPUT_GROUPS`."""
+        return tuple(g for g in OUTPUT_GROUPS if g in value)
 
     @model_validator(mode="after")
     def _check(self) -> SolverConfig:

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..config.solver import OUTPUT_GROUPS
 from ..provenance import config_hash
 from ..units import QuantityError, parse_quantity
 from .runs import FINISHED, RunSpec, StudyError, inspect_run, lock_folder, open_run, record
@@ -54,6 +55,10 @@ OUTPUTS = (
 #: and the point never became steady at --tol 0.02; sampled every 0.1 ms, by 1.1 %
 #: (docs/study.md, "How often a point is sampled").
 OUTPUTS_PER_WINDOW = 100
+
+#: The output groups (``solver.outputs``) a map's points record at least: the steadiness
+#: windows read the rollers' orbital speeds and the flange forces (:mod:`.steady`).
+MAP_OUTPUTS = ("rollers", "flanges")
 
 #: Most grid points of a map: each is a dynamic run of seconds to minutes (and the
 #: points' folders are numbered with four digits).
@@ -157,7 +162,9 @@ def point_config(cfg, speed: float, radial: float, axial: float, start: str, ram
     op = data["operating"]
     op.update(inner_ring_speed=speed, radial_load=radial, axial_load=axial)
     op.pop("end_time", None)
-    changes: dict[str, Any] = {}
+    # the steadiness windows read the rollers' and flanges' outputs (study.steady)
+    groups = set(data["solver"]["outputs"]) | set(MAP_OUTPUTS)
+    changes: dict[str, Any] = {"solver.outputs": [g for g in OUTPUT_GROUPS if g in groups]}
     if start == "short-ramps":
         op["load_ramp"] = {"start": 0.0, "end": ramp, "shape": "cosine"}
         op["speed_ramp"] = {"start": ramp, "end": 2 * ramp, "shape": "cosine"}

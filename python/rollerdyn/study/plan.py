@@ -39,6 +39,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 from ..config import BearingConfig, parse_config
+from ..config.solver import OUTPUT_GROUPS
 from ..names import GRADIENT, SEMI_ANALYTICAL
 from ..provenance import config_hash, differences, resolved
 from ..units import SHORTEST_TIME
@@ -137,8 +138,11 @@ def build_plan(
     round-off twin, nor the tight pair). ``tight=False``: no pair of the two detectors at
     :data:`TIGHT` times the tolerances.
     ``distributed=False``: no second load series with the distributed law. Raises
-    :class:`StudyError` for values that make no run."""
+    :class:`StudyError` for values that make no run. The runs record every output
+    (``solver.outputs``): the study's figures and checks need them all."""
     cfg = config
+    if tuple(cfg.solver.outputs) != OUTPUT_GROUPS:
+        cfg = _variant(cfg, {"solver.outputs": list(OUTPUT_GROUPS)})
     end = float(cfg.end_time if t_end is None else t_end)
     if not (end >= SHORTEST_TIME and math.isfinite(end)):
         raise StudyError(f"--t-end = {t_end!r}: must be a time of at least 1 ns")

@@ -72,7 +72,7 @@ def open_run(path: Path):
     if not path.exists():
         return None
     try:
-        return open_result(path, required=(*REQUIRED, "final_state"))
+        return open_result(path, required=(*REQUIRED, "final_state"), recorded_only=True)
     except ReportError as err:
         raise StudyError(
             f"-o {path.parent}: {err}; remove the file or choose another folder"
