@@ -634,9 +634,12 @@ def test_selected_outputs_keep_the_bearings_own_resume_exactly_and_are_named_whe
     """``solver.outputs``: a result holds the bearing's outputs and only the groups
     selected (none, here: the torque and power as in the full result, bit for bit, at
     15 numbers per output instead of 1 137); resumed, it equals its uninterrupted run bit
-    for bit; continued with other groups it is refused, naming the field; the report
-    names the groups it lacks and the setting that records them; a sweep's summary has
-    NaN for them."""
+    for bit; continued with other groups it is refused, naming the field; a comparison
+    (which needs the rollers) names the groups it lacks and the setting that records
+    them; the report and the plots show what it has; a sweep's summary has NaN for the
+    rest."""
+    import rollerdyn
+    from rollerdyn.plots import plot_results
     from rollerdyn.report import ReportError, open_result
     from rollerdyn.simulation import numbers_per_output
     from rollerdyn.sweep import summarize
@@ -661,6 +664,13 @@ def test_selected_outputs_keep_the_bearings_own_resume_exactly_and_are_named_whe
     write(bare, tmp_path / "bare.nc")
     with pytest.raises(ReportError, match=r'needs rollers and flanges.*= \["rollers", "flanges"\]'):
         open_result(tmp_path / "bare.nc")
+    # the report and the plots show what it recorded: the torque, not the rollers
+    page = rollerdyn.report([tmp_path / "bare.nc"], tmp_path / "bare.html", max_frames=2)
+    text = page.read_text(encoding="utf-8")
+    assert "fig. 10: bearing frictional torque" in text and "did not record its rollers" in text
+    assert "fig. 12: axial force" not in text and "fig. 8: roller end" not in text
+    drawn = plot_results([tmp_path / "bare.nc"], tmp_path / "plots")
+    assert {p.stem for p in drawn} == {"fig10_frictional_torque"}
     # a sweep's summary: NaN for what the run did not record
     row = summarize(bare)
     assert row["mean_frictional_torque [N*m]"] == summarize(base)["mean_frictional_torque [N*m]"]

@@ -8,6 +8,7 @@ import numpy as np
 import xarray as xr
 
 from .names import PAIRINGS, flange_indices
+from .report_figures import FLANGE_VARIABLES, ROLLER_VARIABLES
 from .simulation import carried_axial_force, full_speed
 
 
@@ -66,7 +67,7 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
 
     paths = [Path(p) for p in paths]
     sets = [
-        (n, open_result(p, required=(*REQUIRED, "ring_tilt")))
+        (n, open_result(p, required=(*REQUIRED, "ring_tilt"), recorded_only=True))
         for n, p in zip(run_names(paths), paths, strict=True)
     ]
     out = Path(out)
@@ -83,13 +84,18 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
     ax.legend()
     save(fig, "fig10_frictional_torque")
 
-    fig, ax = plt.subplots(figsize=(7, 4))
-    for p, ds in sets:
-        f = ds.flange_friction_force.isel(roller=0).sum("flange")
-        ax.plot(ds.time, f, label=_label(ds, p))
-    ax.set(xlabel="time t [s]", ylabel="flange friction force, roller 0 [N]", title="fig. 11")
-    ax.legend()
-    save(fig, "fig11_flange_friction")
+    # the figures of the rollers and flanges, from the results that recorded them
+    # (solver.outputs)
+    flanged = [(p, ds) for p, ds in sets if all(v in ds for v in FLANGE_VARIABLES)]
+    rolled = [(p, ds) for p, ds in flanged if all(v in ds for v in ROLLER_VARIABLES)]
+    if flanged:
+        fig, ax = plt.subplots(figsize=(7, 4))
+        for p, ds in flanged:
+            f = ds.flange_friction_force.isel(roller=0).sum("flange")
+            ax.plot(ds.time, f, label=_label(ds, p))
+        ax.set(xlabel="time t [s]", ylabel="flange friction force, roller 0 [N]", title="fig. 11")
+        ax.legend()
+        save(fig, "fig11_flange_friction")
 
     for name, var, ylabel, title in (
         (
@@ -118,8 +124,9 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
             "(instantaneous, with what the contacts store and give back; its mean is the loss)",
         ),
     ):
-        # results written before power losses were recorded have no such figure
-        with_data = [(p, ds) for p, ds in sets if var != "power" or "power_loss" in ds]
+        # results written before power losses were recorded, or without the power
+        # outputs, have no such figure
+        with_data = [(p, ds) for p, ds in rolled if var != "power" or "inner_power_loss" in ds]
         if not with_data:
             continue
         fig, ax = plt.subplots(figsize=(7, 4))
@@ -144,10 +151,10 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
 
     race_sliding_power(sets, save)
 
-    for ring, title in (("inner", "fig. 8"), ("outer", "fig. 9")):
+    for ring, title in (("inner", "fig. 8"), ("outer", "fig. 9")) if flanged else ():
         fig, ax = plt.subplots(figsize=(7, 4))
-        width = 0.8 / max(1, len(sets))
-        for j, (p, ds) in enumerate(sets):
+        width = 0.8 / max(1, len(flanged))
+        for j, (p, ds) in enumerate(flanged):
             idx = flange_indices(ring)
             pairing = ds.flange_pairing.isel(flange=idx).values.ravel()
             counts = [(pairing == k).sum() for k in range(len(PAIRINGS))]
@@ -167,7 +174,7 @@ def race_sliding_power(sets: list, save) -> None:
     keeps the figure. None for results written before the contacts' parts were recorded."""
     import matplotlib.pyplot as plt
 
-    with_split = [(p, ds) for p, ds in sets if "inner_sliding_power_loss" in ds]
+    with_split = [(p, ds) for p, ds in sets if "inner_sliding_power_loss" in ds and "azimuth" in ds]
     if not with_split:
         return
     fig, ax = plt.subplots(figsize=(7, 4))

@@ -24,6 +24,7 @@ import xarray as xr
 from .report_figures import (
     MAX_FRAMES,
     MAX_POINTS,
+    ROLLER_VARIABLES,
     animation_figure,
     azimuth_figures,
     inputs_figure,
@@ -261,14 +262,20 @@ def summary(ds: xr.Dataset) -> dict:
     status = "completed" if int(a.get("completed", 0)) else "unfinished"
     if "error" in a:
         status += f": {a['error']}"
+    # NaN (shown n/a) for what the run did not record (solver.outputs)
+    rollers = "inner_normal_force" in ds
     return {
         "mean_torque": float(np.mean(ds.frictional_torque.values[last])),
         **power_summary(ds, last),
         "max_race_load": max(
             nanmax(ds.inner_normal_force.values), nanmax(ds.outer_normal_force.values)
-        ),
-        "max_flange_force": nanmax(ds.flange_normal_force.values),
-        "max_srr_inner": max_abs_srr_inner(ds),
+        )
+        if rollers
+        else math.nan,
+        "max_flange_force": nanmax(ds.flange_normal_force.values)
+        if "flange_normal_force" in ds
+        else math.nan,
+        "max_srr_inner": max_abs_srr_inner(ds) if rollers else math.nan,
         "final_time": float(a["final_time_s"]),
         "steps": (int(a.get("stats_steps", -1)), int(a.get("stats_error_test_failures", 0))),
         "wall": float(a.get("stats_total_seconds", float("nan"))),
@@ -476,7 +483,7 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
     paths = [Path(p) for p in paths]
     if not paths:
         raise ReportError("no result files given")
-    sets = [open_result(p) for p in paths]
+    sets = [open_result(p, recorded_only=True) for p in paths]
     labels = _labels(paths, sets)
     embed = FigureEmbedder()
     body = []
@@ -571,6 +578,9 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
         "frames are evenly subsampled outputs.</p>"
     )
     for j, (label, ds) in enumerate(zip(labels, sets, strict=True)):
+        if not all(v in ds for v in ROLLER_VARIABLES):
+            body.append(f"<h3>{html.escape(label)}: the run did not record its rollers</h3>")
+            continue
         fig, n = animation_figure(ds, max_frames)
         body.append(f"<h3>{html.escape(label)} ({n} frames of {ds.sizes['time']} outputs)</h3>")
         body.append(embed(fig, f"animation{j}"))
@@ -584,7 +594,10 @@ def _power_section(labels: list[str], sets: list[xr.Dataset]) -> list[str]:
         t = ds.time.values
         rows = power_by_contact(ds, t >= t[-1] - LAST_SHARE * (t[-1] - t[0]))
         if rows is None:
-            out.append(f'<p class="note">{html.escape(label)}: not recorded (an older file).</p>')
+            out.append(
+                f'<p class="note">{html.escape(label)}: not recorded (an older file, or '
+                'solver.outputs without "power").</p>'
+            )
             continue
         cells = [[name, *(_fmt("", v) for v in values)] for name, values in rows]
         out.append(f"<p>{html.escape(label)}: mean power [W], last {LAST_SHARE:.0%} of the run</p>")

@@ -45,6 +45,18 @@ LAYOUT = dict(
 )
 
 
+def having(labels, sets, *names: str) -> tuple[list, list]:
+    """The labels and results of ``labels``/``sets`` that hold every variable ``names``
+    (a run records only its ``solver.outputs``)."""
+    kept = [(lab, ds) for lab, ds in zip(labels, sets, strict=True) if all(n in ds for n in names)]
+    return [lab for lab, _ in kept], [ds for _, ds in kept]
+
+
+#: What the figures of the rollers (over azimuth, the animation) and of the flanges read.
+ROLLER_VARIABLES = ("azimuth", "position", "skew", "srr_inner", "inner_normal_force")
+FLANGE_VARIABLES = ("flange_pairing", "flange_friction_force", "flange_axial_force")
+
+
 def _thin(n: int, most: int) -> np.ndarray:
     """Indices of at most ``most`` of ``n`` items, evenly spread, first and last kept."""
     if n <= most:
@@ -68,6 +80,9 @@ def time_figures(labels, sets) -> list:
         **LAYOUT,
     )
     figs.append(("fig10", fig))
+    labels, sets = having(labels, sets, *FLANGE_VARIABLES)
+    if not sets:
+        return figs
     fig = go.Figure()
     for label, ds in zip(labels, sets, strict=True):
         f = ds.flange_friction_force.isel(roller=0).sum("flange").values
@@ -88,7 +103,10 @@ def azimuth_figures(labels, sets) -> list:
     :func:`rollerdyn.simulation.full_speed`)."""
     import plotly.graph_objects as go
 
-    figs = []
+    figs: list = []
+    labels, sets = having(labels, sets, *ROLLER_VARIABLES, *FLANGE_VARIABLES)
+    if not sets:
+        return figs
     for key, title, ylabel in (
         (
             "fig12",
@@ -148,7 +166,10 @@ def pairing_figures(labels, sets) -> list:
     """(key, figure) of figs. 8 and 9: share of time per pairing at each ring."""
     import plotly.graph_objects as go
 
-    figs = []
+    figs: list = []
+    labels, sets = having(labels, sets, *FLANGE_VARIABLES)
+    if not sets:
+        return figs
     for ring, key in (("inner", "fig8"), ("outer", "fig9")):
         fig = go.Figure()
         for label, ds in zip(labels, sets, strict=True):
