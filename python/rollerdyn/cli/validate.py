@@ -61,16 +61,19 @@ def check(
     """Validate a configuration file and print its derived quantities (SI units).
 
     Shows roller diameter, pitch diameter, gap between rollers, roller mass and inertias,
-    end time, lubricant state at the run temperature (eta0, Roelands z, alpha*) and the
-    line-contact power laws (eq. 11) fitted to Tripp with their errors; then whether
-    `rollerdyn run` would refuse the run at its start (the point end-flange law's load
-    check, which --force skips), and the notes it would print: a configuration known to
-    creep with the point end-flange law (a free or prescribed ring tilt), an equilibrium
-    start before the loads, and loads at the end time whose quasi-static equilibrium
-    presses a flange or a race past ISO 76's 4 GPa.
+    end time, the outputs to it and the result's size before compression (MB; what
+    solver.outputs selects, every solver.output_interval), lubricant state at the run
+    temperature (eta0, Roelands z, alpha*) and the line-contact power laws (eq. 11)
+    fitted to Tripp with their errors; then whether `rollerdyn run` would refuse the run
+    at its start (the point end-flange law's load check, which --force skips), and the
+    notes it would print: a configuration known to creep with the point end-flange law (a
+    free or prescribed ring tilt), an equilibrium start before the loads, and loads at
+    the end time whose quasi-static equilibrium presses a flange or a race past ISO 76's
+    4 GPa.
     """
     from ..model import Model
     from ..notes import configuration_notes, refusal_note
+    from ..simulation import estimated_cost
 
     cfg = load(config, set_options(settings))
     model = Model(cfg)
@@ -89,6 +92,9 @@ def check(
         ("alpha* (eq. 32 fit)", model.alpha_star, "1/Pa"),
         ("alpha* fit max. relative error", model.alpha_star_fit["max_relative_error"], "-"),
     ]
+    cost = estimated_cost(cfg, cfg.end_time)
+    rows.append(("outputs to the end time", cost["outputs"], "-"))
+    rows.append(("result size before compression (solver.outputs)", cost["bytes"] / 1e6, "MB"))
     for name, law in model.line_contacts.items():
         rows.append((f"eq. 11 roller-{name}: k1", law.k1, "SI"))
         rows.append((f"eq. 11 roller-{name}: k2", law.k2, "-"))
