@@ -126,30 +126,25 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
     ):
         # results written before power losses were recorded, or without the power
         # outputs, have no such figure
-        with_data = [(p, ds) for p, ds in rolled if var != "power" or "inner_power_loss" in ds]
-        if not with_data:
-            continue
-        fig, ax = plt.subplots(figsize=(7, 4))
-        for p, ds in with_data:
-            d = full_speed(ds)
-            psi = np.degrees(d.azimuth.values.ravel())
-            if var == "axial":
-                v = carried_axial_force(d).values.ravel()
-            elif var == "power":
-                v = roller_power_loss(d).values.ravel()
-            else:
-                v = d[var].values.ravel()
-            ax.plot(psi, v, ".", ms=2, label=_label(ds, p))
-        ax.axvline(180.0, color="0.6", lw=0.8, ls="--")
-        ax.set(
-            xlabel="roller azimuth psi [deg] (load zone centre at 180 deg)",
-            ylabel=ylabel,
-            title=title,
+        over_azimuth(
+            [(p, ds) for p, ds in rolled if var != "power" or "inner_power_loss" in ds],
+            lambda d, var=var: [("", ".", _per_roller(d, var))],
+            ylabel,
+            title,
+            lambda fig, name=name: save(fig, name),
         )
-        ax.legend(markerscale=5)
-        save(fig, name)
 
-    race_sliding_power(sets, save)
+    # where the rollers slip, in watts: the sliding's part of the race contacts' power
+    over_azimuth(
+        [(p, ds) for p, ds in rolled if "inner_sliding_power_loss" in ds],
+        lambda d: [
+            (f", {race} race", marker, d[f"{race}_sliding_power_loss"])
+            for race, marker in (("inner", "."), ("outer", "x"))
+        ],
+        "power taken by sliding [W]",
+        "where the rollers slip: the sliding's part of the race contacts' power",
+        lambda fig: save(fig, "race_sliding_power_over_azimuth"),
+    )
 
     for ring, title in (("inner", "fig. 8"), ("outer", "fig. 9")) if flanged else ():
         fig, ax = plt.subplots(figsize=(7, 4))
@@ -168,30 +163,38 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
     return written
 
 
-def race_sliding_power(sets: list, save) -> None:
-    """Where the rollers slip, in watts: the sliding's part of each roller's power loss at
-    the inner and the outer race over its azimuth, at full speed; ``save(fig, name)``
-    keeps the figure. None for results written before the contacts' parts were recorded."""
+def _per_roller(d: xr.Dataset, var: str) -> xr.DataArray:
+    """Per roller and output: the axial force it carries ("axial"), the power taken at it
+    ("power") or the variable ``var``."""
+    if var == "axial":
+        return carried_axial_force(d)
+    if var == "power":
+        return roller_power_loss(d)
+    return d[var]
+
+
+def over_azimuth(pairs: list, series, ylabel: str, title: str, save) -> None:
+    """A figure over the roller azimuth at full speed, rollers pooled: for each (name,
+    result) of ``pairs`` the curves ``series(d)`` gives, (label suffix, marker, values of
+    d, the outputs at full speed); ``save(fig)`` keeps it. Nothing without ``pairs``."""
     import matplotlib.pyplot as plt
 
-    with_split = [(p, ds) for p, ds in sets if "inner_sliding_power_loss" in ds and "azimuth" in ds]
-    if not with_split:
+    if not pairs:
         return
     fig, ax = plt.subplots(figsize=(7, 4))
-    for p, ds in with_split:
+    for p, ds in pairs:
         d = full_speed(ds)
         psi = np.degrees(d.azimuth.values.ravel())
-        for race, marker in (("inner", "."), ("outer", "x")):
-            v = d[f"{race}_sliding_power_loss"].values.ravel()
-            ax.plot(psi, v, marker, ms=2, label=f"{_label(ds, p)}, {race} race")
+        for suffix, marker, v in series(d):
+            ax.plot(psi, v.values.ravel(), marker, ms=2, label=_label(ds, p) + suffix)
     ax.axvline(180.0, color="0.6", lw=0.8, ls="--")
     ax.set(
         xlabel="roller azimuth psi [deg] (load zone centre at 180 deg)",
-        ylabel="power taken by sliding [W]",
-        title="where the rollers slip: the sliding's part of the race contacts' power",
+        ylabel=ylabel,
+        title=title,
     )
     ax.legend(markerscale=5)
-    save(fig, "race_sliding_power_over_azimuth")
+    save(fig)
 
 
 def plot_runtime_study(frame, out: Path, title: str = "runtime over Δt_max") -> list[Path]:
