@@ -119,6 +119,7 @@ def _recorded_before_the_move(ds):
     values = json.loads(ds.attrs["config_resolved"])
     for key in ("border_band_roller", "border_band_flange", "friction"):
         values["surfaces"][key] = values["solver"].pop(key)
+    del values["solver"]["outputs"]  # added later still (provenance.ADDED_FIELDS)
     hashed = {k: v for k, v in flatten(values).items() if k not in NOT_HASHED}
     old = ds.copy()
     old.attrs["config_resolved"] = json.dumps(values, sort_keys=True)
@@ -140,6 +141,20 @@ def test_a_result_recorded_before_settings_moved_resumes_with_them_in_solver(sho
         simulate(other, t_end=0.006, resume=old, threads=1)
     assert "solver.friction: True -> False" in str(err.value)
     assert "surfaces." not in str(err.value)
+
+
+def test_a_field_added_later_leaves_the_hash_of_its_default_as_it_was(b1):
+    """``solver.outputs`` came after results began to record their configuration's hash:
+    at its default (every group, what every earlier run recorded) a configuration hashes
+    as it did without the field, so earlier results resume and earlier studies go on;
+    another value is a difference like any other."""
+    values = b1.model_dump(mode="json")
+    del values["solver"]["outputs"]
+    hashed = {k: v for k, v in flatten(values).items() if k not in NOT_HASHED}
+    before = hashlib.sha256(json.dumps(hashed, sort_keys=True).encode("utf-8")).hexdigest()
+    assert config_hash(b1) == before
+    bare = _changed(b1, "solver", outputs=())
+    assert config_hash(bare) != before
 
 
 # --------------------------------------------------------------------------- limits
