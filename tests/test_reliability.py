@@ -199,6 +199,13 @@ def test_a_run_far_beyond_a_normal_one_is_refused_with_its_estimate(b1):
     assert cost["outputs"] == pytest.approx(1.288e8, rel=1e-6)
     with pytest.raises(ValueError, match=r"solver.output_interval = 1e-08 s.*GB.*--force"):
         simulate(fine, threads=1)
+    # recording only the bearing's own outputs makes the file small, not the run: the
+    # core records every group until the result is built
+    bare = _changed(fine, "solver", outputs=())
+    cost = estimated_cost(bare, 1.288)
+    assert cost["bytes"] * 75 < cost["memory_bytes"] == estimated_cost(fine, 1.288)["bytes"]
+    with pytest.raises(ValueError, match=r"solver.output_interval = 1e-08 s.*GB.*--force"):
+        simulate(bare, threads=1)
     slow = _changed(b1, "solver", dt_max=1e-9)
     with pytest.raises(ValueError, match=r"solver.dt_max = 1e-09 s.*steps"):
         check_cost(slow, 1.288)

@@ -84,15 +84,17 @@ MAX_CHECKPOINTS = 1e5
 
 
 def estimated_cost(config: BearingConfig, t_end: float, t_start: float = 0.0) -> dict:
-    """What a run will at least cost: outputs, result size [bytes] and steps (the span
-    over dt_max, a lower bound)."""
+    """What a run will at least cost: outputs, the result's size [bytes] (what
+    ``solver.outputs`` keeps, uncompressed), the memory its outputs take while it runs
+    [bytes] (the core records every group; the selection is made when the result is
+    built) and steps (the span over dt_max, a lower bound)."""
     span = max(t_end - t_start, 0.0)
     outputs = math.ceil(span / min(config.solver.output_interval, t_end)) + 1
     z = config.geometry.roller_count
-    per_output = 8 * numbers_per_output(z, config.solver.outputs)
     return {
         "outputs": outputs,
-        "bytes": outputs * per_output,
+        "bytes": outputs * 8 * numbers_per_output(z, config.solver.outputs),
+        "memory_bytes": outputs * 8 * numbers_per_output(z),
         "min_steps": span / config.solver.dt_max,
         "checkpoints": span / config.solver.checkpoint_interval,
     }
@@ -122,11 +124,12 @@ def check_cost(
     ``remedy`` ends the advice (where forcing is not offered, pass "")."""
     cost = estimated_cost(config, t_end, t_start)
     s = config.solver
-    if cost["bytes"] > MAX_RESULT_BYTES:
+    if cost["memory_bytes"] > MAX_RESULT_BYTES:
         raise ValueError(
             f"solver.output_interval = {s.output_interval:g} s: {cost['outputs']:.3g} outputs "
-            f"to t = {t_end:g} s would take {cost['bytes'] / 1e9:.3g} GB of results (more than "
-            f"{MAX_RESULT_BYTES / 1e9:g} GB); choose a longer interval{remedy}"
+            f"to t = {t_end:g} s would take {cost['memory_bytes'] / 1e9:.3g} GB of results "
+            f"while the run goes (every output group is recorded until the result is built: "
+            f"more than {MAX_RESULT_BYTES / 1e9:g} GB); choose a longer interval{remedy}"
         )
     if cost["min_steps"] > MAX_MIN_STEPS:
         raise ValueError(

@@ -198,7 +198,7 @@ def result_size_refusal(variant, max_time: float, window: float) -> str | None:
     from ..simulation import MAX_RESULT_BYTES, estimated_cost
 
     cost = estimated_cost(variant, max_time)
-    if cost["bytes"] <= MAX_RESULT_BYTES:
+    if cost["memory_bytes"] <= MAX_RESULT_BYTES:  # what the run holds, every group
         return None
     interval = variant.solver.output_interval
     if interval < window / OUTPUTS_PER_WINDOW * (1 - 1e-9):  # the configuration's own
@@ -209,7 +209,8 @@ def result_size_refusal(variant, max_time: float, window: float) -> str | None:
         remedy = "choose a longer --window"
     return (
         f"{cost['outputs']:.3g} outputs (one every {interval:.3g} s: {why}) would take "
-        f"{cost['bytes'] / 1e9:.3g} GB of results (more than {MAX_RESULT_BYTES / 1e9:g} GB); "
+        f"{cost['memory_bytes'] / 1e9:.3g} GB of results while it runs (more than "
+        f"{MAX_RESULT_BYTES / 1e9:g} GB); "
         f"{remedy} or a shorter --max-time"
     )
 
