@@ -87,7 +87,7 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
     # the figures of the rollers and flanges, from the results that recorded them
     # (solver.outputs)
     flanged = [(p, ds) for p, ds in sets if all(v in ds for v in FLANGE_VARIABLES)]
-    rolled = [(p, ds) for p, ds in flanged if all(v in ds for v in ROLLER_VARIABLES)]
+    rolled = [(p, ds) for p, ds in sets if all(v in ds for v in ROLLER_VARIABLES)]
     if flanged:
         fig, ax = plt.subplots(figsize=(7, 4))
         for p, ds in flanged:
@@ -124,10 +124,11 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
             "(instantaneous, with what the contacts store and give back; its mean is the loss)",
         ),
     ):
-        # results written before power losses were recorded, or without the power
-        # outputs, have no such figure
+        # the axial force needs the flanges too; results written before power losses
+        # were recorded, or without the power outputs, have no power figure
+        needs = {"axial": FLANGE_VARIABLES, "power": ("inner_power_loss",)}.get(var, ())
         over_azimuth(
-            [(p, ds) for p, ds in rolled if var != "power" or "inner_power_loss" in ds],
+            [(p, ds) for p, ds in rolled if all(v in ds for v in needs)],
             lambda d, var=var: [("", ".", _per_roller(d, var))],
             ylabel,
             title,

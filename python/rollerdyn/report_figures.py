@@ -104,9 +104,7 @@ def azimuth_figures(labels, sets) -> list:
     import plotly.graph_objects as go
 
     figs: list = []
-    labels, sets = having(labels, sets, *ROLLER_VARIABLES, *FLANGE_VARIABLES)
-    if not sets:
-        return figs
+    all_labels, all_sets = labels, sets
     for key, title, ylabel in (
         (
             "fig12",
@@ -125,6 +123,11 @@ def azimuth_figures(labels, sets) -> list:
             "roller-inner race load [N]",
         ),
     ):
+        # the axial force needs the flanges' outputs as well (solver.outputs)
+        needs = (*ROLLER_VARIABLES, *(FLANGE_VARIABLES if key == "fig12" else ()))
+        labels, sets = having(all_labels, all_sets, *needs)
+        if not sets:
+            continue
         fig = go.Figure()
         for label, ds in zip(labels, sets, strict=True):
             d = full_speed(ds)
