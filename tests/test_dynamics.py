@@ -634,11 +634,14 @@ def test_selected_outputs_keep_the_bearings_own_resume_exactly_and_are_named_whe
     """``solver.outputs``: a result holds the bearing's outputs and only the groups
     selected (none, here: the torque and power as in the full result, bit for bit, at
     15 numbers per output instead of 1 137); resumed, it equals its uninterrupted run bit
-    for bit; continued with other groups it is refused, naming the field; a comparison
-    (which needs the rollers) names the groups it lacks and the setting that records
-    them; the report and the plots show what it has; a sweep's summary has NaN for the
-    rest."""
+    for bit; continued with other groups it is refused, naming the field; reading it where
+    the rollers are required names the groups it lacks and the setting that records them;
+    the report, the plots and a comparison show what it has; a sweep's summary has NaN
+    for the rest."""
+    from typer.testing import CliRunner
+
     import rollerdyn
+    from rollerdyn.cli import app
     from rollerdyn.plots import plot_results
     from rollerdyn.report import ReportError, open_result
     from rollerdyn.simulation import numbers_per_output
@@ -664,6 +667,14 @@ def test_selected_outputs_keep_the_bearings_own_resume_exactly_and_are_named_whe
     write(bare, tmp_path / "bare.nc")
     with pytest.raises(ReportError, match=r'needs rollers and flanges.*= \["rollers", "flanges"\]'):
         open_result(tmp_path / "bare.nc")
+    # compare: the torque, and n/a for the rollers and flanges, with a line saying why
+    write(base, tmp_path / "base.nc")
+    compared = CliRunner().invoke(
+        app, ["compare", str(tmp_path / "bare.nc"), str(tmp_path / "base.nc")]
+    )
+    assert compared.exit_code == 0, compared.output
+    assert "did not record its rollers and flanges (solver.outputs)" in compared.output
+    assert "n/a" in compared.output and "frictional torque" in compared.output
     # the report and the plots show what it recorded: the torque, not the rollers
     page = rollerdyn.report([tmp_path / "bare.nc"], tmp_path / "bare.html", max_frames=2)
     text = page.read_text(encoding="utf-8")

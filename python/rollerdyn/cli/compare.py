@@ -60,7 +60,8 @@ def compare_command(
     largest difference lies: the output time, the roller and its azimuth in A (0° at +y,
     the load zone's centre at 180°). Then both runs' steps, right-hand sides,
     gradient fallbacks and wall time. A note first names the fields in which the two runs'
-    bearings (geometry, materials, inner ring) differ, if they do.
+    bearings (geometry, materials, inner ring) differ, if they do, and a run that did not
+    record its rollers or flanges (solver.outputs); their measures show n/a.
 
     Exits with status 2 if a file is missing or not a rollerdyn run's result, if the two
     runs share no output or differ in their roller count, or for a bad --full-speed.
@@ -72,7 +73,8 @@ def compare_command(
     runs = []
     for path in (first, second):
         try:
-            runs.append(open_result(path, required=tuple(n for n in NEEDED if n != "time")))
+            needed = tuple(n for n in NEEDED if n != "time")
+            runs.append(open_result(path, required=needed, recorded_only=True))
         except ReportError as err:
             raise refuse(err) from None
     a, b = runs
@@ -81,6 +83,11 @@ def compare_command(
     except ValueError as err:
         raise refuse(f"{first} and {second}: {err}") from None
     _note_other_bearings(a.attrs, b.attrs, first, second)
+    for path, run in ((first, a), (second, b)):
+        lacking = [v for v in ("position", "flange_normal_force") if v not in run]
+        if lacking:
+            what = " and ".join("rollers" if v == "position" else "flanges" for v in lacking)
+            say(f"{path}: the run did not record its {what} (solver.outputs): n/a below", "yellow")
     _print_differences(found, MEASURES, f"{first.name} against {second.name}")
     _print_statistics(runs, (first.name, second.name))
 

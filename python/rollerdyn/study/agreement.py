@@ -87,27 +87,70 @@ def differences(a: xr.Dataset, b: xr.Dataset, full_speed: float = FULL_SPEED) ->
     [N]: the largest roller end-flange normal force of either run, which ``"flange_force"``
     is relative to, and ``"where"``: for each measure of a roller's position, tilt or skew,
     the output time [s], roller and its azimuth [deg] in ``a`` at which its largest
-    difference lies (:func:`where_largest`). Raises ``ValueError`` if the runs
-    have different roller counts or no common output."""
-    if a.sizes["roller"] != b.sizes["roller"]:
-        raise ValueError(f"the runs have {a.sizes['roller']} and {b.sizes['roller']} rollers")
+    difference lies (:func:`where_largest`). Measures of what a run did not record
+    (``solver.outputs``: its rollers, its flanges) are NaN. Raises ``ValueError`` if the
+    runs have different roller counts or no common output."""
+    rollers = a.sizes.get("roller"), b.sizes.get("roller")
+    if None not in rollers and rollers[0] != rollers[1]:
+        raise ValueError(f"the runs have {rollers[0]} and {rollers[1]} rollers")
     n = common_outputs(a, b)
     if n == 0:
         raise ValueError("the runs share no output times")
     a, b = a.isel(time=slice(0, n)), b.isel(time=slice(0, n))
     t = a.time.values
+    full = t >= full_speed
+    out: dict = {
+        "outputs": n,
+        "t_end": float(t[-1]),
+        **{key: np.nan for key in ROLLER_MEASURES},
+        "where": {},
+        "flange_force": np.nan,
+        "flange_force_largest": np.nan,
+        "torque_mean_full_speed": np.nan,
+        "torque_full_speed": np.nan,
+    }
+    # what a run did not record (solver.outputs) stays NaN
+    if all(v in run for run in (a, b) for v in ("azimuth", "position", "tilt", "skew")):
+        out.update(_roller_differences(a, b, full))
+    if all("flange_normal_force" in run for run in (a, b)):
+        fa = np.nan_to_num(a.flange_normal_force.values)
+        fb = np.nan_to_num(b.flange_normal_force.values)
+        largest = max(float(np.abs(fa).max()), float(np.abs(fb).max()))
+        out["flange_force"] = _largest(np.abs(fa - fb)) / largest if largest > 0 else np.nan
+        out["flange_force_largest"] = largest
+    ta, tb = a.frictional_torque.values, b.frictional_torque.values
+    if full.any():
+        ma, mb = float(ta[full].mean()), float(tb[full].mean())
+        out["torque_mean_full_speed"] = abs(ma - mb) / abs(ma) if ma != 0 else np.nan
+        out["torque_full_speed"] = _largest(np.abs(ta - tb)[full]) / float(np.abs(ta).max())
+    return out
+
+
+#: The measures of :func:`_roller_differences`: a roller's position, tilt and skew.
+ROLLER_MEASURES = (
+    "position_load_zone",
+    "position_outside",
+    "position_load_zone_full_speed",
+    "position_outside_full_speed",
+    "axial_full_speed",
+    "radial_full_speed",
+    "circumferential_full_speed",
+    "tilt_full_speed",
+    "skew_full_speed",
+)
+
+
+def _roller_differences(a: xr.Dataset, b: xr.Dataset, full: np.ndarray) -> dict:
+    """The measures of :data:`ROLLER_MEASURES` between ``a`` and ``b`` (the same outputs;
+    ``full``: those at full speed), and ``"where"`` each largest lies."""
+    t = a.time.values
     azimuth = np.mod(a.azimuth.values, 2 * np.pi)
     zone = np.abs(azimuth - np.pi) <= LOAD_ZONE_HALF_WIDTH
     d = a.position.values - b.position.values  # (time, roller, xyz)
     dist = np.linalg.norm(d, axis=2)
-    full = t >= full_speed
     radial = np.stack([np.zeros_like(azimuth), np.cos(azimuth), np.sin(azimuth)], axis=2)
     around = np.stack([np.zeros_like(azimuth), -np.sin(azimuth), np.cos(azimuth)], axis=2)
     fz, fo = zone & full[:, None], ~zone & full[:, None]
-    fa = np.nan_to_num(a.flange_normal_force.values)
-    fb = np.nan_to_num(b.flange_normal_force.values)
-    largest = max(float(np.abs(fa).max()), float(np.abs(fb).max()))
-    ta, tb = a.frictional_torque.values, b.frictional_torque.values
     full_rows = np.broadcast_to(full[:, None], dist.shape)
     per_roller = {  # measure -> (difference per output and roller, the outputs it is over)
         "position_load_zone": (dist, zone),
@@ -120,24 +163,13 @@ def differences(a: xr.Dataset, b: xr.Dataset, full_speed: float = FULL_SPEED) ->
         "tilt_full_speed": (np.abs(a.tilt.values - b.tilt.values), full_rows),
         "skew_full_speed": (np.abs(a.skew.values - b.skew.values), full_rows),
     }
-    out = {
-        "outputs": n,
-        "t_end": float(t[-1]),
+    return {
         **{key: _largest(values[mask]) for key, (values, mask) in per_roller.items()},
         "where": {
             key: where_largest(values, mask, t, azimuth)
             for key, (values, mask) in per_roller.items()
         },
-        "flange_force": _largest(np.abs(fa - fb)) / largest if largest > 0 else np.nan,
-        "flange_force_largest": largest,
-        "torque_mean_full_speed": np.nan,
-        "torque_full_speed": np.nan,
     }
-    if full.any():
-        ma, mb = float(ta[full].mean()), float(tb[full].mean())
-        out["torque_mean_full_speed"] = abs(ma - mb) / abs(ma) if ma != 0 else np.nan
-        out["torque_full_speed"] = _largest(np.abs(ta - tb)[full]) / float(np.abs(ta).max())
-    return out
 
 
 def where_largest(
