@@ -8,8 +8,7 @@ import numpy as np
 import xarray as xr
 
 from .names import PAIRINGS, flange_indices
-from .report_figures import FLANGE_VARIABLES, ROLLER_VARIABLES
-from .simulation import carried_axial_force, full_speed
+from .simulation import carried_axial_force, full_speed, recorded
 
 
 def _label(ds: xr.Dataset, name: str) -> str:
@@ -86,8 +85,8 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
 
     # the figures of the rollers and flanges, from the results that recorded them
     # (solver.outputs)
-    flanged = [(p, ds) for p, ds in sets if all(v in ds for v in FLANGE_VARIABLES)]
-    rolled = [(p, ds) for p, ds in sets if all(v in ds for v in ROLLER_VARIABLES)]
+    flanged = [(p, ds) for p, ds in sets if recorded(ds, "flanges")]
+    rolled = [(p, ds) for p, ds in sets if recorded(ds, "rollers")]
     if flanged:
         fig, ax = plt.subplots(figsize=(7, 4))
         for p, ds in flanged:
@@ -126,9 +125,13 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
     ):
         # the axial force needs the flanges too; results written before power losses
         # were recorded, or without the power outputs, have no power figure
-        needs = {"axial": FLANGE_VARIABLES, "power": ("inner_power_loss",)}.get(var, ())
         over_azimuth(
-            [(p, ds) for p, ds in rolled if all(v in ds for v in needs)],
+            [
+                (p, ds)
+                for p, ds in rolled
+                if (var != "axial" or recorded(ds, "flanges"))
+                and (var != "power" or "inner_power_loss" in ds)
+            ],
             lambda d, var=var: [("", ".", _per_roller(d, var))],
             ylabel,
             title,

@@ -24,7 +24,6 @@ import xarray as xr
 from .report_figures import (
     MAX_FRAMES,
     MAX_POINTS,
-    ROLLER_VARIABLES,
     animation_figure,
     azimuth_figures,
     inputs_figure,
@@ -33,6 +32,7 @@ from .report_figures import (
     pairing_shares,
     time_figures,
 )
+from .simulation import recorded
 
 __all__ = [
     "LAST_SHARE",
@@ -51,6 +51,7 @@ __all__ = [
     "build_html",
     "check_report_output",
     "html_page",
+    "last_outputs",
     "max_abs_srr_inner",
     "open_result",
     "pairing_shares",
@@ -253,17 +254,22 @@ def _pretty_json(text: str) -> str:
         return text
 
 
+def last_outputs(ds: xr.Dataset) -> np.ndarray:
+    """Where the outputs of ``ds`` lie in the last :data:`LAST_SHARE` of its simulated time
+    (the summary's means are over them)."""
+    t = ds.time.values
+    return t >= t[-1] - LAST_SHARE * (t[-1] - t[0])
+
+
 def summary(ds: xr.Dataset) -> dict:
     """The summary quantities of one result (SI), keyed as :data:`SUMMARY_ROWS`."""
-    t = ds.time.values
-    t0, t1 = float(t[0]), float(t[-1])
-    last = t >= t1 - LAST_SHARE * (t1 - t0)
+    last = last_outputs(ds)
     a = ds.attrs
     status = "completed" if int(a.get("completed", 0)) else "unfinished"
     if "error" in a:
         status += f": {a['error']}"
     # NaN (shown n/a) for what the run did not record (solver.outputs)
-    rollers = "inner_normal_force" in ds
+    rollers = recorded(ds, "rollers")
     return {
         "mean_torque": float(np.mean(ds.frictional_torque.values[last])),
         **power_summary(ds, last),
@@ -273,7 +279,7 @@ def summary(ds: xr.Dataset) -> dict:
         if rollers
         else math.nan,
         "max_flange_force": nanmax(ds.flange_normal_force.values)
-        if "flange_normal_force" in ds
+        if recorded(ds, "flanges")
         else math.nan,
         "max_srr_inner": max_abs_srr_inner(ds) if rollers else math.nan,
         "final_time": float(a["final_time_s"]),
@@ -578,7 +584,7 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
         "frames are evenly subsampled outputs.</p>"
     )
     for j, (label, ds) in enumerate(zip(labels, sets, strict=True)):
-        if not all(v in ds for v in ROLLER_VARIABLES):
+        if not recorded(ds, "rollers"):
             body.append(f"<h3>{html.escape(label)}: the run did not record its rollers</h3>")
             continue
         fig, n = animation_figure(ds, max_frames)
@@ -591,8 +597,7 @@ def _power_section(labels: list[str], sets: list[xr.Dataset]) -> list[str]:
     """The page's tables of :func:`power_by_contact`, one per result that records it."""
     out = ['<h3 id="power">Where the power goes</h3>']
     for label, ds in zip(labels, sets, strict=True):
-        t = ds.time.values
-        rows = power_by_contact(ds, t >= t[-1] - LAST_SHARE * (t[-1] - t[0]))
+        rows = power_by_contact(ds, last_outputs(ds))
         if rows is None:
             out.append(
                 f'<p class="note">{html.escape(label)}: not recorded (an older file, or '

@@ -12,7 +12,7 @@ import xarray as xr
 
 from .limits import MAX_FRAMES
 from .names import PAIRINGS, flange_indices
-from .simulation import carried_axial_force, full_speed
+from .simulation import carried_axial_force, full_speed, recorded
 
 MAX_POINTS = 40_000
 """Most points per trace of the azimuth scatter plots (figs. 12, 13); evenly thinned."""
@@ -45,16 +45,15 @@ LAYOUT = dict(
 )
 
 
-def having(labels, sets, *names: str) -> tuple[list, list]:
-    """The labels and results of ``labels``/``sets`` that hold every variable ``names``
-    (a run records only its ``solver.outputs``)."""
-    kept = [(lab, ds) for lab, ds in zip(labels, sets, strict=True) if all(n in ds for n in names)]
+def having(labels, sets, *groups: str) -> tuple[list, list]:
+    """The labels and results of ``labels``/``sets`` that recorded every output group
+    ``groups`` (:func:`rollerdyn.simulation.recorded`)."""
+    kept = [
+        (lab, ds)
+        for lab, ds in zip(labels, sets, strict=True)
+        if all(recorded(ds, g) for g in groups)
+    ]
     return [lab for lab, _ in kept], [ds for _, ds in kept]
-
-
-#: What the figures of the rollers (over azimuth, the animation) and of the flanges read.
-ROLLER_VARIABLES = ("azimuth", "position", "skew", "srr_inner", "inner_normal_force")
-FLANGE_VARIABLES = ("flange_pairing", "flange_friction_force", "flange_axial_force")
 
 
 def _thin(n: int, most: int) -> np.ndarray:
@@ -80,7 +79,7 @@ def time_figures(labels, sets) -> list:
         **LAYOUT,
     )
     figs.append(("fig10", fig))
-    labels, sets = having(labels, sets, *FLANGE_VARIABLES)
+    labels, sets = having(labels, sets, "flanges")
     if not sets:
         return figs
     fig = go.Figure()
@@ -124,7 +123,7 @@ def azimuth_figures(labels, sets) -> list:
         ),
     ):
         # the axial force needs the flanges' outputs as well (solver.outputs)
-        needs = (*ROLLER_VARIABLES, *(FLANGE_VARIABLES if key == "fig12" else ()))
+        needs = ("rollers", "flanges") if key == "fig12" else ("rollers",)
         labels, sets = having(all_labels, all_sets, *needs)
         if not sets:
             continue
@@ -170,7 +169,7 @@ def pairing_figures(labels, sets) -> list:
     import plotly.graph_objects as go
 
     figs: list = []
-    labels, sets = having(labels, sets, *FLANGE_VARIABLES)
+    labels, sets = having(labels, sets, "flanges")
     if not sets:
         return figs
     for ring, key in (("inner", "fig8"), ("outer", "fig9")):

@@ -457,6 +457,14 @@ def output_variables(groups: tuple[str, ...]) -> tuple[dict, dict]:
     return per_roller, per_flange
 
 
+def recorded(ds: xr.Dataset, group: str) -> bool:
+    """Whether the result ``ds`` holds every variable of the output group ``group`` of
+    ``solver.outputs`` (a run records only the groups it selects)."""
+    per_roller, per_flange = output_variables((group,))
+    located = {"rollers": ("position",), "flanges": ("flange_location",)}.get(group, ())
+    return all(name in ds for name in (*per_roller, *per_flange, *located))
+
+
 def output_group_of(name: str) -> str | None:
     """The group of ``solver.outputs`` that variable ``name`` belongs to (None: one every
     result holds, or no output at all)."""

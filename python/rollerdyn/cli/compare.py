@@ -67,6 +67,7 @@ def compare_command(
     runs share no output or differ in their roller count, or for a bad --full-speed.
     """
     from ..report import ReportError, open_result
+    from ..simulation import recorded
     from ..study.agreement import MEASURES, NEEDED, differences
 
     from_full_speed = time_option("--full-speed", full_speed, zero=True)
@@ -84,9 +85,9 @@ def compare_command(
         raise refuse(f"{first} and {second}: {err}") from None
     _note_other_bearings(a.attrs, b.attrs, first, second)
     for path, run in ((first, a), (second, b)):
-        lacking = [v for v in ("position", "flange_normal_force") if v not in run]
+        lacking = [g for g in ("rollers", "flanges") if not recorded(run, g)]
         if lacking:
-            what = " and ".join("rollers" if v == "position" else "flanges" for v in lacking)
+            what = " and ".join(lacking)
             say(f"{path}: the run did not record its {what} (solver.outputs): n/a below", "yellow")
     _print_differences(found, MEASURES, f"{first.name} against {second.name}")
     _print_statistics(runs, (first.name, second.name))

@@ -110,9 +110,11 @@ def differences(a: xr.Dataset, b: xr.Dataset, full_speed: float = FULL_SPEED) ->
         "torque_full_speed": np.nan,
     }
     # what a run did not record (solver.outputs) stays NaN
-    if all(v in run for run in (a, b) for v in ("azimuth", "position", "tilt", "skew")):
+    from ..simulation import recorded
+
+    if recorded(a, "rollers") and recorded(b, "rollers"):
         out.update(_roller_differences(a, b, full))
-    if all("flange_normal_force" in run for run in (a, b)):
+    if recorded(a, "flanges") and recorded(b, "flanges"):
         fa = np.nan_to_num(a.flange_normal_force.values)
         fb = np.nan_to_num(b.flange_normal_force.values)
         largest = max(float(np.abs(fa).max()), float(np.abs(fb).max()))
