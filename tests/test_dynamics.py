@@ -628,6 +628,26 @@ def test_checkpoint_saver_writes_the_first_then_one_per_save_interval(tmp_path, 
             CheckpointSaver(path, bad)
 
 
+def test_a_run_without_output_groups_holds_no_roller_records_in_the_core():
+    """With ``solver.outputs = []`` the core keeps no per-roller records while it runs
+    (the memory bound of :func:`rollerdyn.simulation.estimated_cost` counts them so), and
+    the bearing's own outputs are those of the full run, bit for bit."""
+    from rollerdyn.simulation import run_options
+
+    raws = {}
+    for name, groups in (("full", ["rollers"]), ("bare", [])):
+        cfg = variant(**{"solver.outputs": groups})
+        options = {**run_options(cfg, 0.002), "threads": 1}
+        raws[name] = _core.simulate(model_parameters(cfg), Model(cfg).traction, options)
+    full, bare = raws["full"], raws["bare"]
+    nt = len(full["time"])
+    assert nt == 3 and len(full["azimuth"]) == 17 * nt and len(full["position"]) == 51 * nt
+    for name in ("azimuth", "position", "flange_normal_force", "inner_power_loss"):
+        assert len(bare[name]) == 0, name
+    for name in ("time", "frictional_torque", "power_loss", "ring_position"):
+        assert np.array_equal(bare[name], full[name]), name
+
+
 def test_selected_outputs_keep_the_bearings_own_resume_exactly_and_are_named_when_missing(
     tmp_path,
 ):

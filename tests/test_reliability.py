@@ -21,6 +21,7 @@ from rollerdyn.config import ConfigError, load_config
 from rollerdyn.model import Model
 from rollerdyn.provenance import NOT_HASHED, check_same_configuration, config_hash, flatten
 from rollerdyn.simulation import (
+    MAX_RESULT_BYTES,
     SimulationInterrupted,
     _resume_point,
     check_cost,
@@ -199,13 +200,25 @@ def test_a_run_far_beyond_a_normal_one_is_refused_with_its_estimate(b1):
     assert cost["outputs"] == pytest.approx(1.288e8, rel=1e-6)
     with pytest.raises(ValueError, match=r"solver.output_interval = 1e-08 s.*GB.*--force"):
         simulate(fine, threads=1)
-    # recording only the bearing's own outputs makes the file small, not the run: the
-    # core records every group until the result is built
+    # with any group selected the core records every group until the result is built, so
+    # one group costs the run's memory of all three; with none (solver.outputs = []) it
+    # records the bearing's own outputs only: the memory is the file's, 15 of 1 137
+    # numbers per output (B1: 1 + 11 scalars + 3 + 2, against 17 rollers' records)
+    one = _changed(fine, "solver", outputs=("flanges",))
+    assert estimated_cost(one, 1.288)["memory_bytes"] == cost["memory_bytes"]
+    with pytest.raises(ValueError, match=r"solver.output_interval = 1e-08 s.*outputs = \[\]"):
+        simulate(one, threads=1)
     bare = _changed(fine, "solver", outputs=())
     cost = estimated_cost(bare, 1.288)
-    assert cost["bytes"] * 75 < cost["memory_bytes"] == estimated_cost(fine, 1.288)["bytes"]
+    assert cost["memory_bytes"] == cost["bytes"] == cost["outputs"] * 8 * 15
     with pytest.raises(ValueError, match=r"solver.output_interval = 1e-08 s.*GB.*--force"):
-        simulate(bare, threads=1)
+        simulate(bare, threads=1)  # 1.288e8 outputs of 120 bytes: 15 GB all the same
+    every_us = _changed(bare, "solver", output_interval=1e-6)
+    check_cost(every_us, 1.288)  # 1.3e6 outputs: 0.15 GB bare (11.7 GB with the rollers)
+    assert (
+        estimated_cost(_changed(every_us, "solver", outputs=("rollers",)), 1.288)["memory_bytes"]
+        > MAX_RESULT_BYTES
+    )
     slow = _changed(b1, "solver", dt_max=1e-9)
     with pytest.raises(ValueError, match=r"solver.dt_max = 1e-09 s.*steps"):
         check_cost(slow, 1.288)

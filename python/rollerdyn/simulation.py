@@ -86,18 +86,24 @@ MAX_CHECKPOINTS = 1e5
 def estimated_cost(config: BearingConfig, t_end: float, t_start: float = 0.0) -> dict:
     """What a run will at least cost: outputs, the result's size [bytes] (what
     ``solver.outputs`` keeps, uncompressed), the memory its outputs take while it runs
-    [bytes] (the core records every group; the selection is made when the result is
-    built) and steps (the span over dt_max, a lower bound)."""
+    [bytes] (:func:`recorded_groups`) and steps (the span over dt_max, a lower bound)."""
     span = max(t_end - t_start, 0.0)
     outputs = math.ceil(span / min(config.solver.output_interval, t_end)) + 1
     z = config.geometry.roller_count
     return {
         "outputs": outputs,
         "bytes": outputs * 8 * numbers_per_output(z, config.solver.outputs),
-        "memory_bytes": outputs * 8 * numbers_per_output(z),
+        "memory_bytes": outputs * 8 * numbers_per_output(z, recorded_groups(config)),
         "min_steps": span / config.solver.dt_max,
         "checkpoints": span / config.solver.checkpoint_interval,
     }
+
+
+def recorded_groups(config: BearingConfig) -> tuple[str, ...]:
+    """The output groups the core records while a run goes: every group when
+    ``solver.outputs`` selects any (the per-roller records hold them all; the selection is
+    made when the result is built), none when it selects none."""
+    return OUTPUT_GROUPS if config.solver.outputs else ()
 
 
 def numbers_per_output(z: int, groups: tuple[str, ...] = OUTPUT_GROUPS) -> int:
@@ -128,8 +134,9 @@ def check_cost(
         raise ValueError(
             f"solver.output_interval = {s.output_interval:g} s: {cost['outputs']:.3g} outputs "
             f"to t = {t_end:g} s would take {cost['memory_bytes'] / 1e9:.3g} GB of results "
-            f"while the run goes (every output group is recorded until the result is built: "
-            f"more than {MAX_RESULT_BYTES / 1e9:g} GB); choose a longer interval{remedy}"
+            f"while the run goes (with any group in solver.outputs, every group is recorded "
+            f"until the result is built: more than {MAX_RESULT_BYTES / 1e9:g} GB); choose a "
+            f"longer interval or solver.outputs = []{remedy}"
         )
     if cost["min_steps"] > MAX_MIN_STEPS:
         raise ValueError(
@@ -328,6 +335,8 @@ def run_options(config: BearingConfig, t_end: float, force: bool = False) -> dic
         "min_mean_step": s.stall_step,
         # the point law's load check before the first step
         "check_flange_law": not force,
+        # per-roller records only for a result that keeps some of them
+        "roller_records": bool(s.outputs),
     }
 
 

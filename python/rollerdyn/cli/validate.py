@@ -95,6 +95,7 @@ def check(
     cost = estimated_cost(cfg, cfg.end_time)
     rows.append(("outputs to the end time", cost["outputs"], "-"))
     rows.append(("result size before compression (solver.outputs)", cost["bytes"] / 1e6, "MB"))
+    rows.append(("outputs held while the run goes", cost["memory_bytes"] / 1e6, "MB"))
     for name, law in model.line_contacts.items():
         rows.append((f"eq. 11 roller-{name}: k1", law.k1, "SI"))
         rows.append((f"eq. 11 roller-{name}: k2", law.k2, "-"))

@@ -198,7 +198,7 @@ def result_size_refusal(variant, max_time: float, window: float) -> str | None:
     from ..simulation import MAX_RESULT_BYTES, estimated_cost
 
     cost = estimated_cost(variant, max_time)
-    if cost["memory_bytes"] <= MAX_RESULT_BYTES:  # what the run holds, every group
+    if cost["memory_bytes"] <= MAX_RESULT_BYTES:  # what the run holds while it goes
         return None
     interval = variant.solver.output_interval
     if interval < window / OUTPUTS_PER_WINDOW * (1 - 1e-9):  # the configuration's own
