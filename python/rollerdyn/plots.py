@@ -150,6 +150,8 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
         lambda fig: save(fig, "race_sliding_power_over_azimuth"),
     )
 
+    ripple_spectra(sets, lambda fig: save(fig, "ripple_spectra"))
+
     for ring, title in (("inner", "fig. 8"), ("outer", "fig. 9")) if flanged else ():
         fig, ax = plt.subplots(figsize=(7, 4))
         width = 0.8 / max(1, len(flanged))
@@ -165,6 +167,38 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
         ax.legend()
         save(fig, f"fig{8 if ring == 'inner' else 9}_pairings_{ring}")
     return written
+
+
+def ripple_spectra(sets: list, save) -> None:
+    """The amplitude spectra at full speed of the frictional torque and of the inner
+    ring's displacement across the load (z), up to 4.5 times the roller pass frequency Z
+    f_c, its harmonics dotted (:mod:`rollerdyn.ripple`); nothing where no result runs
+    :data:`rollerdyn.ripple.MIN_PERIODS` roller passes at full speed."""
+    import matplotlib.pyplot as plt
+
+    from .ripple import ripple, spectra
+
+    shown = [(p, ds, ripple(ds)) for p, ds in sets]
+    shown = [(p, ds, r) for p, ds, r in shown if r["note"] == ""]
+    if not shown:
+        return
+    passing = shown[0][2]["roller_pass_frequency"]
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+    for p, ds, _ in shown:
+        s = spectra(ds)
+        keep = s["frequency"] <= 4.5 * passing
+        top.semilogy(s["frequency"][keep], s["frictional_torque"][keep], label=_label(ds, p))
+        bottom.semilogy(s["frequency"][keep], 1e9 * s["ring_z"][keep], label=_label(ds, p))
+    for ax in (top, bottom):
+        for k in range(1, 5):
+            ax.axvline(k * passing, color="0.6", linestyle=":", linewidth=1)
+    top.set(
+        ylabel="torque amplitude [N m]",
+        title=f"ripple at full speed (dotted: k x the roller pass frequency {passing:.4g} Hz)",
+    )
+    bottom.set(xlabel="frequency [Hz]", ylabel="inner ring amplitude along z [nm]")
+    top.legend()
+    save(fig)
 
 
 def _per_roller(d: xr.Dataset, var: str) -> xr.DataArray:

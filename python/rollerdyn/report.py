@@ -30,6 +30,7 @@ from .report_figures import (
     nanmax,
     pairing_figures,
     pairing_shares,
+    ripple_figures,
     time_figures,
 )
 from .simulation import recorded
@@ -496,7 +497,8 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
     names = ", ".join(html.escape(str(p)) for p in paths)
     body.append(f"<h1>rollerdyn report</h1><p>Results: {names}</p>")
     body.append(
-        '<nav><a href="#summary">summary</a><a href="#inputs">inputs</a>'
+        '<nav><a href="#summary">summary</a><a href="#ripple">ripple</a>'
+        '<a href="#inputs">inputs</a>'
         '<a href="#figures">figures</a><a href="#animation">roller set</a></nav>'
     )
 
@@ -516,6 +518,7 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
     )
 
     body += _power_section(labels, sets)
+    body += _ripple_section(labels, sets, embed)
 
     # Inputs.
     body.append('<h2 id="inputs">Inputs</h2>')
@@ -613,6 +616,33 @@ def _power_section(labels: list[str], sets: list[xr.Dataset]) -> list[str]:
         "part their damping, squeeze and film load (with the elastic energy's rate, which "
         "averages out), and the rolling resistance the rest.</p>"
     )
+    return out
+
+
+def _ripple_section(labels: list[str], sets: list[xr.Dataset], embed) -> list[str]:
+    """The page's table of :func:`rollerdyn.ripple.ripple` and its spectra."""
+    from .ripple import RIPPLE_ROWS, ripple
+
+    ripples = [ripple(ds) for ds in sets]
+    out = ['<h3 id="ripple">Vibration and torque ripple at the roller pass frequency</h3>']
+    rows = [
+        [text, unit, *(_fmt("", factor * r[key]) for r in ripples)]
+        for key, text, unit, factor in RIPPLE_ROWS
+    ]
+    out.append(table(["quantity", "unit", *labels], rows, numeric_from=2))
+    for label, r in zip(labels, ripples, strict=True):
+        if r["note"]:
+            out.append(f'<p class="note">{html.escape(label)}: {html.escape(r["note"])}</p>')
+    out.append(
+        '<p class="note">Over the outputs at full speed: the rollers pass the load zone '
+        "one by one, so the inner ring's equilibrium repeats every roller pitch and the "
+        "ring vibrates, and the torque ripples, at Z f_c and its harmonics (varying "
+        "compliance; amplitudes of a Hann-windowed Fourier sum at those frequencies, of the "
+        "values less their linear trend). docs/dynamics.md compares them with the "
+        "quasi-static ring over one roller pitch.</p>"
+    )
+    for key, fig in ripple_figures(labels, sets, ripples):
+        out.append(embed(fig, key))
     return out
 
 

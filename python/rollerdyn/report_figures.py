@@ -370,3 +370,54 @@ def _animate_button(label: str, frames, duration_ms: int, fromcurrent: bool = Tr
     if frames is None:
         options["fromcurrent"] = fromcurrent
     return dict(label=label, method="animate", args=[frames, options])
+
+
+def ripple_figures(labels, sets, ripples: list[dict]) -> list:
+    """(key, figure) of the amplitude spectra at full speed (:func:`rollerdyn.ripple.spectra`)
+    of the frictional torque and of the inner ring's displacement across and along the
+    load, up to 4.5 times the roller pass frequency, with its harmonics marked (dotted,
+    the first result's), of the results whose ``ripples`` have amplitudes (none: no
+    figure)."""
+    import plotly.graph_objects as go
+
+    from .ripple import spectra
+
+    measured = [
+        (label, ds, r)
+        for label, ds, r in zip(labels, sets, ripples, strict=True)
+        if r["note"] == ""
+    ]
+    if not measured:
+        return []
+    passing = measured[0][2]["roller_pass_frequency"]
+    panels = (
+        ("ripple_torque", "frictional torque", [("frictional_torque", "", 1.0)], "N·m"),
+        (
+            "ripple_ring",
+            "inner ring displacement",
+            [("ring_z", ", z (across the load)", 1e9), ("ring_y", ", y (along it)", 1e9)],
+            "nm",
+        ),
+    )
+    figs = []
+    found = [(label, spectra(ds)) for label, ds, _ in measured]
+    for key, what, signals, unit in panels:
+        fig = go.Figure()
+        for label, s in found:
+            keep = s["frequency"] <= 4.5 * passing
+            for name, suffix, factor in signals:
+                fig.add_scatter(
+                    x=s["frequency"][keep], y=factor * s[name][keep], name=label + suffix
+                )
+        for k in range(1, 5):
+            fig.add_vline(x=k * passing, line_dash="dot", line_color="#888")
+        fig.update_layout(
+            title=f"{what} at full speed: amplitude spectrum (dotted: k times the roller "
+            "pass frequency)",
+            xaxis_title="frequency [Hz]",
+            yaxis_title=f"amplitude [{unit}]",
+            yaxis_type="log",
+            **LAYOUT,
+        )
+        figs.append((key, fig))
+    return figs

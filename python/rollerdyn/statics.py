@@ -42,6 +42,7 @@ STATIC_FIELDS: dict[str, tuple[str, str]] = {
     "inner_ring.misalignment": ("misalignment", "angle"),
     "moment_y": ("moment_y", "torque"),
     "moment_z": ("moment_z", "torque"),
+    "roller_set_phase": ("roller_set_phase", "angle"),
 }
 """What a statics sweep can vary: the load case (path -> (case field, unit family)). Other
 configuration values change the model; sweep them with ``rollerdyn sweep``."""
@@ -58,8 +59,10 @@ class StaticsError(ValueError):
 @dataclass(frozen=True)
 class StaticCase:
     """One load case (SI): loads on the inner ring (radial along -y, axial along +x), the
-    tilting moment about y and z, the inner ring speed, and the ring's misalignment about z
-    (None: the ring's tilt is free and found from the moment)."""
+    tilting moment about y and z, the inner ring speed, the ring's misalignment about z
+    (None: the ring's tilt is free and found from the moment), and the roller set's phase
+    [rad]: its turn from the place with roller 0 under the load (the ring's equilibrium
+    repeats every roller pitch, 2 pi / Z: the varying compliance, docs/statics.md)."""
 
     radial_load: float
     axial_load: float
@@ -67,6 +70,7 @@ class StaticCase:
     misalignment: float | None
     moment_y: float = 0.0
     moment_z: float = 0.0
+    roller_set_phase: float = 0.0
 
     def core(self) -> tuple:
         tilt = None if self.misalignment is None else (0.0, self.misalignment)
@@ -77,6 +81,7 @@ class StaticCase:
             self.moment_z,
             self.speed,
             tilt,
+            self.roller_set_phase,
         )
 
 
@@ -126,14 +131,20 @@ def statics(
     speed: float | None = None,
     misalignment: float | None = None,
     moment: tuple[float, float] | None = None,
+    roller_set_phase: float | None = None,
     contamination: float = DEFAULT_CONTAMINATION,
 ) -> xr.Dataset:
     """The equilibrium of one load case (SI values; None: the configuration's, after its
     ramps). A ``moment`` (N*m about y and z) frees the ring's tilt; a ``misalignment`` (rad)
-    prescribes it. Raises :class:`StaticsError` when the bearing has no equilibrium for it."""
+    prescribes it; ``roller_set_phase`` (rad, default 0: roller 0 under the load) turns the
+    roller set. Raises :class:`StaticsError` when the bearing has no equilibrium for it."""
     cfg = as_config(config)
     given = dict(
-        radial_load=radial_load, axial_load=axial_load, speed=speed, misalignment=misalignment
+        radial_load=radial_load,
+        axial_load=axial_load,
+        speed=speed,
+        misalignment=misalignment,
+        roller_set_phase=roller_set_phase,
     )
     case = _case_with(config_case(cfg), moment=moment, **given)
     for path, (field, _) in STATIC_FIELDS.items():
@@ -584,6 +595,9 @@ def _case_variables(
         (),
         "rad",
         "prescribed tilt about z (NaN: free)",
+    )
+    data["roller_set_phase_applied"] = _var(
+        case.roller_set_phase, (), "rad", "roller set's turn from roller 0 under the load"
     )
     return data
 

@@ -11,8 +11,8 @@ use rollerdyn_core::bearing::quasi_static::{RingTilt, StaticCase, StaticSolution
 
 /// A load case as Python hands it over: (radial load [N], axial load [N], moment about y
 /// [N·m], moment about z [N·m], inner ring speed [rad/s], prescribed tilt (θ_y, θ_z)
-/// [rad] or None for a free tilt).
-type Case = (f64, f64, f64, f64, f64, Option<(f64, f64)>);
+/// [rad] or None for a free tilt, the roller set's phase [rad]).
+type Case = (f64, f64, f64, f64, f64, Option<(f64, f64)>, f64);
 
 /// The core's case of `c`.
 fn case_of(c: &Case) -> StaticCase {
@@ -25,6 +25,7 @@ fn case_of(c: &Case) -> StaticCase {
             Some((a, b)) => RingTilt::Prescribed(a, b),
             None => RingTilt::Free,
         },
+        roller_set_phase: c.6,
     }
 }
 

@@ -25,7 +25,9 @@ def statics_command(
             help="Vary the load case: PATH=START:STOP:COUNT or PATH=VALUE[,VALUE...], PATH "
             "one of operating.radial_load, operating.axial_load [N], "
             "operating.inner_ring_speed [rad/s], inner_ring.misalignment [rad], moment_y, "
-            'moment_z [N*m]. Values carry a unit ("3000 rpm", "0.05 deg") or are bare '
+            "moment_z [N*m], roller_set_phase [rad] (the roller set turned from roller 0 "
+            "under the load; over one pitch, 360 deg / Z, the ring's equilibrium shows the "
+            'varying compliance). Values carry a unit ("3000 rpm", "0.05 deg") or are bare '
             'numbers in the SI unit in brackets: --set operating.radial_load="0:10000:101"; '
             "quoted as in the configuration file or not. "
             "One value changes the case; more make a sweep (the cartesian product of all "

@@ -69,6 +69,13 @@ pub struct StaticCase {
     pub speed: f64,
     /// The ring's tilt.
     pub tilt: RingTilt,
+    /// The roller set's turn from its reference place [rad]: roller i at azimuth
+    /// π + 2πi/Z + φ ([`super::model::BearingModel::roller_azimuths`]), roller 0 under the
+    /// load at φ = 0. Over one roller pitch, 2π/Z, the ring's equilibrium passes through
+    /// every place it takes as the roller set turns: the varying compliance of a bearing
+    /// whose rollers pass the load zone one by one (Sunnersjö, J. Sound Vib. 58 (1978)
+    /// 363).
+    pub roller_set_phase: f64,
 }
 
 impl StaticCase {
@@ -85,6 +92,7 @@ impl StaticCase {
             } else {
                 RingTilt::Prescribed(0.0, params.inner_ring_misalignment)
             },
+            roller_set_phase: 0.0,
         }
     }
 
@@ -96,6 +104,7 @@ impl StaticCase {
             ("moment about y", self.moment[0]),
             ("moment about z", self.moment[1]),
             ("speed", self.speed),
+            ("roller_set_phase", self.roller_set_phase),
         ];
         for (name, value) in named {
             if !value.is_finite() {

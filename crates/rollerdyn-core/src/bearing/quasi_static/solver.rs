@@ -84,7 +84,11 @@ impl<'a> Problem<'a> {
         let pitch = model.pitch_radius();
         let r = p.roller.radius;
         let orbit = 0.5 * case.speed * (1.0 - r / pitch);
-        let azimuths = model.roller_azimuths();
+        let azimuths: Vec<f64> = model
+            .roller_azimuths()
+            .into_iter()
+            .map(|psi| psi + case.roller_set_phase)
+            .collect();
         Self {
             model,
             case: *case,
@@ -157,6 +161,18 @@ impl<'a> Problem<'a> {
     /// Whether roller i is computed rather than mirrored from its partner.
     pub(super) fn computed(&self, i: usize) -> bool {
         self.mirror.as_ref().is_none_or(|m| m.computed(i))
+    }
+
+    /// A start for a case with a mirror symmetry taken from one without (a neighbouring
+    /// case of a sweep over the roller set's phase): the ring's move along z and tilt about
+    /// y, which the symmetric case does not solve for, set to their value 0, and each
+    /// mirrored roller set from its partner. Without the symmetry `u` is kept.
+    fn symmetric_start(&self, mut u: Vec<f64>) -> Vec<f64> {
+        if self.mirror.is_some() {
+            (u[2], u[3]) = (0.0, 0.0);
+            self.symmetrize(&mut u);
+        }
+        u
     }
 
     /// Sets each mirrored roller's unknowns in `u` from its partner's.
@@ -656,7 +672,7 @@ impl BearingSystem<'_> {
     ) -> Result<StaticSolution> {
         case.check()?;
         let mut problem = Problem::new(*self, case);
-        let from = start.map(|s| unknowns_of(s, &problem));
+        let from = start.map(|s| problem.symmetric_start(unknowns_of(s, &problem)));
         let (u, r, iterations) = problem.solve(from)?;
         let forces = problem.evaluate(&u, true);
         let mut ring_load = Wrench::default();
