@@ -43,7 +43,8 @@ HARMONICS = 3
 #: (4 / duration wide) takes in the neighbouring harmonics and the slow drift.
 MIN_PERIODS = 6.0
 
-#: What :func:`ripple` measures: name -> (how it is read from a result, unit, description).
+#: What :func:`ripple` measures: name -> (unit, description); ``ring_y`` and ``ring_z``
+#: are the components of the result's ``ring_position``.
 RIPPLE_SIGNALS = {
     "frictional_torque": ("N*m", "bearing frictional torque"),
     "ring_y": ("m", "inner ring displacement along y (the radial load's line)"),
@@ -95,8 +96,9 @@ def amplitude_at(time, values, frequency: float) -> float:
     """The amplitude of the sinusoid at ``frequency`` [Hz] in ``values`` sampled at ``time``
     [s] (evenly): the Fourier coefficient at that frequency of the detrended values under a
     Hann window, 2|sum w x e^(-i 2 pi f t)| / sum w, exact for a sinusoid whatever the
-    number of its periods, up to the leakage of the other components (below 1e-3 of a
-    neighbour two spectral lines away)."""
+    number of its periods, up to the leakage of the other components: the window's
+    transform, |sinc(d) / (1 - d^2)| of a component d spectral lines (1 / duration) away,
+    below 2e-3 of one at least :data:`MIN_PERIODS` lines away."""
     t = np.asarray(time, dtype=float)
     x = _detrended(t, np.asarray(values, dtype=float))
     w = np.hanning(t.size)
