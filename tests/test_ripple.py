@@ -182,6 +182,17 @@ def test_the_report_and_the_plots_show_the_ripple(turning_run, tmp_path):
     )
 
 
+def test_a_sweeps_summary_has_the_rings_vibration(turning_run):
+    from rollerdyn.sweep import summarize
+
+    _, ds, part = turning_run
+    row, r = summarize(part), ripple(part)
+    assert row["ring_amplitude_z [m]"] == r["ring_z_amplitude_1"] > 5e-8
+    assert row["ring_amplitude_y [m]"] == r["ring_y_amplitude_1"]
+    assert row["roller_pass_frequency [Hz]"] == r["roller_pass_frequency"]
+    assert math.isnan(summarize(ds.sel(time=slice(0.0, 0.03)))["ring_amplitude_z [m]"])
+
+
 def test_a_short_run_has_no_amplitudes_and_says_why(turning_run):
     _, ds, _ = turning_run
     r = ripple(ds.sel(time=slice(0.0, 0.03)))

@@ -71,6 +71,13 @@ SUMMARY_COLUMNS = {
     "any roller, any output time at which the inner ring turns; NaN outputs ignored; NaN "
     "if the ring never turns: the ratio has no meaning before, or if the runs do not record "
     "the rollers)",
+    "roller_pass_frequency [Hz]": "the rate Z f_c at which rollers pass a point of the "
+    "outer ring at full speed (rollerdyn.ripple; f_c the rollers' mean orbital speed, or the "
+    "kinematic one without the rollers)",
+    "ring_amplitude_y [m]": "the inner ring's vibration along the radial load at Z f_c, "
+    "over the outputs at full speed (the varying compliance, docs/dynamics.md; NaN with "
+    "fewer than 6 roller passes at full speed)",
+    "ring_amplitude_z [m]": "the same across the load",
     "steps": "integrator steps",
     "note": "what the run noted about itself: that it crawled, with its likely cause "
     "(attribute crawl_note of its result: rollerdyn.simulate); empty otherwise",
@@ -349,6 +356,7 @@ def build_grid(
 def summarize(ds) -> dict:
     """The summary numbers of one result Dataset (see :data:`SUMMARY_COLUMNS`)."""
     from .report import max_abs_srr_inner
+    from .ripple import ripple
 
     def finite_max(values) -> float:
         arr = np.asarray(values, dtype=float)
@@ -370,6 +378,7 @@ def summarize(ds) -> dict:
         if name in ds
     ]
     flange = ds["flange_normal_force"].values if "flange_normal_force" in ds else []
+    vibration = ripple(ds) if time_.size else {}
     return {
         "final_time [s]": float(ds.attrs.get("final_time_s", math.nan)),
         "mean_frictional_torque [N*m]": torque,
@@ -377,6 +386,9 @@ def summarize(ds) -> dict:
         "max_race_load [N]": finite_max(np.concatenate(race) if race else []),
         "max_flange_normal_force [N]": finite_max(flange),
         "max_abs_srr_inner [1]": max_abs_srr_inner(ds) if "srr_inner" in ds else math.nan,
+        "roller_pass_frequency [Hz]": vibration.get("roller_pass_frequency", math.nan),
+        "ring_amplitude_y [m]": vibration.get("ring_y_amplitude_1", math.nan),
+        "ring_amplitude_z [m]": vibration.get("ring_z_amplitude_1", math.nan),
         "steps": int(ds.attrs.get("stats_steps", 0)),
         "note": str(ds.attrs.get("crawl_note", "")),
     }
@@ -397,6 +409,9 @@ def _empty_numbers() -> dict:
         "max_race_load [N]": math.nan,
         "max_flange_normal_force [N]": math.nan,
         "max_abs_srr_inner [1]": math.nan,
+        "roller_pass_frequency [Hz]": math.nan,
+        "ring_amplitude_y [m]": math.nan,
+        "ring_amplitude_z [m]": math.nan,
         "steps": 0,
         "note": "",
     }

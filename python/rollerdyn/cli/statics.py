@@ -201,7 +201,14 @@ def _print_case(ds) -> None:
 def _print_sweep(ds) -> None:
     swept = ds.attrs["swept"].split(",")
     table = Table(title=f"quasi-static sweep: {ds.sizes['case']} cases")
-    columns = ["heaviest roller [N]", "ring y [um]", "s_0 (ISO 76)", "s_0 races", "L_10r [1e6 rev]"]
+    columns = [
+        "heaviest roller [N]",
+        "ring y [um]",
+        "ring z [um]",
+        "s_0 (ISO 76)",
+        "s_0 races",
+        "L_10r [1e6 rev]",
+    ]
     units = [ds[s].attrs.get("units", "") for s in swept]
     for name in [*(f"{s} [{u}]" if u else s for s, u in zip(swept, units, strict=True)), *columns]:
         table.add_column(name)
@@ -212,7 +219,9 @@ def _print_sweep(ds) -> None:
         table.add_row(
             *[f"{float(row[s]):.6g}" for s in swept],
             f"{float(row.max_roller_load):.6g}",
-            f"{float(row.ring_displacement[1]) * 1e6:.4g}",
+            # six digits: a sweep over roller_set_phase moves the ring by nanometres
+            f"{float(row.ring_displacement[1]) * 1e6:.6g}",
+            f"{float(row.ring_displacement[2]) * 1e6:.6g}",
             f"{float(row.s0):.4g}",
             f"{float(row.s0_races):.4g}",
             f"{float(row.l10r):.4g}",
