@@ -111,6 +111,22 @@ def test_the_statics_over_one_roller_pitch_repeat_and_mirror():
     np.testing.assert_allclose(ds.roller_set_phase.values, phases)
 
 
+def test_a_phase_beyond_one_turn_or_not_an_angle_is_refused_by_name():
+    from typer.testing import CliRunner
+
+    from rollerdyn.cli import app
+    from rollerdyn.statics import StaticsError, statics
+
+    with pytest.raises(StaticsError, match=r"roller_set_phase.*one turn"):
+        statics(B1, roller_set_phase=7.0)
+    with pytest.raises(StaticsError, match=r"roller_set_phase = nan: must be finite"):
+        statics(B1, roller_set_phase=math.nan)
+    for value, says in (("400 deg", "one turn"), ("5 N", "expected an angle")):
+        done = CliRunner().invoke(app, ["statics", str(B1), "--set", f"roller_set_phase={value}"])
+        assert done.exit_code == 2 and says in done.output, done.output
+        assert "Traceback" not in done.output
+
+
 def _statics_fundamental(cfg, axis: str) -> float:
     """The amplitude of the quasi-static ring displacement along ``axis`` at the first
     harmonic of the roller pitch: its Fourier coefficient over 32 phases of one pitch."""

@@ -207,7 +207,8 @@ def check_range(
 ) -> None:
     """The configuration's rules for the load case's fields, on the values of a sweep
     option (``--set path=text``): loads up to the configuration's load limit (radial ones not
-    negative), speeds up to its pitch-circle speed, misalignments within 1 deg. Raises
+    negative), speeds up to its pitch-circle speed, misalignments within 1 deg, the roller
+    set's phase within one turn. Raises
     :class:`StaticsError` naming the option (or ``label``), the value and the rule."""
     from .config.base import MAX_MISALIGNMENT_DEG, MAX_PITCH_SPEED
 
@@ -222,6 +223,8 @@ def check_range(
             rule = f"must give a pitch-circle speed of at most {MAX_PITCH_SPEED:g} m/s"
         elif field == "misalignment" and not abs(v) <= math.radians(MAX_MISALIGNMENT_DEG):
             rule = f"must lie within +-{MAX_MISALIGNMENT_DEG:g} deg, as inner_ring.misalignment"
+        elif field == "roller_set_phase" and not abs(v) <= 2.0 * math.pi:
+            rule = "must lie within one turn of the roller set, +-360 deg"
         else:
             continue
         raise StaticsError(f"{label or f'--set {path}={text}'}: {v:.6g} (SI) {rule}")

@@ -111,6 +111,14 @@ impl StaticCase {
                 return Err(Error::invalid(name, value, "must be finite"));
             }
         }
+        if self.roller_set_phase.abs() > std::f64::consts::TAU {
+            // far beyond a turn the azimuths' sines lose their digits
+            return Err(Error::invalid(
+                "roller_set_phase",
+                format!("{} rad", self.roller_set_phase),
+                "must lie within one turn, |phase| <= 2 pi",
+            ));
+        }
         if let RingTilt::Prescribed(a, b) = self.tilt {
             if !(a.is_finite() && b.is_finite() && a.abs() < 0.1 && b.abs() < 0.1) {
                 return Err(Error::invalid(

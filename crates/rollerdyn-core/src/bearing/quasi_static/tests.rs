@@ -329,6 +329,16 @@ fn loads_past_the_flanges_and_nan_are_refused() {
             "{e}"
         );
     }
+    // a phase of many turns, whose azimuths' sines would have lost their digits
+    let turned = StaticCase {
+        roller_set_phase: 1e300,
+        ..at_rest(5000.0, 1000.0)
+    };
+    let e = m.statics(&turned, None).unwrap_err().to_string();
+    assert!(
+        e.contains("roller_set_phase") && e.contains("one turn"),
+        "{e}"
+    );
 }
 
 #[test]
