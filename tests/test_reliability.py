@@ -342,6 +342,7 @@ def test_the_core_checks_its_own_run_options(b1, option, value):
         "start": "rest",
         "min_mean_step": 2e-8,
         "check_flange_law": True,
+        "roller_records": True,
         option: value,
     }
     with pytest.raises(ValueError, match=option):

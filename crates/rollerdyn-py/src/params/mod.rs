@@ -62,7 +62,7 @@ pub(crate) fn run_options(d: &Bound<'_, PyDict>) -> PyResult<(RunOptions, Option
         start_from_equilibrium: s.start == Some(Start::Equilibrium),
         min_mean_step: s.min_mean_step,
         check_flange_law: s.check_flange_law,
-        roller_records: s.roller_records.0.unwrap_or(true),
+        roller_records: s.roller_records,
     };
     Ok((options, s.threads.0))
 }

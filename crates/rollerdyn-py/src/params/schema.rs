@@ -217,9 +217,8 @@ section! {
         /// Refuse a point-law run whose loads press a roller end onto its end face
         /// (`simulate(force=True)` sends false).
         check_flange_law: bool,
-        /// Keep the per-roller records of every output (`solver.outputs` not empty); left
-        /// out: kept.
-        roller_records: Omittable<bool>,
+        /// Keep the per-roller records of every output (`solver.outputs` not empty).
+        roller_records: bool,
     }
 }
 
