@@ -71,6 +71,7 @@ REQUIRED = (
     "radial_load",
     "axial_load",
     "ring_speed",
+    "ring_position",
     "azimuth",
     "skew",
     "position",

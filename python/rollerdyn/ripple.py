@@ -153,7 +153,7 @@ def ripple(ds: xr.Dataset, geometry: tuple[float, float] | None = None) -> dict:
 
     part = full_speed(ds)
     t = np.asarray(part.time.values, dtype=float)
-    z = int(ds.sizes["roller"])
+    z = int(ds.sizes.get("roller", 0))
     ring_speed = float(np.mean(part.ring_speed.values))
     geometry = geometry if geometry is not None else result_geometry(ds)
     kinematic = math.nan
