@@ -176,22 +176,18 @@ def ripple_spectra(sets: list, save) -> None:
     :data:`rollerdyn.ripple.MIN_PERIODS` roller passes at full speed."""
     import matplotlib.pyplot as plt
 
-    from .ripple import ripple, spectra
+    from .ripple import ripple, shown_spectra
 
-    shown = [(p, ds, ripple(ds)) for p, ds in sets]
-    shown = [(p, ds, r) for p, ds, r in shown if r["note"] == ""]
+    passing, harmonics, shown = shown_spectra((p, ds, ripple(ds)) for p, ds in sets)
     if not shown:
         return
-    passing = shown[0][2]["roller_pass_frequency"]
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
-    for p, ds, _ in shown:
-        s = spectra(ds)
-        keep = s["frequency"] <= 4.5 * passing
-        top.semilogy(s["frequency"][keep], s["frictional_torque"][keep], label=_label(ds, p))
-        bottom.semilogy(s["frequency"][keep], 1e9 * s["ring_z"][keep], label=_label(ds, p))
+    for p, ds, s in shown:
+        top.semilogy(s["frequency"], s["frictional_torque"], label=_label(ds, p))
+        bottom.semilogy(s["frequency"], 1e9 * s["ring_z"], label=_label(ds, p))
     for ax in (top, bottom):
-        for k in range(1, 5):
-            ax.axvline(k * passing, color="0.6", linestyle=":", linewidth=1)
+        for f in harmonics:
+            ax.axvline(f, color="0.6", linestyle=":", linewidth=1)
     top.set(
         ylabel="torque amplitude [N m]",
         title=f"ripple at full speed (dotted: k x the roller pass frequency {passing:.4g} Hz)",

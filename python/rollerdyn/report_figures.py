@@ -380,16 +380,11 @@ def ripple_figures(labels, sets, ripples: list[dict]) -> list:
     figure)."""
     import plotly.graph_objects as go
 
-    from .ripple import spectra
+    from .ripple import shown_spectra
 
-    measured = [
-        (label, ds, r)
-        for label, ds, r in zip(labels, sets, ripples, strict=True)
-        if r["note"] == ""
-    ]
-    if not measured:
+    _, harmonics, shown = shown_spectra(zip(labels, sets, ripples, strict=True))
+    if not shown:
         return []
-    passing = measured[0][2]["roller_pass_frequency"]
     panels = (
         ("ripple_torque", "frictional torque", [("frictional_torque", "", 1.0)], "N·m"),
         (
@@ -400,17 +395,13 @@ def ripple_figures(labels, sets, ripples: list[dict]) -> list:
         ),
     )
     figs = []
-    found = [(label, spectra(ds)) for label, ds, _ in measured]
     for key, what, signals, unit in panels:
         fig = go.Figure()
-        for label, s in found:
-            keep = s["frequency"] <= 4.5 * passing
+        for label, _, s in shown:
             for name, suffix, factor in signals:
-                fig.add_scatter(
-                    x=s["frequency"][keep], y=factor * s[name][keep], name=label + suffix
-                )
-        for k in range(1, 5):
-            fig.add_vline(x=k * passing, line_dash="dot", line_color="#888")
+                fig.add_scatter(x=s["frequency"], y=factor * s[name], name=label + suffix)
+        for f in harmonics:
+            fig.add_vline(x=f, line_dash="dot", line_color="#888")
         fig.update_layout(
             title=f"{what} at full speed: amplitude spectrum (dotted: k times the roller "
             "pass frequency)",

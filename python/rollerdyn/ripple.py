@@ -207,6 +207,29 @@ def spectra(ds: xr.Dataset) -> dict | None:
     return out
 
 
+#: How far the figures draw the spectra: up to this many times the roller pass frequency.
+SPECTRUM_REACH = 4.5
+
+
+def shown_spectra(items) -> tuple[float, list[float], list]:
+    """What the ripple figures draw of ``items`` (name, result, its :func:`ripple`): the
+    first measured result's roller pass frequency [Hz], its harmonics within the reach,
+    and (name, result, :func:`spectra` cut at :data:`SPECTRUM_REACH` times that frequency)
+    for each result whose ripple has amplitudes; (NaN, [], []) where none has."""
+    measured = [(name, ds, r) for name, ds, r in items if r["note"] == ""]
+    if not measured:
+        return math.nan, [], []
+    passing = measured[0][2]["roller_pass_frequency"]
+    top = SPECTRUM_REACH * passing
+    cut = []
+    for name, ds, _ in measured:
+        s = spectra(ds)
+        keep = s["frequency"] <= top
+        cut.append((name, ds, {k: v[keep] for k, v in s.items()}))
+    harmonics = [k * passing for k in range(1, int(SPECTRUM_REACH) + 1)]
+    return passing, harmonics, cut
+
+
 #: The report's and the command line's rows of :func:`ripple`: (key, text, unit, factor
 #: from SI).
 RIPPLE_ROWS = (

@@ -336,7 +336,7 @@ def run_options(config: BearingConfig, t_end: float, force: bool = False) -> dic
         # the point law's load check before the first step
         "check_flange_law": not force,
         # per-roller records only for a result that keeps some of them
-        "roller_records": bool(s.outputs),
+        "roller_records": bool(recorded_groups(config)),
     }
 
 
