@@ -247,6 +247,33 @@ def test_bad_cases_are_refused_with_a_message(b1):
     )
 
 
+def test_a_vertical_shafts_flanges_carry_the_weights_of_ring_and_rollers():
+    """A type NJ arrangement (B1 without the inner ring's -x flange) on a vertical shaft,
+    gravity along -x, no axial load: the inner ring's +x flange carries the ring's weight
+    (1 kg) and the outer ring's -x flange that and the 17 rollers' weight (force balance
+    of the ring and of the roller set; the statics have no friction). Measured 9.81002 and
+    9.91197 N against 9.81 and 9.91198 N; allowed 1e-4 relative: a flange's normal force
+    exceeds its axial part by 1/cos of the opening angle (0.11 deg: 1.8e-6), and the
+    equilibrium is solved to 1e-7 of the load. The missing flange carries nothing; along
+    -x this bearing carries an axial load, along +x it refuses one by name."""
+    g = 9.81
+    cfg = variant(
+        **{
+            "geometry.flanges": ["inner+x", "outer-x", "outer+x"],
+            "operating.gravity": [f"-{g} m/s^2", "0 m/s^2", "0 m/s^2"],
+            "operating.axial_load": "0 N",
+        }
+    )
+    carried = statics(cfg).flange_force.sum("roller")
+    ring, rollers = cfg.inner_ring.mass * g, cfg.geometry.roller_count * cfg.roller_mass * g
+    assert carried.sel(flange="inner+x").item() == pytest.approx(ring, rel=1e-4)
+    assert carried.sel(flange="outer-x").item() == pytest.approx(ring + rollers, rel=1e-4)
+    assert carried.sel(flange=["inner-x", "outer+x"]).values.tolist() == [0.0, 0.0]
+    assert statics(cfg, axial_load=-500.0).max_flange_force.item() > 30.0
+    with pytest.raises(StaticsError, match="no inner-x flange"):
+        statics(cfg, axial_load=500.0)
+
+
 def test_a_value_may_be_quoted_as_in_the_configuration_file():
     """`rollerdyn run --set` takes values as the TOML file writes them ("30 kN", quoted);
     `rollerdyn statics --set` takes the same text, quoted or not, whole or value by value."""

@@ -242,6 +242,7 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
             "outer_raceway_radius": g.outer_raceway_diameter / 2.0,
             "inner_flange": flange(g.inner_flange),
             "outer_flange": flange(g.outer_flange),
+            "flanges": [name in g.flanges for name in FLANGES],
         },
         "materials": {
             "roller_density": m.roller.density,

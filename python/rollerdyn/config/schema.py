@@ -112,6 +112,15 @@ class FlangeConfig(_Section):
 
 _FLANGE_OVERRIDES = ("inner_ring_flange", "outer_ring_flange")
 
+#: The four flanges a bearing may have (``geometry.flanges``; the core's ``_core.FLANGES``):
+#: the inner ring's on the -x and the +x side of the rollers, then the outer ring's.
+FLANGE_NAMES = ("inner-x", "inner+x", "outer-x", "outer+x")
+
+#: The flanges an axial load on the inner ring presses, by its direction: along +x the
+#: inner ring's -x flange pushes the rollers onto the outer ring's +x flange (the core's
+#: ``BearingParams::axial_load_flanges``).
+AXIAL_LOAD_FLANGES = {1.0: ("inner-x", "outer+x"), -1.0: ("inner+x", "outer-x")}
+
 
 class GeometryConfig(GeometryDerived, _Section):
     """``[geometry]``: raceways, clearance, outer ring wall, roller and flanges."""
@@ -125,6 +134,10 @@ class GeometryConfig(GeometryDerived, _Section):
     flange: FlangeConfig
     inner_ring_flange: FlangeConfig | None = None
     outer_ring_flange: FlangeConfig | None = None
+    # Which flanges the rings have (B1, type NUP: all four; NU: the outer ring's two; NJ
+    # and NJG: the outer ring's two and one of the inner ring's; NCF: the inner ring's two
+    # and one of the outer ring's). Absent flanges have no contact.
+    flanges: tuple[Literal[FLANGE_NAMES], ...] = FLANGE_NAMES
 
     @model_validator(mode="before")
     @classmethod
@@ -184,6 +197,7 @@ class GeometryConfig(GeometryDerived, _Section):
                 _mm(r.end_face_radius),
                 f"must be > roller diameter/2 = {_mm(dia / 2)} (convex end face sphere)",
             )
+        self._check_flanges(cross)
         for key in ("flange", *_FLANGE_OVERRIDES):
             fl: FlangeConfig | None = getattr(self, key)
             if fl is None:
@@ -203,6 +217,21 @@ class GeometryConfig(GeometryDerived, _Section):
                 )
         cross.raise_if_any()
         return self
+
+    def _check_flanges(self, cross: _Cross) -> None:
+        """Each flange once, and one on each side of the rollers: nothing else holds them
+        along the axis (the core's ``BearingParams::check``)."""
+        shown = "[" + ", ".join(f'"{f}"' for f in self.flanges) + "]"
+        if len(set(self.flanges)) != len(self.flanges):
+            cross.add("flanges", shown, "names each flange at most once")
+        for side in ("-x", "+x"):
+            if not any(f.endswith(side) for f in self.flanges):
+                cross.add(
+                    "flanges",
+                    shown,
+                    f'needs a flange on the rollers\' {side} side ("inner{side}" or '
+                    f'"outer{side}"): nothing else holds them along the axis',
+                )
 
 
 # --------------------------------------------------------------------------- materials
@@ -628,6 +657,7 @@ class BearingConfig(BearingDerived, _Section):
                 f"gives a density <= 0 at the operating temperature ({t_shown})",
             )
         self._check_operating_limits(cross)
+        self._check_axial_load_flanges(cross)
         if op.end_time is None and op.final_inner_ring_speed == 0.0:
             cross.add(
                 "operating.end_time",
@@ -668,6 +698,34 @@ class BearingConfig(BearingDerived, _Section):
                 + (" and reference_viscosity" if lub.reference_viscosity is not None else "")
                 + ")",
             )
+
+    def _check_axial_load_flanges(self, cross: _Cross) -> None:
+        """An axial load on the inner ring (with the ring's weight along the axis) needs
+        the two flanges it presses (:data:`AXIAL_LOAD_FLANGES`); without one of them
+        nothing holds the ring along the axis (the core's
+        ``BearingParams::check_axial_load_path``)."""
+        op, flanges = self.operating, self.geometry.flanges
+        weight = self.inner_ring.mass * op.gravity[0]
+        if isinstance(op.axial_load, TimeTable):
+            values = op.axial_load.values
+        else:
+            values = (0.0, op.axial_load)  # a ramp from 0, as the core reads it
+        for load in sorted({min(values), max(values)}):
+            along_axis = load + weight
+            if along_axis == 0.0:
+                continue
+            direction = 1.0 if along_axis > 0.0 else -1.0
+            path = AXIAL_LOAD_FLANGES[direction]
+            missing = [f for f in path if f not in flanges]
+            if missing:
+                by_weight = f" with the ring's weight along the axis ({weight:g} N)" if weight else ""
+                cross.add(
+                    "operating.axial_load",
+                    format_si(load, "force"),
+                    f"pushes the inner ring along {'+x' if direction > 0 else '-x'}{by_weight}, "
+                    f'which only the flanges "{path[0]}" and "{path[1]}" carry; '
+                    f'geometry.flanges has no "{missing[0]}"',
+                )
 
     def _check_operating_limits(self, cross: _Cross) -> None:
         """Loads and speeds far beyond what any rolling bearing carries are refused before

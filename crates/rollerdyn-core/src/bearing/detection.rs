@@ -126,6 +126,9 @@ impl BearingSystem<'_> {
         roller: usize,
         k: usize,
     ) -> Option<Contact> {
+        if !self.params.flanges[k] {
+            return None; // a ring without this flange (BearingParams::flanges)
+        }
         self.detect(end, flange, roller, k)
             .map(|c| border::blend(&c, end, flange, &self.params.options.border_bands))
     }

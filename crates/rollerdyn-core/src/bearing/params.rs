@@ -2,6 +2,7 @@
 //! validating and deriving them from a configuration file: the physical parameters
 //! ([`BearingParams`]) and, within them, the numerical settings ([`ModelOptions`]).
 
+use super::topology::FLANGE_NAMES;
 use crate::contact::border::BorderBands;
 use crate::error::{Error, Result};
 use crate::geometry::end_flange::FlangeShape;
@@ -84,6 +85,17 @@ impl History {
                 let rate = (v1 - v0) / (t1 - t0);
                 (v0 + rate * (t - t0), rate)
             }
+        }
+    }
+
+    /// The least and the largest value the history takes (a ramp starts from 0).
+    pub fn extremes(&self) -> (f64, f64) {
+        match self {
+            History::Ramp { value, .. } => (value.min(0.0), value.max(0.0)),
+            History::Table(rows) => rows.iter().fold(
+                (f64::INFINITY, f64::NEG_INFINITY),
+                |(least, most), &(_, v)| (least.min(v), most.max(v)),
+            ),
         }
     }
 
@@ -171,6 +183,14 @@ pub struct BearingParams {
     pub inner_flange: FlangeShape,
     /// Outer ring flange shape (both sides).
     pub outer_flange: FlangeShape,
+    /// Which of the four flanges the rings have, in the order of
+    /// [`FLANGE_NAMES`] (inner ring −x, +x, outer ring −x,
+    /// +x): the paper's B1 has all four; a type NU bearing (ISO 15, DIN 5412-1) only the
+    /// outer ring's two, a type NJ one of the inner ring's besides, an NCF the inner ring's
+    /// two and one of the outer ring's. An absent flange has no contact ([`Self::check`]
+    /// asks for a flange on each side of the rollers and for the two that carry the axial
+    /// load).
+    pub flanges: [bool; 4],
     /// Axial play per roller end and flange at the raceway, roller centred [m].
     pub inner_axial_play: f64,
     /// Same for the outer ring [m].
@@ -323,7 +343,80 @@ impl BearingParams {
         self.radial_load.check("radial_load")?;
         self.axial_load.check("axial_load")?;
         self.inner_ring_speed.check("inner_ring_speed")?;
+        self.check_flanges()?;
+        let (least, most) = self.axial_load.extremes();
+        for axial_load in [least, most] {
+            self.check_axial_load_path("axial_load", axial_load)?;
+        }
         Ok(())
+    }
+
+    /// A flange on each side of the rollers (−x: the inner or the outer ring's −x flange;
+    /// +x likewise): without one the rollers have nothing to hold them along the axis.
+    fn check_flanges(&self) -> Result<()> {
+        for side in [0, 1] {
+            if !(self.flanges[side] || self.flanges[side + 2]) {
+                return Err(Error::invalid(
+                    "flanges",
+                    present_flanges(&self.flanges),
+                    format!(
+                        "the rollers need a flange on their {} side (inner{} or outer{}): \
+                         nothing else holds them along the axis",
+                        ["-x", "+x"][side],
+                        ["-x", "+x"][side],
+                        ["-x", "+x"][side],
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The flanges an axial load on the inner ring presses ([`FLANGE_NAMES`]'s indices):
+    /// along +x the inner ring's −x flange pushes the rollers onto the outer ring's +x
+    /// flange; along −x the inner ring's +x flange onto the outer ring's −x flange.
+    pub fn axial_load_flanges(axial_load: f64) -> [usize; 2] {
+        if axial_load > 0.0 {
+            [0, 3]
+        } else {
+            [1, 2]
+        }
+    }
+
+    /// Refuses an axial load on the inner ring, together with the ring's weight along the
+    /// axis, that one of the two flanges it presses ([`Self::axial_load_flanges`]) is not
+    /// there to carry: nothing would hold the ring along the axis (`name`: the load's
+    /// field).
+    pub fn check_axial_load_path(&self, name: &str, axial_load: f64) -> Result<()> {
+        let along_axis = axial_load + self.inner_ring_mass * self.gravity.x;
+        if along_axis == 0.0 {
+            return Ok(());
+        }
+        let path = Self::axial_load_flanges(along_axis);
+        let Some(&missing) = path.iter().find(|&&k| !self.flanges[k]) else {
+            return Ok(());
+        };
+        let weight = if self.gravity.x == 0.0 {
+            String::new()
+        } else {
+            format!(
+                " with the ring's weight along the axis ({} N)",
+                self.inner_ring_mass * self.gravity.x
+            )
+        };
+        Err(Error::invalid(
+            name,
+            format!("{axial_load} N"),
+            format!(
+                "pushes the inner ring along {}x{weight}, which only the flanges {} and {} \
+                 carry, and the bearing has no {} flange ({})",
+                if along_axis > 0.0 { "+" } else { "-" },
+                FLANGE_NAMES[path[0]],
+                FLANGE_NAMES[path[1]],
+                FLANGE_NAMES[missing],
+                present_flanges(&self.flanges),
+            ),
+        ))
     }
 
     /// A prescribed misalignment within ±1°, and none with the tilt free.
@@ -506,9 +599,70 @@ impl BearingParams {
     }
 }
 
+/// The flanges present, by name ("flanges: inner-x, outer+x").
+fn present_flanges(flanges: &[bool; 4]) -> String {
+    let names: Vec<&str> = (0..4)
+        .filter(|&k| flanges[k])
+        .map(|k| FLANGE_NAMES[k])
+        .collect();
+    format!("flanges: {}", names.join(", "))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::bearing::test_b1::{params, B1};
+
+    /// A bearing without a flange on one side of the rollers is refused by name, and so is
+    /// an axial load (with the ring's weight along the axis) that one of its two flanges
+    /// is not there to carry: along +x the inner ring's −x flange and the outer ring's +x
+    /// flange (type NU has neither inner flange and carries none; NJ one inner flange, and
+    /// carries its direction only).
+    #[test]
+    fn the_rollers_need_a_flange_each_side_and_an_axial_load_its_two() {
+        let with = |flanges: [bool; 4], axial: f64, gravity_x: f64| {
+            let mut p = params(&B1);
+            p.flanges = flanges;
+            p.axial_load = History::constant(axial);
+            p.gravity.x = gravity_x;
+            p.check().map_err(|e| e.to_string())
+        };
+        let nu = [false, false, true, true];
+        let nj = [true, false, true, true];
+        assert!(with([true; 4], 1000.0, 0.0).is_ok());
+        assert!(with(nu, 0.0, 0.0).is_ok());
+        assert!(with(nj, 1000.0, 0.0).is_ok());
+        let e = with([true, false, true, false], 0.0, 0.0).unwrap_err();
+        assert!(
+            e.starts_with("flanges = flanges: inner-x, outer-x") && e.contains("+x side"),
+            "{e}"
+        );
+        let e = with(nu, 1000.0, 0.0).unwrap_err();
+        assert!(
+            e.starts_with("axial_load = 1000 N") && e.contains("no inner-x flange"),
+            "{e}"
+        );
+        let e = with(nj, -1.0, 0.0).unwrap_err();
+        assert!(
+            e.starts_with("axial_load = -1 N") && e.contains("no inner+x flange"),
+            "{e}"
+        );
+        // a vertical shaft: the ring's weight (1 kg) along −x needs the inner ring's +x flange
+        let e = with(nj, 0.0, -9.81).unwrap_err();
+        assert!(
+            e.contains("weight") && e.contains("no inner+x flange"),
+            "{e}"
+        );
+        // a table that turns the load's direction needs all four
+        let mut p = params(&B1);
+        p.flanges = nj;
+        p.axial_load = History::Table(vec![(0.0, 500.0), (1.0, -500.0)]);
+        assert!(p
+            .check()
+            .unwrap_err()
+            .to_string()
+            .contains("no inner+x flange"));
+    }
 
     #[test]
     fn cosine_ramp_is_c1_and_reaches_its_value() {

@@ -111,6 +111,7 @@ pub(crate) fn params(b: &Bearing) -> BearingParams {
         outer_raceway_radius: b.outer / 2.0,
         inner_flange: flange,
         outer_flange: flange,
+        flanges: [true; 4],
         inner_axial_play: 20e-6,
         outer_axial_play: 20e-6,
         e_prime: races.map(|(e, _)| e),

@@ -123,6 +123,7 @@ fn to_core(p: ModelParameters, traction: &EhlTraction) -> PyResult<BearingParams
         outer_raceway_radius: g.outer_raceway_radius,
         inner_flange: flange(&g.inner_flange)?,
         outer_flange: flange(&g.outer_flange)?,
+        flanges: g.flanges,
         inner_axial_play: g.inner_flange.axial_play,
         outer_axial_play: g.outer_flange.axial_play,
         e_prime: contacts.map(|c| c.e_prime),

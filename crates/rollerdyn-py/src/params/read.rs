@@ -132,7 +132,7 @@ macro_rules! extracted {
         }
     )+};
 }
-extracted!(f64, usize, bool, String, Vec<f64>, [f64; 3]);
+extracted!(f64, usize, bool, String, Vec<f64>, [f64; 3], [bool; 4]);
 
 /// A value that must be given but may be None.
 impl<T: Param> Param for Option<T> {

@@ -34,6 +34,9 @@ section! {
         outer_raceway_radius: f64,
         inner_flange: Flange,
         outer_flange: Flange,
+        /// Which flanges the rings have: inner ring −x, +x, outer ring −x, +x
+        /// (`_core.FLANGES`).
+        flanges: [bool; 4],
     }
 
     /// The roller's shape [m] and slicing.

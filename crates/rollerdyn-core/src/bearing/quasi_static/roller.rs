@@ -224,6 +224,13 @@ impl BearingSystem<'_> {
     ) -> FlangeLoad {
         let end = self.roller_end(k, roller);
         let flange = self.flange(k, race);
+        if !self.params.flanges[k] {
+            // a ring without this flange (BearingParams::flanges)
+            return FlangeLoad {
+                penetration: f64::NAN,
+                ..Default::default()
+            };
+        }
         let distributed = self.params.flange_law == FlangeLaw::Distributed;
         // The distributed law carries across gaps within the asperities' reach.
         let reach = if distributed {

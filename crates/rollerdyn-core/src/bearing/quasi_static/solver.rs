@@ -671,6 +671,8 @@ impl BearingSystem<'_> {
         start: Option<&StaticSolution>,
     ) -> Result<StaticSolution> {
         case.check()?;
+        self.params
+            .check_axial_load_path("axial_load", case.axial_load)?;
         let mut problem = Problem::new(*self, case);
         let from = start.map(|s| problem.symmetric_start(unknowns_of(s, &problem)));
         let (u, r, iterations) = problem.solve(from)?;

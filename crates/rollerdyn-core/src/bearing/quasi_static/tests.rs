@@ -5,6 +5,7 @@
 use super::solver::{Problem, RING_UNKNOWNS};
 use super::{RingTilt, StaticCase, FLANGE_PRESSURE_LIMIT, ROLLER_UNKNOWNS};
 use crate::bearing::test_b1::{in_workspace, model, params, Bearing, B1};
+use crate::bearing::topology::Element;
 use crate::bearing::{BearingModel, BearingSystem, FlangeLaw, Workspace};
 use nalgebra::{DMatrix, Matrix2};
 
@@ -627,4 +628,60 @@ fn a_moment_about_y_tilts_the_free_ring_with_lightly_held_rollers() {
             "{moment} N m: held {held} N m"
         );
     }
+}
+
+/// A ring without a flange has no contact there, and a flange that carries nothing
+/// changes nothing when it is taken away. B1 at 1000 N axially presses the inner ring's −x
+/// flange and the outer ring's +x flange; its equilibrium without the other two (type NUP
+/// reduced to the two that carry this load) is the same to the last bit. At that state a
+/// model without the inner ring's −x flange (and so without axial load, which it could not
+/// carry) finds no contact at that flange, where B1 carries about 140 N per loaded end,
+/// and every other contact the same to the last bit.
+#[test]
+fn a_missing_flange_has_no_contact_and_an_idle_one_changes_nothing() {
+    let case = at_rest(5000.0, 1000.0);
+    let solve = |flanges: [bool; 4]| {
+        let mut p = params(&B1);
+        p.flanges = flanges;
+        let m = BearingModel::new(p).unwrap();
+        in_workspace(&m, |s| s.statics(&case, None)).unwrap()
+    };
+    let (all, loaded_only) = (solve([true; 4]), solve([true, false, false, true]));
+    assert_eq!(all.ring, loaded_only.ring);
+    for (a, b) in all.forces.iter().zip(&loaded_only.forces) {
+        let forces = |f: &super::RollerForces| f.flanges.map(|x| x.force);
+        assert_eq!(forces(a), forces(b));
+    }
+    let carried: f64 = all.forces.iter().map(|f| f.flanges[0].force).sum();
+    assert!(carried > 1000.0, "{carried}");
+
+    let full = model(&B1);
+    let y = in_workspace(&full, |m| m.equilibrium_state(0.0)).unwrap();
+    let mut p = params(&B1);
+    (p.flanges[0], p.axial_load) = (false, crate::bearing::History::constant(0.0));
+    let without = BearingModel::new(p).unwrap();
+    let results = |m: &BearingModel| {
+        in_workspace(m, |s| {
+            let kin = s.kinematics(0.0, &y);
+            s.elements()
+                .iter()
+                .map(|e| (*e, s.evaluate(e, &kin)))
+                .collect::<Vec<_>>()
+        })
+    };
+    let (a, b) = (results(&full), results(&without));
+    let mut pressed = 0;
+    for ((element, ra), (_, rb)) in a.iter().zip(&b) {
+        if let Element::End(_, 0) = element {
+            pressed += usize::from(ra.normal > 100.0);
+            assert_eq!((rb.normal, rb.on_b.force.norm()), (0.0, 0.0), "{element:?}");
+        } else {
+            assert_eq!(ra.on_b.force, rb.on_b.force, "{element:?}");
+            assert_eq!(ra.on_b.moment, rb.on_b.moment, "{element:?}");
+        }
+    }
+    assert!(
+        pressed >= 5,
+        "{pressed} ends pressed the inner ring's -x flange"
+    );
 }
