@@ -231,6 +231,30 @@ def test_flange_override(raw: dict) -> None:
     assert g.inner_flange is g.flange
 
 
+@pytest.mark.parametrize(
+    ("flanges", "words"),
+    [
+        (["inner-x", "inner+x", "outer-x", "outer+x"], "all four (type NUP)"),
+        (["outer+x", "outer-x"], "the outer ring's two (type NU)"),
+        (["inner-x", "inner+x"], "the inner ring's two (type N)"),
+        (
+            ["inner+x", "outer-x", "outer+x"],
+            "the outer ring's two and the inner ring's +x (type NJ;",
+        ),
+        (
+            ["inner-x", "inner+x", "outer+x"],
+            "the inner ring's two and the outer ring's +x (type NF;",
+        ),
+        (["inner-x", "outer+x"], "the inner ring's -x and the outer ring's +x"),
+    ],
+)
+def test_flange_arrangement_names_the_bearing_type(raw: dict, flanges, words) -> None:
+    """ISO 15 / DIN 5412-1: NU has ribs on the outer ring only, N on the inner ring only,
+    NJ both on the outer ring and one on the inner, NF the reverse, NUP all four."""
+    data = mutate(mutate(raw, "geometry.flanges", flanges), "operating.axial_load", "0 N")
+    assert parse_config(data).geometry.flange_arrangement.startswith(words)
+
+
 def test_crowned_profile(raw: dict) -> None:
     data = mutate(raw, "geometry.roller.profile", "crowned")
     data = mutate(data, "geometry.roller.crown_drop", "2 um")

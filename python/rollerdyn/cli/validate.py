@@ -106,6 +106,7 @@ def check(
     for name, value, unit in rows:
         table.add_row(name, f"{value:.6g}", unit)
     console.print(table)
+    say(f"flanges: {cfg.geometry.flange_arrangement}")
     for note in [refusal_note(cfg), *configuration_notes(cfg)]:
         if note is not None:
             say(note, "yellow")

@@ -68,6 +68,25 @@ class GeometryDerived:
         return self.roller_count * self.roller_diameter / (math.pi * self.pitch_diameter)
 
     @property
+    def flange_arrangement(self) -> str:
+        """The flanges present in words, with the type they make (ISO 15, DIN 5412-1;
+        the full-complement variant in brackets), e.g. "outer ring's two (type NU)"."""
+        present = set(self.flanges)
+        inner = sorted(f.removeprefix("inner") for f in present if f.startswith("inner"))
+        outer = sorted(f.removeprefix("outer") for f in present if f.startswith("outer"))
+        if len(inner) == 2 and len(outer) == 2:
+            return "all four (type NUP)"
+        if len(outer) == 2:
+            return "the outer ring's two" + (
+                f" and the inner ring's {inner[0]} (type NJ; NJG)" if inner else " (type NU)"
+            )
+        if len(inner) == 2:
+            return "the inner ring's two" + (
+                f" and the outer ring's {outer[0]} (type NF; NCF)" if outer else " (type N)"
+            )
+        return f"the inner ring's {inner[0]} and the outer ring's {outer[0]}"
+
+    @property
     def inner_flange(self) -> FlangeConfig:
         """Flange geometry of the inner ring (both sides)."""
         return self.inner_ring_flange or self.flange

@@ -718,7 +718,8 @@ class BearingConfig(BearingDerived, _Section):
             path = AXIAL_LOAD_FLANGES[direction]
             missing = [f for f in path if f not in flanges]
             if missing:
-                by_weight = f" with the ring's weight along the axis ({weight:g} N)" if weight else ""
+                by_weight = f" with the ring's weight along the axis ({weight:g} N)"
+                by_weight = by_weight if weight else ""
                 cross.add(
                     "operating.axial_load",
                     format_si(load, "force"),

@@ -6,7 +6,8 @@
 //! Every roller i has seven contacts, in this order: the inner race and the outer race
 //! (line contacts by slices, eqs. 2, 3, 11), the neighbour i+1 (slices, eq. 11), and its two
 //! ends against the two inner-ring and the two outer-ring flanges (roller end–flange
-//! contacts, sect. 2; Hertz eqs. 5–8).
+//! contacts, sect. 2; Hertz eqs. 5–8). A flange the rings do not have
+//! ([`super::BearingParams::flanges`]) keeps its contacts here, which never touch.
 
 /// A body of the bearing.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
