@@ -3,7 +3,8 @@
 //! drawn (roller count and slices, shapes through their validated constructors, raceway
 //! radii, plays, densities, ring mass and inertias, η₀, bands, damping, the three load and
 //! speed histories) plus the detector, pruning, mesh resolution, crowning, gravity, the
-//! flange law, the rolling resistance's form and the race film's suction limit;
+//! flange law, the flanges present, the rolling resistance's form and the race film's
+//! suction limit;
 //! the tribology data are B1's (the Python config validates those). No panic anywhere; a
 //! model that builds and finds a start state must give finite rates f(t, y) at the start
 //! and at a perturbed state (rollers pushed into their contacts).
@@ -105,6 +106,7 @@ fn params(r: &mut Reader) -> Option<BearingParams> {
         outer_raceway_radius,
         inner_flange: flange(r, radius)?,
         outer_flange: flange(r, radius)?,
+        flanges: std::array::from_fn(|_| r.flag()),
         inner_axial_play: r.range(0.0, 100e-6),
         outer_axial_play: r.range(0.0, 100e-6),
         e_prime: [2.3e11; 3],
