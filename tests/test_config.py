@@ -255,6 +255,22 @@ def test_flange_arrangement_names_the_bearing_type(raw: dict, flanges, words) ->
     assert parse_config(data).geometry.flange_arrangement.startswith(words)
 
 
+def test_a_vertical_shafts_ring_weight_needs_its_two_flanges(raw: dict) -> None:
+    """Gravity along -x presses the inner ring's 1 kg onto its +x flange, which the
+    rollers pass on to the outer ring's -x flange: an NJ arrangement without the inner
+    ring's +x flange is refused even without an axial load, naming the weight."""
+    data = mutate(raw, "geometry.flanges", ["inner-x", "outer-x", "outer+x"])
+    data = mutate(data, "operating.axial_load", "0 N")
+    parse_config(data)
+    data = mutate(data, "operating.gravity", ["-9.81 m/s^2", "0 m/s^2", "0 m/s^2"])
+    with pytest.raises(ConfigError) as info:
+        parse_config(data)
+    (problem,) = info.value.problems
+    assert problem.path == "operating.axial_load"
+    assert "along -x with the ring's weight along the axis (-9.81 N)" in problem.rule
+    assert 'geometry.flanges has no "inner+x"' in problem.rule
+
+
 def test_crowned_profile(raw: dict) -> None:
     data = mutate(raw, "geometry.roller.profile", "crowned")
     data = mutate(data, "geometry.roller.crown_drop", "2 um")

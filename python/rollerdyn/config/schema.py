@@ -135,8 +135,8 @@ class GeometryConfig(GeometryDerived, _Section):
     inner_ring_flange: FlangeConfig | None = None
     outer_ring_flange: FlangeConfig | None = None
     # Which flanges the rings have (B1, type NUP: all four; NU: the outer ring's two; NJ
-    # and NJG: the outer ring's two and one of the inner ring's; NCF: the inner ring's two
-    # and one of the outer ring's). Absent flanges have no contact.
+    # and NJG: the outer ring's two and one of the inner ring's; NF and NCF: the inner
+    # ring's two and one of the outer ring's). Absent flanges have no contact.
     flanges: tuple[Literal[FLANGE_NAMES], ...] = FLANGE_NAMES
 
     @model_validator(mode="before")

@@ -183,13 +183,12 @@ pub struct BearingParams {
     pub inner_flange: FlangeShape,
     /// Outer ring flange shape (both sides).
     pub outer_flange: FlangeShape,
-    /// Which of the four flanges the rings have, in the order of
-    /// [`FLANGE_NAMES`] (inner ring −x, +x, outer ring −x,
-    /// +x): the paper's B1 has all four; a type NU bearing (ISO 15, DIN 5412-1) only the
-    /// outer ring's two, a type NJ one of the inner ring's besides, an NCF the inner ring's
-    /// two and one of the outer ring's. An absent flange has no contact ([`Self::check`]
-    /// asks for a flange on each side of the rollers and for the two that carry the axial
-    /// load).
+    /// Which of the four flanges the rings have, in the order of [`FLANGE_NAMES`] (inner
+    /// ring −x, +x, outer ring −x, +x): the paper's B1 has all four; a type NU bearing
+    /// (ISO 15, DIN 5412-1) only the outer ring's two, a type NJ one of the inner ring's
+    /// besides, an NF (full complement: NCF) the inner ring's two and one of the outer
+    /// ring's. An absent flange has no contact ([`Self::check`] asks for a flange on each
+    /// side of the rollers and for the two that carry the axial load).
     pub flanges: [bool; 4],
     /// Axial play per roller end and flange at the raceway, roller centred [m].
     pub inner_axial_play: f64,
@@ -409,7 +408,7 @@ impl BearingParams {
             format!("{axial_load} N"),
             format!(
                 "pushes the inner ring along {}x{weight}, which only the flanges {} and {} \
-                 carry, and the bearing has no {} flange ({})",
+                 carry, and the bearing has no {} flange (its flanges: {})",
                 if along_axis > 0.0 { "+" } else { "-" },
                 FLANGE_NAMES[path[0]],
                 FLANGE_NAMES[path[1]],
@@ -599,13 +598,13 @@ impl BearingParams {
     }
 }
 
-/// The flanges present, by name ("flanges: inner-x, outer+x").
+/// The flanges present, by name ("[inner-x, outer+x]").
 fn present_flanges(flanges: &[bool; 4]) -> String {
     let names: Vec<&str> = (0..4)
         .filter(|&k| flanges[k])
         .map(|k| FLANGE_NAMES[k])
         .collect();
-    format!("flanges: {}", names.join(", "))
+    format!("[{}]", names.join(", "))
 }
 
 #[cfg(test)]
@@ -634,7 +633,8 @@ mod tests {
         assert!(with(nj, 1000.0, 0.0).is_ok());
         let e = with([true, false, true, false], 0.0, 0.0).unwrap_err();
         assert!(
-            e.starts_with("flanges = flanges: inner-x, outer-x") && e.contains("+x side"),
+            e.starts_with("flanges = [inner-x, outer-x]: the rollers need")
+                && e.contains("+x side"),
             "{e}"
         );
         let e = with(nu, 1000.0, 0.0).unwrap_err();

@@ -222,8 +222,6 @@ impl BearingSystem<'_> {
         ring: &Kinematics,
         out: &mut RollerForces,
     ) -> FlangeLoad {
-        let end = self.roller_end(k, roller);
-        let flange = self.flange(k, race);
         if !self.params.flanges[k] {
             // a ring without this flange (BearingParams::flanges)
             return FlangeLoad {
@@ -231,6 +229,8 @@ impl BearingSystem<'_> {
                 ..Default::default()
             };
         }
+        let end = self.roller_end(k, roller);
+        let flange = self.flange(k, race);
         let distributed = self.params.flange_law == FlangeLaw::Distributed;
         // The distributed law carries across gaps within the asperities' reach.
         let reach = if distributed {
