@@ -232,27 +232,32 @@ def test_flange_override(raw: dict) -> None:
 
 
 @pytest.mark.parametrize(
-    ("flanges", "words"),
+    ("flanges", "words", "carried"),
     [
-        (["inner-x", "inner+x", "outer-x", "outer+x"], "all four (type NUP)"),
-        (["outer+x", "outer-x"], "the outer ring's two (type NU)"),
-        (["inner-x", "inner+x"], "the inner ring's two (type N)"),
+        (["inner-x", "inner+x", "outer-x", "outer+x"], "all four (type NUP)", "both directions"),
+        (["outer+x", "outer-x"], "the outer ring's two (type NU)", "none"),
+        (["inner-x", "inner+x"], "the inner ring's two (type N)", "none"),
         (
             ["inner+x", "outer-x", "outer+x"],
             "the outer ring's two and the inner ring's +x (type NJ;",
+            "along -x only",
         ),
         (
             ["inner-x", "inner+x", "outer+x"],
             "the inner ring's two and the outer ring's +x (type NF;",
+            "along +x only",
         ),
-        (["inner-x", "outer+x"], "the inner ring's -x and the outer ring's +x"),
+        (["inner-x", "outer+x"], "the inner ring's -x and the outer ring's +x", "along +x only"),
     ],
 )
-def test_flange_arrangement_names_the_bearing_type(raw: dict, flanges, words) -> None:
+def test_flange_arrangement_names_the_bearing_type(raw: dict, flanges, words, carried) -> None:
     """ISO 15 / DIN 5412-1: NU has ribs on the outer ring only, N on the inner ring only,
-    NJ both on the outer ring and one on the inner, NF the reverse, NUP all four."""
+    NJ both on the outer ring and one on the inner, NF the reverse, NUP all four. An axial
+    load along +x on the inner ring needs its -x flange and the outer ring's +x one."""
     data = mutate(mutate(raw, "geometry.flanges", flanges), "operating.axial_load", "0 N")
-    assert parse_config(data).geometry.flange_arrangement.startswith(words)
+    geometry = parse_config(data).geometry
+    assert geometry.flange_arrangement.startswith(words)
+    assert geometry.axial_load_carried == carried
 
 
 def test_a_vertical_shafts_ring_weight_needs_its_two_flanges(raw: dict) -> None:

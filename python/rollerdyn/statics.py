@@ -206,11 +206,13 @@ def check_range(
     cfg: BearingConfig, path: str, text: str, values: Sequence[float], label: str = ""
 ) -> None:
     """The configuration's rules for the load case's fields, on the values of a sweep
-    option (``--set path=text``): loads up to the configuration's load limit (radial ones not
-    negative), speeds up to its pitch-circle speed, misalignments within 1 deg, the roller
-    set's phase within one turn. Raises
-    :class:`StaticsError` naming the option (or ``label``), the value and the rule."""
+    option (``--set path=text``): loads up to the configuration's load limit (radial ones
+    not negative; axial ones only where the bearing has the flanges that carry them),
+    speeds up to its pitch-circle speed, misalignments within 1 deg, the roller set's
+    phase within one turn. Raises :class:`StaticsError` naming the option (or ``label``),
+    the value and the rule."""
     from .config.base import MAX_MISALIGNMENT_DEG, MAX_PITCH_SPEED
+    from .config.schema import axial_load_flange_rule
 
     limit = cfg.load_limit
     field = STATIC_FIELDS[path][0]
@@ -219,6 +221,8 @@ def check_range(
             rule = f"must lie in [0, {limit:.6g}] N (the configuration's load limit)"
         elif field == "axial_load" and not abs(v) <= limit:
             rule = f"must be at most {limit:.6g} N in size (the configuration's load limit)"
+        elif field == "axial_load" and (flanges := axial_load_flange_rule(cfg, v)) is not None:
+            rule = flanges
         elif field == "speed" and not abs(v) * cfg.geometry.pitch_diameter / 2.0 <= MAX_PITCH_SPEED:
             rule = f"must give a pitch-circle speed of at most {MAX_PITCH_SPEED:g} m/s"
         elif field == "misalignment" and not abs(v) <= math.radians(MAX_MISALIGNMENT_DEG):

@@ -106,7 +106,8 @@ def check(
     for name, value, unit in rows:
         table.add_row(name, f"{value:.6g}", unit)
     console.print(table)
-    say(f"flanges: {cfg.geometry.flange_arrangement}")
+    g = cfg.geometry
+    say(f"flanges: {g.flange_arrangement}; axial load carried: {g.axial_load_carried}")
     for note in [refusal_note(cfg), *configuration_notes(cfg)]:
         if note is not None:
             say(note, "yellow")

@@ -40,6 +40,16 @@ class RollerDerived:
         return self.effective_length / self.slices
 
 
+#: The four flanges a bearing may have (``geometry.flanges``; the core's ``_core.FLANGES``):
+#: the inner ring's on the -x and the +x side of the rollers, then the outer ring's.
+FLANGE_NAMES = ("inner-x", "inner+x", "outer-x", "outer+x")
+
+#: The flanges an axial load on the inner ring presses, by its direction: along +x the
+#: inner ring's -x flange pushes the rollers onto the outer ring's +x flange (the core's
+#: ``BearingParams::axial_load_flanges``).
+AXIAL_LOAD_FLANGES = {1.0: ("inner-x", "outer+x"), -1.0: ("inner+x", "outer-x")}
+
+
 class GeometryDerived:
     """Derived values of ``[geometry]``."""
 
@@ -85,6 +95,20 @@ class GeometryDerived:
                 f" and the outer ring's {outer[0]} (type NF; NCF)" if outer else " (type N)"
             )
         return f"the inner ring's {inner[0]} and the outer ring's {outer[0]}"
+
+    @property
+    def axial_load_carried(self) -> str:
+        """The directions of an axial load on the inner ring that the flanges carry
+        (:data:`AXIAL_LOAD_FLANGES`): "both directions", "along +x only", "along -x only"
+        or "none"."""
+        carried = [
+            along
+            for along, direction in (("+x", 1.0), ("-x", -1.0))
+            if set(AXIAL_LOAD_FLANGES[direction]) <= set(self.flanges)
+        ]
+        if len(carried) == 2:
+            return "both directions"
+        return f"along {carried[0]} only" if carried else "none"
 
     @property
     def inner_flange(self) -> FlangeConfig:

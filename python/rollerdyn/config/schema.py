@@ -32,6 +32,8 @@ from .base import (
     _Section,
 )
 from .derived import (
+    AXIAL_LOAD_FLANGES,
+    FLANGE_NAMES,
     BearingDerived,
     DickeDerived,
     GeometryDerived,
@@ -112,14 +114,29 @@ class FlangeConfig(_Section):
 
 _FLANGE_OVERRIDES = ("inner_ring_flange", "outer_ring_flange")
 
-#: The four flanges a bearing may have (``geometry.flanges``; the core's ``_core.FLANGES``):
-#: the inner ring's on the -x and the +x side of the rollers, then the outer ring's.
-FLANGE_NAMES = ("inner-x", "inner+x", "outer-x", "outer+x")
 
-#: The flanges an axial load on the inner ring presses, by its direction: along +x the
-#: inner ring's -x flange pushes the rollers onto the outer ring's +x flange (the core's
-#: ``BearingParams::axial_load_flanges``).
-AXIAL_LOAD_FLANGES = {1.0: ("inner-x", "outer+x"), -1.0: ("inner+x", "outer-x")}
+def axial_load_flange_rule(cfg: BearingConfig, axial_load: float) -> str | None:
+    """Why ``axial_load`` on the inner ring [N] (with the ring's weight along the axis,
+    its mass times the x part of ``operating.gravity``) cannot be carried: along +x the
+    inner ring's -x flange pushes the rollers onto the outer ring's +x flange, along -x
+    the other two (:data:`AXIAL_LOAD_FLANGES`), and one of the two is missing from
+    ``geometry.flanges``; None where it can (the core's
+    ``BearingParams::check_axial_load_path``)."""
+    weight = cfg.inner_ring.mass * cfg.operating.gravity[0]
+    along_axis = axial_load + weight
+    if along_axis == 0.0:
+        return None
+    direction = 1.0 if along_axis > 0.0 else -1.0
+    path = AXIAL_LOAD_FLANGES[direction]
+    missing = [f for f in path if f not in cfg.geometry.flanges]
+    if not missing:
+        return None
+    by_weight = f" with the ring's weight along the axis ({weight:g} N)" if weight else ""
+    return (
+        f"pushes the inner ring along {'+x' if direction > 0 else '-x'}{by_weight}, "
+        f'which only the flanges "{path[0]}" and "{path[1]}" carry; '
+        f'geometry.flanges has no "{missing[0]}"'
+    )
 
 
 class GeometryConfig(GeometryDerived, _Section):
@@ -701,32 +718,17 @@ class BearingConfig(BearingDerived, _Section):
 
     def _check_axial_load_flanges(self, cross: _Cross) -> None:
         """An axial load on the inner ring (with the ring's weight along the axis) needs
-        the two flanges it presses (:data:`AXIAL_LOAD_FLANGES`); without one of them
-        nothing holds the ring along the axis (the core's
-        ``BearingParams::check_axial_load_path``)."""
-        op, flanges = self.operating, self.geometry.flanges
-        weight = self.inner_ring.mass * op.gravity[0]
+        the two flanges it presses (:func:`axial_load_flange_rule`), for the least and the
+        largest value of its history (a ramp from 0, as the core reads it)."""
+        op = self.operating
         if isinstance(op.axial_load, TimeTable):
             values = op.axial_load.values
         else:
-            values = (0.0, op.axial_load)  # a ramp from 0, as the core reads it
+            values = (0.0, op.axial_load)
         for load in sorted({min(values), max(values)}):
-            along_axis = load + weight
-            if along_axis == 0.0:
-                continue
-            direction = 1.0 if along_axis > 0.0 else -1.0
-            path = AXIAL_LOAD_FLANGES[direction]
-            missing = [f for f in path if f not in flanges]
-            if missing:
-                by_weight = f" with the ring's weight along the axis ({weight:g} N)"
-                by_weight = by_weight if weight else ""
-                cross.add(
-                    "operating.axial_load",
-                    format_si(load, "force"),
-                    f"pushes the inner ring along {'+x' if direction > 0 else '-x'}{by_weight}, "
-                    f'which only the flanges "{path[0]}" and "{path[1]}" carry; '
-                    f'geometry.flanges has no "{missing[0]}"',
-                )
+            rule = axial_load_flange_rule(self, load)
+            if rule is not None:
+                cross.add("operating.axial_load", format_si(load, "force"), rule)
 
     def _check_operating_limits(self, cross: _Cross) -> None:
         """Loads and speeds far beyond what any rolling bearing carries are refused before
