@@ -80,7 +80,8 @@ class GeometryDerived:
     @property
     def flange_arrangement(self) -> str:
         """The flanges present in words, with the type they make (ISO 15, DIN 5412-1;
-        the full-complement variant in brackets), e.g. "outer ring's two (type NU)"."""
+        the full-complement variant after a semicolon), e.g. "the outer ring's two (type
+        NU)"."""
         present = set(self.flanges)
         inner = sorted(f.removeprefix("inner") for f in present if f.startswith("inner"))
         outer = sorted(f.removeprefix("outer") for f in present if f.startswith("outer"))
