@@ -553,6 +553,8 @@ def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
         "final_time_s": float(raw["final_time"]),
         "completed": int(raw["error"] is None and not raw["interrupted"]),
         "conventions": "x = bearing axis; on the inner ring: radial load -y, axial load +x",
+        # the flanges the rings have (geometry.flanges); the flange axis names all four
+        "flanges": " ".join(config.geometry.flanges),
         **record_attrs(config),
     }
     for key, value in stats.items():
