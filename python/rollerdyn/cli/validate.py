@@ -64,7 +64,9 @@ def check(
     end time, the outputs to it and the result's size before compression (MB; what
     solver.outputs selects, every solver.output_interval), lubricant state at the run
     temperature (eta0, Roelands z, alpha*) and the line-contact power laws (eq. 11)
-    fitted to Tripp with their errors; then whether `rollerdyn run` would refuse the run
+    fitted to Tripp with their errors; the flanges the rings have (geometry.flanges), the
+    bearing type they make and the axial loads they carry; then whether `rollerdyn run`
+    would refuse the run
     at its start (the point end-flange law's load check, which --force skips), and the
     notes it would print: a configuration known to creep with the point end-flange law (a
     free or prescribed ring tilt), an equilibrium start before the loads, and loads at
