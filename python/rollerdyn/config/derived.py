@@ -40,10 +40,6 @@ class RollerDerived:
         return self.effective_length / self.slices
 
 
-#: The four flanges a bearing may have (``geometry.flanges``; the core's ``_core.FLANGES``):
-#: the inner ring's on the -x and the +x side of the rollers, then the outer ring's.
-FLANGE_NAMES = ("inner-x", "inner+x", "outer-x", "outer+x")
-
 #: The flanges an axial load on the inner ring presses, by its direction: along +x the
 #: inner ring's -x flange pushes the rollers onto the outer ring's +x flange (the core's
 #: ``BearingParams::axial_load_flanges``).

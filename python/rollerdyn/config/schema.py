@@ -16,6 +16,7 @@ from typing import Annotated, Any, Literal
 from pydantic import BeforeValidator, Field, PrivateAttr, StrictBool, model_validator
 from pydantic_core import PydanticCustomError
 
+from ..names import FLANGES
 from ..units import Integer, Number, Quantity, Vector, format_si
 from .base import (
     MAX_HERTZ_PRESSURE,
@@ -33,7 +34,6 @@ from .base import (
 )
 from .derived import (
     AXIAL_LOAD_FLANGES,
-    FLANGE_NAMES,
     BearingDerived,
     DickeDerived,
     GeometryDerived,
@@ -154,7 +154,7 @@ class GeometryConfig(GeometryDerived, _Section):
     # Which flanges the rings have (B1, type NUP: all four; NU: the outer ring's two; NJ
     # and NJG: the outer ring's two and one of the inner ring's; NF and NCF: the inner
     # ring's two and one of the outer ring's). Absent flanges have no contact.
-    flanges: tuple[Literal[FLANGE_NAMES], ...] = FLANGE_NAMES
+    flanges: tuple[Literal[FLANGES], ...] = FLANGES
 
     @model_validator(mode="before")
     @classmethod

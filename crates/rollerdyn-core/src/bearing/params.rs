@@ -353,17 +353,14 @@ impl BearingParams {
     /// A flange on each side of the rollers (−x: the inner or the outer ring's −x flange;
     /// +x likewise): without one the rollers have nothing to hold them along the axis.
     fn check_flanges(&self) -> Result<()> {
-        for side in [0, 1] {
+        for (side, name) in ["-x", "+x"].into_iter().enumerate() {
             if !(self.flanges[side] || self.flanges[side + 2]) {
                 return Err(Error::invalid(
                     "flanges",
                     present_flanges(&self.flanges),
                     format!(
-                        "the rollers need a flange on their {} side (inner{} or outer{}): \
-                         nothing else holds them along the axis",
-                        ["-x", "+x"][side],
-                        ["-x", "+x"][side],
-                        ["-x", "+x"][side],
+                        "the rollers need a flange on their {name} side (inner{name} or \
+                         outer{name}): nothing else holds them along the axis"
                     ),
                 ));
             }
