@@ -21,9 +21,9 @@ def test_check_prints_derived_quantities():
     result = RUNNER.invoke(app, ["check", str(B1)])
     assert result.exit_code == 0, result.output
     assert "roller diameter" in result.output and "0.004495" in result.output
-    # the result's size: 1 289 outputs of 1 137 numbers (rollerdyn.simulation's count,
+    # the result's size: 1 289 outputs of 1 613 numbers (rollerdyn.simulation's count,
     # tests/test_report.py), and of 15 with only the bearing's own outputs
-    assert "1289" in result.output and "11.7247" in result.output
+    assert "1289" in result.output and "16.6333" in result.output
     bare = RUNNER.invoke(app, ["check", str(B1), "--set", "solver.outputs=[]"])
     assert bare.exit_code == 0 and "0.15468" in bare.output, bare.output
 

@@ -728,7 +728,7 @@ BAD = [
         "solver.outputs",
         ["rollers", "cage"],
         "solver.outputs.1",
-        'must be one of "rollers", "flanges" or "power"',
+        'must be one of "rollers", "flanges", "power" or "lubrication"',
     ),
     (
         "output groups not an array",
@@ -1327,7 +1327,8 @@ def test_output_groups_are_taken_once_each_in_their_order():
     the order of OUTPUT_GROUPS; the default records them all, and [] none."""
     from rollerdyn.config.solver import OUTPUT_GROUPS
 
-    assert load_b1().solver.outputs == OUTPUT_GROUPS == ("rollers", "flanges", "power")
+    groups = ("rollers", "flanges", "power", "lubrication")
+    assert load_b1().solver.outputs == OUTPUT_GROUPS == groups
     changed = parse_config(changed_b1({"solver.outputs": ["power", "rollers", "power"]}))
     assert changed.solver.outputs == ("rollers", "power")
     assert parse_config(changed_b1({"solver.outputs": []})).solver.outputs == ()

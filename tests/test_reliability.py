@@ -130,14 +130,17 @@ def _recorded_before_the_move(ds):
     return old
 
 
-def test_a_result_recorded_before_settings_moved_resumes_with_them_in_solver(short_run, b1):
-    old = _recorded_before_the_move(short_run)
-    assert old.attrs["config_sha256"] != short_run.attrs["config_sha256"]
-    check_same_configuration(old.attrs, b1)  # the same values, at their new places
-    t0, y, _ = _resume_point(old, b1, "semi-analytical", 0.006)
-    assert (t0, y) == _resume_point(short_run, b1, "semi-analytical", 0.006)[:2]
+def test_a_result_recorded_before_settings_moved_resumes_with_them_in_solver(b1):
+    # before the move results recorded the groups of solver.outputs of that time
+    three = _changed(b1, "solver", outputs=("rollers", "flanges", "power"))
+    run = simulate(three, t_end=0.003, threads=1)
+    old = _recorded_before_the_move(run)
+    assert old.attrs["config_sha256"] != run.attrs["config_sha256"]
+    check_same_configuration(old.attrs, three)  # the same values, at their new places
+    t0, y, _ = _resume_point(old, three, "semi-analytical", 0.006)
+    assert (t0, y) == _resume_point(run, three, "semi-analytical", 0.006)[:2]
     # a real difference is named as now, with no noise from the moved fields
-    other = _changed(b1, "solver", friction=False)
+    other = _changed(three, "solver", friction=False)
     with pytest.raises(ValueError, match="another configuration") as err:
         simulate(other, t_end=0.006, resume=old, threads=1)
     assert "solver.friction: True -> False" in str(err.value)
@@ -146,14 +149,18 @@ def test_a_result_recorded_before_settings_moved_resumes_with_them_in_solver(sho
 
 def test_a_field_added_later_leaves_the_hash_of_its_default_as_it_was(b1):
     """``solver.outputs`` came after results began to record their configuration's hash:
-    at its default (every group, what every earlier run recorded) a configuration hashes
-    as it did without the field, so earlier results resume and earlier studies go on;
-    another value is a difference like any other."""
-    values = b1.model_dump(mode="json")
+    at what every earlier run recorded (the groups "rollers", "flanges" and "power") a
+    configuration hashes as it did without the field, so such results resume and such
+    studies go on; another value is a difference like any other, and so is today's
+    default, which adds "lubrication": a result without it is not continued as one with
+    it."""
+    earlier = _changed(b1, "solver", outputs=("rollers", "flanges", "power"))
+    values = earlier.model_dump(mode="json")
     del values["solver"]["outputs"]
     hashed = {k: v for k, v in flatten(values).items() if k not in NOT_HASHED}
     before = hashlib.sha256(json.dumps(hashed, sort_keys=True).encode("utf-8")).hexdigest()
-    assert config_hash(b1) == before
+    assert config_hash(earlier) == before
+    assert config_hash(b1) != before
     bare = _changed(b1, "solver", outputs=())
     assert config_hash(bare) != before
 
@@ -201,8 +208,8 @@ def test_a_run_far_beyond_a_normal_one_is_refused_with_its_estimate(b1):
     with pytest.raises(ValueError, match=r"solver.output_interval = 1e-08 s.*GB.*--force"):
         simulate(fine, threads=1)
     # with any group selected the core records every group until the result is built, so
-    # one group costs the run's memory of all three; with none (solver.outputs = []) it
-    # records the bearing's own outputs only: the memory is the file's, 15 of 1 137
+    # one group costs the run's memory of all four; with none (solver.outputs = []) it
+    # records the bearing's own outputs only: the memory is the file's, 15 of 1 613
     # numbers per output (B1: 1 + 11 scalars + 3 + 2, against 17 rollers' records)
     one = _changed(fine, "solver", outputs=("flanges",))
     assert estimated_cost(one, 1.288)["memory_bytes"] == cost["memory_bytes"]
@@ -214,7 +221,7 @@ def test_a_run_far_beyond_a_normal_one_is_refused_with_its_estimate(b1):
     with pytest.raises(ValueError, match=r"solver.output_interval = 1e-08 s.*GB.*--force"):
         simulate(bare, threads=1)  # 1.288e8 outputs of 120 bytes: 15 GB all the same
     every_us = _changed(bare, "solver", output_interval=1e-6)
-    check_cost(every_us, 1.288)  # 1.3e6 outputs: 0.15 GB bare (11.7 GB with the rollers)
+    check_cost(every_us, 1.288)  # 1.3e6 outputs: 0.15 GB bare (16.6 GB with the rollers)
     assert (
         estimated_cost(_changed(every_us, "solver", outputs=("rollers",)), 1.288)["memory_bytes"]
         > MAX_RESULT_BYTES

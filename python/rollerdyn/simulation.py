@@ -451,6 +451,44 @@ _PER_FLANGE_POWER = {
 }
 
 
+#: The lubrication of a contact where its pressure is highest (the slice, or the flange
+#: ellipse, of the largest maximum pressure; not in the paper's outputs): name suffix ->
+#: (units, text). NaN where no slice or ellipse of the contact is in contact.
+_LUBRICATION = {
+    "max_pressure": (
+        "Pa",
+        "maximum (Hertz) pressure p0 of the contact's most loaded slice (eq. 17), or of the "
+        "flange contact ellipse (3F/(2 pi a b))",
+    ),
+    "film_thickness": (
+        "m",
+        "central film thickness h_c there (Moes, the greater of Moes and ZEV between "
+        "rollers, Chittenden at the flanges; thermally corrected, eq. 47)",
+    ),
+    "specific_film_thickness": (
+        "1",
+        "specific film thickness Lambda = h_c / sigma there, sigma the contact's composite "
+        "roughness (< 1 boundary, 1-3 mixed, > 3 full film lubrication)",
+    ),
+    "sliding_speed": ("m/s", "sliding speed |u_B - u_A| there"),
+}
+#: Per roller, the ``lubrication`` group of ``solver.outputs``.
+_PER_ROLLER_LUBRICATION = {
+    f"{contact}_{name}": (units, f"{where}: {text}")
+    for contact, where in (
+        ("inner", "roller-inner race"),
+        ("outer", "roller-outer race"),
+        ("roller_roller", "this roller and the next"),
+    )
+    for name, (units, text) in _LUBRICATION.items()
+}
+#: Per roller end and flange, the ``lubrication`` group of ``solver.outputs``.
+_PER_FLANGE_LUBRICATION = {
+    f"flange_{name}": (units, f"roller end / flange: {text}")
+    for name, (units, text) in _LUBRICATION.items()
+}
+
+
 def output_variables(groups: tuple[str, ...]) -> tuple[dict, dict]:
     """The per-roller and the per-flange variables (name: (units, text)) a result of the
     ``solver.outputs`` ``groups`` holds, besides the bearing's own (:data:`_SCALARS`, the
@@ -459,10 +497,12 @@ def output_variables(groups: tuple[str, ...]) -> tuple[dict, dict]:
     per_roller = {
         **(_PER_ROLLER if "rollers" in groups else {}),
         **(_PER_ROLLER_POWER if "power" in groups else {}),
+        **(_PER_ROLLER_LUBRICATION if "lubrication" in groups else {}),
     }
     per_flange = {
         **(_PER_FLANGE if "flanges" in groups else {}),
         **(_PER_FLANGE_POWER if "power" in groups else {}),
+        **(_PER_FLANGE_LUBRICATION if "lubrication" in groups else {}),
     }
     return per_roller, per_flange
 
@@ -482,8 +522,19 @@ def output_group_of(name: str) -> str | None:
         "rollers": (*_PER_ROLLER, "position"),
         "flanges": (*_PER_FLANGE, "flange_location"),
         "power": (*_PER_ROLLER_POWER, *_PER_FLANGE_POWER),
+        "lubrication": (*_PER_ROLLER_LUBRICATION, *_PER_FLANGE_LUBRICATION),
     }
     return next((g for g, names in groups.items() if name in names), None)
+
+
+def _no_contact_as_nan(data: dict) -> None:
+    """The film, Lambda and sliding speed of a contact without a section in contact (a
+    maximum pressure of 0; the core writes 0) as NaN: there is no such film."""
+    for contact in ("inner", "outer", "roller_roller", "flange"):
+        touching = data[f"{contact}_max_pressure"].values > 0.0
+        for name in ("film_thickness", "specific_film_thickness", "sliding_speed"):
+            var = data[f"{contact}_{name}"]
+            var.values = np.where(touching, var.values, np.nan)
 
 
 def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
@@ -513,6 +564,8 @@ def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
         var("position", ("time", "roller", "xyz"), (nt, z, 3), "m", "roller centre")
     for name, (units, text) in per_flange.items():
         var(name, ("time", "roller", "flange"), (nt, z, 4), units, text)
+    if "lubrication" in config.solver.outputs:
+        _no_contact_as_nan(data)
     if "flanges" in config.solver.outputs:
         var(
             "flange_location",

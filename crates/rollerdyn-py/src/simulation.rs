@@ -12,7 +12,9 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rollerdyn_core::bearing::profile::Profile;
-use rollerdyn_core::bearing::run::{run, Progress, Record, RunCheckpoint, RunOptions, RunOutput};
+use rollerdyn_core::bearing::run::{
+    run, ContactLubrication, Progress, Record, RollerRecord, RunCheckpoint, RunOptions, RunOutput,
+};
 use rollerdyn_core::bearing::{BearingModel, BearingSystem, Workspace};
 use rollerdyn_core::dynamics::integrate::{OdeSystem, Start, Stats};
 use std::ops::ControlFlow;
@@ -340,6 +342,18 @@ fn stats_dict<'py>(py: Python<'py>, s: &Stats, p: &Profile) -> PyResult<Bound<'p
     Ok(stats)
 }
 
+/// One value of a contact's lubrication.
+type LubricationValue = fn(&ContactLubrication) -> f64;
+
+/// The lubrication outputs of every contact, by the name's suffix (the group "lubrication"
+/// of `solver.outputs`).
+const LUBRICATION: [(&str, LubricationValue); 4] = [
+    ("max_pressure", |l| l.max_pressure),
+    ("film_thickness", |l| l.film),
+    ("specific_film_thickness", |l| l.specific_film),
+    ("sliding_speed", |l| l.sliding_speed),
+];
+
 fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let recs = &o.records;
@@ -402,6 +416,22 @@ fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py,
     per_roller!("outer_rolling_power_loss", |x| x.outer_power.rolling);
     per_roller!("roller_roller_rolling_power_loss", |x| x.pair_power.rolling);
     per_roller!("drag_power_loss", |x| x.drag_power_loss);
+    for (contact, of) in [
+        (
+            "inner",
+            (|x| &x.inner_lubrication) as fn(&RollerRecord) -> &ContactLubrication,
+        ),
+        ("outer", |x| &x.outer_lubrication),
+        ("roller_roller", |x| &x.pair_lubrication),
+    ] {
+        for (quantity, value) in LUBRICATION {
+            let v = recs
+                .iter()
+                .flat_map(|r| r.rollers.iter().map(|x| value(of(x))))
+                .collect();
+            put(&format!("{contact}_{quantity}"), v)?;
+        }
+    }
     put(
         "position",
         recs.iter()
@@ -433,6 +463,17 @@ fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py,
     per_flange!("flange_axial_force", |f| f.axial_force);
     per_flange!("flange_power_loss", |f| f.power.loss);
     per_flange!("flange_sliding_power_loss", |f| f.power.sliding);
+    for (quantity, value) in LUBRICATION {
+        let v = recs
+            .iter()
+            .flat_map(|r| {
+                r.rollers
+                    .iter()
+                    .flat_map(|x| x.flanges.iter().map(|f| value(&f.lubrication)))
+            })
+            .collect();
+        put(&format!("flange_{quantity}"), v)?;
+    }
     put(
         "flange_location",
         recs.iter()

@@ -47,8 +47,10 @@ class LineFitConfig(_Section):
 
 #: The groups of outputs a result can hold besides the bearing's own (``solver.outputs``):
 #: per roller its kinematics and race and roller-roller forces; per roller end and flange
-#: its pairing, penetration, forces and location; per contact its power loss and parts.
-OUTPUT_GROUPS = ("rollers", "flanges", "power")
+#: its pairing, penetration, forces and location; per contact its power loss and parts;
+#: per contact its largest pressure and the film, specific film thickness and sliding
+#: speed there.
+OUTPUT_GROUPS = ("rollers", "flanges", "power", "lubrication")
 
 
 #: A run whose steps average dt_max / STALL_FRACTION or less over 10 000 steps has stalled

@@ -82,6 +82,21 @@ pub struct ElementResult {
     /// Of [`Self::power_loss`], the normal forces' part [W]
     /// ([`ContactForces::normal_power`]); the rest is the rolling resistance's.
     pub normal_power: f64,
+    /// The lubrication at the contact's most loaded section (not in the paper's outputs).
+    pub lubrication: Lubrication,
+}
+
+/// The lubrication of a contact where its pressure is highest: the section (slice, or the
+/// one flange ellipse) of the largest maximum pressure p₀, its central film and sliding
+/// speed. All 0 where no section is in contact.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Lubrication {
+    /// Largest maximum pressure p₀ over the sections [Pa] ([`ContactForces::max_pressure`]).
+    pub max_pressure: f64,
+    /// Central film thickness h_c at that section [m] ([`ContactForces::film`]).
+    pub film: f64,
+    /// Sliding speed at that section [m/s] ([`ContactForces::sliding_speed`]).
+    pub sliding_speed: f64,
 }
 
 impl ElementResult {
@@ -121,6 +136,13 @@ impl ElementResult {
         self.tangential += f.tangential;
         self.sliding_power += f.sliding_power;
         self.normal_power += f.normal_power;
+        if f.max_pressure > self.lubrication.max_pressure {
+            self.lubrication = Lubrication {
+                max_pressure: f.max_pressure,
+                film: f.film,
+                sliding_speed: f.sliding_speed,
+            };
+        }
     }
 }
 

@@ -132,8 +132,14 @@ pub struct ContactForces {
     pub moment_a: Vec3,
     /// Pure moment on B (rolling resistance) [N m].
     pub moment_b: Vec3,
-    /// Central film thickness h_c (thermally corrected) [m].
+    /// Central film thickness h_c (thermally corrected) [m]; across a gap (the oil film of
+    /// [`film_slice`]) the gap.
     pub film: f64,
+    /// Maximum (Hertz) pressure p₀ of the section's contact [Pa]: eq. 17 for a slice, the
+    /// ellipse's 3F/(2πab) at a flange; 0 across a gap.
+    pub max_pressure: f64,
+    /// Sliding speed |u_B − u_A| in the contact [m/s] (0 across a gap).
+    pub sliding_speed: f64,
     /// Power the tangential force of sliding (traction, boundary friction, film shear)
     /// takes from the relative motion [W]: −F_t·(u_B − u_A) ≥ 0. Not the rolling
     /// resistance's forces and couples.
@@ -374,10 +380,14 @@ pub fn line_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
         tri.damping_ratio,
         approach,
     );
+    let half_width = line_half_width(f_n, length, kind.r_eff, kind.e_prime);
+    let p0 = line_max_pressure(f_n, half_width, length);
     if !tri.friction {
         return ContactForces {
             normal: f_n,
             normal_power: f_n * approach,
+            max_pressure: p0,
+            sliding_speed: (ub - ua).norm(),
             ..Default::default()
         };
     }
@@ -397,8 +407,6 @@ pub fn line_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
     };
     let phi_th = tri.thermal(u0, slip_norm);
     let h = isothermal * phi_th;
-    let half_width = line_half_width(f_n, length, kind.r_eff, kind.e_prime);
-    let p0 = line_max_pressure(f_n, half_width, length);
     let (rate, scale) = tri.creep(slip_norm);
     let fluid = scale
         * tri
@@ -411,6 +419,8 @@ pub fn line_slice(tri: &Tribology, kind: &LineKind, section: &Section) -> Contac
         normal: f_n,
         tangential: -(f_t / slip_norm) * slip,
         film: h,
+        max_pressure: p0,
+        sliding_speed: slip_squared.sqrt(),
         sliding_power: f_t / slip_norm * slip_squared,
         normal_power: f_n * approach,
         ..Default::default()
@@ -587,15 +597,17 @@ pub fn flange_friction(
         tri.damping_ratio,
         approach,
     );
+    let (max_pressure, semi_major, semi_minor) = ellipse(f_n);
+    let slip = ub - ua;
     if !tri.friction {
         return ContactForces {
             normal: f_n,
             normal_power: f_n * approach,
+            max_pressure,
+            sliding_speed: slip.norm(),
             ..Default::default()
         };
     }
-    let (max_pressure, semi_major, semi_minor) = ellipse(f_n);
-    let slip = ub - ua;
     let slip_squared = slip.norm_squared();
     let slip_norm = (slip_squared + SLIP_FLOOR * SLIP_FLOOR).sqrt();
     let entrainment = 0.5 * (ua + ub);
@@ -618,6 +630,8 @@ pub fn flange_friction(
         normal: f_n,
         tangential: -(f_t / slip_norm) * slip,
         film: h,
+        max_pressure,
+        sliding_speed: slip_squared.sqrt(),
         sliding_power: f_t / slip_norm * slip_squared,
         normal_power: f_n * approach,
         ..Default::default()

@@ -180,6 +180,40 @@ pub struct FlangeRecord {
     pub axial_force: f64,
     /// Power the contact takes from the bodies' motion, and its parts [W].
     pub power: ContactPower,
+    /// Pressure, film and sliding in the contact.
+    pub lubrication: ContactLubrication,
+}
+
+/// The lubrication of one contact at one time, where its pressure is highest (the slice,
+/// or the flange ellipse, of the largest maximum pressure;
+/// [`super::contacts::Lubrication`]). Not among the
+/// paper's outputs; all 0 where no section of the contact is in contact.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ContactLubrication {
+    /// Maximum pressure p₀ [Pa] (eq. 17 of the slice; Hertz's 3F/(2πab) of the flange
+    /// ellipse, with the distributed law that of the ellipse of equal second moments).
+    pub max_pressure: f64,
+    /// Central film thickness h_c there [m] (Moes, or the greater of Moes and ZEV between
+    /// rollers, eqs. 33–44; Chittenden at a flange, eqs. 45, 46; thermally corrected, eq. 47).
+    pub film: f64,
+    /// Specific film thickness Λ = h_c/σ there, σ the contact's composite roughness (the
+    /// ratio eq. 53 shares the load by).
+    pub specific_film: f64,
+    /// Sliding speed |u_B − u_A| there [m/s].
+    pub sliding_speed: f64,
+}
+
+impl ContactLubrication {
+    /// The lubrication of the result `r` of a contact of composite roughness `roughness`.
+    fn of(r: &ElementResult, roughness: f64) -> Self {
+        let l = r.lubrication;
+        Self {
+            max_pressure: l.max_pressure,
+            film: l.film,
+            specific_film: l.film / roughness,
+            sliding_speed: l.sliding_speed,
+        }
+    }
 }
 
 /// The power one contact takes from the motion of its two bodies [W]
@@ -249,6 +283,12 @@ pub struct RollerRecord {
     pub pair_power: ContactPower,
     /// Power the drag of the oil–air mixture takes from this roller's motion [W].
     pub drag_power_loss: f64,
+    /// Pressure, film and sliding at the inner race.
+    pub inner_lubrication: ContactLubrication,
+    /// The same at the outer race.
+    pub outer_lubrication: ContactLubrication,
+    /// The same between this roller and the next.
+    pub pair_lubrication: ContactLubrication,
     /// The four roller end / flange contacts (see [`FLANGE_NAMES`]).
     pub flanges: [FlangeRecord; 4],
 }
@@ -521,7 +561,12 @@ pub fn record(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> Record {
         by_mechanism.sliding += power.sliding;
         by_mechanism.normal += r.normal_power;
         by_mechanism.rolling += power.rolling;
-        fill(&mut rollers, element, r, power);
+        let roughness = match element.line() {
+            Some(line) => system.lines.kind(line).roughness,
+            None => system.ellipse.roughness,
+        };
+        let lubrication = ContactLubrication::of(r, roughness);
+        fill(&mut rollers, element, r, power, lubrication);
     }
     for (i, rec) in rollers.iter_mut().enumerate() {
         let k = &kin.rollers[i];
@@ -552,23 +597,33 @@ pub fn record(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> Record {
     }
 }
 
-/// Roller records from the result `r` of `element`, which takes `power` [W].
-fn fill(rollers: &mut [RollerRecord], element: &Element, r: &ElementResult, power: ContactPower) {
+/// Roller records from the result `r` of `element`, which takes `power` [W] and has
+/// `lubrication`.
+fn fill(
+    rollers: &mut [RollerRecord],
+    element: &Element,
+    r: &ElementResult,
+    power: ContactPower,
+    lubrication: ContactLubrication,
+) {
     match *element {
         Element::Inner(i) => {
             rollers[i].inner_normal = r.normal;
             rollers[i].inner_tangential = r.tangential.norm();
             rollers[i].inner_power = power;
+            rollers[i].inner_lubrication = lubrication;
         }
         Element::Outer(i) => {
             rollers[i].outer_normal = r.normal;
             rollers[i].outer_tangential = r.tangential.norm();
             rollers[i].outer_power = power;
+            rollers[i].outer_lubrication = lubrication;
         }
         Element::Pair(i) => {
             rollers[i].pair_normal = r.normal;
             rollers[i].pair_tangential = r.tangential.norm();
             rollers[i].pair_power = power;
+            rollers[i].pair_lubrication = lubrication;
         }
         Element::End(i, k) => {
             rollers[i].flanges[k] = FlangeRecord {
@@ -579,6 +634,7 @@ fn fill(rollers: &mut [RollerRecord], element: &Element, r: &ElementResult, powe
                 friction_force: r.tangential.norm(),
                 axial_force: r.on_b.force.x,
                 power,
+                lubrication,
             };
         }
     }
