@@ -179,10 +179,10 @@ def test_page_is_self_contained_and_holds_every_part(page, result):
 
 
 def test_page_renders_in_headless_chromium_without_errors(page, tmp_path):
-    # The scripts ran: plotly built a plot container in each of the 10 figures (inputs,
-    # figs. 10, 11, 8, 9, 12, 13, loads over azimuth, one animation per result) and the
-    # page's last script counted them.
-    dom = rendered_dom(page, tmp_path, plots=10)
+    # The scripts ran: plotly built a plot container in each of the 12 figures (inputs,
+    # figs. 10, 11, 8, 9, 12, 13, loads over azimuth, Lambda over azimuth at the inner race
+    # and at the flanges, one animation per result) and the page's last script counted them.
+    dom = rendered_dom(page, tmp_path, plots=12)
     assert len(re.findall(r"class=\"slider-container", dom)) == 2  # one per animation
     assert "updatemenu-button" in dom  # play / pause
 
@@ -269,6 +269,22 @@ def test_the_power_by_contact_adds_up_and_says_when_it_is_not_recorded(result, t
     text = page.read_text(encoding="utf-8")
     assert "Where the power goes" in text and "not recorded (an older file" in text
     assert "<th>rolling resistance</th>" in text
+
+
+def test_the_lubrication_table_is_on_the_page_and_says_when_it_is_not_recorded(result, tmp_path):
+    """The report's table of the lubrication at the contacts (rollerdyn.lubrication,
+    tested in tests/test_lubrication.py): its rows and columns for a result that records
+    it, a note for one that does not."""
+    with xr.open_dataset(result, engine="h5netcdf") as ds:
+        ds = ds.load()
+    bare = ds.drop_vars([v for v in ds.data_vars if v.endswith("_max_pressure")])
+    write(bare, tmp_path / "bare.nc")
+    page = rollerdyn.report([result, tmp_path / "bare.nc"], tmp_path / "p.html", max_frames=2)
+    text = page.read_text(encoding="utf-8")
+    assert "Lubrication at the contacts" in text
+    for words in ("<th>largest maximum pressure p0 [GPa]</th>", "<td>flanges</td>"):
+        assert words in text, words
+    assert 'not recorded (an older file, or solver.outputs without "lubrication")' in text
 
 
 def test_the_cost_estimate_counts_every_number_a_result_holds_per_output(result):

@@ -150,6 +150,21 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
         lambda fig: save(fig, "race_sliding_power_over_azimuth"),
     )
 
+    # the lubrication regime: Lambda at the inner race and at each roller's most loaded
+    # flange contact (rollerdyn.lubrication)
+    over_azimuth(
+        [(p, ds) for p, ds in rolled if recorded(ds, "lubrication")],
+        lambda d: [
+            (", inner race", ".", d.inner_specific_film_thickness),
+            (", flanges", "x", most_loaded_flange(d, "flange_specific_film_thickness")),
+        ],
+        "specific film thickness Lambda = h_c / sigma [-]",
+        "lubrication: Lambda < 1 boundary, 1-3 mixed, > 3 full film\n"
+        "(inner race; each roller's most loaded flange contact)",
+        lambda fig: save(fig, "lubrication_over_azimuth"),
+        yscale="log",
+    )
+
     ripple_spectra(sets, lambda fig: save(fig, "ripple_spectra"))
 
     for ring, title in (("inner", "fig. 8"), ("outer", "fig. 9")) if flanged else ():
@@ -207,10 +222,23 @@ def _per_roller(d: xr.Dataset, var: str) -> xr.DataArray:
     return d[var]
 
 
-def over_azimuth(pairs: list, series, ylabel: str, title: str, save) -> None:
+def most_loaded_flange(d: xr.Dataset, var: str) -> xr.DataArray:
+    """Per roller and output, the per-flange variable ``var`` at the roller's flange
+    contact of the largest maximum pressure (NaN where none of its ends touches)."""
+    pressure = d.flange_max_pressure.values
+    most = np.argmax(pressure, axis=2)[..., None]
+    values = np.take_along_axis(d[var].values, most, axis=2)[..., 0]
+    touching = np.take_along_axis(pressure, most, axis=2)[..., 0] > 0.0
+    return xr.DataArray(np.where(touching, values, np.nan), dims=("time", "roller"))
+
+
+def over_azimuth(
+    pairs: list, series, ylabel: str, title: str, save, yscale: str = "linear"
+) -> None:
     """A figure over the roller azimuth at full speed, rollers pooled: for each (name,
     result) of ``pairs`` the curves ``series(d)`` gives, (label suffix, marker, values of
-    d, the outputs at full speed); ``save(fig)`` keeps it. Nothing without ``pairs``."""
+    d, the outputs at full speed), on a ``yscale`` axis; ``save(fig)`` keeps it. Nothing
+    without ``pairs``."""
     import matplotlib.pyplot as plt
 
     if not pairs:
@@ -226,6 +254,7 @@ def over_azimuth(pairs: list, series, ylabel: str, title: str, save) -> None:
         xlabel="roller azimuth psi [deg] (load zone centre at 180 deg)",
         ylabel=ylabel,
         title=title,
+        yscale=yscale,
     )
     ax.legend(markerscale=5)
     save(fig)

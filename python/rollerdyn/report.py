@@ -27,6 +27,7 @@ from .report_figures import (
     animation_figure,
     azimuth_figures,
     inputs_figure,
+    lubrication_figures,
     nanmax,
     pairing_figures,
     pairing_shares,
@@ -498,7 +499,8 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
     names = ", ".join(html.escape(str(p)) for p in paths)
     body.append(f"<h1>rollerdyn report</h1><p>Results: {names}</p>")
     body.append(
-        '<nav><a href="#summary">summary</a><a href="#ripple">ripple</a>'
+        '<nav><a href="#summary">summary</a><a href="#lubrication">lubrication</a>'
+        '<a href="#ripple">ripple</a>'
         '<a href="#inputs">inputs</a>'
         '<a href="#figures">figures</a><a href="#animation">roller set</a></nav>'
     )
@@ -519,6 +521,7 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
     )
 
     body += _power_section(labels, sets)
+    body += _lubrication_section(labels, sets, embed)
     body += _ripple_section(labels, sets, embed)
 
     # Inputs.
@@ -617,6 +620,40 @@ def _power_section(labels: list[str], sets: list[xr.Dataset]) -> list[str]:
         "part their damping, squeeze and film load (with the elastic energy's rate, which "
         "averages out), and the rolling resistance the rest.</p>"
     )
+    return out
+
+
+def _lubrication_section(labels: list[str], sets: list[xr.Dataset], embed) -> list[str]:
+    """The page's tables of :func:`rollerdyn.lubrication.lubrication_by_contact`, one per
+    result that records it, and the specific film thickness over the azimuth."""
+    from .lubrication import LUBRICATION_COLUMNS, lubrication_by_contact
+
+    out = ['<h3 id="lubrication">Lubrication at the contacts</h3>']
+    header = ["contact", *(f"{text} [{unit}]" for text, unit in LUBRICATION_COLUMNS)]
+    for label, ds in zip(labels, sets, strict=True):
+        rows = lubrication_by_contact(ds, last_outputs(ds))
+        if rows is None:
+            out.append(
+                f'<p class="note">{html.escape(label)}: not recorded (an older file, or '
+                'solver.outputs without "lubrication").</p>'
+            )
+            continue
+        cells = [[name, *(_fmt("", v) for v in values)] for name, values in rows]
+        out.append(f"<p>{html.escape(label)}: the last {LAST_SHARE:.0%} of the run</p>")
+        out.append(table(header, cells))
+    out.append(
+        '<p class="note">Per contact and output, where the contact\'s pressure is highest '
+        "(its most loaded slice, or the flange's contact ellipse): the maximum (Hertz) "
+        "pressure p0, the central film thickness h_c and the specific film thickness "
+        "Lambda = h_c / sigma (sigma the composite roughness of surfaces.*), which sorts the "
+        "contacts in contact into boundary (Lambda &lt; 1), mixed and full film (Lambda "
+        "&ge; 3) lubrication; the shares count each contact at each output once. At the "
+        "flanges p0 is that of the paper's Brewe-Hamrock ellipse, which at B1's nearly flat "
+        "roller ends lies 9-13 % below the exact Hertz solution (docs/dynamics.md, "
+        '"Lubrication at the contacts").</p>'
+    )
+    for key, fig in lubrication_figures(labels, sets):
+        out.append(embed(fig, key))
     return out
 
 

@@ -151,6 +151,53 @@ def azimuth_figures(labels, sets) -> list:
     return figs
 
 
+#: The contacts of :func:`lubrication_figures`: (key, variables' prefix, what it is).
+LUBRICATION_FIGURES = (
+    ("lambda_inner", "inner", "roller-inner race"),
+    ("lambda_flange", "flange", "roller end / flange"),
+)
+
+
+def lubrication_figures(labels, sets) -> list:
+    """(key, figure) of the specific film thickness Lambda over the roller azimuth at the
+    inner race and at the flanges (rollers and flanges pooled; the contacts in contact, at
+    the outputs at full speed, :func:`rollerdyn.simulation.full_speed`), on a log scale
+    with the regimes' bounds 1 and 3 marked."""
+    import plotly.graph_objects as go
+
+    labels, sets = having(labels, sets, "rollers", "lubrication")
+    figs: list = []
+    for key, prefix, what in LUBRICATION_FIGURES:
+        fig = go.Figure()
+        for label, ds in zip(labels, sets, strict=True):
+            d = full_speed(ds)
+            lam = d[f"{prefix}_specific_film_thickness"].values
+            psi = np.mod(d.azimuth.values, 2 * np.pi)
+            if lam.ndim == 3:  # per flange: every flange at its roller's azimuth
+                psi = np.repeat(psi[..., None], lam.shape[2], axis=2)
+            psi, lam = np.degrees(psi.ravel()), lam.ravel()
+            on = np.isfinite(lam) & (lam > 0.0)
+            psi, lam = psi[on], lam[on]
+            keep = _thin(psi.size, MAX_POINTS)
+            fig.add_scatter(
+                x=psi[keep], y=lam[keep], mode="markers", marker=dict(size=3), name=label
+            )
+        for bound in (1.0, 3.0):
+            fig.add_hline(y=bound, line=dict(color="#999", width=1, dash="dot"))
+        fig.add_vline(x=180.0, line=dict(color="#999", width=1, dash="dash"))
+        fig.update_layout(
+            title=f"specific film thickness Lambda = h_c / sigma at the {what} contacts "
+            "(in contact; 1 and 3: boundary / mixed / full film)",
+            xaxis_title="roller azimuth ψ [deg] (load zone centre at 180 deg)",
+            yaxis_title="Lambda [-]",
+            yaxis_type="log",
+            **LAYOUT,
+        )
+        fig.update_xaxes(range=[0, 360], dtick=45)
+        figs.append((key, fig))
+    return figs
+
+
 def pairing_shares(ds: xr.Dataset, ring: str) -> dict:
     """Share of time per roller end / flange pairing at ``ring`` ('inner' or 'outer'),
     over every roller and both flanges of the ring, with 'none' for no contact (the
