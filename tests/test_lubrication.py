@@ -114,3 +114,25 @@ def test_the_summary_sorts_every_contact_into_a_regime(at_speed):
     assert lubrication_by_contact(bare, np.ones(ds.sizes["time"], dtype=bool)) is None
     nowhere = lubrication_by_contact(ds, np.zeros(ds.sizes["time"], dtype=bool))
     assert all(v[0] == 0.0 and all(math.isnan(x) for x in v[1:]) for _, v in nowhere)
+
+
+def test_plot_draws_lambda_over_azimuth_where_a_film_is_and_nothing_where_none_is(
+    at_speed, tmp_path
+):
+    """``rollerdyn plot``'s lubrication_over_azimuth: drawn from a rolling result; from one
+    in which nothing touches yet (its films all NaN) no figure and no error, as a log scale
+    has nothing to show."""
+    from rollerdyn.plots import plot_results
+    from rollerdyn.simulation import write
+
+    write(at_speed, tmp_path / "rolling.nc")
+    drawn = {p.name for p in plot_results([tmp_path / "rolling.nc"], tmp_path / "a")}
+    assert {"lubrication_over_azimuth.png", "lubrication_over_azimuth.svg"} <= drawn
+    dry = at_speed.copy()
+    for name in dry.data_vars:
+        if name.endswith(("_film_thickness", "_specific_film_thickness")):
+            dry[name] = dry[name] * np.nan
+    write(dry, tmp_path / "dry.nc")
+    drawn = {p.name for p in plot_results([tmp_path / "dry.nc"], tmp_path / "b")}
+    assert "fig10_frictional_torque.png" in drawn
+    assert not any(name.startswith("lubrication") for name in drawn)

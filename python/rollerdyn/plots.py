@@ -238,17 +238,23 @@ def over_azimuth(
     """A figure over the roller azimuth at full speed, rollers pooled: for each (name,
     result) of ``pairs`` the curves ``series(d)`` gives, (label suffix, marker, values of
     d, the outputs at full speed), on a ``yscale`` axis; ``save(fig)`` keeps it. Nothing
-    without ``pairs``."""
+    without ``pairs``, or on a log scale without a positive value (a film where nothing
+    touches yet)."""
     import matplotlib.pyplot as plt
 
-    if not pairs:
-        return
-    fig, ax = plt.subplots(figsize=(7, 4))
+    curves = []
     for p, ds in pairs:
         d = full_speed(ds)
         psi = np.degrees(d.azimuth.values.ravel())
         for suffix, marker, v in series(d):
-            ax.plot(psi, v.values.ravel(), marker, ms=2, label=_label(ds, p) + suffix)
+            curves.append((psi, v.values.ravel(), marker, _label(ds, p) + suffix))
+    if yscale == "log":
+        curves = [(x, y, m, lab) for x, y, m, lab in curves if (y > 0.0).any()]
+    if not curves:
+        return
+    fig, ax = plt.subplots(figsize=(7, 4))
+    for psi, values, marker, label in curves:
+        ax.plot(psi, values, marker, ms=2, label=label)
     ax.axvline(180.0, color="0.6", lw=0.8, ls="--")
     ax.set(
         xlabel="roller azimuth psi [deg] (load zone centre at 180 deg)",

@@ -997,9 +997,10 @@ def _join(previous: xr.Dataset, continued: xr.Dataset) -> xr.Dataset:
 
 
 #: Lossless compression of a result's numeric arrays: HDF5's byte shuffle and gzip at level
-#: 1. B1's whole run (1 289 outputs): 11.2 MB -> 7.0 MB, written in 0.35-0.53 s instead of
-#: 0.21 s, read in 0.29 s instead of 0.25 s (2026-12-01, with each contact's power loss by
-#: mechanism; level 4 was 1 % smaller and 20 % slower when measured with fewer outputs).
+#: 1. B1's whole run (1 289 outputs): 16.6 MB -> 9.4 MB, written in 0.47-0.64 s (2026-12-01,
+#: with every group of solver.outputs; before the lubrication outputs 11.2 MB -> 7.0 MB in
+#: 0.35-0.53 s instead of 0.21 s uncompressed, read in 0.29 s instead of 0.25 s; level 4
+#: was 1 % smaller and 20 % slower when measured with fewer outputs).
 COMPRESSION = {"compression": "gzip", "compression_opts": 1, "shuffle": True}
 #: Arrays smaller than this [bytes] are stored as they are: a compressed array is stored in
 #: chunks, whose index costs a few kB per array (a result of 5 outputs: 113 kB plain,

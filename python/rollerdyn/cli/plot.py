@@ -31,8 +31,10 @@ def plot(
     Bearing frictional torque over time (fig. 10), flange friction force of roller 0 over
     time (fig. 11), axial force of a roller over its azimuth (fig. 12), slide-to-roll
     ratio at the inner race over azimuth (fig. 13), roller loads over azimuth, the power
-    taken at each roller and the races' sliding part of it over azimuth (W), and the
-    roller end / flange pairings in contact (figs. 8, 9). A figure is drawn from the
+    taken at each roller and the races' sliding part of it over azimuth (W), the specific
+    film thickness Lambda at the inner race and each roller's most loaded flange contact
+    over azimuth (boundary, mixed or full-film lubrication), and the roller end / flange
+    pairings in contact (figs. 8, 9). A figure is drawn from the
     results that recorded what it shows (solver.outputs; results written before the power
     losses have no power figures). A missing file or one that is not a rollerdyn result
     exits with status 2.
