@@ -503,7 +503,9 @@ def _case_variables(
             flange["flange_pressure"],
             ("roller", "flange"),
             "Pa",
-            "Hertz pressure p0 of the roller end / flange contact",
+            "Hertz pressure p0 of the roller end / flange contact (its force on the exact "
+            "elliptic-integral ellipse; with the distributed law the larger of that and its "
+            "overlap's ellipse)",
         ),
         "flange_penetration": _var(
             flange["flange_penetration"],

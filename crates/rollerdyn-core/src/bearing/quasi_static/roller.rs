@@ -314,20 +314,35 @@ fn peak_pressure(c: &Contact, force: f64, (a, b): (f64, f64), e_prime: f64) -> f
         return ellipse;
     }
     let hertz = EllipticalContact::new(c.rx, c.ry, e_prime, EllipticalMethod::BreweHamrock);
-    let point = hertz.at_force(hertz.force(c.penetration)).max_pressure;
-    point.max(ellipse)
+    exact_max_pressure(c, hertz.force(c.penetration), e_prime).max(ellipse)
 }
 
-/// The paper's point law at the detected contact `c`: (Hertz force by Brewe–Hamrock,
-/// p₀, contact point, normal), None where it carries nothing.
+/// Hertz's maximum pressure of a force `force` on the relative radii of the detected
+/// contact `c` by the exact solution (elliptic integrals; Hamrock, Schmid & Jacobson 2004,
+/// eqs. 3.24–3.27), what the flange pressure limit judges. The force laws keep the paper's
+/// Brewe–Hamrock fits (eqs. 6–8), whose p₀ at B1's nearly flat roller ends (radius ratios
+/// of thousands) is 9–13 % lower (docs/dynamics.md, "Lubrication at the contacts").
+fn exact_max_pressure(c: &Contact, force: f64, e_prime: f64) -> f64 {
+    EllipticalContact::new(c.rx, c.ry, e_prime, EllipticalMethod::Exact)
+        .at_force(force)
+        .max_pressure
+}
+
+/// The paper's point law at the detected contact `c`: (Hertz force by Brewe–Hamrock, p₀
+/// by the exact solution ([`exact_max_pressure`]), contact point, normal), None where it
+/// carries nothing.
 fn point_flange_load(c: &Contact, e_prime: f64) -> Option<(f64, f64, Vec3, Vec3)> {
     if !(c.valid && c.penetration > 0.0 && c.rx > 0.0 && c.ry > 0.0 && c.ry.is_finite()) {
         return None;
     }
     let hertz = EllipticalContact::new(c.rx, c.ry, e_prime, EllipticalMethod::BreweHamrock);
     let force = hertz.force(c.penetration);
-    let pressure = hertz.at_force(force).max_pressure;
-    Some((force, pressure, c.location(), c.normal))
+    Some((
+        force,
+        exact_max_pressure(c, force, e_prime),
+        c.location(),
+        c.normal,
+    ))
 }
 
 /// Adds the force `f` on the roller at `p` (and, when the race is the inner ring's, −f on
