@@ -102,12 +102,13 @@ def test_studies_record_the_outputs_their_figures_read_whatever_the_configuratio
     for spec in build_plan(bare, 0.01, gradient=False, distributed=False).specs:
         assert tuple(spec.data["solver"]["outputs"]) == OUTPUT_GROUPS, spec.name
     point, _ = point_config(bare, 52.36, 5000.0, 0.0, "equilibrium", 0.02)
-    assert point.solver.outputs == ("rollers", "flanges")
+    assert point.solver.outputs == ("rollers", "flanges", "lubrication")
     powered = variant(**{"solver.outputs": ["power"]})
     assert point_config(powered, 52.36, 5000.0, 0.0, "equilibrium", 0.02)[0].solver.outputs == (
         "rollers",
         "flanges",
         "power",
+        "lubrication",
     )
     plan = build_plan(load_b1(), 0.01, gradient=False, distributed=False)
     reference = plan.spec(plan.reference)
@@ -793,6 +794,14 @@ def test_map_point_stops_when_steady(tmp_path, client):
     assert row["max flange force [N]"] == pytest.approx(
         float(np.nanmax(ds.flange_normal_force.values[last]))
     )
+    # the median Lambda of the contacts in contact over the window (reported, not judged;
+    # NaN where none touches: without axial load the roller ends may not)
+    for column, prefix in (("inner race Lambda [1]", "inner"), ("flange Lambda [1]", "flange")):
+        lam = ds[f"{prefix}_specific_film_thickness"].values[last]
+        on = ds[f"{prefix}_max_pressure"].values[last] > 0.0
+        assert on.any() or prefix == "flange"
+        expected = float(np.median(lam[on])) if on.any() else math.nan
+        assert row[column] == pytest.approx(expected, rel=1e-12, nan_ok=True), column
     assert (tmp_path / "map" / "map.csv").is_file()
     assert {p.name for p in (tmp_path / "map" / "figures").iterdir()} >= {"map_torque.png"}
     # a worker stopped while writing the point's file (Ctrl-C) leaves point_0000.nc.tmp<pid>
@@ -817,6 +826,8 @@ def _map_frame(rows):
     frame = pd.DataFrame([dict(zip(keys, r, strict=True)) for r in rows])
     frame["speed loss [1]"] = frame["torque [N*m]"] * 0.01
     frame["max flange force [N]"] = frame["torque [N*m]"] * 500
+    frame["inner race Lambda [1]"] = frame["torque [N*m]"] * 2
+    frame["flange Lambda [1]"] = frame["torque [N*m]"] * 0.1
     return frame
 
 
@@ -829,6 +840,23 @@ def _drawn_maps(frame, tmp_path, monkeypatch) -> list:
     monkeypatch.setattr(plots, "save_figure", lambda fig, out, name: figures.append(fig) or [])
     write_maps(frame, tmp_path, "B1")
     return figures[0].axes
+
+
+def test_map_figures_leave_out_an_output_no_point_has(tmp_path, monkeypatch):
+    """A map whose roller ends never touch has no flange Lambda at any point: its figure
+    is left out (an all-NaN colour scale has nothing to show), the others are drawn."""
+    import rollerdyn.plots as plots
+    from rollerdyn.study.map_figures import write_maps
+
+    frame = _map_frame(
+        [(500.0, 5000.0, 0.0, "steady", 0.005), (2000.0, 5000.0, 0.0, "steady", 0.012)]
+    )
+    frame["flange Lambda [1]"] = math.nan
+    names = []
+    monkeypatch.setattr(plots, "save_figure", lambda fig, out, name: names.append(name) or [])
+    write_maps(frame, tmp_path, "B1")
+    assert "map_inner_race_Lambda" in names and "map_torque" in names
+    assert "map_flange_Lambda" not in names
 
 
 def test_map_figures_cross_points_not_steady_and_label_points_without_a_value(

@@ -354,8 +354,9 @@ def map_command(
     roller orbital speed / epicyclic cage speed, skidding) [-] and largest flange normal
     force [N], averaged over windows of simulated time, stop changing (see --tol,
     --window; docs/study.md), or until --max-time. The table (one row per point: values,
-    status, time steady, the three outputs over the last window, wall time) is printed and
-    written; the maps go to figures/ (PNG, SVG).
+    status, time steady, the three outputs and the median specific film thickness Lambda
+    [-] of the inner race and of the flange contacts over the last window, wall time) is
+    printed and written; the maps go to figures/ (PNG, SVG).
 
     Exit status: 0 when the map ran; 1 when a point could not be run at all; 2 for bad
     input (nothing run).
@@ -567,6 +568,8 @@ _MAP_COLUMNS = (
     ("torque [N*m]", "torque [N*m]", ".4g"),
     ("speed loss [1]", "speed loss [-]", ".3g"),
     ("max flange force [N]", "max flange force [N]", ".4g"),
+    ("inner race Lambda [1]", "Lambda inner race [-]", ".3g"),
+    ("flange Lambda [1]", "Lambda flanges [-]", ".3g"),
     ("wall [s]", "wall [s]", ".1f"),
 )
 

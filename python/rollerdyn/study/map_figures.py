@@ -21,7 +21,9 @@ AXES = (
 
 
 def write_maps(frame, out: Path, name: str) -> list[Path]:
-    """One figure per output of :data:`rollerdyn.study.maps.OUTPUTS`; returns the files."""
+    """One figure per output of :data:`rollerdyn.study.maps.OUTPUTS` that has a value at
+    some point (none: the flanges' Lambda of a map whose roller ends never touch, or a
+    result without the lubrication outputs); returns the files."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -37,6 +39,8 @@ def write_maps(frame, out: Path, name: str) -> list[Path]:
     labels = dict(AXES)
     written = []
     for column, title, unit in OUTPUTS:
+        if column not in frame or not np.isfinite(frame[column].astype(float)).any():
+            continue
         short = column.split(" [")[0].replace(" ", "_")
         if len(varying) >= 2:
             x, y = varying[0], varying[1]

@@ -45,6 +45,8 @@ OUTPUTS = (
     ("torque [N*m]", "friction torque", "N·m"),
     ("speed loss [1]", "roller-set speed loss 1 - cage / epicyclic speed", "-"),
     ("max flange force [N]", "largest flange normal force", "N"),
+    ("inner race Lambda [1]", "median specific film thickness, inner race", "-"),
+    ("flange Lambda [1]", "median specific film thickness, roller ends / flanges", "-"),
 )
 
 
@@ -57,8 +59,9 @@ OUTPUTS = (
 OUTPUTS_PER_WINDOW = 100
 
 #: The output groups (``solver.outputs``) a map's points record at least: the steadiness
-#: windows read the rollers' orbital speeds and the flange forces (:mod:`.steady`).
-MAP_OUTPUTS = ("rollers", "flanges")
+#: windows read the rollers' orbital speeds and the flange forces, the map's lubrication
+#: columns the contacts' specific film thickness (:mod:`.steady`).
+MAP_OUTPUTS = ("rollers", "flanges", "lubrication")
 
 #: Most grid points of a map: each is a dynamic run of seconds to minutes (and the
 #: points' folders are numbered with four digits).

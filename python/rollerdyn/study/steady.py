@@ -12,7 +12,12 @@ The outputs, each averaged over a window of simulated time W:
   the cage-equivalent speed is the mean of every roller's ``orbital_speed`` and the
   epicyclic speed is ``omega_i (1 - D / d_m) / 2`` of the mean inner ring speed
   ``omega_i`` (outer ring fixed, no slip) [1];
-- largest flange force: the largest ``flange_normal_force`` of any roller and flange [N].
+- largest flange force: the largest ``flange_normal_force`` of any roller and flange [N];
+- the lubrication (a result that records it, ``solver.outputs`` "lubrication"; NaN
+  otherwise): the median specific film thickness Lambda = h_c / sigma over the inner race
+  contacts and over the roller end / flange contacts in contact in the window [1]
+  (:mod:`rollerdyn.lubrication`; below 1 boundary, above 3 full-film lubrication). They
+  are reported, not judged: the criterion compares the three outputs above.
 
 The criterion (:class:`SteadyRule`): from the end of the ramps on, the run is cut into
 windows of length W that end at the checkpoints (``solver.checkpoint_interval`` = W, so
@@ -42,6 +47,10 @@ import numpy as np
 #: epicyclic speed is its resolution.
 FLOORS = {"torque [N*m]": 1e-4, "speed loss [1]": 5e-3, "max flange force [N]": 1.0}
 
+#: The lubrication outputs (reported over the window, not part of the criterion): column
+#: -> the contacts' variables' prefix.
+LAMBDAS = {"inner race Lambda [1]": "inner", "flange Lambda [1]": "flange"}
+
 
 def epicyclic_factor(diameter: float, pitch: float) -> float:
     """omega_c / omega_i of the roller set without slip, outer ring fixed."""
@@ -60,7 +69,7 @@ def window_outputs(ds, t0: float, t1: float, factor: float) -> dict:
     t = np.asarray(ds.time.values, dtype=float)
     sel = (t > t0 + 1e-12) & (t <= t1 + 1e-12)
     if not sel.any():
-        return {k: math.nan for k in FLOORS}
+        return {k: math.nan for k in (*FLOORS, *LAMBDAS)}
     ring = float(np.mean(ds.ring_speed.values[sel]))
     orbital = float(np.nanmean(ds.orbital_speed.values[sel]))
     epicyclic = ring * factor
@@ -77,7 +86,20 @@ def window_outputs(ds, t0: float, t1: float, factor: float) -> dict:
         "torque [N*m]": torque,
         "speed loss [1]": loss,
         "max flange force [N]": float(flange.max()) if flange.size else 0.0,
+        **{key: median_lambda(ds, prefix, sel) for key, prefix in LAMBDAS.items()},
     }
+
+
+def median_lambda(ds, prefix: str, sel: np.ndarray) -> float:
+    """The median specific film thickness of the ``prefix`` contacts in contact (a maximum
+    pressure above 0) at the outputs ``sel``; NaN where none touches or the result did
+    not record it."""
+    name = f"{prefix}_specific_film_thickness"
+    if name not in ds or f"{prefix}_max_pressure" not in ds:
+        return math.nan
+    touching = ds[f"{prefix}_max_pressure"].values[sel] > 0.0
+    values = ds[name].values[sel][touching]
+    return float(np.median(values)) if values.size else math.nan
 
 
 def changes(before: dict, after: dict, tol: float) -> dict:
