@@ -529,12 +529,19 @@ def output_group_of(name: str) -> str | None:
 
 def _no_contact_as_nan(data: dict) -> None:
     """The film, Lambda and sliding speed of a contact without a section in contact (a
-    maximum pressure of 0; the core writes 0) as NaN: there is no such film."""
+    maximum pressure of 0; the core writes 0) as NaN: there is no such film; and the film
+    and Lambda of a run without friction (``solver.friction = false``, which computes no
+    film: 0) as well."""
     for contact in ("inner", "outer", "roller_roller", "flange"):
         touching = data[f"{contact}_max_pressure"].values > 0.0
-        for name in ("film_thickness", "specific_film_thickness", "sliding_speed"):
+        filmed = touching & (data[f"{contact}_film_thickness"].values > 0.0)
+        for name, where in (
+            ("film_thickness", filmed),
+            ("specific_film_thickness", filmed),
+            ("sliding_speed", touching),
+        ):
             var = data[f"{contact}_{name}"]
-            var.values = np.where(touching, var.values, np.nan)
+            var.values = np.where(where, var.values, np.nan)
 
 
 def to_dataset(raw: dict, config: BearingConfig, detector: str) -> xr.Dataset:
