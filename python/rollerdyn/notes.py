@@ -51,7 +51,7 @@ def slow_configuration_note(cfg: BearingConfig) -> str | None:
             "creeps once the loads are up (B1 at 0.05 deg: steps of about 3 us from "
             "t = 0.39 s, to t = 0.55 s in a minute on two cores; the most loaded ends lie on "
             'their end faces); with surfaces.flange_law = "distributed" B1\'s whole run at '
-            '0.05 deg takes about 36 s on one core (docs/dynamics.md, "Prescribed tilt '
+            '0.05 deg takes about 29 s on one core (docs/dynamics.md, "Prescribed tilt '
             'instead")'
         )
     return None
