@@ -16,13 +16,21 @@ paper's eq. 53, Zhou & Hoeprich), so the regimes are those that set its friction
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
 
 from .simulation import recorded
 
-__all__ = ["LUBRICATION_COLUMNS", "LUBRICATION_CONTACTS", "lubrication_by_contact"]
+__all__ = [
+    "LUBRICATION_COLUMNS",
+    "LUBRICATION_CONTACTS",
+    "FilmData",
+    "film_data",
+    "lubrication_by_contact",
+    "rolling_race_films",
+]
 
 #: The contact kinds of :func:`lubrication_by_contact`: (name, variables' prefix).
 LUBRICATION_CONTACTS = (
@@ -83,3 +91,73 @@ def lubrication_by_contact(
             )
         )
     return rows
+
+
+@dataclass(frozen=True)
+class FilmData:
+    """What the films of a configuration's race contacts need (SI): E' of the roller on
+    the inner and on the outer ring, the ambient viscosity eta0, Blok's alpha* (eq. 31),
+    the viscosity's temperature slope and the oil's thermal conductivity (eq. 48), at the
+    operating temperature."""
+
+    e_prime: dict[str, float]
+    eta0: float
+    alpha_star: float
+    viscosity_slope: float
+    thermal_conductivity: float
+
+
+def film_data(cfg) -> FilmData:
+    """:class:`FilmData` of the configuration ``cfg``."""
+    from .model import Model
+    from .tribology import effective_modulus
+
+    m = cfg.materials
+    roller = (m.roller.youngs_modulus, m.roller.poisson_ratio)
+    model = Model(cfg)
+    return FilmData(
+        e_prime={
+            race: effective_modulus(*roller, ring.youngs_modulus, ring.poisson_ratio)
+            for race, ring in (("inner", m.inner_ring), ("outer", m.outer_ring))
+        },
+        eta0=model.eta0,
+        alpha_star=model.alpha_star,
+        viscosity_slope=model.viscosity_slope,
+        thermal_conductivity=cfg.lubricant.thermal_conductivity,
+    )
+
+
+def rolling_race_films(
+    cfg, data: FilmData, speed: float, slice_loads: dict[str, np.ndarray]
+) -> dict[str, np.ndarray]:
+    """The central film h_c [m] of each roller's most loaded slice at the inner and the
+    outer race (``slice_loads[race]``: the slices' loads [N], shape (rollers, slices)),
+    for an inner ring turning at ``speed`` [rad/s] with the outer ring fixed and the
+    rollers rolling without slip: the surfaces move at the entrainment speed
+    (omega_i - omega_c) R_i at the inner race and omega_c R_o at the outer, omega_c =
+    omega_i (1 - D/d_m) / 2 (Harris & Kotzalas, Rolling Bearing Analysis, vol. 1, ch. 8).
+    The film is the dynamic model's of a race slice that does not slide: Moes (eqs.
+    33-38) with the thermal correction (eq. 47), the speed regularised as there
+    (``surfaces.boundary_friction.smoothing_speed``). NaN where the slice carries nothing."""
+    from .tribology import line_films, thermal_correction
+
+    g = cfg.geometry
+    r = g.roller_diameter / 2.0
+    r_in, r_out = g.inner_raceway_diameter / 2.0, g.outer_raceway_diameter / 2.0
+    omega_c = abs(speed) * (1.0 - g.roller_diameter / g.pitch_diameter) / 2.0
+    v_s = cfg.surfaces.boundary_friction.smoothing_speed
+    geometry = {
+        "inner": ((abs(speed) - omega_c) * r_in, 1.0 / (1.0 / r + 1.0 / r_in)),
+        "outer": (omega_c * r_out, 1.0 / (1.0 / r - 1.0 / r_out)),
+    }
+    films = {}
+    for race, (u, r_eff) in geometry.items():
+        q = np.asarray(slice_loads[race], dtype=float).max(axis=1) / g.roller.slice_width
+        u0 = math.hypot(u, v_s)
+        loaded = q > 0.0
+        moes = line_films(
+            r_eff, u0, u0, np.where(loaded, q, 1.0), data.e_prime[race], data.alpha_star, data.eta0
+        )["moes"]
+        phi = thermal_correction(u0, 0.0, data.viscosity_slope, data.thermal_conductivity)
+        films[race] = np.where(loaded, np.asarray(moes) * phi, np.nan)
+    return films

@@ -20,6 +20,7 @@ __all__ = [
     "GRADIENT",
     "MESH",
     "PAIRINGS",
+    "RACES",
     "SEMI_ANALYTICAL",
     "flange_indices",
     "one_of",
@@ -30,6 +31,9 @@ PAIRINGS: tuple[str, ...] = tuple(_core.PAIRINGS)
 
 FLANGES: tuple[str, ...] = tuple(_core.FLANGES)
 """The four roller end / flange contacts of a roller: ring and side of the flange."""
+
+RACES: tuple[str, ...] = ("inner", "outer")
+"""The two races, as the names of the variables of their contacts begin."""
 
 
 def flange_indices(ring: str) -> list[int]:

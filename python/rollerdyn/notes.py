@@ -11,9 +11,7 @@ import os
 
 from .config import BearingConfig, load_config
 from .config.base import TimeTable
-
-#: The races whose slice pressures the statics report.
-RACES = ("inner", "outer")
+from .names import RACES
 
 
 def configuration_notes(

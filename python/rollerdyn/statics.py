@@ -23,8 +23,9 @@ import xarray as xr
 
 from . import _core, life
 from .config import BearingConfig
+from .lubrication import FilmData, film_data, rolling_race_films
 from .model import Model
-from .names import FLANGES, PAIRINGS, SEMI_ANALYTICAL
+from .names import FLANGES, PAIRINGS, RACES, SEMI_ANALYTICAL
 from .provenance import record_attrs
 from .simulation import as_config, model_parameters
 from .units import QuantityError, family, parse_quantity
@@ -592,6 +593,7 @@ def _case_variables(
             cfg, ratings, case, slices["inner_slices"], slices["outer_slices"], contamination
         )
     )
+    data.update(_film_variables(cfg, ratings, case, slices))
     data["radial_load_applied"] = _var(
         case.radial_load, (), "N", "radial load on the inner ring, along -y"
     )
@@ -638,12 +640,14 @@ def _load_zone_angle(cfg: BearingConfig, ring: np.ndarray) -> float:
 @dataclass(frozen=True)
 class _Ratings:
     """What the lives of every case of a configuration share: C_r [N], C_0r [N], C_u [N]
-    and the oil's kinematic viscosity at the operating temperature [m^2/s]."""
+    and the oil's kinematic viscosity at the operating temperature [m^2/s]; and what the
+    race films need (:func:`rollerdyn.lubrication.film_data`)."""
 
     dynamic: float
     static: float
     fatigue_limit: float
     viscosity: float
+    films: FilmData
 
 
 def _ratings(cfg: BearingConfig) -> _Ratings:
@@ -655,7 +659,45 @@ def _ratings(cfg: BearingConfig) -> _Ratings:
         static=c_0,
         fatigue_limit=life.fatigue_load_limit(c_0, dpw),
         viscosity=Model(cfg).eta0 / cfg.lubricant.density_at(cfg.operating.temperature),
+        films=film_data(cfg),
     )
+
+
+def _film_variables(cfg: BearingConfig, ratings: _Ratings, case: StaticCase, slices) -> dict:
+    """The central film and the specific film thickness Lambda = h_c / sigma of each
+    roller's most loaded slice at each race, rolling without slip at the case's speed
+    (:func:`rollerdyn.lubrication.rolling_race_films`, the dynamic model's film of a race
+    slice; docs/dynamics.md, "Lubrication at the contacts"); NaN unloaded or at rest."""
+    loads = {race: slices[f"{race}_slices"] for race in RACES}
+    if case.speed == 0.0:
+        films = {race: np.full(loads[race].shape[0], np.nan) for race in RACES}
+    else:
+        films = rolling_race_films(cfg, ratings.films, case.speed, loads)
+    sigma = cfg.surfaces.raceway.roughness
+    lam = {race: films[race] / sigma for race in RACES}
+    smallest = np.concatenate([lam[race] for race in RACES])
+    out = {}
+    for race in RACES:
+        out[f"{race}_film_thickness"] = _var(
+            films[race],
+            ("roller",),
+            "m",
+            f"central film of the roller's most loaded slice at the {race} race, rolling "
+            "without slip (Moes, eqs. 33-38, thermally corrected, eq. 47); NaN unloaded",
+        )
+        out[f"{race}_specific_film_thickness"] = _var(
+            lam[race],
+            ("roller",),
+            "1",
+            f"Lambda = h_c / sigma there ({race} race; < 1 boundary, 1-3 mixed, > 3 full film)",
+        )
+    out["min_specific_film_thickness"] = _var(
+        float(np.nanmin(smallest)) if np.isfinite(smallest).any() else math.nan,
+        (),
+        "1",
+        "smallest Lambda of the loaded race contacts (NaN at rest)",
+    )
+    return out
 
 
 def _life_variables(

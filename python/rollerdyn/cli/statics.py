@@ -8,6 +8,7 @@ import math
 from pathlib import Path
 from typing import Annotated
 
+import numpy as np
 import typer
 from rich.table import Table
 
@@ -159,9 +160,20 @@ def _check_image_format(path: Path) -> None:
         raise refuse(f"--plot {path}: {what}; use one of {names}")
 
 
+def _thinnest_films(ds) -> str:
+    """The thinnest race films of a case [nm], inner and outer ("n/a" at rest)."""
+    parts = []
+    for race in ("inner", "outer"):
+        film = ds[f"{race}_film_thickness"].values
+        ok = np.isfinite(film)
+        parts.append(f"{film[ok].min() * 1e9:.4g} nm" if ok.any() else "n/a")
+    return ", ".join(parts)
+
+
 def _print_case(ds) -> None:
     ring = ds.ring_displacement.values
     k = ds.stiffness.values
+    lam = float(ds.min_specific_film_thickness)
     table = Table(title="quasi-static equilibrium", show_header=False)
     rows = [
         (
@@ -192,6 +204,8 @@ def _print_case(ds) -> None:
         ("L_10 (ISO 281, P = F_r)", f"{float(ds.l10):.4g} 1e6 rev"),
         ("L_10r (ISO/TS 16281)", f"{float(ds.l10r):.4g} 1e6 rev"),
         ("kappa, L_nmr", f"{float(ds.kappa):.3g}, {float(ds.lnmr):.4g} 1e6 rev"),
+        ("race films (thinnest, inner, outer)", _thinnest_films(ds)),
+        ("smallest Lambda = h_c / sigma at the races", f"{lam:.3g}" if lam == lam else "n/a"),
     ]
     for name, value in rows:
         table.add_row(name, value)
@@ -208,6 +222,7 @@ def _print_sweep(ds) -> None:
         "s_0 (ISO 76)",
         "s_0 races",
         "L_10r [1e6 rev]",
+        "smallest race Lambda",
     ]
     units = [ds[s].attrs.get("units", "") for s in swept]
     for name in [*(f"{s} [{u}]" if u else s for s, u in zip(swept, units, strict=True)), *columns]:
@@ -225,6 +240,7 @@ def _print_sweep(ds) -> None:
             f"{float(row.s0):.4g}",
             f"{float(row.s0_races):.4g}",
             f"{float(row.l10r):.4g}",
+            f"{float(row.min_specific_film_thickness):.3g}",
         )
     console.print(table)
     if ds.attrs["failed_cases"]:
