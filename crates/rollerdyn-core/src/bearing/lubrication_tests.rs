@@ -155,12 +155,11 @@ fn a_flange_contacts_maximum_pressure_is_hertz_point_contact_of_its_load() {
 
 /// The statics judge a flange's pressure against ISO 76's 4 GPa by Hertz's exact solution
 /// for the force of the paper's law (`quasi_static/roller.rs`, `exact_max_pressure`),
-/// while a run records the fits' own ellipse (the traction's): at B1's equilibrium at
+/// while a run records the fits' own ellipse (the traction's). At B1's equilibrium at
 /// 1000 N the two agree on every loaded flange's force (measured 1.0e-4: the run's state
 /// of steady rolling adds the contact damping of its small rates; bound 1e-3) and differ
-/// in p₀ by the fits'
-/// error there (the test above: exact/fitted = 1/(1 − 0.088 … 0.134) = 1.097–1.155;
-/// bounds 1.05–1.2).
+/// in p₀ by the fits' error there (the test above: exact/fitted = 1/(1 − 0.088 … 0.134)
+/// = 1.097–1.155; bounds 1.05–1.2).
 #[test]
 fn the_statics_judge_a_flange_by_the_exact_pressure_of_the_same_force() {
     let (model, _, rec) = b1_record(1000.0);

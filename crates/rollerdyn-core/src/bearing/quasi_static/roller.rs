@@ -80,7 +80,8 @@ pub struct FlangeLoad {
     pub penetration: f64,
     /// Index into [`Pairing::ALL`] of the loaded pairing.
     pub pairing: Option<usize>,
-    /// Hertz pressure p₀ = 3F/(2πab) [Pa].
+    /// Hertz pressure p₀ = 3F/(2πab) [Pa] of the exact ellipse ([`exact_max_pressure`]; with
+    /// the distributed law [`peak_pressure`]), what ISO 76's flange limit judges.
     pub pressure: f64,
 }
 
