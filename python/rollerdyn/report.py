@@ -600,20 +600,34 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
     return html_page("rollerdyn report: " + ", ".join(str(p) for p in paths), body)
 
 
-def _power_section(labels: list[str], sets: list[xr.Dataset]) -> list[str]:
-    """The page's tables of :func:`power_by_contact`, one per result that records it."""
-    out = ['<h3 id="power">Where the power goes</h3>']
+def _contact_tables(
+    labels: list[str], sets: list[xr.Dataset], rows_of, group: str, caption: str, header
+) -> list[str]:
+    """One table per result of the rows ``rows_of(ds, last outputs)`` gives ((name,
+    values) each), headed ``header`` and introduced by the result's label and
+    ``caption``; a note instead for a result without them (``rows_of`` None: an older
+    file, or ``solver.outputs`` without ``group``)."""
+    out = []
     for label, ds in zip(labels, sets, strict=True):
-        rows = power_by_contact(ds, last_outputs(ds))
+        rows = rows_of(ds, last_outputs(ds))
         if rows is None:
             out.append(
                 f'<p class="note">{html.escape(label)}: not recorded (an older file, or '
-                'solver.outputs without "power").</p>'
+                f'solver.outputs without "{group}").</p>'
             )
             continue
         cells = [[name, *(_fmt("", v) for v in values)] for name, values in rows]
-        out.append(f"<p>{html.escape(label)}: mean power [W], last {LAST_SHARE:.0%} of the run</p>")
-        out.append(table(["contact", *POWER_COLUMNS], cells))
+        out.append(f"<p>{html.escape(label)}: {caption}</p>")
+        out.append(table(header, cells))
+    return out
+
+
+def _power_section(labels: list[str], sets: list[xr.Dataset]) -> list[str]:
+    """The page's tables of :func:`power_by_contact`, one per result that records it."""
+    out = ['<h3 id="power">Where the power goes</h3>']
+    caption = f"mean power [W], last {LAST_SHARE:.0%} of the run"
+    header = ["contact", *POWER_COLUMNS]
+    out += _contact_tables(labels, sets, power_by_contact, "power", caption, header)
     out.append(
         '<p class="note">Each contact\'s power is minus what its forces deliver to its two '
         "bodies; sliding is traction, boundary friction and film shear, the normal forces' "
@@ -630,17 +644,8 @@ def _lubrication_section(labels: list[str], sets: list[xr.Dataset], embed) -> li
 
     out = ['<h3 id="lubrication">Lubrication at the contacts</h3>']
     header = ["contact", *(f"{text} [{unit}]" for text, unit in LUBRICATION_COLUMNS)]
-    for label, ds in zip(labels, sets, strict=True):
-        rows = lubrication_by_contact(ds, last_outputs(ds))
-        if rows is None:
-            out.append(
-                f'<p class="note">{html.escape(label)}: not recorded (an older file, or '
-                'solver.outputs without "lubrication").</p>'
-            )
-            continue
-        cells = [[name, *(_fmt("", v) for v in values)] for name, values in rows]
-        out.append(f"<p>{html.escape(label)}: the last {LAST_SHARE:.0%} of the run</p>")
-        out.append(table(header, cells))
+    caption = f"the last {LAST_SHARE:.0%} of the run"
+    out += _contact_tables(labels, sets, lubrication_by_contact, "lubrication", caption, header)
     out.append(
         '<p class="note">Per contact and output, where the contact\'s pressure is highest '
         "(its most loaded slice, or the flange's contact ellipse): the maximum (Hertz) "
