@@ -28,6 +28,7 @@ __all__ = [
     "LUBRICATION_CONTACTS",
     "FilmData",
     "film_data",
+    "in_contact",
     "lubrication_by_contact",
     "rolling_race_films",
 ]
@@ -53,6 +54,14 @@ LUBRICATION_COLUMNS = (
 )
 
 
+def in_contact(ds: xr.Dataset, prefix: str, name: str, outputs: np.ndarray) -> np.ndarray:
+    """The values of the lubrication output ``{prefix}_{name}`` (e.g. "flange",
+    "specific_film_thickness") at the outputs ``outputs`` (a boolean mask of the time
+    axis), flattened, of the contacts in contact there: a maximum pressure above 0."""
+    touching = ds[f"{prefix}_max_pressure"].values[outputs] > 0.0
+    return ds[f"{prefix}_{name}"].values[outputs][touching]
+
+
 def lubrication_by_contact(
     ds: xr.Dataset, outputs: np.ndarray
 ) -> list[tuple[str, list[float]]] | None:
@@ -66,27 +75,25 @@ def lubrication_by_contact(
         return None
     rows = []
     for name, prefix in LUBRICATION_CONTACTS:
-        pressure = ds[f"{prefix}_max_pressure"].values[outputs].ravel()
-        lam = ds[f"{prefix}_specific_film_thickness"].values[outputs].ravel()
-        speed = ds[f"{prefix}_sliding_speed"].values[outputs].ravel()
-        touching = pressure > 0.0
-        if not touching.any():
+        pressure = in_contact(ds, prefix, "max_pressure", outputs)
+        if not pressure.size:
             rows.append((name, [0.0] + [math.nan] * (len(LUBRICATION_COLUMNS) - 1)))
             continue
+        lam = in_contact(ds, prefix, "specific_film_thickness", outputs)
+        speed = in_contact(ds, prefix, "sliding_speed", outputs)
         most = int(np.argmax(pressure))
-        lam_on = lam[touching]
         rows.append(
             (
                 name,
                 [
                     float(pressure[most]) / 1e9,
                     float(lam[most]),
-                    float(lam_on.min()),
-                    float(np.median(lam_on)),
-                    100.0 * float(np.mean(lam_on < 1.0)),
-                    100.0 * float(np.mean((lam_on >= 1.0) & (lam_on < 3.0))),
-                    100.0 * float(np.mean(lam_on >= 3.0)),
-                    float(speed[touching].max()),
+                    float(lam.min()),
+                    float(np.median(lam)),
+                    100.0 * float(np.mean(lam < 1.0)),
+                    100.0 * float(np.mean((lam >= 1.0) & (lam < 3.0))),
+                    100.0 * float(np.mean(lam >= 3.0)),
+                    float(speed.max()),
                 ],
             )
         )
@@ -134,8 +141,8 @@ def rolling_race_films(
     outer race (``slice_loads[race]``: the slices' loads [N], shape (rollers, slices)),
     for an inner ring turning at ``speed`` [rad/s] with the outer ring fixed and the
     rollers rolling without slip: the surfaces move at the entrainment speed
-    (omega_i - omega_c) R_i at the inner race and omega_c R_o at the outer, omega_c =
-    omega_i (1 - D/d_m) / 2 (Harris & Kotzalas, Rolling Bearing Analysis, vol. 1, ch. 8).
+    (omega_i - omega_c) R_i at the inner race and omega_c R_o at the outer, omega_c the
+    roller set's speed (``geometry.epicyclic_factor``).
     The film is the dynamic model's of a race slice that does not slide: Moes (eqs.
     33-38) with the thermal correction (eq. 47), the speed regularised as there
     (``surfaces.boundary_friction.smoothing_speed``). NaN where the slice carries nothing."""
@@ -144,7 +151,7 @@ def rolling_race_films(
     g = cfg.geometry
     r = g.roller_diameter / 2.0
     r_in, r_out = g.inner_raceway_diameter / 2.0, g.outer_raceway_diameter / 2.0
-    omega_c = abs(speed) * (1.0 - g.roller_diameter / g.pitch_diameter) / 2.0
+    omega_c = abs(speed) * g.epicyclic_factor
     v_s = cfg.surfaces.boundary_friction.smoothing_speed
     geometry = {
         "inner": ((abs(speed) - omega_c) * r_in, 1.0 / (1.0 / r + 1.0 / r_in)),

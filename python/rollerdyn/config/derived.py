@@ -69,6 +69,12 @@ class GeometryDerived:
         return self.pitch_diameter * math.sin(math.pi / self.roller_count) - self.roller_diameter
 
     @property
+    def epicyclic_factor(self) -> float:
+        """omega_c / omega_i of the roller set rolling without slip, the outer ring fixed:
+        ``(1 - D/d_m)/2`` (Harris & Kotzalas, Rolling Bearing Analysis, vol. 1, ch. 8)."""
+        return (1.0 - self.roller_diameter / self.pitch_diameter) / 2.0
+
+    @property
     def fill_ratio(self) -> float:
         """Share of the pitch circle covered by rollers, ``Z*D/(pi*d_m)``."""
         return self.roller_count * self.roller_diameter / (math.pi * self.pitch_diameter)
@@ -335,12 +341,7 @@ class BearingDerived:
 
         Epicyclic kinematics without slip: ``omega_c = omega_i*(1 - D/d_m)/2``.
         """
-        g = self.geometry
-        return (
-            self.operating.final_inner_ring_speed
-            * (1.0 - g.roller_diameter / g.pitch_diameter)
-            / 2.0
-        )
+        return self.operating.final_inner_ring_speed * self.geometry.epicyclic_factor
 
     @property
     def end_time(self) -> float:

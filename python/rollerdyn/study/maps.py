@@ -23,7 +23,7 @@ from ..config.solver import OUTPUT_GROUPS
 from ..provenance import config_hash
 from ..units import QuantityError, parse_quantity
 from .runs import FINISHED, RunSpec, StudyError, inspect_run, lock_folder, open_run, record
-from .steady import SteadyRule, epicyclic_factor, window_length, window_outputs
+from .steady import SteadyRule, window_length, window_outputs
 
 RPM = 2.0 * math.pi / 60.0
 
@@ -361,7 +361,7 @@ def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time):
     from ..model import Model
 
     g = cfg.geometry
-    factor = epicyclic_factor(g.roller_diameter, g.pitch_diameter)
+    factor = g.epicyclic_factor
     rules, specs, problems = {}, [], []
     # the equilibrium does not evaluate the traction: its untabulated model, built at once
     traction = Model(cfg).traction_model(tabulated=False) if start == "equilibrium" else None

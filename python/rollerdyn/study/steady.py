@@ -52,11 +52,6 @@ FLOORS = {"torque [N*m]": 1e-4, "speed loss [1]": 5e-3, "max flange force [N]": 
 LAMBDAS = {"inner race Lambda [1]": "inner", "flange Lambda [1]": "flange"}
 
 
-def epicyclic_factor(diameter: float, pitch: float) -> float:
-    """omega_c / omega_i of the roller set without slip, outer ring fixed."""
-    return (1.0 - diameter / pitch) / 2.0
-
-
 def window_length(window: float, speed: float, rollers: int, factor: float) -> float:
     """W [s]: ``window`` or two roller passing periods at ``speed`` [rad/s], the longer."""
     cage = abs(speed) * factor
@@ -94,11 +89,11 @@ def median_lambda(ds, prefix: str, sel: np.ndarray) -> float:
     """The median specific film thickness of the ``prefix`` contacts in contact (a maximum
     pressure above 0) at the outputs ``sel``; NaN where none touches or the result did
     not record it."""
-    name = f"{prefix}_specific_film_thickness"
-    if name not in ds or f"{prefix}_max_pressure" not in ds:
+    from ..lubrication import in_contact
+
+    if f"{prefix}_specific_film_thickness" not in ds or f"{prefix}_max_pressure" not in ds:
         return math.nan
-    touching = ds[f"{prefix}_max_pressure"].values[sel] > 0.0
-    values = ds[name].values[sel][touching]
+    values = in_contact(ds, prefix, "specific_film_thickness", sel)
     return float(np.median(values)) if values.size else math.nan
 
 
