@@ -125,6 +125,7 @@ FAMILIES: dict[str, Family] = _families(
     Family(
         "thermal conductivity", "[power] / [length] / [temperature]", "W/(m*K)", "0.134 W/(m*K)"
     ),
+    Family("thermal conductance", "[power] / [temperature]", "W/K", "0.35 W/K"),
 )
 
 # Further families, only used to name what was given instead ("got a frequency").

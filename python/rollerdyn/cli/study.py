@@ -11,8 +11,6 @@ from pathlib import Path
 from typing import Annotated, Any
 
 import typer
-from rich.table import Table
-from rich.text import Text
 
 from ..limits import DEFAULT_MAX_WALL
 from .common import (
@@ -27,6 +25,15 @@ from .common import (
     terminated_as_interrupted,
     time_option,
 )
+from .study_tables import (
+    THERMAL_COLUMNS,
+    print_findings,
+    print_frame,
+    print_map,
+    print_runs,
+    print_timing,
+    run_status,
+)
 
 app = typer.Typer(
     help="Studies of many runs on Dask: the paper's section 5 (paper) and operating maps (map).",
@@ -35,8 +42,6 @@ app = typer.Typer(
     rich_markup_mode=None,
 )
 
-_STYLE = {"PASS": "green", "FAIL": "red", "NOT RUN": "yellow"}
-_RUN_STYLE = {"completed": "green", "failed": "red", "steady": "green"}
 
 SchedulerOption = Annotated[
     str | None,
@@ -243,8 +248,8 @@ def paper_command(
         overwrite=overwrite,
         run=run,
     )
-    _print_runs(result.runs, f"{result.plan.config.name}: runs of the study in {output}")
-    _print_findings(result.findings)
+    print_runs(result.runs, f"{result.plan.config.name}: runs of the study in {output}")
+    print_findings(result.findings)
     files = ("report.html", "findings.csv", "runs.csv")
     _finish(output, files, result.runs, result.figures, result.timing, started)
 
@@ -275,6 +280,38 @@ def map_command(
             "--axial-load",
             help="Axial loads in N, as --speed. Default: the configuration's.",
             metavar="A:B:N",
+        ),
+    ] = None,
+    temperature: Annotated[
+        str | None,
+        typer.Option(
+            "--temperature",
+            help="Oil (and bearing) temperatures in degC, as --speed (353.15 K allowed); "
+            "each point's viscosity, density and Roelands z follow it. Default: the "
+            "configuration's operating.temperature.",
+            metavar="A:B:N",
+        ),
+    ] = None,
+    heat_dissipation: Annotated[
+        str | None,
+        typer.Option(
+            "--heat-dissipation",
+            help="The heat the bearing gives off per kelvin above --ambient, in W/K (a "
+            "number, or with its unit). With two or more --temperature values the map "
+            "finds, for each speed and loads, the temperature at which this equals the "
+            "friction power (the thermal balance: thermal.csv and "
+            "figures/thermal_balance; docs/study.md). Default: no balance.",
+            metavar="W/K",
+        ),
+    ] = None,
+    ambient: Annotated[
+        str | None,
+        typer.Option(
+            "--ambient",
+            help="Temperature of the surroundings of the thermal balance, in degC (or with "
+            "its unit); with --heat-dissipation only. Default: 20 degC (ISO 15312's "
+            "reference).",
+            metavar="TEMPERATURE",
         ),
     ] = None,
     output: Annotated[
@@ -348,7 +385,8 @@ def map_command(
         ),
     ] = False,
 ) -> None:
-    """Run a grid of speeds and loads to steady state on Dask and draw operating maps.
+    """Run a grid of speeds, loads and oil temperatures to steady state on Dask and draw
+    operating maps.
 
     Each grid point runs until its friction torque [N*m], roller-set speed loss (1 - mean
     roller orbital speed / epicyclic cage speed, skidding) [-] and largest flange normal
@@ -356,7 +394,8 @@ def map_command(
     --window; docs/study.md), or until --max-time. The table (one row per point: values,
     status, time steady, the three outputs and the median specific film thickness Lambda
     [-] of the inner race and of the flange contacts over the last window, wall time) is
-    printed and written; the maps go to figures/ (PNG, SVG).
+    printed and written; the maps go to figures/ (PNG, SVG). With --heat-dissipation, the
+    thermal balance of each speed and loads [degC, W] is printed and written too.
 
     Exit status: 0 when the map ran; 1 when a point could not be run at all; 2 for bad
     input (nothing run).
@@ -382,6 +421,9 @@ def map_command(
         speed=speed,
         radial_load=radial_load,
         axial_load=axial_load,
+        temperature=temperature,
+        heat_dissipation=heat_dissipation,
+        ambient=ambient,
         start=start,
         ramp=ramp_s,
         window=window_s,
@@ -393,8 +435,16 @@ def map_command(
         overwrite=overwrite,
         force=force,
     )
-    _print_map(result.points, f"operating map of {config.name} in {output}")
-    files = ("map.csv", "map.parquet")
+    print_map(result.points, f"operating map of {config.name} in {output}")
+    files: tuple[str, ...] = ("map.csv", "map.parquet")
+    if result.thermal is not None:
+        print_frame(
+            result.thermal,
+            f"thermal balance of {config.name}: friction power = heat given off",
+            THERMAL_COLUMNS,
+            lambda row: f"{row['status']}: {row['note']}" if row["note"] else row["status"],
+        )
+        files += ("thermal.csv",)
     _finish(output, files, result.points, result.figures, result.timing, started)
 
 
@@ -419,7 +469,7 @@ def _run_study(title: str, study, config: Path, output: Path, **options):
 def _finish(output: Path, files, frame, figures: list, timing: dict, started: float) -> None:
     """The end of a study's command: its timing, the ``files`` it wrote in ``output``, and
     exit status 1 if a run (a row of ``frame``) could not be run at all (no file)."""
-    _print_timing(timing, time.perf_counter() - started, frame)
+    print_timing(timing, time.perf_counter() - started, frame)
     wrote = ", ".join(str(output / name) for name in files)
     say(f"wrote {wrote} and {len(figures)} figure files in {output / 'figures'}")
     if len(frame[(frame["status"] == "failed") & (frame["file"] == "")]):
@@ -429,9 +479,11 @@ def _finish(output: Path, files, frame, figures: list, timing: dict, started: fl
 app.command(
     "paper", short_help="The paper's sect. 5 (figs. 8-14) on Dask, findings checked, a report."
 )(paper_command)
-app.command("map", short_help="Operating maps: a grid of speeds and loads at steady state.")(
-    map_command
-)
+app.command(
+    "map",
+    short_help="Operating maps: speeds, loads and oil temperatures at steady state; the "
+    "thermal balance.",
+)(map_command)
 
 
 # --------------------------------------------------------------------------- progress
@@ -469,7 +521,7 @@ class _Lines:
             self.done += 1
             rec = event["record"]
             say(
-                f"{self.title}: {event['name']} {_run_status(rec)}; "
+                f"{self.title}: {event['name']} {run_status(rec)}; "
                 f"{self.done} of {self.total} done ({wall:.1f} s)"
             )
 
@@ -525,7 +577,7 @@ def _progress(title: str, scheduler: str | None):
                     bar.update(
                         task,
                         completed=rec.get("reached [s]", 0.0),
-                        what=plain(_run_status(rec)),
+                        what=plain(run_status(rec)),
                     )
                     bar.stop_task(task)
                 bar.advance(overall)
@@ -534,124 +586,3 @@ def _progress(title: str, scheduler: str | None):
                 bar.update(overall, what=f"{done}/{total} runs")
 
         yield show
-
-
-# --------------------------------------------------------------------------- tables
-
-
-def _fmt(value: Any, spec: str = ".4g") -> str:
-    if isinstance(value, float):
-        return "n/a" if math.isnan(value) else format(value, spec)
-    return str(value)
-
-
-#: The columns of the runs' table: column of the frame, heading, number format.
-_RUN_COLUMNS = (
-    ("name", "run", ""),
-    ("label", "what", ""),
-    ("status", "status", ""),
-    ("reached [s]", "reached [s]", ".4g"),
-    ("t_end [s]", "end [s]", ".4g"),
-    ("wall [s]", "wall [s]", ".1f"),
-    ("steps", "steps", ""),
-    ("action", "this time", ""),
-)
-
-#: The columns of the map's table, as :data:`_RUN_COLUMNS`.
-_MAP_COLUMNS = (
-    ("point", "point", ""),
-    ("speed [rpm]", "speed [rpm]", ".4g"),
-    ("radial_load [N]", "F_r [N]", ".4g"),
-    ("axial_load [N]", "F_a [N]", ".4g"),
-    ("status", "status", ""),
-    ("steady at [s]", "steady at [s]", ".4g"),
-    ("torque [N*m]", "torque [N*m]", ".4g"),
-    ("speed loss [1]", "speed loss [-]", ".3g"),
-    ("max flange force [N]", "max flange force [N]", ".4g"),
-    ("inner race Lambda [1]", "Lambda inner race [-]", ".3g"),
-    ("flange Lambda [1]", "Lambda flanges [-]", ".3g"),
-    ("wall [s]", "wall [s]", ".1f"),
-)
-
-
-def _print_frame(frame, title: str, columns, status_text) -> None:
-    """One row per row of ``frame``: ``columns`` (column, heading, format), the status
-    coloured and shown as ``status_text(row)`` says."""
-    table = Table(title=plain(title))
-    for _, head, _ in columns:
-        table.add_column(head, overflow="fold")
-    for _, row in frame.iterrows():
-        cells = []
-        for col, _, spec in columns:
-            value = row.get(col, "")
-            if col == "status":
-                style = _RUN_STYLE.get(value, "yellow")
-                cells.append(Text(plain(status_text(row)), style=style))
-            else:
-                cells.append(Text(plain(_fmt(value, spec or ".4g"))))
-        table.add_row(*cells)
-    console.print(table)
-
-
-def _run_status(row) -> str:
-    """A row's status cell: its note (a failure's reason is prefixed "failed: ") or its
-    status."""
-    note = row.get("note") or ""
-    if row["status"] == "failed" and note:
-        return f"failed: {note}"
-    return note or row["status"]
-
-
-def _print_runs(frame, title: str) -> None:
-    _print_frame(frame, title, _RUN_COLUMNS, _run_status)
-
-
-def _print_map(frame, title: str) -> None:
-    from ..simulation import FORCED_MARK
-    from ..study.maps import FALLBACK
-
-    def status(row) -> str:
-        steady = row["status"] in ("steady", "not steady")
-        text = row["status"] if steady else _run_status(row)
-        if str(row.get("start", "")).startswith(FALLBACK):
-            # no equilibrium at t = 0: the point ran from short ramps (docs/study.md)
-            text = f"{text} (from short ramps: no equilibrium)"
-        if FORCED_MARK in str(row.get("note", "")):
-            text = f"{text} (--force: past the point law's load check)"
-        return text
-
-    _print_frame(frame, title, _MAP_COLUMNS, status)
-
-
-def _print_findings(findings) -> None:
-    table = Table(title="the paper's findings, checked on the runs (docs/study.md)")
-    for head in ("finding (paper)", "check", "the numbers behind it"):
-        table.add_column(head, overflow="fold")
-    for f in findings:
-        table.add_row(
-            Text(plain(f.statement)),
-            Text(f.status, style=_STYLE.get(f.status, "")),
-            Text(plain(f.numbers)),
-        )
-    console.print(table)
-
-
-def _print_timing(timing: dict, total: float, frame) -> None:
-    eff = timing.get("parallel efficiency", math.nan)
-    runs = timing.get("runs run", 0)
-    if not runs:
-        present, planned = int((frame["file"] != "").sum()), len(frame)
-        if present == planned:
-            say(f"nothing to run: every run was already in the folder ({total:.1f} s in all)")
-        else:
-            say(
-                f"no run was run: {present} of the {planned} runs are in the "
-                f"folder ({total:.1f} s in all)"
-            )
-        return
-    say(
-        f"runs: {timing['study wall [s]']:.1f} s of wall time for {runs} run(s) whose own "
-        f"times sum to {timing['sum of run walls [s]']:.1f} s on {timing['workers'] or '?'} "
-        f"worker(s): parallel efficiency {_fmt(100 * eff, '.0f')} %; {total:.1f} s in all "
-        "with the figures and the report"
-    )

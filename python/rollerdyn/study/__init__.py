@@ -3,9 +3,10 @@
 - :func:`paper` (``rollerdyn study paper``): the runs behind the paper's sect. 5 (figs.
   8-14), its findings checked on them (PASS / FAIL / NOT RUN with the numbers behind
   each), the figures and one HTML report.
-- :func:`operating_map` (``rollerdyn study map``): a grid of speeds and loads, each point
-  run until its outputs are steady, with maps of friction torque, roller-set speed loss
-  and largest flange force.
+- :func:`operating_map` (``rollerdyn study map``): a grid of speeds, loads and oil
+  temperatures, each point run until its outputs are steady, with maps of friction
+  torque, roller-set speed loss and largest flange force, and with a heat dissipation
+  the thermal balance (:mod:`.thermal`).
 
 Both are resumable: a run whose file holds it to its end is not run again, one stopped
 (wall-time cap, killed worker, Ctrl-C) continues from its last checkpoint. Bad input
@@ -15,8 +16,9 @@ raises :class:`StudyError` (a ``ValueError``) naming the option, before any run.
 The modules: :mod:`.plan` (which runs), :mod:`.runs` (one run as a Dask task, its file's
 state), :mod:`.schedule` (the runs on Dask, progress), :mod:`.folder` (the study folder),
 :mod:`.findings` (the checks), :mod:`.figures` and :mod:`.report_page` (figures, report),
-:mod:`.paper`, :mod:`.maps`, :mod:`.steady` and :mod:`.map_figures`. The names below are
-imported when first used, so that the command line starts before the heavy libraries load.
+:mod:`.paper`, :mod:`.maps`, :mod:`.steady`, :mod:`.map_figures` and :mod:`.thermal`. The
+names below are imported when first used, so that the command line starts before the heavy
+libraries load.
 """
 
 from __future__ import annotations

@@ -27,6 +27,7 @@ WRITTEN = (
     "runtime_study.csv",
     "map.csv",
     "map.parquet",
+    "thermal.csv",
 )
 RUN_FOLDERS = ("runs", "points")
 
@@ -44,15 +45,18 @@ def _remove_written(out: Path) -> None:
 
 
 def _grid_text(grid: list) -> str:
-    """A map's grid (speeds [rad/s], radial and axial loads [N]) as its values, in rpm
-    and N."""
+    """A map's grid (speeds [rad/s], radial and axial loads [N], and the oil temperatures
+    [K] where the map sets them) as its values, in rpm, N and degC."""
     try:
-        speeds, radial, axial = grid
+        speeds, radial, axial, *temperatures = grid
         rpm = [f"{v * 30 / math.pi:.6g}" for v in speeds]
-        return (
+        text = (
             f"speeds {', '.join(rpm)} rpm, radial loads {', '.join(f'{v:.6g}' for v in radial)}"
             f" N, axial loads {', '.join(f'{v:.6g}' for v in axial)} N"
         )
+        for axis in temperatures[:1]:
+            text += f", temperatures {', '.join(f'{v - 273.15:.6g}' for v in axis)} degC"
+        return text
     except (TypeError, ValueError):
         return "unreadable"
 

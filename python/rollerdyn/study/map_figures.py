@@ -1,7 +1,8 @@
 """The maps of ``rollerdyn study map`` (matplotlib, PNG and SVG): one figure per output
-(friction torque, roller-set speed loss, largest flange force). With two or three swept
-quantities, a colour map over the two with the most values (one panel per value of the
-third); with one, a line over it. Points that are not steady are marked with a cross;
+(friction torque, roller-set speed loss, largest flange force, the median Lambdas). With
+two or more swept quantities (speed, radial and axial load, oil temperature), a colour map
+over the two with the most values (one panel per value of the others); with one, a line
+over it. Points that are not steady are marked with a cross;
 points without a value (failed, or stopped before a whole window after the ramps) are
 left blank and labelled with their status.
 """
@@ -17,6 +18,7 @@ AXES = (
     ("speed [rpm]", "inner ring speed [rpm]"),
     ("radial_load [N]", "radial load [N]"),
     ("axial_load [N]", "axial load [N]"),
+    ("temperature [degC]", "oil temperature [degC]"),
 )
 
 
@@ -34,9 +36,10 @@ def write_maps(frame, out: Path, name: str) -> list[Path]:
 
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    sizes = {col: sorted(frame[col].unique()) for col, _ in AXES}
-    varying = sorted([col for col, _ in AXES if len(sizes[col]) > 1], key=lambda c: -len(sizes[c]))
-    labels = dict(AXES)
+    axes = [(col, label) for col, label in AXES if col in frame]  # a table of before
+    sizes = {col: sorted(frame[col].unique()) for col, _ in axes}
+    varying = sorted([col for col, _ in axes if len(sizes[col]) > 1], key=lambda c: -len(sizes[c]))
+    labels = dict(axes)
     written = []
     for column, title, unit in OUTPUTS:
         if column not in frame or not np.isfinite(frame[column].astype(float)).any():
@@ -44,14 +47,17 @@ def write_maps(frame, out: Path, name: str) -> list[Path]:
         short = column.split(" [")[0].replace(" ", "_")
         if len(varying) >= 2:
             x, y = varying[0], varying[1]
-            rest = [c for c, _ in AXES if c not in (x, y)]
-            panel = rest[0]
-            values = sizes[panel]
-            fig, axes = plt.subplots(
-                1, len(values), figsize=(5.5 * len(values), 4.2), squeeze=False
+            rest = [c for c, _ in axes if c not in (x, y)]
+            # one panel per combination of the other axes' values; titled by those that vary
+            shown = [c for c in rest if len(sizes[c]) > 1] or rest[:1]
+            panels = sorted({tuple(r) for r in frame[shown].itertuples(index=False)})
+            fig, grid_axes = plt.subplots(
+                1, len(panels), figsize=(5.5 * len(panels), 4.2), squeeze=False
             )
-            for ax, v in zip(axes[0], values, strict=True):
-                sub = frame[frame[panel] == v]
+            for ax, values in zip(grid_axes[0], panels, strict=True):
+                sub = frame
+                for c, v in zip(shown, values, strict=True):
+                    sub = sub[sub[c] == v]
                 grid = sub.pivot_table(index=y, columns=x, values=column, aggfunc="first")
                 grid = grid.reindex(index=sizes[y], columns=sizes[x])
                 mesh = ax.pcolormesh(
@@ -71,10 +77,12 @@ def write_maps(frame, out: Path, name: str) -> list[Path]:
                         ax.text(*at, row["status"], ha="center", va="center", color="0.35")
                     elif row["status"] != STEADY:
                         ax.plot(*at, "rx", ms=10, mew=2)
-                ax.set(xlabel=labels[x], ylabel=labels[y], title=f"{labels[panel]} = {v:g}")
+                where = zip(shown, values, strict=True)
+                panel_title = ", ".join(f"{labels[c]} = {v:g}" for c, v in where)
+                ax.set(xlabel=labels[x], ylabel=labels[y], title=panel_title)
             fig.suptitle(f"{name}: {title} at steady state (x: not steady)")
         else:
-            x = varying[0] if varying else AXES[0][0]
+            x = varying[0] if varying else axes[0][0]
             fig, ax = plt.subplots(figsize=(7, 4.2))
             rows = frame.sort_values(x)
             ax.plot(rows[x], rows[column], "o-", label="map point")

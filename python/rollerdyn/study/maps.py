@@ -1,12 +1,15 @@
 """``rollerdyn study map``: operating maps beyond the paper. A grid of inner ring speeds,
-radial and axial loads, each point run on Dask until its outputs are steady
-(:mod:`.steady`), and maps of friction torque, roller-set speed loss (skidding) and
-largest flange force.
+radial and axial loads and oil temperatures, each point run on Dask until its outputs are
+steady (:mod:`.steady`), and maps of friction torque, roller-set speed loss (skidding) and
+largest flange force; over two or more temperatures, with a heat dissipation, the thermal
+balance (:mod:`.thermal`): the temperature at which the bearing gives off the heat its
+friction makes.
 
 The folder (default ``results/map``) holds ``study.json``, ``points/point_XXXX.nc`` (one
 result per grid point, written at its checkpoints), ``map.csv`` and ``map.parquet`` (one
-row per point) and ``figures/`` (the maps, PNG and SVG). Invoked again it runs only what
-is missing, as ``rollerdyn study paper`` does.
+row per point), ``thermal.csv`` (with a heat dissipation: one row per speed and loads) and
+``figures/`` (the maps, PNG and SVG). Invoked again it runs only what is missing, as
+``rollerdyn study paper`` does.
 """
 
 from __future__ import annotations
@@ -19,6 +22,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..config.base import T0_CELSIUS
 from ..config.solver import OUTPUT_GROUPS
 from ..provenance import config_hash
 from ..units import QuantityError, parse_quantity
@@ -38,6 +42,7 @@ OPTIONS = {
     "operating.inner_ring_speed": "--speed",
     "operating.radial_load": "--radial-load",
     "operating.axial_load": "--axial-load",
+    "operating.temperature": "--temperature",
 }
 
 #: Map outputs: column, title, unit.
@@ -153,17 +158,31 @@ class MapStudy:
     points: Any
     figures: list[Path] = field(default_factory=list)
     timing: dict = field(default_factory=dict)
+    #: The thermal balance (:func:`.thermal.balance_temperatures`; one row per speed and
+    #: loads), with a heat dissipation only.
+    thermal: Any = None
 
 
-def point_config(cfg, speed: float, radial: float, axial: float, start: str, ramp: float):
+def point_config(
+    cfg,
+    speed: float,
+    radial: float,
+    axial: float,
+    start: str,
+    ramp: float,
+    temperature: float | None = None,
+):
     """(configuration of a grid point, end of its ramps [s]): ``cfg`` at ``speed``
-    [rad/s] and the loads [N], started as ``start`` says (:data:`STARTS`)."""
+    [rad/s], the loads [N] and the oil ``temperature`` [K] (default the configuration's),
+    started as ``start`` says (:data:`STARTS`)."""
     from ..config import parse_config
     from ..sweep import changed
 
     data = cfg.model_dump()
     op = data["operating"]
     op.update(inner_ring_speed=speed, radial_load=radial, axial_load=axial)
+    if temperature is not None:
+        op["temperature"] = temperature
     op.pop("end_time", None)
     # the steadiness windows read the rollers' and flanges' outputs (study.steady)
     groups = set(data["solver"]["outputs"]) | set(MAP_OUTPUTS)
@@ -244,6 +263,9 @@ def operating_map(
     speed: Any,
     radial_load: Any = None,
     axial_load: Any = None,
+    temperature: Any = None,
+    heat_dissipation: Any = None,
+    ambient: Any = None,
     start: str = "equilibrium",
     ramp: float = 0.02,
     window: float = 0.01,
@@ -256,11 +278,16 @@ def operating_map(
     progress: Callable[[dict], Any] | None = None,
     force: bool = False,
 ) -> MapStudy:
-    """Runs the grid ``speed`` x ``radial_load`` x ``axial_load`` of ``config`` until each
-    point is steady (see :mod:`.steady`) and draws the maps.
+    """Runs the grid ``speed`` x ``radial_load`` x ``axial_load`` x ``temperature`` of
+    ``config`` until each point is steady (see :mod:`.steady`) and draws the maps.
 
-    ``speed`` [rpm], ``radial_load`` and ``axial_load`` [N]: ``"a:b:n"``, ``"v1,v2"``, a
-    number or a list (see :func:`parse_range`); loads default to the configuration's.
+    ``speed`` [rpm], ``radial_load`` and ``axial_load`` [N], ``temperature`` [degC]:
+    ``"a:b:n"``, ``"v1,v2"``, a number or a list (see :func:`parse_range`); loads and
+    temperature default to the configuration's. ``heat_dissipation`` [W/K] (a number, or
+    text with a unit: ``"0.35 W/K"``): the heat the bearing gives off per kelvin above
+    ``ambient`` (default ``"20 degC"``, a number in degC or text with a unit); with it, and
+    two or more temperatures, the thermal balance of each speed and loads
+    (:func:`.thermal.balance_temperatures`) is written to ``thermal.csv`` and drawn.
     ``start``: one of :data:`STARTS`; a point without a quasi-static equilibrium at t = 0
     (:func:`equilibrium_refusal`) starts from short ramps instead, and its row's ``start``
     says so and why (:data:`FALLBACK`). ``ramp`` [s]: the short ramps' length (read only
@@ -278,15 +305,17 @@ def operating_map(
     clock = Clock()
     cfg = as_config(config)
     _check_map_settings(start, ramp, window, tol, max_time, max_wall)
-    speeds, radial, axial = _map_axes(cfg, speed, radial_load, axial_load)
+    axes = _map_axes(cfg, speed, radial_load, axial_load, temperature)
+    dissipation = _dissipation(heat_dissipation, ambient, axes[3])
     workers = default_workers() if workers is None else workers
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise StudyError(f"--workers = {workers!r}: must be a whole number >= 1")
-    specs, rules = _map_points(cfg, (speeds, radial, axial), start, ramp, window, tol, max_time)
+    specs, rules = _map_points(cfg, axes, start, ramp, window, tol, max_time)
     check_scheduler(scheduler)
     settings = {"start": start, "ramp": ramp, "window": window, "tol": tol, "max_time": max_time}
     # the points are files by number: a folder continues only the grid it was made with
-    settings["grid"] = [[float(v) for v in axis] for axis in (speeds, radial, axial)]
+    grid = axes if axes[3] != [cfg.operating.temperature] else axes[:3]
+    settings["grid"] = [[float(v) for v in axis] for axis in grid]
     run = {
         "max_wall": float(max_wall),
         "scheduler": scheduler,
@@ -304,6 +333,7 @@ def operating_map(
         progress,
         clock,
         source=_source_name(config),
+        dissipation=dissipation,
     )
 
 
@@ -326,9 +356,10 @@ def _check_map_settings(
             raise StudyError(f"{name} = {value!r}: must be a positive number{below}")
 
 
-def _map_axes(cfg: Any, speed: Any, radial_load: Any, axial_load: Any):
-    """The map's speeds [rad/s], radial and axial loads [N] (the loads by default the
-    configuration's final ones), at most :data:`MAX_MAP_POINTS` points in all."""
+def _map_axes(cfg: Any, speed: Any, radial_load: Any, axial_load: Any, temperature: Any = None):
+    """The map's speeds [rad/s], radial and axial loads [N] and oil temperatures [K] (the
+    loads by default the configuration's final ones, the temperature the configuration's),
+    at most :data:`MAX_MAP_POINTS` points in all."""
     speeds = parse_range(speed, "--speed", "angular velocity", "rpm", positive=True)
     own = cfg.operating
     radial = parse_range(
@@ -343,14 +374,62 @@ def _map_axes(cfg: Any, speed: Any, radial_load: Any, axial_load: Any):
         "force",
         "N",
     )
-    total = len(speeds) * len(radial) * len(axial)
+    temperatures = parse_range(
+        temperature if temperature is not None else [f"{own.temperature!r} K"],
+        "--temperature",
+        "temperature",
+        "degC",
+        positive=True,
+    )
+    total = len(speeds) * len(radial) * len(axial) * len(temperatures)
     if total > MAX_MAP_POINTS:
         raise StudyError(
-            f"--speed, --radial-load, --axial-load: {len(speeds)} x {len(radial)} x "
-            f"{len(axial)} = {total} grid points; a map has at most {MAX_MAP_POINTS} (each "
-            "point is a dynamic run of seconds to minutes)"
+            f"--speed, --radial-load, --axial-load, --temperature: {len(speeds)} x "
+            f"{len(radial)} x {len(axial)} x {len(temperatures)} = {total} grid points; a "
+            f"map has at most {MAX_MAP_POINTS} (each point is a dynamic run of seconds to "
+            "minutes)"
         )
-    return speeds, radial, axial
+    return speeds, radial, axial, temperatures
+
+
+def _dissipation(heat_dissipation: Any, ambient: Any, temperatures: list[float]):
+    """(heat dissipation [W/K], ambient temperature [K]) of the thermal balance, or None
+    without a heat dissipation. Refuses a dissipation that is not above 0, an ambient
+    without a dissipation, and a balance over fewer than two temperatures."""
+    if heat_dissipation is None:
+        if ambient is not None:
+            raise StudyError(
+                f"--ambient {ambient!r}: sets the surroundings of the thermal balance, "
+                "which needs --heat-dissipation"
+            )
+        return None
+    conductance = _quantity(heat_dissipation, "--heat-dissipation", "thermal conductance", "W/K")
+    if not conductance > 0:
+        raise StudyError(f"--heat-dissipation {heat_dissipation!r}: must be above 0 W/K")
+    surroundings = _quantity(
+        "20 degC" if ambient is None else ambient, "--ambient", "temperature", "degC"
+    )
+    if len(temperatures) < 2:
+        raise StudyError(
+            f"--heat-dissipation {heat_dissipation!r}: the thermal balance needs the "
+            "friction at two or more oil temperatures; give them with --temperature "
+            '(e.g. "60,80,100" in degC)'
+        )
+    return conductance, surroundings
+
+
+def _quantity(value: Any, option: str, family: str, unit: str) -> float:
+    """``value`` of a map option in SI: a number in ``unit``, or text with its own unit;
+    :class:`StudyError` naming ``option`` otherwise."""
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        value = f"{value!r} {unit}"
+    try:
+        return parse_quantity(str(value).strip(), family)
+    except QuantityError as err:
+        try:  # a bare number given as text
+            return parse_quantity(f"{float(str(value))!r} {unit}", family)
+        except (ValueError, QuantityError):
+            raise StudyError(f"{option} {value!r}: {err}") from None
 
 
 def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time):
@@ -365,10 +444,12 @@ def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time):
     rules, specs, problems = {}, [], []
     # the equilibrium does not evaluate the traction: its untabulated model, built at once
     traction = Model(cfg).traction_model(tabulated=False) if start == "equilibrium" else None
-    for i, (w, fr, fa) in enumerate(itertools.product(*axes)):
+    for i, (w, fr, fa, temp) in enumerate(itertools.product(*axes)):
         label = f"{w / RPM:g} rpm, F_r = {fr:g} N, F_a = {fa:g} N"
+        if len(axes[3]) > 1:
+            label += f", {temp - T0_CELSIUS:g} degC"
         try:
-            variant, settle, started = _point_start(cfg, (w, fr, fa), start, ramp, traction)
+            variant, settle, started = _point_start(cfg, (w, fr, fa, temp), start, ramp, traction)
         except ConfigError as err:
             for prob in err.problems or ():
                 option = OPTIONS.get(prob.path)
@@ -389,9 +470,10 @@ def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time):
                 f"--max-time = {max_time:g} s: too long for point {i} ({label}): {size}"
             )
         meta = {
-            "speed [rpm]": w / RPM,
+            "speed [rpm]": float(f"{w / RPM:.12g}"),  # 3000, not 3000.0000000000005
             "radial_load [N]": fr,
             "axial_load [N]": fa,
+            "temperature [degC]": temp - T0_CELSIUS,
             "start": started,
         }
         name = f"point_{i:04d}"
@@ -415,24 +497,30 @@ def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time):
 
 
 def _point_start(cfg: Any, point, start: str, ramp: float, traction):
-    """The configuration of one grid point (speed, radial load, axial load), its settling
-    time and how it starts: from ``start``, or from short ramps (:data:`FALLBACK`, with the
-    reason) where ``traction`` is given and the point has no quasi-static equilibrium
-    (:func:`equilibrium_refusal`; e.g. the free tilt's, whose rollers the statics press past
-    ISO 76)."""
-    variant, settle = point_config(cfg, *point, start, ramp)
+    """The configuration of one grid point (speed, radial load, axial load, temperature),
+    its settling time and how it starts: from ``start``, or from short ramps
+    (:data:`FALLBACK`, with the reason) where ``traction`` is given and the point has no
+    quasi-static equilibrium (:func:`equilibrium_refusal`; e.g. the free tilt's, whose
+    rollers the statics press past ISO 76)."""
+    speed, radial, axial, temperature = point
+    variant, settle = point_config(cfg, speed, radial, axial, start, ramp, temperature)
     if traction is not None:
         refusal = equilibrium_refusal(variant, traction)
         if refusal is not None:
-            variant, settle = point_config(cfg, *point, "short-ramps", ramp)
+            variant, settle = point_config(
+                cfg, speed, radial, axial, "short-ramps", ramp, temperature
+            )
             return variant, settle, f"{FALLBACK} ({refusal})"
     return variant, settle, start
 
 
-def _run_map(cfg, out, specs, rules, settings, run, overwrite, progress, clock, *, source):
+def _run_map(
+    cfg, out, specs, rules, settings, run, overwrite, progress, clock, *, source, dissipation
+):
     """Runs the grid's points ``specs`` in the folder ``out`` (prepared, and locked
     meanwhile; ``run``: max_wall, scheduler, workers and force), writes map.csv, map.parquet and
-    the figures, and returns the study."""
+    the figures (and with ``dissipation``, (W/K, ambient K), the thermal balance:
+    thermal.csv and its figure), and returns the study."""
     import pandas as pd
 
     from .folder import prepare_folder
@@ -453,11 +541,22 @@ def _run_map(cfg, out, specs, rules, settings, run, overwrite, progress, clock, 
         frame.to_csv(out / "map.csv", index=False)
         frame.to_parquet(out / "map.parquet", engine="pyarrow", index=False)
         figures = write_maps(frame, out / "figures", cfg.name)
+        thermal = None
+        if dissipation is not None:
+            from .thermal import balance_temperatures, write_balance_figure
+
+            thermal = balance_temperatures(frame, *dissipation)
+            thermal.to_csv(out / "thermal.csv", index=False)
+            figures += write_balance_figure(frame, thermal, *dissipation, out / "figures", cfg.name)
+        else:  # an earlier invocation's balance, now stale
+            (out / "thermal.csv").unlink(missing_ok=True)
+            for ext in ("png", "svg"):
+                (out / "figures" / f"thermal_balance.{ext}").unlink(missing_ok=True)
         workers = run["workers"] if run["scheduler"] is None else 0
         study_timing = timing(records, clock(), workers)
     finally:
         lock.unlink(missing_ok=True)
-    return MapStudy(out, frame, figures, study_timing)
+    return MapStudy(out, frame, figures, study_timing, thermal)
 
 
 def value_ok(v: Any) -> bool:

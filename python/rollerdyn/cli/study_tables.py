@@ -1,0 +1,147 @@
+"""The tables that ``rollerdyn study`` prints at the end: the runs, the map's points, the
+thermal balance, the paper's findings and the timing (rich tables on the console)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from rich.table import Table
+from rich.text import Text
+
+from .common import console, plain, say
+
+_STYLE = {"PASS": "green", "FAIL": "red", "NOT RUN": "yellow"}
+_RUN_STYLE = {"completed": "green", "failed": "red", "steady": "green", "balanced": "green"}
+
+
+def _fmt(value: Any, spec: str = ".4g") -> str:
+    if isinstance(value, float):
+        return "n/a" if math.isnan(value) else format(value, spec)
+    return str(value)
+
+
+#: The columns of the runs' table: column of the frame, heading, number format.
+_RUN_COLUMNS = (
+    ("name", "run", ""),
+    ("label", "what", ""),
+    ("status", "status", ""),
+    ("reached [s]", "reached [s]", ".4g"),
+    ("t_end [s]", "end [s]", ".4g"),
+    ("wall [s]", "wall [s]", ".1f"),
+    ("steps", "steps", ""),
+    ("action", "this time", ""),
+)
+
+#: The columns of the map's table, as :data:`_RUN_COLUMNS`.
+_MAP_COLUMNS = (
+    ("point", "point", ""),
+    ("speed [rpm]", "speed [rpm]", ".4g"),
+    ("radial_load [N]", "F_r [N]", ".4g"),
+    ("axial_load [N]", "F_a [N]", ".4g"),
+    ("temperature [degC]", "T [degC]", ".4g"),
+    ("status", "status", ""),
+    ("steady at [s]", "steady at [s]", ".4g"),
+    ("torque [N*m]", "torque [N*m]", ".4g"),
+    ("speed loss [1]", "speed loss [-]", ".3g"),
+    ("max flange force [N]", "max flange force [N]", ".4g"),
+    ("inner race Lambda [1]", "Lambda inner race [-]", ".3g"),
+    ("flange Lambda [1]", "Lambda flanges [-]", ".3g"),
+    ("wall [s]", "wall [s]", ".1f"),
+)
+
+
+#: The columns of the thermal balance's table, as :data:`_RUN_COLUMNS`.
+THERMAL_COLUMNS = (
+    ("speed [rpm]", "speed [rpm]", ".4g"),
+    ("radial_load [N]", "F_r [N]", ".4g"),
+    ("axial_load [N]", "F_a [N]", ".4g"),
+    ("status", "balance", ""),
+    ("balance temperature [degC]", "T [degC]", ".4g"),
+    ("friction power [W]", "friction power [W]", ".4g"),
+    ("torque [N*m]", "torque [N*m]", ".4g"),
+    ("temperatures [degC]", "map's T [degC]", ""),
+)
+
+
+def print_frame(frame, title: str, columns, status_text) -> None:
+    """One row per row of ``frame``: ``columns`` (column, heading, format), the status
+    coloured and shown as ``status_text(row)`` says."""
+    table = Table(title=plain(title))
+    for _, head, _ in columns:
+        table.add_column(head, overflow="fold")
+    for _, row in frame.iterrows():
+        cells = []
+        for col, _, spec in columns:
+            value = row.get(col, "")
+            if col == "status":
+                style = _RUN_STYLE.get(value, "yellow")
+                cells.append(Text(plain(status_text(row)), style=style))
+            else:
+                cells.append(Text(plain(_fmt(value, spec or ".4g"))))
+        table.add_row(*cells)
+    console.print(table)
+
+
+def run_status(row) -> str:
+    """A row's status cell: its note (a failure's reason is prefixed "failed: ") or its
+    status."""
+    note = row.get("note") or ""
+    if row["status"] == "failed" and note:
+        return f"failed: {note}"
+    return note or row["status"]
+
+
+def print_runs(frame, title: str) -> None:
+    print_frame(frame, title, _RUN_COLUMNS, run_status)
+
+
+def print_map(frame, title: str) -> None:
+    from ..simulation import FORCED_MARK
+    from ..study.maps import FALLBACK
+
+    def status(row) -> str:
+        steady = row["status"] in ("steady", "not steady")
+        text = row["status"] if steady else run_status(row)
+        if str(row.get("start", "")).startswith(FALLBACK):
+            # no equilibrium at t = 0: the point ran from short ramps (docs/study.md)
+            text = f"{text} (from short ramps: no equilibrium)"
+        if FORCED_MARK in str(row.get("note", "")):
+            text = f"{text} (--force: past the point law's load check)"
+        return text
+
+    print_frame(frame, title, _MAP_COLUMNS, status)
+
+
+def print_findings(findings) -> None:
+    table = Table(title="the paper's findings, checked on the runs (docs/study.md)")
+    for head in ("finding (paper)", "check", "the numbers behind it"):
+        table.add_column(head, overflow="fold")
+    for f in findings:
+        table.add_row(
+            Text(plain(f.statement)),
+            Text(f.status, style=_STYLE.get(f.status, "")),
+            Text(plain(f.numbers)),
+        )
+    console.print(table)
+
+
+def print_timing(timing: dict, total: float, frame) -> None:
+    eff = timing.get("parallel efficiency", math.nan)
+    runs = timing.get("runs run", 0)
+    if not runs:
+        present, planned = int((frame["file"] != "").sum()), len(frame)
+        if present == planned:
+            say(f"nothing to run: every run was already in the folder ({total:.1f} s in all)")
+        else:
+            say(
+                f"no run was run: {present} of the {planned} runs are in the "
+                f"folder ({total:.1f} s in all)"
+            )
+        return
+    say(
+        f"runs: {timing['study wall [s]']:.1f} s of wall time for {runs} run(s) whose own "
+        f"times sum to {timing['sum of run walls [s]']:.1f} s on {timing['workers'] or '?'} "
+        f"worker(s): parallel efficiency {_fmt(100 * eff, '.0f')} %; {total:.1f} s in all "
+        "with the figures and the report"
+    )

@@ -1,0 +1,209 @@
+"""The thermal balance of an operating map (``rollerdyn study map --heat-dissipation``).
+
+A bearing runs at the temperature at which it gives off the heat its friction makes. Its
+friction power P(T) [W] comes from the map: at each oil temperature T of the grid, the
+steady friction torque times the ring speed (:mod:`.steady`: the window's mean power
+loss). What it gives off is taken proportional to its temperature above the
+surroundings, Q(T) = W_s (T - T_amb), with W_s [W/K] the heat dissipation through the
+shaft, the housing and the oil (the linear law of ISO 15312's heat balance, where W_s =
+q_r A_r / (70 - 20 K) at the reference heat flow density q_r through the bearing's seat
+area A_r; docs/study.md, "The thermal balance").
+
+For each speed and loads of the map, the balance temperature T* solves P(T) = Q(T) on
+the first interval [T_i, T_i+1] of the map's temperatures where P - Q changes sign from
++ to -: a stable balance (a bearing warmer than T* gives off more than it makes, and
+cools). Between two temperatures P is interpolated exponentially,
+P(T) = P_i (P_i+1 / P_i)^s with s = (T - T_i) / (T_i+1 - T_i), as the friction of oil
+films follows the viscosity, which the Vogel law makes nearly exponential in T over tens
+of kelvin (B1 without axial load at 3000 rpm: 9.8 W at 60 degC, 3.3 W at 100 degC);
+linearly where P is not positive at both ends. T* is then the root of P - Q in s,
+found by bisection to 1e-12 of the interval.
+Where P - Q is negative already at the lowest temperature, the balance lies below the
+map; where it is positive still at the highest, above it (or the bearing runs away
+thermally); neither is extrapolated. The oil is taken at the bearing's temperature (one
+temperature for the whole bearing, as in the dynamic model).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..config.base import T0_CELSIUS
+
+#: The speed and loads that make one balance (the map's axes other than temperature).
+GROUP = ("speed [rpm]", "radial_load [N]", "axial_load [N]")
+
+#: Statuses of a balance.
+BALANCED, BELOW, ABOVE, NO_VALUE = "balanced", "below the map", "above the map", "no value"
+
+#: rpm -> rad/s.
+RPM = math.pi / 30.0
+
+
+def friction_power(rows) -> np.ndarray:
+    """The friction power [W] of map rows: the steady torque times the ring speed."""
+    torque = np.asarray(rows["torque [N*m]"], dtype=float)
+    return torque * np.asarray(rows["speed [rpm]"], dtype=float) * RPM
+
+
+def balance(
+    temperatures: np.ndarray, power: np.ndarray, conductance: float, ambient: float
+) -> tuple[str, float, float]:
+    """(status, T* [K], P(T*) [W]) of the friction ``power`` [W] at ``temperatures`` [K]
+    (ascending, finite values only) against the dissipation ``conductance`` (T -
+    ``ambient``): see the module's doc. NaN for T* and P outside the map."""
+    if len(temperatures) < 2:
+        return NO_VALUE, math.nan, math.nan
+    surplus = power - conductance * (temperatures - ambient)
+    if surplus[0] <= 0.0:
+        return BELOW, math.nan, math.nan
+    for i in range(len(surplus) - 1):
+        if surplus[i] > 0.0 >= surplus[i + 1]:
+            t0, t1 = temperatures[i], temperatures[i + 1]
+            p = _interpolant(power[i], power[i + 1])
+            lo, hi = 0.0, 1.0  # P - Q > 0 at lo, <= 0 at hi
+            while hi - lo > 1e-12:
+                mid = 0.5 * (lo + hi)
+                if p(mid) - conductance * (t0 + mid * (t1 - t0) - ambient) > 0.0:
+                    lo = mid
+                else:
+                    hi = mid
+            s = 0.5 * (lo + hi)
+            return BALANCED, t0 + s * (t1 - t0), p(s)
+    return ABOVE, math.nan, math.nan
+
+
+def _interpolant(p0: float, p1: float):
+    """P(s) between P(0) = ``p0`` and P(1) = ``p1``: exponential where both are positive,
+    else linear (see the module's doc)."""
+    if p0 > 0.0 and p1 > 0.0:
+        ratio = p1 / p0
+        return lambda s: p0 * ratio**s
+    return lambda s: p0 + s * (p1 - p0)
+
+
+def balance_temperatures(frame, conductance: float, ambient: float):
+    """One row per speed and loads of the map ``frame`` (the rows of
+    :func:`.maps.point_row`, with ``temperature [degC]``): the balance's status, its
+    temperature [degC], friction power [W] and torque [N*m], the map's temperatures it
+    used, and a note (why there is none; the points not steady it rests on)."""
+    import pandas as pd
+
+    rows = []
+    for key, group in frame.groupby(list(GROUP), sort=True):
+        group = group.sort_values("temperature [degC]")
+        power = friction_power(group)
+        ok = np.isfinite(power)
+        temps = np.asarray(group["temperature [degC]"], dtype=float)[ok] + T0_CELSIUS
+        status, t_star, p_star = balance(temps, power[ok], conductance, ambient)
+        speed = float(key[0]) * RPM
+        row = dict(zip(GROUP, key, strict=True))
+        row.update(
+            {
+                "status": status,
+                "balance temperature [degC]": t_star - T0_CELSIUS,
+                "friction power [W]": p_star,
+                "torque [N*m]": p_star / speed if speed > 0 else math.nan,
+                "heat dissipation [W/K]": conductance,
+                "ambient [degC]": ambient - T0_CELSIUS,
+                "temperatures [degC]": ", ".join(f"{t - T0_CELSIUS:g}" for t in temps),
+                "note": _note(status, temps, power[ok], conductance, ambient, group),
+            }
+        )
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def _note(status: str, temps, power, conductance: float, ambient: float, group) -> str:
+    """Why a balance is outside the map or missing, and which points it rests on that are
+    not steady."""
+    from .maps import STEADY
+
+    def at(i: int) -> str:
+        given = conductance * (temps[i] - ambient)
+        return (
+            f"at {temps[i] - T0_CELSIUS:g} degC the friction makes {power[i]:.4g} W and "
+            f"{conductance:g} W/K give off {given:.4g} W"
+        )
+
+    if status == NO_VALUE:
+        return f"friction at {len(temps)} temperature(s) of the map; the balance needs two"
+    if status == BELOW:
+        note = f"{at(0)}: the bearing runs cooler than the map's lowest temperature"
+    elif status == ABOVE:
+        note = (
+            f"{at(len(temps) - 1)}: the bearing runs hotter than the map's highest "
+            "temperature (or runs away thermally)"
+        )
+    else:
+        note = ""
+    unsteady = group[group["status"] != STEADY]
+    if len(unsteady):
+        listed = ", ".join(f"{t:g}" for t in unsteady["temperature [degC]"])
+        more = f"points not steady at {listed} degC"
+        note = f"{note}; {more}" if note else more
+    return note
+
+
+def write_balance_figure(
+    frame, thermal, conductance: float, ambient: float, out: Path, name: str
+) -> list[Path]:
+    """The friction power over the oil temperature for each speed and loads of the map,
+    the heat given off (a dashed line) and each balance (a star); PNG and SVG in
+    ``out`` as ``thermal_balance``."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..plots import save_figure
+
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    t_all = np.asarray(frame["temperature [degC]"], dtype=float)
+    for key, group in frame.groupby(list(GROUP), sort=True):
+        group = group.sort_values("temperature [degC]")
+        label = f"{key[0]:g} rpm, F_r = {key[1]:g} N, F_a = {key[2]:g} N"
+        temps, power = np.asarray(group["temperature [degC]"], dtype=float), friction_power(group)
+        (line,) = ax.plot(temps, power, "o", label=label)
+        for i in range(len(temps) - 1):  # the interpolant the balance solves on
+            if np.isfinite(power[i : i + 2]).all():
+                s = np.linspace(0.0, 1.0, 21)
+                p = _interpolant(power[i], power[i + 1])
+                ax.plot(temps[i] + s * (temps[i + 1] - temps[i]), p(s), color=line.get_color())
+        match = thermal
+        for col, value in zip(GROUP, key, strict=True):
+            match = match[match[col] == value]
+        for _, row in match[match["status"] == BALANCED].iterrows():
+            ax.plot(
+                row["balance temperature [degC]"],
+                row["friction power [W]"],
+                "*",
+                ms=14,
+                color=line.get_color(),
+            )
+            ax.annotate(
+                f"{row['balance temperature [degC]']:.1f} degC",
+                (row["balance temperature [degC]"], row["friction power [W]"]),
+                textcoords="offset points",
+                xytext=(6, 6),
+            )
+    t_line = np.linspace(np.nanmin(t_all), np.nanmax(t_all), 50)
+    ax.plot(
+        t_line,
+        conductance * (t_line - (ambient - T0_CELSIUS)),
+        "k--",
+        label=f"heat given off, {conductance:g} W/K above {ambient - T0_CELSIUS:g} degC",
+    )
+    ax.set(
+        xlabel="oil and bearing temperature [degC]",
+        ylabel="power [W]",
+        title=f"{name}: thermal balance (friction power = heat given off)",
+    )
+    ax.legend(fontsize="small")
+    return save_figure(fig, Path(out), "thermal_balance")
+
+
+__all__ = ["balance", "balance_temperatures", "friction_power", "write_balance_figure"]

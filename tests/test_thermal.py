@@ -1,0 +1,270 @@
+"""The thermal balance of an operating map (``rollerdyn study map --temperature ...
+--heat-dissipation ...``, :mod:`rollerdyn.study.thermal`): the balance against closed
+forms and an independent root finder, its statuses and notes, the options' refusals, and
+B1's map over two oil temperatures."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+from b1 import B1, load_b1
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from typer.testing import CliRunner
+
+from rollerdyn.cli import app
+from rollerdyn.study import StudyError, operating_map
+from rollerdyn.study.thermal import (
+    ABOVE,
+    BALANCED,
+    BELOW,
+    NO_VALUE,
+    balance,
+    balance_temperatures,
+    write_balance_figure,
+)
+
+RUNNER = CliRunner()
+C = 273.15  # 0 degC in K
+
+
+def _exact_root(p0: float, decay: float, t0: float, conductance: float, ambient: float):
+    """The root of p0 exp(-decay (T - t0)) = conductance (T - ambient) by Newton's method
+    from the right of it (the function is convex and decreasing, so Newton converges
+    monotonically from where it is negative): independent of the module's bisection on
+    its interpolant."""
+    t = ambient + p0 / conductance + 1.0  # f(t) < 0 here
+    for _ in range(200):
+        p = p0 * math.exp(-decay * (t - t0))
+        f = p - conductance * (t - ambient)
+        step = f / (-decay * p - conductance)
+        t -= step
+        if abs(step) < 1e-13 * max(1.0, abs(t)):
+            break
+    return t
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    p0=st.floats(0.05, 200.0),
+    decay=st.floats(0.0, 0.06),
+    conductance=st.floats(0.005, 5.0),
+    ambient=st.floats(-20.0, 60.0),
+    n=st.integers(2, 7),
+    t_low=st.floats(0.0, 80.0),
+    span=st.floats(5.0, 120.0),
+)
+def test_balance_of_an_exponential_friction_is_its_exact_root(
+    p0, decay, conductance, ambient, n, t_low, span
+):
+    """Friction power falling exponentially with temperature (the Vogel law's viscosity
+    over tens of kelvin) is what the interpolation assumes, so the balance is the exact
+    root wherever the map brackets it, to the bisection's 1e-12 of an interval; outside
+    the map the status says on which side (P - Q is decreasing: one root at most)."""
+    temps = C + t_low + span * np.arange(n) / (n - 1)
+    power = p0 * np.exp(-decay * (temps - temps[0]))
+    ambient_k = C + ambient
+    status, t_star, p_star = balance(temps, power, conductance, ambient_k)
+    surplus = power - conductance * (temps - ambient_k)
+    if surplus[0] <= 0:
+        assert status == BELOW and math.isnan(t_star)
+    elif surplus[-1] > 0:
+        assert status == ABOVE and math.isnan(t_star)
+    else:
+        exact = _exact_root(p0, decay, temps[0], conductance, ambient_k)
+        assert status == BALANCED
+        assert t_star == pytest.approx(exact, abs=1e-9 * span + 1e-9)
+        # the balance's power is the heat given off there (to the bisection's tolerance)
+        assert p_star == pytest.approx(conductance * (t_star - ambient_k), rel=1e-8, abs=1e-9)
+
+
+def test_balance_takes_the_first_stable_crossing_and_a_straight_line_without_power():
+    temps = C + np.array([40.0, 60.0, 80.0, 100.0])
+    # a friction power that dips and rises again: P - Q is +, -, +, -; the balance is the
+    # first crossing from + to - (a bearing just warmer gives off more than it makes)
+    power = np.array([10.0, 2.0, 30.0, 1.0])
+    status, t_star, _ = balance(temps, power, 0.2, C + 20.0)
+    q = 0.2 * (temps - (C + 20.0))  # 4, 8, 12, 16 W
+    assert status == BALANCED and temps[0] < t_star < temps[1]
+    # exponential between 10 and 2 W: 10 * 0.2**s = 4 + 4 s, solved by hand to 1e-9
+    s = (t_star - temps[0]) / 20.0
+    assert 10.0 * 0.2**s == pytest.approx(4.0 + 4.0 * s, abs=1e-9)
+    # a power of zero at one end (nothing turns): the straight line between the two
+    power = np.array([10.0, 0.0, 0.0, 0.0])
+    status, t_star, p_star = balance(temps, power, 0.2, C + 20.0)
+    s = (10.0 - q[0]) / ((10.0 - q[0]) - (0.0 - q[1]))  # the line's root, by hand
+    assert status == BALANCED and t_star == pytest.approx(temps[0] + 20.0 * s, abs=1e-9)
+    assert p_star == pytest.approx(10.0 * (1 - s), abs=1e-9)
+    # one temperature: no balance
+    assert balance(temps[:1], power[:1], 0.2, C + 20.0)[0] == NO_VALUE
+
+
+def _frame(rows):
+    keys = (
+        "speed [rpm]",
+        "radial_load [N]",
+        "axial_load [N]",
+        "temperature [degC]",
+        "status",
+        "torque [N*m]",
+    )
+    return pd.DataFrame([dict(zip(keys, r, strict=True)) for r in rows])
+
+
+def test_balance_table_has_one_row_per_speed_and_loads_with_its_reasons(tmp_path):
+    w = 1000 * math.pi / 30  # 1000 rpm
+    rows = [
+        # balanced between 60 and 100 degC (P = 10.5 and 2.1 W; Q = 8 and 16 W)
+        (1000.0, 5000.0, 0.0, 60.0, "steady", 10.5 / w),
+        (1000.0, 5000.0, 0.0, 100.0, "not steady", 2.1 / w),
+        # hotter than the map: 40 W at 100 degC against 16 W given off
+        (1000.0, 5000.0, 1000.0, 60.0, "steady", 50.0 / w),
+        (1000.0, 5000.0, 1000.0, 100.0, "steady", 40.0 / w),
+        # cooler than the map: 1 W at 60 degC against 8 W
+        (2000.0, 5000.0, 0.0, 60.0, "steady", 1.0 / (2 * w)),
+        (2000.0, 5000.0, 0.0, 100.0, "steady", 0.5 / (2 * w)),
+        # one point failed (no torque): one temperature left, no balance
+        (2000.0, 5000.0, 1000.0, 60.0, "steady", 20.0 / (2 * w)),
+        (2000.0, 5000.0, 1000.0, 100.0, "failed", math.nan),
+    ]
+    frame = _frame(rows)
+    table = balance_temperatures(frame, 0.2, C + 20.0)
+    assert len(table) == 4
+    by = {(r["speed [rpm]"], r["axial_load [N]"]): r for _, r in table.iterrows()}
+    ok = by[(1000.0, 0.0)]
+    assert ok["status"] == BALANCED and 60.0 < ok["balance temperature [degC]"] < 100.0
+    t = ok["balance temperature [degC]"]
+    assert ok["friction power [W]"] == pytest.approx(0.2 * (t - 20.0), rel=1e-9)
+    assert ok["torque [N*m]"] == pytest.approx(ok["friction power [W]"] / w, rel=1e-12)
+    assert ok["note"] == "points not steady at 100 degC"
+    hot = by[(1000.0, 1000.0)]
+    assert hot["status"] == ABOVE and math.isnan(hot["balance temperature [degC]"])
+    assert hot["note"].startswith("at 100 degC the friction makes 40 W and 0.2 W/K give off 16 W")
+    cold = by[(2000.0, 0.0)]
+    assert cold["status"] == BELOW and "at 60 degC the friction makes 1 W" in cold["note"]
+    assert by[(2000.0, 1000.0)]["status"] == NO_VALUE
+    assert by[(2000.0, 1000.0)]["temperatures [degC]"] == "60"
+    files = write_balance_figure(frame, table, 0.2, C + 20.0, tmp_path, "B1")
+    assert [f.name for f in files] == ["thermal_balance.png", "thermal_balance.svg"]
+    assert all(f.stat().st_size > 1000 for f in files)
+
+
+@pytest.mark.parametrize(
+    ("options", "message"),
+    [
+        ({"heat_dissipation": "0.3 W/K"}, "needs the friction at two or more oil temperatures"),
+        (
+            {"heat_dissipation": "-1 W/K", "temperature": "60,80"},
+            "--heat-dissipation '-1 W/K': must be above 0 W/K",
+        ),
+        (
+            {"heat_dissipation": "0.3 W", "temperature": "60,80"},
+            "--heat-dissipation '0.3 W': expected a thermal conductance",
+        ),
+        ({"ambient": "20 degC"}, "--ambient '20 degC': sets the surroundings"),
+        (
+            {"heat_dissipation": 0.3, "temperature": "60,80", "ambient": "hot"},
+            "--ambient 'hot'",
+        ),
+        ({"temperature": "80,80"}, "--temperature '80,80': a value is given twice"),
+        ({"temperature": "-300"}, "--temperature '-300': "),
+        (
+            {"temperature": "60,400"},
+            r"point 1 \(1000 rpm, F_r = 5000 N, F_a = 1000 N, 400 degC\): operating.temperature",
+        ),
+    ],
+)
+def test_map_options_of_the_thermal_balance_are_refused_by_name(tmp_path, options, message):
+    with pytest.raises(StudyError, match=message):
+        operating_map(B1, tmp_path / "map", speed="1000", **options)
+    assert not (tmp_path / "map").exists()  # refused before any folder or run
+
+
+def test_b1_map_over_two_oil_temperatures_finds_its_balance(tmp_path):
+    """B1 without axial load at 3000 rpm at 60 and 100 degC (from equilibrium, one worker
+    in this process; a loose criterion: steady within a few windows). Physics: the friction
+    falls as the oil thins (Palmgren's and the SKF model's speed terms go as (nu n)^(2/3)
+    and (nu n)^0.6; rollerdyn's with the mixed rolling resistance more steeply), the film
+    with it (Lambda about nu^0.7, EHL film theory), and the balance lies where the map's
+    power and the heat given off meet."""
+    heat = 0.05  # W/K: between 9.8 W / 40 K and 3.3 W / 80 K, so the balance is inside
+    result = RUNNER.invoke(
+        app,
+        [
+            "study",
+            "map",
+            str(B1),
+            "--speed",
+            "3000",
+            "--axial-load",
+            "0",
+            "--temperature",
+            "60,100",
+            "--heat-dissipation",
+            f"{heat} W/K",
+            "--window",
+            "1 ms",
+            "--tol",
+            "0.5",
+            "--max-time",
+            "30 ms",
+            "--workers",
+            "1",
+            "-o",
+            str(tmp_path / "map"),
+        ],
+    )
+    assert result.exit_code == 0, result.output
+    assert "thermal balance of" in result.output and "balanced" in result.output
+    points = pd.read_csv(tmp_path / "map" / "map.csv")
+    assert list(points["temperature [degC]"]) == [60.0, 100.0]
+    assert (points["status"] == "steady").all()
+    cool, hot = points.iloc[0], points.iloc[1]
+    # the oil at 60 and 100 degC (B1's Vogel law; Roelands' alpha = z ln(eta0/eta_p)/196 MPa
+    # with z fitted at each temperature): eta0 33.1 and 9.45 mPa*s, alpha 19.7 and 16.0 1/GPa
+    cfg = load_b1()
+    lub = cfg.lubricant
+    eta = [lub.eta0(C + t) for t in (60.0, 100.0)]
+    alpha = [
+        lub.roelands_z_at(C + t) * math.log(e / lub.roelands.eta_p)
+        for t, e in zip((60.0, 100.0), eta, strict=True)
+    ]
+    eta_ratio, alpha_ratio = eta[0] / eta[1], alpha[0] / alpha[1]
+    # friction grows with the viscosity, but more slowly than it (every film and traction
+    # law of the model is sublinear in eta0) and not more slowly than the SKF model's
+    # rolling term, (nu n)^0.6 (docs/study.md, "The thermal balance": nu^0.90 measured)
+    torque_ratio = cool["torque [N*m]"] / hot["torque [N*m]"]
+    assert eta_ratio**0.6 < torque_ratio < eta_ratio
+    # the race film as Dowson & Higginson's line contact, h ~ U^0.7 G^0.54 (the load and
+    # speed the same): 2.70 against 2.78 measured; 10 % for the thermal correction, Moes'
+    # formula and the median over contacts of different loads
+    lam = cool["inner race Lambda [1]"] / hot["inner race Lambda [1]"]
+    assert lam == pytest.approx(eta_ratio**0.7 * alpha_ratio**0.54, rel=0.10)
+    table = pd.read_csv(tmp_path / "map" / "thermal.csv")
+    row = table.iloc[0]
+    assert row["status"] == BALANCED and 60.0 < row["balance temperature [degC]"] < 100.0
+    assert row["friction power [W]"] == pytest.approx(
+        heat * (row["balance temperature [degC]"] - 20.0), rel=1e-8
+    )
+    p = [cool["torque [N*m]"] * 100 * math.pi, hot["torque [N*m]"] * 100 * math.pi]
+    assert p[1] < row["friction power [W]"] < p[0]
+    assert (tmp_path / "map" / "figures" / "thermal_balance.png").is_file()
+    assert (tmp_path / "map" / "figures" / "map_torque.png").is_file()
+    # the same map again without a heat dissipation: its points are reused, the stale
+    # balance is removed
+    again = operating_map(
+        B1,
+        tmp_path / "map",
+        speed="3000",
+        axial_load="0",
+        temperature="60,100",
+        window=0.001,
+        tol=0.5,
+        max_time=0.03,
+        workers=1,
+    )
+    assert again.thermal is None and not (tmp_path / "map" / "thermal.csv").exists()
+    assert not (tmp_path / "map" / "figures" / "thermal_balance.png").exists()
