@@ -169,7 +169,16 @@ def test_balance_table_has_one_row_per_speed_and_loads_with_its_reasons(tmp_path
             {"heat_dissipation": 0.3, "temperature": "60,80", "ambient": "hot"},
             "--ambient 'hot'",
         ),
+        (
+            {"heat_dissipation": "inf", "temperature": "60,80"},
+            "--heat-dissipation 'inf': must be finite",
+        ),
         ({"temperature": "80,80"}, "--temperature '80,80': a value is given twice"),
+        # one point with three problems is one point that fails
+        (
+            {"temperature": "60 K,80 degC"},
+            r"invalid map: 1 grid point\(s\) fail validation .* -213.15 degC",
+        ),
         ({"temperature": "-300"}, "--temperature '-300': "),
         (
             {"temperature": "60,400"},

@@ -424,12 +424,15 @@ def _quantity(value: Any, option: str, family: str, unit: str) -> float:
     if isinstance(value, int | float) and not isinstance(value, bool):
         value = f"{value!r} {unit}"
     try:
-        return parse_quantity(str(value).strip(), family)
+        number = float(str(value))
+    except ValueError:  # text with its unit
+        text = str(value).strip()
+    else:  # a bare number given as text: in the option's unit
+        text = f"{number!r} {unit}"
+    try:
+        return parse_quantity(text, family)
     except QuantityError as err:
-        try:  # a bare number given as text
-            return parse_quantity(f"{float(str(value))!r} {unit}", family)
-        except (ValueError, QuantityError):
-            raise StudyError(f"{option} {value!r}: {err}") from None
+        raise StudyError(f"{option} {value!r}: {err}") from None
 
 
 def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time):
@@ -489,8 +492,9 @@ def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time):
         rules[name] = SteadyRule(settle, win, tol, factor)
         specs.append(spec)
     if problems:
+        failing = len({p.split(" (", 1)[0] for p in problems})  # "point i (...): ..."
         raise StudyError(
-            f"invalid map: {len(problems)} grid point(s) fail validation (no run was started): "
+            f"invalid map: {failing} grid point(s) fail validation (no run was started): "
             + "; ".join(problems)
         )
     return specs, rules
