@@ -21,10 +21,17 @@ from rollerdyn.study.thermal import (
     ABOVE,
     BALANCED,
     BELOW,
+    BRACKETED,
+    FASTER,
+    FOUND,
     NO_VALUE,
+    SLOWER,
+    UNKNOWN,
     balance,
     balance_temperatures,
+    permissible_speeds,
     write_balance_figure,
+    write_speed_figure,
 )
 
 RUNNER = CliRunner()
@@ -152,6 +159,69 @@ def test_balance_table_has_one_row_per_speed_and_loads_with_its_reasons(tmp_path
     assert all(f.stat().st_size > 1000 for f in files)
 
 
+def _balances(rows):
+    """A balance table: (speed, axial load, status, T* [degC]) per row, the map's
+    temperatures 60 ... 100 degC."""
+    return pd.DataFrame(
+        [
+            {
+                "speed [rpm]": n,
+                "radial_load [N]": 5000.0,
+                "axial_load [N]": fa,
+                "status": status,
+                "balance temperature [degC]": t,
+                "lowest temperature [degC]": 60.0,
+                "highest temperature [degC]": 100.0,
+            }
+            for n, fa, status, t in rows
+        ]
+    )
+
+
+def test_permissible_speed_is_where_the_balance_reaches_the_permissible_temperature(tmp_path):
+    nan = math.nan
+    table = _balances(
+        [
+            # found: 65 degC at 1000 rpm, 85 degC at 2000 rpm -> 70 degC at 1250 rpm
+            (1000.0, 0.0, BALANCED, 65.0),
+            (2000.0, 0.0, BALANCED, 85.0),
+            (3000.0, 0.0, ABOVE, nan),
+            # bracketed: below the map (< 60 degC) at 1000 rpm, above it at 2000 rpm
+            (1000.0, 500.0, BELOW, nan),
+            (2000.0, 500.0, ABOVE, nan),
+            (3000.0, 500.0, ABOVE, nan),
+            # slower than the map: 75 degC already at 1000 rpm
+            (1000.0, 1000.0, BALANCED, 75.0),
+            (2000.0, 1000.0, ABOVE, nan),
+            (3000.0, 1000.0, ABOVE, nan),
+            # faster than the map: below 70 degC up to 3000 rpm
+            (1000.0, 1500.0, BELOW, nan),
+            (2000.0, 1500.0, BALANCED, 62.0),
+            (3000.0, 1500.0, BALANCED, 69.0),
+            # undetermined: no balance at 2000 rpm, before the crossing
+            (1000.0, 2000.0, BALANCED, 65.0),
+            (2000.0, 2000.0, NO_VALUE, nan),
+            (3000.0, 2000.0, ABOVE, nan),
+        ]
+    )
+    speeds = permissible_speeds(table, 70.0)
+    by = {r["axial_load [N]"]: r for _, r in speeds.iterrows()}
+    assert by[0.0]["status"] == FOUND
+    assert by[0.0]["permissible speed [rpm]"] == pytest.approx(1250.0, rel=1e-12)
+    assert (by[0.0]["from [rpm]"], by[0.0]["to [rpm]"]) == (1000.0, 2000.0)
+    assert by[500.0]["status"] == BRACKETED and math.isnan(by[500.0]["permissible speed [rpm]"])
+    assert by[500.0]["note"].startswith("between 1000 and 2000 rpm")
+    assert by[1000.0]["status"] == SLOWER
+    assert by[1000.0]["note"] == "the balance is above 70 degC already at 1000 rpm"
+    assert by[1500.0]["status"] == FASTER
+    assert by[1500.0]["note"] == "the balance stays below 70 degC up to 3000 rpm"
+    assert by[2000.0]["status"] == UNKNOWN and "widen --temperature" in by[2000.0]["note"]
+    # a permissible temperature outside the map's: "below the map" no longer tells the side
+    assert permissible_speeds(table, 50.0).iloc[1]["status"] == UNKNOWN
+    files = write_speed_figure(table, speeds, 70.0, tmp_path, "B1")
+    assert [f.name for f in files] == ["thermal_speed.png", "thermal_speed.svg"]
+
+
 @pytest.mark.parametrize(
     ("options", "message"),
     [
@@ -164,7 +234,15 @@ def test_balance_table_has_one_row_per_speed_and_loads_with_its_reasons(tmp_path
             {"heat_dissipation": "0.3 W", "temperature": "60,80"},
             "--heat-dissipation '0.3 W': expected a thermal conductance",
         ),
-        ({"ambient": "20 degC"}, "--ambient '20 degC': sets the surroundings"),
+        ({"ambient": "20 degC"}, "--ambient '20 degC': belongs to the thermal balance"),
+        (
+            {"permissible_temperature": 70},
+            "--permissible-temperature 70: belongs to the thermal balance",
+        ),
+        (
+            {"heat_dissipation": 0.3, "temperature": "60,80", "permissible_temperature": "7 m"},
+            "--permissible-temperature '7 m': expected a temperature",
+        ),
         (
             {"heat_dissipation": 0.3, "temperature": "60,80", "ambient": "hot"},
             "--ambient 'hot'",
@@ -214,6 +292,8 @@ def test_b1_map_over_two_oil_temperatures_finds_its_balance(tmp_path):
             "60,100",
             "--heat-dissipation",
             f"{heat} W/K",
+            "--permissible-temperature",
+            "70 degC",
             "--window",
             "1 ms",
             "--tol",
@@ -261,6 +341,9 @@ def test_b1_map_over_two_oil_temperatures_finds_its_balance(tmp_path):
     p = [cool["torque [N*m]"] * 100 * math.pi, hot["torque [N*m]"] * 100 * math.pi]
     assert p[1] < row["friction power [W]"] < p[0]
     assert (tmp_path / "map" / "figures" / "thermal_balance.png").is_file()
+    # at 3000 rpm the balance (about 95 degC) is above 70 degC already
+    speeds = pd.read_csv(tmp_path / "map" / "thermal_speed.csv")
+    assert speeds.iloc[0]["status"] == SLOWER and "thermally permissible speed" in result.output
     assert (tmp_path / "map" / "figures" / "map_torque.png").is_file()
     # the same map again without a heat dissipation: its points are reused, the stale
     # balance is removed
@@ -277,3 +360,5 @@ def test_b1_map_over_two_oil_temperatures_finds_its_balance(tmp_path):
     )
     assert again.thermal is None and not (tmp_path / "map" / "thermal.csv").exists()
     assert not (tmp_path / "map" / "figures" / "thermal_balance.png").exists()
+    assert again.permissible is None and not (tmp_path / "map" / "thermal_speed.csv").exists()
+    assert not (tmp_path / "map" / "figures" / "thermal_speed.svg").exists()

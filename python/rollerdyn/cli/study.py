@@ -26,6 +26,7 @@ from .common import (
     time_option,
 )
 from .study_tables import (
+    PERMISSIBLE_COLUMNS,
     THERMAL_COLUMNS,
     print_findings,
     print_frame,
@@ -314,6 +315,17 @@ def map_command(
             metavar="TEMPERATURE",
         ),
     ] = None,
+    permissible_temperature: Annotated[
+        str | None,
+        typer.Option(
+            "--permissible-temperature",
+            help="With --heat-dissipation: the bearing's permissible temperature in degC "
+            "(or with its unit); the map then finds, for each loads, the lowest speed at "
+            "which the thermal balance reaches it (the thermally permissible speed: "
+            "thermal_speed.csv and figures/thermal_speed). Default: none.",
+            metavar="TEMPERATURE",
+        ),
+    ] = None,
     output: Annotated[
         Path,
         output_option(
@@ -395,7 +407,8 @@ def map_command(
     status, time steady, the three outputs and the median specific film thickness Lambda
     [-] of the inner race and of the flange contacts over the last window, wall time) is
     printed and written; the maps go to figures/ (PNG, SVG). With --heat-dissipation, the
-    thermal balance of each speed and loads [degC, W] is printed and written too.
+    thermal balance of each speed and loads [degC, W] is printed and written too, and with
+    --permissible-temperature the thermally permissible speed of each loads [rpm].
 
     Exit status: 0 when the map ran; 1 when a point could not be run at all; 2 for bad
     input (nothing run).
@@ -424,6 +437,7 @@ def map_command(
         temperature=temperature,
         heat_dissipation=heat_dissipation,
         ambient=ambient,
+        permissible_temperature=permissible_temperature,
         start=start,
         ramp=ramp_s,
         window=window_s,
@@ -445,6 +459,14 @@ def map_command(
             lambda row: f"{row['status']}: {row['note']}" if row["note"] else row["status"],
         )
         files += ("thermal.csv",)
+    if result.permissible is not None:
+        print_frame(
+            result.permissible,
+            f"thermally permissible speed of {config.name}",
+            PERMISSIBLE_COLUMNS,
+            lambda row: f"{row['status']}: {row['note']}" if row["note"] else row["status"],
+        )
+        files += ("thermal_speed.csv",)
     _finish(output, files, result.points, result.figures, result.timing, started)
 
 

@@ -12,7 +12,13 @@ from rich.text import Text
 from .common import console, plain, say
 
 _STYLE = {"PASS": "green", "FAIL": "red", "NOT RUN": "yellow"}
-_RUN_STYLE = {"completed": "green", "failed": "red", "steady": "green", "balanced": "green"}
+_RUN_STYLE = {
+    "completed": "green",
+    "failed": "red",
+    "steady": "green",
+    "balanced": "green",
+    "found": "green",
+}
 
 
 def _fmt(value: Any, spec: str = ".4g") -> str:
@@ -61,6 +67,17 @@ THERMAL_COLUMNS = (
     ("friction power [W]", "friction power [W]", ".4g"),
     ("torque [N*m]", "torque [N*m]", ".4g"),
     ("temperatures [degC]", "map's T [degC]", ""),
+)
+
+
+#: The columns of the thermally permissible speeds' table, as :data:`_RUN_COLUMNS`.
+PERMISSIBLE_COLUMNS = (
+    ("radial_load [N]", "F_r [N]", ".4g"),
+    ("axial_load [N]", "F_a [N]", ".4g"),
+    ("status", "permissible speed", ""),
+    ("permissible speed [rpm]", "speed [rpm]", ".4g"),
+    ("permissible temperature [degC]", "at [degC]", ".4g"),
+    ("speeds [rpm]", "map's speeds [rpm]", ""),
 )
 
 

@@ -28,6 +28,7 @@ WRITTEN = (
     "map.csv",
     "map.parquet",
     "thermal.csv",
+    "thermal_speed.csv",
 )
 RUN_FOLDERS = ("runs", "points")
 

@@ -161,6 +161,9 @@ class MapStudy:
     #: The thermal balance (:func:`.thermal.balance_temperatures`; one row per speed and
     #: loads), with a heat dissipation only.
     thermal: Any = None
+    #: The thermally permissible speeds (:func:`.thermal.permissible_speeds`; one row per
+    #: loads), with a permissible temperature only.
+    permissible: Any = None
 
 
 def point_config(
@@ -266,6 +269,7 @@ def operating_map(
     temperature: Any = None,
     heat_dissipation: Any = None,
     ambient: Any = None,
+    permissible_temperature: Any = None,
     start: str = "equilibrium",
     ramp: float = 0.02,
     window: float = 0.01,
@@ -287,7 +291,10 @@ def operating_map(
     text with a unit: ``"0.35 W/K"``): the heat the bearing gives off per kelvin above
     ``ambient`` (default ``"20 degC"``, a number in degC or text with a unit); with it, and
     two or more temperatures, the thermal balance of each speed and loads
-    (:func:`.thermal.balance_temperatures`) is written to ``thermal.csv`` and drawn.
+    (:func:`.thermal.balance_temperatures`) is written to ``thermal.csv`` and drawn; and
+    with ``permissible_temperature`` [degC] (a number, or text with a unit) the thermally
+    permissible speed of each loads (:func:`.thermal.permissible_speeds`) to
+    ``thermal_speed.csv``.
     ``start``: one of :data:`STARTS`; a point without a quasi-static equilibrium at t = 0
     (:func:`equilibrium_refusal`) starts from short ramps instead, and its row's ``start``
     says so and why (:data:`FALLBACK`). ``ramp`` [s]: the short ramps' length (read only
@@ -306,7 +313,7 @@ def operating_map(
     cfg = as_config(config)
     _check_map_settings(start, ramp, window, tol, max_time, max_wall)
     axes = _map_axes(cfg, speed, radial_load, axial_load, temperature)
-    dissipation = _dissipation(heat_dissipation, ambient, axes[3])
+    dissipation = _dissipation(heat_dissipation, ambient, permissible_temperature, axes[3])
     workers = default_workers() if workers is None else workers
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise StudyError(f"--workers = {workers!r}: must be a whole number >= 1")
@@ -392,16 +399,18 @@ def _map_axes(cfg: Any, speed: Any, radial_load: Any, axial_load: Any, temperatu
     return speeds, radial, axial, temperatures
 
 
-def _dissipation(heat_dissipation: Any, ambient: Any, temperatures: list[float]):
-    """(heat dissipation [W/K], ambient temperature [K]) of the thermal balance, or None
-    without a heat dissipation. Refuses a dissipation that is not above 0, an ambient
-    without a dissipation, and a balance over fewer than two temperatures."""
+def _dissipation(heat_dissipation: Any, ambient: Any, permissible: Any, temperatures: list[float]):
+    """(heat dissipation [W/K], ambient temperature [K], permissible temperature [K] or
+    None) of the thermal balance, or None without a heat dissipation. Refuses a
+    dissipation that is not above 0, an ambient or permissible temperature without a
+    dissipation, and a balance over fewer than two temperatures."""
     if heat_dissipation is None:
-        if ambient is not None:
-            raise StudyError(
-                f"--ambient {ambient!r}: sets the surroundings of the thermal balance, "
-                "which needs --heat-dissipation"
-            )
+        for option, value in (("--ambient", ambient), ("--permissible-temperature", permissible)):
+            if value is not None:
+                raise StudyError(
+                    f"{option} {value!r}: belongs to the thermal balance, which needs "
+                    "--heat-dissipation"
+                )
         return None
     conductance = _quantity(heat_dissipation, "--heat-dissipation", "thermal conductance", "W/K")
     if not conductance > 0:
@@ -415,7 +424,10 @@ def _dissipation(heat_dissipation: Any, ambient: Any, temperatures: list[float])
             "friction at two or more oil temperatures; give them with --temperature "
             '(e.g. "60,80,100" in degC)'
         )
-    return conductance, surroundings
+    limit = None
+    if permissible is not None:
+        limit = _quantity(permissible, "--permissible-temperature", "temperature", "degC")
+    return conductance, surroundings, limit
 
 
 def _quantity(value: Any, option: str, family: str, unit: str) -> float:
@@ -523,8 +535,9 @@ def _run_map(
 ):
     """Runs the grid's points ``specs`` in the folder ``out`` (prepared, and locked
     meanwhile; ``run``: max_wall, scheduler, workers and force), writes map.csv, map.parquet and
-    the figures (and with ``dissipation``, (W/K, ambient K), the thermal balance:
-    thermal.csv and its figure), and returns the study."""
+    the figures (and with ``dissipation``, (W/K, ambient K, permissible K or None), the
+    thermal balance: thermal.csv, thermal_speed.csv and their figures), and returns the
+    study."""
     import pandas as pd
 
     from .folder import prepare_folder
@@ -545,22 +558,49 @@ def _run_map(
         frame.to_csv(out / "map.csv", index=False)
         frame.to_parquet(out / "map.parquet", engine="pyarrow", index=False)
         figures = write_maps(frame, out / "figures", cfg.name)
-        thermal = None
-        if dissipation is not None:
-            from .thermal import balance_temperatures, write_balance_figure
-
-            thermal = balance_temperatures(frame, *dissipation)
-            thermal.to_csv(out / "thermal.csv", index=False)
-            figures += write_balance_figure(frame, thermal, *dissipation, out / "figures", cfg.name)
-        else:  # an earlier invocation's balance, now stale
-            (out / "thermal.csv").unlink(missing_ok=True)
-            for ext in ("png", "svg"):
-                (out / "figures" / f"thermal_balance.{ext}").unlink(missing_ok=True)
+        thermal, permissible = _thermal(frame, dissipation, out, cfg.name, figures)
         workers = run["workers"] if run["scheduler"] is None else 0
         study_timing = timing(records, clock(), workers)
     finally:
         lock.unlink(missing_ok=True)
-    return MapStudy(out, frame, figures, study_timing, thermal)
+    return MapStudy(out, frame, figures, study_timing, thermal, permissible)
+
+
+def _thermal(frame, dissipation, out: Path, name: str, figures: list):
+    """(thermal balance, permissible speeds) of the map ``frame`` with ``dissipation``
+    (see :func:`_run_map`; None, None without), their tables and figures written in
+    ``out`` (the figures appended to ``figures``); what an earlier invocation wrote and
+    this one does not is removed."""
+    from .thermal import (
+        balance_temperatures,
+        permissible_speeds,
+        write_balance_figure,
+        write_speed_figure,
+    )
+
+    thermal = permissible = None
+    if dissipation is not None:
+        conductance, ambient, limit = dissipation
+        thermal = balance_temperatures(frame, conductance, ambient)
+        thermal.to_csv(out / "thermal.csv", index=False)
+        figures += write_balance_figure(frame, thermal, conductance, ambient, out / "figures", name)
+        if limit is not None:
+            permissible = permissible_speeds(thermal, limit - T0_CELSIUS)
+            permissible.to_csv(out / "thermal_speed.csv", index=False)
+            figures += write_speed_figure(
+                thermal, permissible, limit - T0_CELSIUS, out / "figures", name
+            )
+    stale = [] if thermal is not None else ["thermal.csv", "figures/thermal_balance"]
+    if permissible is None:
+        stale += ["thermal_speed.csv", "figures/thermal_speed"]
+    for path in stale:
+        for file in (
+            [out / path]
+            if path.endswith(".csv")
+            else [out / f"{path}.{ext}" for ext in ("png", "svg")]
+        ):
+            file.unlink(missing_ok=True)
+    return thermal, permissible
 
 
 def value_ok(v: Any) -> bool:

@@ -22,6 +22,14 @@ Where P - Q is negative already at the lowest temperature, the balance lies belo
 map; where it is positive still at the highest, above it (or the bearing runs away
 thermally); neither is extrapolated. The oil is taken at the bearing's temperature (one
 temperature for the whole bearing, as in the dynamic model).
+
+Over two or more speeds, with a permissible temperature T_perm, the thermally permissible
+speed of each loads is the lowest speed at which the balance reaches T_perm (the idea of
+DIN 732's thermally permissible speed, with the map's friction instead of the standard's
+formulas): on the first interval of the map's speeds where T* - T_perm changes sign from
+- to +, T* interpolated linearly in the speed. A balance outside the map's temperatures
+still tells on which side of T_perm it lies where T_perm is inside them; where it is
+needed for the interpolation, the speed is only bracketed.
 """
 
 from __future__ import annotations
@@ -38,6 +46,15 @@ GROUP = ("speed [rpm]", "radial_load [N]", "axial_load [N]")
 
 #: Statuses of a balance.
 BALANCED, BELOW, ABOVE, NO_VALUE = "balanced", "below the map", "above the map", "no value"
+
+#: Statuses of a thermally permissible speed.
+FOUND, BRACKETED, FASTER, SLOWER, UNKNOWN = (
+    "found",
+    "bracketed",
+    "above the map's speeds",
+    "below the map's speeds",
+    "undetermined",
+)
 
 #: rpm -> rad/s.
 RPM = math.pi / 30.0
@@ -110,11 +127,18 @@ def balance_temperatures(frame, conductance: float, ambient: float):
                 "heat dissipation [W/K]": conductance,
                 "ambient [degC]": ambient - T0_CELSIUS,
                 "temperatures [degC]": ", ".join(f"{t - T0_CELSIUS:g}" for t in temps),
+                "lowest temperature [degC]": _in_celsius(temps, np.min),
+                "highest temperature [degC]": _in_celsius(temps, np.max),
                 "note": _note(status, temps, power[ok], conductance, ambient, group),
             }
         )
         rows.append(row)
     return pd.DataFrame(rows)
+
+
+def _in_celsius(temps: np.ndarray, pick) -> float:
+    """``pick`` (min or max) of ``temps`` [K] in degC; NaN for none."""
+    return float(pick(temps)) - T0_CELSIUS if len(temps) else math.nan
 
 
 def _note(status: str, temps, power, conductance: float, ambient: float, group) -> str:
@@ -146,6 +170,85 @@ def _note(status: str, temps, power, conductance: float, ambient: float, group) 
         more = f"points not steady at {listed} degC"
         note = f"{note}; {more}" if note else more
     return note
+
+
+def _side(row, permissible: float) -> tuple[float, float]:
+    """(sign of T* - ``permissible`` [degC]: -1, +1 or NaN where unknown; T* [degC] or
+    NaN) of a row of the balance table."""
+    if row["status"] == BALANCED:
+        t = float(row["balance temperature [degC]"])
+        return (1.0 if t > permissible else -1.0), t
+    if row["status"] == BELOW and permissible >= row["lowest temperature [degC]"]:
+        return -1.0, math.nan
+    if row["status"] == ABOVE and permissible <= row["highest temperature [degC]"]:
+        return 1.0, math.nan
+    return math.nan, math.nan
+
+
+def permissible_speeds(thermal, permissible: float):
+    """One row per loads of the balance table ``thermal`` (:func:`balance_temperatures`):
+    the thermally permissible speed [rpm] at which the balance reaches ``permissible``
+    [degC] (see the module's doc), its status, the speeds that bracket it and a note."""
+    import pandas as pd
+
+    rows = []
+    for key, group in thermal.groupby(list(GROUP[1:]), sort=True):
+        group = group.sort_values("speed [rpm]")
+        speeds = np.asarray(group["speed [rpm]"], dtype=float)
+        sides = [_side(row, permissible) for _, row in group.iterrows()]
+        status, speed, low, high = _crossing(speeds, sides, permissible)
+        row = dict(zip(GROUP[1:], key, strict=True))
+        row.update(
+            {
+                "status": status,
+                "permissible speed [rpm]": speed,
+                "from [rpm]": low,
+                "to [rpm]": high,
+                "permissible temperature [degC]": permissible,
+                "speeds [rpm]": ", ".join(f"{v:g}" for v in speeds),
+                "note": _speed_note(status, low, high, permissible),
+            }
+        )
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def _crossing(speeds: np.ndarray, sides, permissible: float):
+    """(status, speed, bracket's low and high speed) of the first change of T* - T_perm
+    from - to + over ``speeds`` (``sides``: (sign, T*) per speed, :func:`_side`)."""
+    if len(sides) and sides[0][0] > 0:
+        return SLOWER, math.nan, math.nan, float(speeds[0])
+    for i in range(len(speeds) - 1):
+        (a, ta), (b, tb) = sides[i], sides[i + 1]
+        if math.isnan(a):  # what lies beyond an unknown side is unknown
+            return UNKNOWN, math.nan, math.nan, math.nan
+        if a < 0 < b:
+            n0, n1 = float(speeds[i]), float(speeds[i + 1])
+            if math.isfinite(ta) and math.isfinite(tb):
+                return FOUND, n0 + (permissible - ta) / (tb - ta) * (n1 - n0), n0, n1
+            return BRACKETED, math.nan, n0, n1
+    if len(sides) and all(sign < 0 for sign, _ in sides):
+        return FASTER, math.nan, float(speeds[-1]), math.nan
+    return UNKNOWN, math.nan, math.nan, math.nan
+
+
+def _speed_note(status: str, low: float, high: float, permissible: float) -> str:
+    """Why a thermally permissible speed is not a number."""
+    if status == SLOWER:
+        return f"the balance is above {permissible:g} degC already at {high:g} rpm"
+    if status == FASTER:
+        return f"the balance stays below {permissible:g} degC up to {low:g} rpm"
+    if status == BRACKETED:
+        return (
+            f"between {low:g} and {high:g} rpm; a balance there lies outside the map's "
+            "temperatures, so no value is interpolated"
+        )
+    if status == UNKNOWN:
+        return (
+            "a balance outside the map's temperatures (or none) leaves open on which side "
+            f"of {permissible:g} degC it lies; widen --temperature"
+        )
+    return ""
 
 
 def write_balance_figure(
@@ -206,4 +309,46 @@ def write_balance_figure(
     return save_figure(fig, Path(out), "thermal_balance")
 
 
-__all__ = ["balance", "balance_temperatures", "friction_power", "write_balance_figure"]
+def write_speed_figure(thermal, speeds, permissible: float, out: Path, name: str) -> list[Path]:
+    """The balance temperature over the speed for each loads (balances outside the map
+    left out), the permissible temperature (a dashed line) and each thermally permissible
+    speed (a star); PNG and SVG in ``out`` as ``thermal_speed``."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..plots import save_figure
+
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for key, group in thermal.groupby(list(GROUP[1:]), sort=True):
+        group = group.sort_values("speed [rpm]")
+        (line,) = ax.plot(
+            group["speed [rpm]"],
+            group["balance temperature [degC]"],
+            "o-",
+            label=f"F_r = {key[0]:g} N, F_a = {key[1]:g} N",
+        )
+        match = speeds[(speeds[GROUP[1]] == key[0]) & (speeds[GROUP[2]] == key[1])]
+        for _, row in match[match["status"] == FOUND].iterrows():
+            n = row["permissible speed [rpm]"]
+            ax.plot(n, permissible, "*", ms=14, color=line.get_color())
+            ax.annotate(f"{n:.0f} rpm", (n, permissible), textcoords="offset points", xytext=(6, 6))
+    ax.axhline(permissible, color="k", ls="--", label=f"permissible, {permissible:g} degC")
+    ax.set(
+        xlabel="inner ring speed [rpm]",
+        ylabel="balance temperature [degC]",
+        title=f"{name}: thermally permissible speed",
+    )
+    ax.legend(fontsize="small")
+    return save_figure(fig, Path(out), "thermal_speed")
+
+
+__all__ = [
+    "balance",
+    "balance_temperatures",
+    "friction_power",
+    "permissible_speeds",
+    "write_balance_figure",
+    "write_speed_figure",
+]
