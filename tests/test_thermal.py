@@ -6,6 +6,7 @@ B1's map over two oil temperatures."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pandas as pd
@@ -341,6 +342,13 @@ def test_b1_map_over_two_oil_temperatures_finds_its_balance(tmp_path):
     p = [cool["torque [N*m]"] * 100 * math.pi, hot["torque [N*m]"] * 100 * math.pi]
     assert p[1] < row["friction power [W]"] < p[0]
     assert (tmp_path / "map" / "figures" / "thermal_balance.png").is_file()
+    # the map's page: its points, the balance, the permissible speed and every map
+    page = (tmp_path / "map" / "report.html").read_text(encoding="utf-8")
+    for heading in ("Points", "Thermal balance", "Thermally permissible speed", "Maps"):
+        assert f">{heading}</h2>" in page
+    pngs = sorted(p.stem for p in (tmp_path / "map" / "figures").glob("*.png"))
+    assert sorted(re.findall(r'<img alt="([^"]+)" src="data:image/png;base64,', page)) == pngs
+    assert "map_torque" in pngs and "thermal_speed" in pngs
     # at 3000 rpm the balance (about 95 degC) is above 70 degC already
     speeds = pd.read_csv(tmp_path / "map" / "thermal_speed.csv")
     assert speeds.iloc[0]["status"] == SLOWER and "thermally permissible speed" in result.output

@@ -450,7 +450,7 @@ def map_command(
         force=force,
     )
     print_map(result.points, f"operating map of {config.name} in {output}")
-    files: tuple[str, ...] = ("map.csv", "map.parquet")
+    files: tuple[str, ...] = ("report.html", "map.csv", "map.parquet")
     if result.thermal is not None:
         print_frame(
             result.thermal,

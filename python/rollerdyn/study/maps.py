@@ -7,9 +7,9 @@ friction makes.
 
 The folder (default ``results/map``) holds ``study.json``, ``points/point_XXXX.nc`` (one
 result per grid point, written at its checkpoints), ``map.csv`` and ``map.parquet`` (one
-row per point), ``thermal.csv`` (with a heat dissipation: one row per speed and loads) and
-``figures/`` (the maps, PNG and SVG). Invoked again it runs only what is missing, as
-``rollerdyn study paper`` does.
+row per point), ``thermal.csv`` (with a heat dissipation: one row per speed and loads),
+``figures/`` (the maps, PNG and SVG) and ``report.html`` (:mod:`.map_page`). Invoked
+again it runs only what is missing, as ``rollerdyn study paper`` does.
 """
 
 from __future__ import annotations
@@ -542,6 +542,8 @@ def _run_map(
 
     from .folder import prepare_folder
     from .map_figures import write_maps
+    from .map_page import build_map_page
+    from .report_page import write_page
     from .schedule import run_all, timing
 
     out = prepare_folder(out, "map", cfg, overwrite=overwrite, source=source, settings=settings)
@@ -561,6 +563,16 @@ def _run_map(
         thermal, permissible = _thermal(frame, dissipation, out, cfg.name, figures)
         workers = run["workers"] if run["scheduler"] is None else 0
         study_timing = timing(records, clock(), workers)
+        page = build_map_page(
+            frame,
+            figures,
+            title=f"Operating map of {cfg.name}",
+            config=cfg,
+            thermal=thermal,
+            permissible=permissible,
+            timing=study_timing,
+        )
+        write_page(out / "report.html", page)
     finally:
         lock.unlink(missing_ok=True)
     return MapStudy(out, frame, figures, study_timing, thermal, permissible)

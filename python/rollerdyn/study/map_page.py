@@ -1,0 +1,161 @@
+"""The operating map's HTML report (``report.html`` in the map folder): the points with
+their steady outputs, the thermal balance and the thermally permissible speeds where the
+map has them, the maps (the PNG files of ``figures/``, embedded) and the configuration.
+One self-contained file, styled as ``rollerdyn report``'s pages (:mod:`rollerdyn.report`).
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import json
+import math
+from pathlib import Path
+
+from ..report import html_page, table
+
+#: The points' table: column of the map's frame, heading, number format.
+POINT_COLUMNS = (
+    ("point", "point", ""),
+    ("speed [rpm]", "speed [rpm]", ".6g"),
+    ("radial_load [N]", "F_r [N]", ".6g"),
+    ("axial_load [N]", "F_a [N]", ".6g"),
+    ("temperature [degC]", "T [°C]", ".4g"),
+    ("status", "status", ""),
+    ("steady at [s]", "steady at [s]", ".4g"),
+    ("torque [N*m]", "torque [N·m]", ".4g"),
+    ("speed loss [1]", "speed loss [-]", ".3g"),
+    ("max flange force [N]", "max flange force [N]", ".4g"),
+    ("inner race Lambda [1]", "Λ inner race [-]", ".3g"),
+    ("flange Lambda [1]", "Λ flanges [-]", ".3g"),
+    ("wall [s]", "wall [s]", ".1f"),
+)
+
+#: The thermal balance's table, as :data:`POINT_COLUMNS`.
+THERMAL_COLUMNS = (
+    ("speed [rpm]", "speed [rpm]", ".6g"),
+    ("radial_load [N]", "F_r [N]", ".6g"),
+    ("axial_load [N]", "F_a [N]", ".6g"),
+    ("status", "balance", ""),
+    ("balance temperature [degC]", "T [°C]", ".4g"),
+    ("friction power [W]", "friction power [W]", ".4g"),
+    ("torque [N*m]", "torque [N·m]", ".4g"),
+    ("temperatures [degC]", "the map's T [°C]", ""),
+    ("note", "note", ""),
+)
+
+#: The thermally permissible speeds' table, as :data:`POINT_COLUMNS`.
+PERMISSIBLE_COLUMNS = (
+    ("radial_load [N]", "F_r [N]", ".6g"),
+    ("axial_load [N]", "F_a [N]", ".6g"),
+    ("status", "permissible speed", ""),
+    ("permissible speed [rpm]", "speed [rpm]", ".5g"),
+    ("permissible temperature [degC]", "at [°C]", ".4g"),
+    ("speeds [rpm]", "the map's speeds [rpm]", ""),
+    ("note", "note", ""),
+)
+
+
+def _cell(value, spec: str) -> str:
+    if isinstance(value, float) and not math.isfinite(value):
+        return "n/a"
+    if spec and isinstance(value, int | float) and not isinstance(value, bool):
+        return format(value, spec)
+    return str(value)
+
+
+def frame_table(frame, columns) -> str:
+    """``frame``'s rows as an HTML table of ``columns`` (column, heading, format); a column
+    the frame lacks is left empty."""
+    header = [head for _, head, _ in columns]
+    rows = [
+        [_cell(row.get(col, ""), spec) for col, _, spec in columns] for _, row in frame.iterrows()
+    ]
+    return table(header, rows, numeric_from=len(columns))
+
+
+def _png(path: Path) -> str:
+    data = base64.b64encode(Path(path).read_bytes()).decode("ascii")
+    alt = html.escape(Path(path).stem)
+    return f'<div class="figure"><img alt="{alt}" src="data:image/png;base64,{data}"></div>'
+
+
+def build_map_page(
+    frame, figures, *, title: str, config, thermal=None, permissible=None, timing=None
+) -> str:
+    """The map's page (see the module's doc). ``figures``: the files the map wrote (its
+    PNG files are embedded); ``config``: the map's configuration."""
+    body = [f"<h1>{html.escape(title)}</h1>"]
+    steady = int((frame["status"] == "steady").sum())
+    body.append('<h2 id="points">Points</h2>')
+    body.append(
+        f"<p>{steady} of {len(frame)} points steady. Each point ran from its start until its "
+        "friction torque, roller-set speed loss and largest flange force, averaged over "
+        'windows of simulated time, stopped changing (docs/study.md, "The outputs and the '
+        'steady-state criterion"); the values are those of its last window. Λ is the median '
+        "specific film thickness h_c/σ of the contacts in contact (below 1 boundary, above 3 "
+        "full-film lubrication).</p>"
+    )
+    body.append(frame_table(frame, POINT_COLUMNS))
+    if timing and not timing.get("runs run", 0):
+        body.append("<p class='note'>This invocation ran nothing: every point was there.</p>")
+    elif timing:
+        eff = timing.get("parallel efficiency", math.nan)
+        wall = _cell(timing.get("study wall [s]", math.nan), ".1f")
+        body.append(
+            f"<p class='note'>This invocation: {wall} s of wall time, "
+            f"{timing.get('runs run', 0)} point(s) run or continued on "
+            f"{timing.get('workers', 0) or '?'} worker(s) (parallel efficiency "
+            f"{_cell(100 * eff, '.0f')} %); points already in the folder cost nothing.</p>"
+        )
+    if thermal is not None:
+        body.append('<h2 id="thermal">Thermal balance</h2>')
+        first = thermal.iloc[0]
+        body.append(
+            "<p>The temperature at which the friction power the map measured equals the heat "
+            f"the bearing gives off, {first['heat dissipation [W/K]']:g} W/K above "
+            f'{first["ambient [degC]"]:g} °C (docs/study.md, "The thermal balance").</p>'
+        )
+        body.append(frame_table(thermal, THERMAL_COLUMNS))
+    if permissible is not None:
+        body.append('<h2 id="permissible">Thermally permissible speed</h2>')
+        body.append(
+            "<p>The lowest speed at which the thermal balance reaches the permissible "
+            "temperature.</p>"
+        )
+        body.append(frame_table(permissible, PERMISSIBLE_COLUMNS))
+    pngs = [Path(f) for f in figures if Path(f).suffix == ".png" and Path(f).is_file()]
+    body.append('<h2 id="figures">Maps</h2>')
+    if pngs:
+        body.append(
+            "<p class='note'>A cross marks a point that is not steady at its maximum time; a "
+            "point without a value is labelled with its status. The same figures are in "
+            "figures/ as PNG and SVG.</p>"
+        )
+        body += [_png(p) for p in pngs]
+    else:
+        body.append("<p class='warn'>No figure: no point has a value.</p>")
+    body.append('<h2 id="configuration">Configuration</h2>')
+    text = getattr(config, "toml_text", "")
+    if text:
+        shown, what = text, "as read (TOML)"
+    else:
+        shown = json.dumps(config.model_dump(mode="json"), indent=2)
+        what = "resolved to SI (built in Python, no TOML text)"
+    body.append(
+        f"<details><summary>the map's configuration, {what}</summary>"
+        f"<pre>{html.escape(shown)}</pre></details><p class='note'>Each point sets its speed, "
+        "loads and oil temperature and starts as the map says; its file records its "
+        "resolved configuration and hash.</p>"
+    )
+    nav = ["points", "figures", "configuration"]
+    if thermal is not None:
+        nav.insert(1, "thermal")
+    if permissible is not None:
+        nav.insert(2, "permissible")
+    links = "".join(f'<a href="#{n}">{n}</a>' for n in nav)
+    body.insert(1, f"<nav>{links}</nav>")
+    return html_page(title, body)
+
+
+__all__ = ["build_map_page", "frame_table"]
