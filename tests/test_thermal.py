@@ -370,3 +370,39 @@ def test_b1_map_over_two_oil_temperatures_finds_its_balance(tmp_path):
     assert not (tmp_path / "map" / "figures" / "thermal_balance.png").exists()
     assert again.permissible is None and not (tmp_path / "map" / "thermal_speed.csv").exists()
     assert not (tmp_path / "map" / "figures" / "thermal_speed.svg").exists()
+
+
+def test_map_figure_of_four_swept_quantities_has_a_panel_per_combination_of_the_others(
+    monkeypatch,
+):
+    """Speed x temperature as the colour map (the two with the most values), one panel per
+    radial and axial load (2 x 2, laid out three to a row; the sixth place hidden)."""
+    import itertools
+
+    import rollerdyn.plots as plots
+    from rollerdyn.study.map_figures import write_maps
+
+    rows = [
+        {
+            "speed [rpm]": n,
+            "radial_load [N]": fr,
+            "axial_load [N]": fa,
+            "temperature [degC]": t,
+            "status": "steady",
+            "torque [N*m]": 1e-5 * n + 1e-4 * fa / t,
+        }
+        for n, fr, fa, t in itertools.product(
+            [500.0, 1000.0, 2000.0], [3000.0, 5000.0], [0.0, 1000.0], [60.0, 80.0, 100.0]
+        )
+    ]
+    figures = []
+    monkeypatch.setattr(plots, "save_figure", lambda fig, out, name: figures.append(fig) or [])
+    write_maps(pd.DataFrame(rows), ".", "B1")
+    panels = [ax for ax in figures[0].axes if ax.get_visible() and ax.get_title()]
+    assert [ax.get_title() for ax in panels] == [
+        f"radial load [N] = {fr:g}, axial load [N] = {fa:g}"
+        for fr, fa in itertools.product([3000.0, 5000.0], [0.0, 1000.0])
+    ]
+    assert {(ax.get_xlabel(), ax.get_ylabel()) for ax in panels} == {
+        ("inner ring speed [rpm]", "oil temperature [degC]")
+    }

@@ -51,10 +51,14 @@ def write_maps(frame, out: Path, name: str) -> list[Path]:
             # one panel per combination of the other axes' values; titled by those that vary
             shown = [c for c in rest if len(sizes[c]) > 1] or rest[:1]
             panels = sorted({tuple(r) for r in frame[shown].itertuples(index=False)})
+            cols = min(len(panels), 3)
+            rows = -(-len(panels) // cols)
             fig, grid_axes = plt.subplots(
-                1, len(panels), figsize=(5.5 * len(panels), 4.2), squeeze=False
+                rows, cols, figsize=(5.5 * cols, 4.2 * rows), squeeze=False, layout="constrained"
             )
-            for ax, values in zip(grid_axes[0], panels, strict=True):
+            for ax in grid_axes.flat[len(panels) :]:  # the last row's empty places
+                ax.set_visible(False)
+            for ax, values in zip(grid_axes.flat, panels, strict=False):
                 sub = frame
                 for c, v in zip(shown, values, strict=True):
                     sub = sub[sub[c] == v]

@@ -459,9 +459,10 @@ def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time):
     rules, specs, problems = {}, [], []
     # the equilibrium does not evaluate the traction: its untabulated model, built at once
     traction = Model(cfg).traction_model(tabulated=False) if start == "equilibrium" else None
+    own_temperature = axes[3] == [cfg.operating.temperature]
     for i, (w, fr, fa, temp) in enumerate(itertools.product(*axes)):
         label = f"{w / RPM:g} rpm, F_r = {fr:g} N, F_a = {fa:g} N"
-        if len(axes[3]) > 1:
+        if not own_temperature:  # the map sets the oil temperature
             label += f", {temp - T0_CELSIUS:g} degC"
         try:
             variant, settle, started = _point_start(cfg, (w, fr, fa, temp), start, ramp, traction)
@@ -602,16 +603,15 @@ def _thermal(frame, dissipation, out: Path, name: str, figures: list):
             figures += write_speed_figure(
                 thermal, permissible, limit - T0_CELSIUS, out / "figures", name
             )
-    stale = [] if thermal is not None else ["thermal.csv", "figures/thermal_balance"]
-    if permissible is None:
-        stale += ["thermal_speed.csv", "figures/thermal_speed"]
-    for path in stale:
-        for file in (
-            [out / path]
-            if path.endswith(".csv")
-            else [out / f"{path}.{ext}" for ext in ("png", "svg")]
-        ):
-            file.unlink(missing_ok=True)
+    stale = []
+    for table, csv, figure in (
+        (thermal, "thermal.csv", "thermal_balance"),
+        (permissible, "thermal_speed.csv", "thermal_speed"),
+    ):
+        if table is None:
+            stale += [out / csv, *(out / "figures" / f"{figure}.{e}" for e in ("png", "svg"))]
+    for file in stale:
+        file.unlink(missing_ok=True)
     return thermal, permissible
 
 
