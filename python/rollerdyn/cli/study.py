@@ -26,14 +26,13 @@ from .common import (
     time_option,
 )
 from .study_tables import (
-    PERMISSIBLE_COLUMNS,
-    THERMAL_COLUMNS,
     print_findings,
     print_frame,
     print_map,
     print_runs,
     print_timing,
     run_status,
+    status_and_note,
 )
 
 app = typer.Typer(
@@ -414,6 +413,7 @@ def map_command(
     input (nothing run).
     """
     from ..study import operating_map
+    from ..study.thermal import PERMISSIBLE_COLUMNS, THERMAL_COLUMNS
 
     if ramp is not None and start != "short-ramps":
         raise refuse(
@@ -451,22 +451,18 @@ def map_command(
     )
     print_map(result.points, f"operating map of {config.name} in {output}")
     files: tuple[str, ...] = ("report.html", "map.csv", "map.parquet")
-    if result.thermal is not None:
-        print_frame(
-            result.thermal,
-            f"thermal balance of {config.name}: friction power = heat given off",
-            THERMAL_COLUMNS,
-            lambda row: f"{row['status']}: {row['note']}" if row["note"] else row["status"],
-        )
-        files += ("thermal.csv",)
-    if result.permissible is not None:
-        print_frame(
+    for table, title, columns, written in (
+        (result.thermal, "thermal balance", THERMAL_COLUMNS, "thermal.csv"),
+        (
             result.permissible,
-            f"thermally permissible speed of {config.name}",
+            "thermally permissible speed",
             PERMISSIBLE_COLUMNS,
-            lambda row: f"{row['status']}: {row['note']}" if row["note"] else row["status"],
-        )
-        files += ("thermal_speed.csv",)
+            "thermal_speed.csv",
+        ),
+    ):
+        if table is not None:  # the note in the status cell
+            print_frame(table, f"{title} of {config.name}", columns[:-1], status_and_note)
+            files += (written,)
     _finish(output, files, result.points, result.figures, result.timing, started)
 
 

@@ -39,47 +39,6 @@ _RUN_COLUMNS = (
     ("action", "this time", ""),
 )
 
-#: The columns of the map's table, as :data:`_RUN_COLUMNS`.
-_MAP_COLUMNS = (
-    ("point", "point", ""),
-    ("speed [rpm]", "speed [rpm]", ".4g"),
-    ("radial_load [N]", "F_r [N]", ".4g"),
-    ("axial_load [N]", "F_a [N]", ".4g"),
-    ("temperature [degC]", "T [degC]", ".4g"),
-    ("status", "status", ""),
-    ("steady at [s]", "steady at [s]", ".4g"),
-    ("torque [N*m]", "torque [N*m]", ".4g"),
-    ("speed loss [1]", "speed loss [-]", ".3g"),
-    ("max flange force [N]", "max flange force [N]", ".4g"),
-    ("inner race Lambda [1]", "Lambda inner race [-]", ".3g"),
-    ("flange Lambda [1]", "Lambda flanges [-]", ".3g"),
-    ("wall [s]", "wall [s]", ".1f"),
-)
-
-
-#: The columns of the thermal balance's table, as :data:`_RUN_COLUMNS`.
-THERMAL_COLUMNS = (
-    ("speed [rpm]", "speed [rpm]", ".4g"),
-    ("radial_load [N]", "F_r [N]", ".4g"),
-    ("axial_load [N]", "F_a [N]", ".4g"),
-    ("status", "balance", ""),
-    ("balance temperature [degC]", "T [degC]", ".4g"),
-    ("friction power [W]", "friction power [W]", ".4g"),
-    ("torque [N*m]", "torque [N*m]", ".4g"),
-    ("temperatures [degC]", "map's T [degC]", ""),
-)
-
-
-#: The columns of the thermally permissible speeds' table, as :data:`_RUN_COLUMNS`.
-PERMISSIBLE_COLUMNS = (
-    ("radial_load [N]", "F_r [N]", ".4g"),
-    ("axial_load [N]", "F_a [N]", ".4g"),
-    ("status", "permissible speed", ""),
-    ("permissible speed [rpm]", "speed [rpm]", ".4g"),
-    ("permissible temperature [degC]", "at [degC]", ".4g"),
-    ("speeds [rpm]", "map's speeds [rpm]", ""),
-)
-
 
 def print_frame(frame, title: str, columns, status_text) -> None:
     """One row per row of ``frame``: ``columns`` (column, heading, format), the status
@@ -109,13 +68,18 @@ def run_status(row) -> str:
     return note or row["status"]
 
 
+def status_and_note(row) -> str:
+    """A row's status cell: its status, and its note after a colon where it has one."""
+    return f"{row['status']}: {row['note']}" if row["note"] else row["status"]
+
+
 def print_runs(frame, title: str) -> None:
     print_frame(frame, title, _RUN_COLUMNS, run_status)
 
 
 def print_map(frame, title: str) -> None:
     from ..simulation import FORCED_MARK
-    from ..study.maps import FALLBACK
+    from ..study.maps import FALLBACK, MAP_COLUMNS
 
     def status(row) -> str:
         steady = row["status"] in ("steady", "not steady")
@@ -127,7 +91,7 @@ def print_map(frame, title: str) -> None:
             text = f"{text} (--force: past the point law's load check)"
         return text
 
-    print_frame(frame, title, _MAP_COLUMNS, status)
+    print_frame(frame, title, MAP_COLUMNS, status)
 
 
 def print_findings(findings) -> None:

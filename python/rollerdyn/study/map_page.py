@@ -13,47 +13,8 @@ import math
 from pathlib import Path
 
 from ..report import html_page, table
-
-#: The points' table: column of the map's frame, heading, number format.
-POINT_COLUMNS = (
-    ("point", "point", ""),
-    ("speed [rpm]", "speed [rpm]", ".6g"),
-    ("radial_load [N]", "F_r [N]", ".6g"),
-    ("axial_load [N]", "F_a [N]", ".6g"),
-    ("temperature [degC]", "T [°C]", ".4g"),
-    ("status", "status", ""),
-    ("steady at [s]", "steady at [s]", ".4g"),
-    ("torque [N*m]", "torque [N·m]", ".4g"),
-    ("speed loss [1]", "speed loss [-]", ".3g"),
-    ("max flange force [N]", "max flange force [N]", ".4g"),
-    ("inner race Lambda [1]", "Λ inner race [-]", ".3g"),
-    ("flange Lambda [1]", "Λ flanges [-]", ".3g"),
-    ("wall [s]", "wall [s]", ".1f"),
-)
-
-#: The thermal balance's table, as :data:`POINT_COLUMNS`.
-THERMAL_COLUMNS = (
-    ("speed [rpm]", "speed [rpm]", ".6g"),
-    ("radial_load [N]", "F_r [N]", ".6g"),
-    ("axial_load [N]", "F_a [N]", ".6g"),
-    ("status", "balance", ""),
-    ("balance temperature [degC]", "T [°C]", ".4g"),
-    ("friction power [W]", "friction power [W]", ".4g"),
-    ("torque [N*m]", "torque [N·m]", ".4g"),
-    ("temperatures [degC]", "the map's T [°C]", ""),
-    ("note", "note", ""),
-)
-
-#: The thermally permissible speeds' table, as :data:`POINT_COLUMNS`.
-PERMISSIBLE_COLUMNS = (
-    ("radial_load [N]", "F_r [N]", ".6g"),
-    ("axial_load [N]", "F_a [N]", ".6g"),
-    ("status", "permissible speed", ""),
-    ("permissible speed [rpm]", "speed [rpm]", ".5g"),
-    ("permissible temperature [degC]", "at [°C]", ".4g"),
-    ("speeds [rpm]", "the map's speeds [rpm]", ""),
-    ("note", "note", ""),
-)
+from .maps import MAP_COLUMNS
+from .thermal import PERMISSIBLE_COLUMNS, THERMAL_COLUMNS
 
 
 def _cell(value, spec: str) -> str:
@@ -96,7 +57,7 @@ def build_map_page(
         "specific film thickness h_c/σ of the contacts in contact (below 1 boundary, above 3 "
         "full-film lubrication).</p>"
     )
-    body.append(frame_table(frame, POINT_COLUMNS))
+    body.append(frame_table(frame, MAP_COLUMNS))
     if timing and not timing.get("runs run", 0):
         body.append("<p class='note'>This invocation ran nothing: every point was there.</p>")
     elif timing:

@@ -55,6 +55,23 @@ OUTPUTS = (
 )
 
 
+#: The map's table as printed and on its page: column, heading, number format.
+MAP_COLUMNS = (
+    ("point", "point", ""),
+    ("speed [rpm]", "speed [rpm]", ".4g"),
+    ("radial_load [N]", "F_r [N]", ".4g"),
+    ("axial_load [N]", "F_a [N]", ".4g"),
+    ("temperature [degC]", "T [degC]", ".4g"),
+    ("status", "status", ""),
+    ("steady at [s]", "steady at [s]", ".4g"),
+    ("torque [N*m]", "torque [N*m]", ".4g"),
+    ("speed loss [1]", "speed loss [-]", ".3g"),
+    ("max flange force [N]", "max flange force [N]", ".4g"),
+    ("inner race Lambda [1]", "Lambda inner race [-]", ".3g"),
+    ("flange Lambda [1]", "Lambda flanges [-]", ".3g"),
+    ("wall [s]", "wall [s]", ".1f"),
+)
+
 #: Least number of outputs in a window W of the steadiness criterion: each point's
 #: ``solver.output_interval`` is at most W / 100. The friction torque of an unloaded B1
 #: (0 N axial) loses its correlation within 0.1-0.2 ms; sampled every 1 ms (B1's own

@@ -40,6 +40,7 @@ from pathlib import Path
 import numpy as np
 
 from ..config.base import T0_CELSIUS
+from .maps import RPM
 
 #: The speed and loads that make one balance (the map's axes other than temperature).
 GROUP = ("speed [rpm]", "radial_load [N]", "axial_load [N]")
@@ -56,8 +57,30 @@ FOUND, BRACKETED, FASTER, SLOWER, UNKNOWN = (
     "undetermined",
 )
 
-#: rpm -> rad/s.
-RPM = math.pi / 30.0
+#: The balance's table as printed and on the map's page (the note last): column,
+#: heading, number format.
+THERMAL_COLUMNS = (
+    ("speed [rpm]", "speed [rpm]", ".4g"),
+    ("radial_load [N]", "F_r [N]", ".4g"),
+    ("axial_load [N]", "F_a [N]", ".4g"),
+    ("status", "balance", ""),
+    ("balance temperature [degC]", "T [degC]", ".4g"),
+    ("friction power [W]", "friction power [W]", ".4g"),
+    ("torque [N*m]", "torque [N*m]", ".4g"),
+    ("temperatures [degC]", "map's T [degC]", ""),
+    ("note", "note", ""),
+)
+
+#: The thermally permissible speeds' table, as :data:`THERMAL_COLUMNS`.
+PERMISSIBLE_COLUMNS = (
+    ("radial_load [N]", "F_r [N]", ".4g"),
+    ("axial_load [N]", "F_a [N]", ".4g"),
+    ("status", "permissible speed", ""),
+    ("permissible speed [rpm]", "speed [rpm]", ".4g"),
+    ("permissible temperature [degC]", "at [degC]", ".4g"),
+    ("speeds [rpm]", "map's speeds [rpm]", ""),
+    ("note", "note", ""),
+)
 
 
 def friction_power(rows) -> np.ndarray:
@@ -262,8 +285,6 @@ def write_balance_figure(
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from ..plots import save_figure
-
     fig, ax = plt.subplots(figsize=(7, 4.5))
     t_all = np.asarray(frame["temperature [degC]"], dtype=float)
     for key, group in frame.groupby(list(GROUP), sort=True):
@@ -300,13 +321,13 @@ def write_balance_figure(
         "k--",
         label=f"heat given off, {conductance:g} W/K above {ambient - T0_CELSIUS:g} degC",
     )
-    ax.set(
-        xlabel="oil and bearing temperature [degC]",
-        ylabel="power [W]",
-        title=f"{name}: thermal balance (friction power = heat given off)",
+    return _finish(
+        fig,
+        ax,
+        ("oil and bearing temperature [degC]", "power [W]"),
+        f"{name}: thermal balance (friction power = heat given off)",
+        Path(out) / "thermal_balance",
     )
-    ax.legend(fontsize="small")
-    return save_figure(fig, Path(out), "thermal_balance")
 
 
 def write_speed_figure(thermal, speeds, permissible: float, out: Path, name: str) -> list[Path]:
@@ -317,8 +338,6 @@ def write_speed_figure(thermal, speeds, permissible: float, out: Path, name: str
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-
-    from ..plots import save_figure
 
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for key, group in thermal.groupby(list(GROUP[1:]), sort=True):
@@ -335,13 +354,23 @@ def write_speed_figure(thermal, speeds, permissible: float, out: Path, name: str
             ax.plot(n, permissible, "*", ms=14, color=line.get_color())
             ax.annotate(f"{n:.0f} rpm", (n, permissible), textcoords="offset points", xytext=(6, 6))
     ax.axhline(permissible, color="k", ls="--", label=f"permissible, {permissible:g} degC")
-    ax.set(
-        xlabel="inner ring speed [rpm]",
-        ylabel="balance temperature [degC]",
-        title=f"{name}: thermally permissible speed",
+    return _finish(
+        fig,
+        ax,
+        ("inner ring speed [rpm]", "balance temperature [degC]"),
+        f"{name}: thermally permissible speed",
+        Path(out) / "thermal_speed",
     )
+
+
+def _finish(fig, ax, labels: tuple[str, str], title: str, path: Path) -> list[Path]:
+    """``ax`` labelled (x, y), titled and with its legend; ``fig`` written as
+    ``path``.png and .svg."""
+    from ..plots import save_figure
+
+    ax.set(xlabel=labels[0], ylabel=labels[1], title=title)
     ax.legend(fontsize="small")
-    return save_figure(fig, Path(out), "thermal_speed")
+    return save_figure(fig, path.parent, path.name)
 
 
 __all__ = [
