@@ -329,7 +329,8 @@ def map_command(
         Path,
         output_option(
             help="Map folder (created with its parents if missing): study.json, points/ "
-            "(one netCDF result per grid point), map.csv, map.parquet and figures/. An "
+            "(one netCDF result per grid point), map.csv, map.parquet, report.html (one "
+            "page: tables and maps), thermal*.csv with a balance, and figures/. An "
             "earlier map of the same configuration, criterion and grid is continued; another "
             "is refused (exit status 2) unless --overwrite.",
         ),
@@ -405,9 +406,10 @@ def map_command(
     --window; docs/study.md), or until --max-time. The table (one row per point: values,
     status, time steady, the three outputs and the median specific film thickness Lambda
     [-] of the inner race and of the flange contacts over the last window, wall time) is
-    printed and written; the maps go to figures/ (PNG, SVG). With --heat-dissipation, the
-    thermal balance of each speed and loads [degC, W] is printed and written too, and with
-    --permissible-temperature the thermally permissible speed of each loads [rpm].
+    printed and written; the maps go to figures/ (PNG, SVG), all onto report.html. With
+    --heat-dissipation, the thermal balance of each speed and loads [degC, W] is printed
+    and written too, and with --permissible-temperature the thermally permissible speed of
+    each loads [rpm].
 
     Exit status: 0 when the map ran; 1 when a point could not be run at all; 2 for bad
     input (nothing run).
