@@ -28,8 +28,10 @@ from rollerdyn.study.thermal import (
     NO_VALUE,
     SLOWER,
     UNKNOWN,
+    Dissipation,
     balance,
     balance_temperatures,
+    oil_specific_heat,
     permissible_speeds,
     write_balance_figure,
     write_speed_figure,
@@ -110,6 +112,50 @@ def test_balance_takes_the_first_stable_crossing_and_a_straight_line_without_pow
     assert balance(temps[:1], power[:1], 0.2, C + 20.0)[0] == NO_VALUE
 
 
+def test_a_circulating_oil_adds_its_heat_capacity_rate_to_the_dissipation():
+    """Q(T) = W_s (T - T_amb) + rho c_p V (T - T_in) is one line, W (T - T_ref); c_p by
+    Cragoe's formula: 1.685 + 0.00339 t kJ/(kg K) over sqrt(d) in SI (t in degC; its
+    constants rounded, hence 2e-4), and the specific heat of a mineral oil near 2 kJ/(kg K)
+    at 60 degC (e.g. 1.9-2.1 in tables of lubricant properties)."""
+    d15 = 887.6 / 999.0
+    for t_c in (20.0, 60.0, 100.0):
+        si = 1000.0 * (1.685 + 0.00339 * t_c) / math.sqrt(d15)
+        assert oil_specific_heat(C + t_c, 887.6) == pytest.approx(si, rel=2e-4)
+    assert 1900.0 < oil_specific_heat(C + 60.0, 887.6) < 2100.0
+    d = Dissipation(0.3, C + 20.0, oil_rate=12.0, oil_inlet=C + 40.0)
+    for t in (C + 50.0, C + 90.0):
+        q = 0.3 * (t - (C + 20.0)) + 12.0 * (t - (C + 40.0))
+        assert d.total * (t - d.reference) == pytest.approx(q, rel=1e-12)
+    assert Dissipation(0.3, C + 20.0).reference == C + 20.0
+
+
+def test_the_map_options_make_the_dissipation_with_the_configurations_oil():
+    """--oil-flow 0.5 l/min at --oil-inlet 40 degC on B1: rho (887.6 - 0.6 * 25 kg/m^3 at 40
+    degC) times Cragoe's c_p times the flow; the inlet defaults to the ambient."""
+    from rollerdyn.study.maps import _dissipation
+
+    cfg = load_b1()
+    options = {
+        "--heat-dissipation": "0.34 W/K",
+        "--ambient": None,
+        "--oil-flow": "0.5 l/min",
+        "--oil-inlet": "40 degC",
+        "--permissible-temperature": "70",
+    }
+    d = _dissipation(cfg, [C + 40.0, C + 60.0], options)
+    rho = 887.6 - 0.6 * 25.0
+    flow = 0.5e-3 / 60.0
+    assert d.oil_rate == pytest.approx(flow * rho * oil_specific_heat(C + 40.0, 887.6), rel=1e-12)
+    assert (d.conductance, d.ambient, d.oil_inlet, d.permissible) == (
+        0.34,
+        pytest.approx(C + 20.0),
+        pytest.approx(C + 40.0),
+        pytest.approx(C + 70.0),
+    )
+    options["--oil-inlet"] = None
+    assert _dissipation(cfg, [C + 40.0, C + 60.0], options).oil_inlet == pytest.approx(C + 20.0)
+
+
 def _frame(rows):
     keys = (
         "speed [rpm]",
@@ -139,7 +185,7 @@ def test_balance_table_has_one_row_per_speed_and_loads_with_its_reasons(tmp_path
         (2000.0, 5000.0, 1000.0, 100.0, "failed", math.nan),
     ]
     frame = _frame(rows)
-    table = balance_temperatures(frame, 0.2, C + 20.0)
+    table = balance_temperatures(frame, Dissipation(0.2, C + 20.0))
     assert len(table) == 4
     by = {(r["speed [rpm]"], r["axial_load [N]"]): r for _, r in table.iterrows()}
     ok = by[(1000.0, 0.0)]
@@ -155,7 +201,7 @@ def test_balance_table_has_one_row_per_speed_and_loads_with_its_reasons(tmp_path
     assert cold["status"] == BELOW and "at 60 degC the friction makes 1 W" in cold["note"]
     assert by[(2000.0, 1000.0)]["status"] == NO_VALUE
     assert by[(2000.0, 1000.0)]["temperatures [degC]"] == "60"
-    files = write_balance_figure(frame, table, 0.2, C + 20.0, tmp_path, "B1")
+    files = write_balance_figure(frame, table, Dissipation(0.2, C + 20.0), tmp_path, "B1")
     assert [f.name for f in files] == ["thermal_balance.png", "thermal_balance.svg"]
     assert all(f.stat().st_size > 1000 for f in files)
 
@@ -243,6 +289,19 @@ def test_permissible_speed_is_where_the_balance_reaches_the_permissible_temperat
         (
             {"heat_dissipation": 0.3, "temperature": "60,80", "permissible_temperature": "7 m"},
             "--permissible-temperature '7 m': expected a temperature",
+        ),
+        ({"oil_flow": "1 l/min"}, "--oil-flow '1 l/min': belongs to the thermal balance"),
+        (
+            {"heat_dissipation": 0.3, "temperature": "60,80", "oil_inlet": 40},
+            "--oil-inlet 40: the temperature of an oil flow, which needs --oil-flow",
+        ),
+        (
+            {"heat_dissipation": 0.3, "temperature": "60,80", "oil_flow": "-1 l/min"},
+            "--oil-flow '-1 l/min': must be above 0 m",
+        ),
+        (
+            {"heat_dissipation": 0.3, "temperature": "60,80", "oil_flow": "1 l"},
+            "--oil-flow '1 l': expected a volume flow",
         ),
         (
             {"heat_dissipation": 0.3, "temperature": "60,80", "ambient": "hot"},

@@ -126,6 +126,7 @@ FAMILIES: dict[str, Family] = _families(
         "thermal conductivity", "[power] / [length] / [temperature]", "W/(m*K)", "0.134 W/(m*K)"
     ),
     Family("thermal conductance", "[power] / [temperature]", "W/K", "0.35 W/K"),
+    Family("volume flow", "[volume] / [time]", "m^3/s", "0.5 l/min"),
 )
 
 # Further families, only used to name what was given instead ("got a frequency").

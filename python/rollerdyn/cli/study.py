@@ -314,6 +314,26 @@ def map_command(
             metavar="TEMPERATURE",
         ),
     ] = None,
+    oil_flow: Annotated[
+        str | None,
+        typer.Option(
+            "--oil-flow",
+            help="With --heat-dissipation: a circulating oil's volume flow through the "
+            "bearing (with its unit: 0.5 l/min; a bare number is m^3/s), which leaves at the "
+            "bearing's temperature and so carries rho c_p V [W/K] per kelvin above its "
+            "inlet away (rho from the configuration, c_p by Cragoe's formula). Default: none.",
+            metavar="FLOW",
+        ),
+    ] = None,
+    oil_inlet: Annotated[
+        str | None,
+        typer.Option(
+            "--oil-inlet",
+            help="With --oil-flow: the oil's inlet temperature in degC (or with its unit). "
+            "Default: --ambient.",
+            metavar="TEMPERATURE",
+        ),
+    ] = None,
     permissible_temperature: Annotated[
         str | None,
         typer.Option(
@@ -439,6 +459,8 @@ def map_command(
         temperature=temperature,
         heat_dissipation=heat_dissipation,
         ambient=ambient,
+        oil_flow=oil_flow,
+        oil_inlet=oil_inlet,
         permissible_temperature=permissible_temperature,
         start=start,
         ramp=ramp_s,

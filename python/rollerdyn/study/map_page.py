@@ -72,10 +72,17 @@ def build_map_page(
     if thermal is not None:
         body.append('<h2 id="thermal">Thermal balance</h2>')
         first = thermal.iloc[0]
+        oil = ""
+        if first["oil [W/K]"] > 0:
+            oil = (
+                f", and with the circulating oil {first['oil [W/K]']:.4g} W/K above its inlet "
+                f"at {first['oil inlet [degC]']:g} °C"
+            )
         body.append(
             "<p>The temperature at which the friction power the map measured equals the heat "
             f"the bearing gives off, {first['heat dissipation [W/K]']:g} W/K above "
-            f'{first["ambient [degC]"]:g} °C (docs/study.md, "The thermal balance").</p>'
+            f"{first['ambient [degC]']:g} °C{oil} (docs/study.md, "
+            '"The thermal balance").</p>'
         )
         body.append(frame_table(thermal, THERMAL_COLUMNS))
     if permissible is not None:

@@ -286,6 +286,8 @@ def operating_map(
     temperature: Any = None,
     heat_dissipation: Any = None,
     ambient: Any = None,
+    oil_flow: Any = None,
+    oil_inlet: Any = None,
     permissible_temperature: Any = None,
     start: str = "equilibrium",
     ramp: float = 0.02,
@@ -308,7 +310,9 @@ def operating_map(
     text with a unit: ``"0.35 W/K"``): the heat the bearing gives off per kelvin above
     ``ambient`` (default ``"20 degC"``, a number in degC or text with a unit); with it, and
     two or more temperatures, the thermal balance of each speed and loads
-    (:func:`.thermal.balance_temperatures`) is written to ``thermal.csv`` and drawn; and
+    (:func:`.thermal.balance_temperatures`) is written to ``thermal.csv`` and drawn;
+    ``oil_flow`` [m^3/s] (a number, or text with a unit: ``"0.5 l/min"``) of a circulating
+    oil entering at ``oil_inlet`` (default: ``ambient``) carries heat away too; and
     with ``permissible_temperature`` [degC] (a number, or text with a unit) the thermally
     permissible speed of each loads (:func:`.thermal.permissible_speeds`) to
     ``thermal_speed.csv``.
@@ -330,7 +334,17 @@ def operating_map(
     cfg = as_config(config)
     _check_map_settings(start, ramp, window, tol, max_time, max_wall)
     axes = _map_axes(cfg, speed, radial_load, axial_load, temperature)
-    dissipation = _dissipation(heat_dissipation, ambient, permissible_temperature, axes[3])
+    dissipation = _dissipation(
+        cfg,
+        axes[3],
+        {
+            "--heat-dissipation": heat_dissipation,
+            "--ambient": ambient,
+            "--oil-flow": oil_flow,
+            "--oil-inlet": oil_inlet,
+            "--permissible-temperature": permissible_temperature,
+        },
+    )
     workers = default_workers() if workers is None else workers
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise StudyError(f"--workers = {workers!r}: must be a whole number >= 1")
@@ -416,35 +430,51 @@ def _map_axes(cfg: Any, speed: Any, radial_load: Any, axial_load: Any, temperatu
     return speeds, radial, axial, temperatures
 
 
-def _dissipation(heat_dissipation: Any, ambient: Any, permissible: Any, temperatures: list[float]):
-    """(heat dissipation [W/K], ambient temperature [K], permissible temperature [K] or
-    None) of the thermal balance, or None without a heat dissipation. Refuses a
-    dissipation that is not above 0, an ambient or permissible temperature without a
-    dissipation, and a balance over fewer than two temperatures."""
-    if heat_dissipation is None:
-        for option, value in (("--ambient", ambient), ("--permissible-temperature", permissible)):
-            if value is not None:
-                raise StudyError(
-                    f"{option} {value!r}: belongs to the thermal balance, which needs "
-                    "--heat-dissipation"
-                )
+def _dissipation(cfg, temperatures: list[float], options: dict):
+    """The thermal balance's :class:`.thermal.Dissipation` from the map's ``options`` (by
+    their command-line names), or None without ``--heat-dissipation``. Refuses a
+    dissipation or oil flow that is not above 0, the balance's other options without a
+    dissipation, an oil inlet without an oil flow, and a balance over fewer than two
+    temperatures."""
+    from .thermal import Dissipation, oil_specific_heat
+
+    given = {k: v for k, v in options.items() if v is not None}
+    if "--heat-dissipation" not in given:
+        for option, value in given.items():
+            raise StudyError(
+                f"{option} {value!r}: belongs to the thermal balance, which needs "
+                "--heat-dissipation"
+            )
         return None
-    conductance = _quantity(heat_dissipation, "--heat-dissipation", "thermal conductance", "W/K")
-    if not conductance > 0:
-        raise StudyError(f"--heat-dissipation {heat_dissipation!r}: must be above 0 W/K")
-    surroundings = _quantity(
-        "20 degC" if ambient is None else ambient, "--ambient", "temperature", "degC"
+    if "--oil-inlet" in given and "--oil-flow" not in given:
+        raise StudyError(
+            f"--oil-inlet {given['--oil-inlet']!r}: the temperature of an oil flow, which "
+            "needs --oil-flow"
+        )
+    conductance = _quantity(
+        given["--heat-dissipation"], "--heat-dissipation", "thermal conductance", "W/K"
     )
+    ambient = _quantity(given.get("--ambient", "20 degC"), "--ambient", "temperature", "degC")
+    flow = _quantity(given.get("--oil-flow", 0.0), "--oil-flow", "volume flow", "m^3/s")
+    for option, value in (("--heat-dissipation", conductance), ("--oil-flow", flow)):
+        if not value > 0 and (option == "--heat-dissipation" or option in given):
+            unit = "W/K" if option == "--heat-dissipation" else "m^3/s"
+            raise StudyError(f"{option} {given[option]!r}: must be above 0 {unit}")
     if len(temperatures) < 2:
         raise StudyError(
-            f"--heat-dissipation {heat_dissipation!r}: the thermal balance needs the "
-            "friction at two or more oil temperatures; give them with --temperature "
+            f"--heat-dissipation {given['--heat-dissipation']!r}: the thermal balance needs "
+            "the friction at two or more oil temperatures; give them with --temperature "
             '(e.g. "60,80,100" in degC)'
         )
-    limit = None
+    inlet = _quantity(
+        given.get("--oil-inlet", f"{ambient!r} K"), "--oil-inlet", "temperature", "degC"
+    )
+    lub = cfg.lubricant
+    rate = flow * lub.density_at(inlet) * oil_specific_heat(inlet, lub.density.rho_15)
+    permissible = given.get("--permissible-temperature")
     if permissible is not None:
-        limit = _quantity(permissible, "--permissible-temperature", "temperature", "degC")
-    return conductance, surroundings, limit
+        permissible = _quantity(permissible, "--permissible-temperature", "temperature", "degC")
+    return Dissipation(conductance, ambient, rate, inlet if flow else math.nan, permissible)
 
 
 def _quantity(value: Any, option: str, family: str, unit: str) -> float:
@@ -553,9 +583,8 @@ def _run_map(
 ):
     """Runs the grid's points ``specs`` in the folder ``out`` (prepared, and locked
     meanwhile; ``run``: max_wall, scheduler, workers and force), writes map.csv, map.parquet and
-    the figures (and with ``dissipation``, (W/K, ambient K, permissible K or None), the
-    thermal balance: thermal.csv, thermal_speed.csv and their figures), and returns the
-    study."""
+    the figures (and with ``dissipation``, a :class:`.thermal.Dissipation`, the thermal
+    balance: thermal.csv, thermal_speed.csv and their figures), and returns the study."""
     import pandas as pd
 
     from .folder import prepare_folder
@@ -610,10 +639,10 @@ def _thermal(frame, dissipation, out: Path, name: str, figures: list):
 
     thermal = permissible = None
     if dissipation is not None:
-        conductance, ambient, limit = dissipation
-        thermal = balance_temperatures(frame, conductance, ambient)
+        thermal = balance_temperatures(frame, dissipation)
         thermal.to_csv(out / "thermal.csv", index=False)
-        figures += write_balance_figure(frame, thermal, conductance, ambient, out / "figures", name)
+        figures += write_balance_figure(frame, thermal, dissipation, out / "figures", name)
+        limit = dissipation.permissible
         if limit is not None:
             permissible = permissible_speeds(thermal, limit - T0_CELSIUS)
             permissible.to_csv(out / "thermal_speed.csv", index=False)

@@ -5,9 +5,13 @@ friction power P(T) [W] comes from the map: at each oil temperature T of the gri
 steady friction torque times the ring speed (:mod:`.steady`: the window's mean power
 loss). What it gives off is taken proportional to its temperature above the
 surroundings, Q(T) = W_s (T - T_amb), with W_s [W/K] the heat dissipation through the
-shaft, the housing and the oil (the linear law of ISO 15312's heat balance, where W_s =
+shaft and the housing (the linear law of ISO 15312's heat balance, where W_s =
 q_r A_r / (70 - 20 K) at the reference heat flow density q_r through the bearing's seat
-area A_r; docs/study.md, "The thermal balance").
+area A_r; docs/study.md, "The thermal balance"), plus what a circulating oil carries
+away, rho c_p V (T - T_in): the oil flow V enters at T_in and leaves at the bearing's
+temperature, its density rho and its specific heat c_p taken at T_in (c_p by Cragoe's
+formula for petroleum oils, :func:`oil_specific_heat`). Both are linear in T, so
+Q(T) = W (T - T_ref) with W = W_s + rho c_p V and T_ref = (W_s T_amb + rho c_p V T_in) / W.
 
 For each speed and loads of the map, the balance temperature T* solves P(T) = Q(T) on
 the first interval [T_i, T_i+1] of the map's temperatures where P - Q changes sign from
@@ -35,6 +39,7 @@ needed for the interpolation, the speed is only bracketed.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -83,6 +88,55 @@ PERMISSIBLE_COLUMNS = (
 )
 
 
+@dataclass(frozen=True)
+class Dissipation:
+    """How the bearing gives off heat (see the module's doc): W_s [W/K] above ``ambient``
+    [K], and ``oil_rate`` = rho c_p V [W/K] of a circulating oil entering at ``oil_inlet``
+    [K]; ``permissible`` [K] for the thermally permissible speed, or None."""
+
+    conductance: float
+    ambient: float
+    oil_rate: float = 0.0
+    oil_inlet: float = math.nan
+    permissible: float | None = None
+
+    @property
+    def total(self) -> float:
+        """W = W_s + rho c_p V [W/K]."""
+        return self.conductance + self.oil_rate
+
+    @property
+    def reference(self) -> float:
+        """T_ref [K], at which nothing is given off."""
+        if self.oil_rate == 0.0:
+            return self.ambient
+        return (self.conductance * self.ambient + self.oil_rate * self.oil_inlet) / self.total
+
+    def describe(self) -> str:
+        """The dissipation in words (a figure's legend, the page)."""
+        text = f"{self.conductance:g} W/K above {self.ambient - T0_CELSIUS:g} degC"
+        if self.oil_rate:
+            text += (
+                f" + oil {self.oil_rate:.4g} W/K above its inlet "
+                f"{self.oil_inlet - T0_CELSIUS:g} degC"
+            )
+        return text
+
+
+def oil_specific_heat(temperature: float, rho_15: float) -> float:
+    """Specific heat [J/(kg K)] of a petroleum oil of density ``rho_15`` [kg/m^3] at 15
+    degC, at ``temperature`` [K]: Cragoe (US Bureau of Standards, Misc. Publ. 97, 1929),
+    c = (0.388 + 0.00045 t) / sqrt(d) Btu/(lb degF) with t in degF and d the specific
+    gravity at 60 degF, taken as rho_15 / 999 kg/m^3 (about 1.685 + 0.00339 t[degC]
+    kJ/(kg K) over sqrt(d)). FVA 3 at 60 degC: 2.00 kJ/(kg K)."""
+    t_f = 1.8 * (temperature - T0_CELSIUS) + 32.0
+    return BTU_PER_LB_F * (0.388 + 0.00045 * t_f) / math.sqrt(rho_15 / 999.0)
+
+
+#: 1 Btu/(lb degF) in J/(kg K) (international table Btu).
+BTU_PER_LB_F = 4186.8
+
+
 def friction_power(rows) -> np.ndarray:
     """The friction power [W] of map rows: the steady torque times the ring speed."""
     torque = np.asarray(rows["torque [N*m]"], dtype=float)
@@ -125,11 +179,12 @@ def _interpolant(p0: float, p1: float):
     return lambda s: p0 + s * (p1 - p0)
 
 
-def balance_temperatures(frame, conductance: float, ambient: float):
+def balance_temperatures(frame, dissipation: Dissipation):
     """One row per speed and loads of the map ``frame`` (the rows of
     :func:`.maps.point_row`, with ``temperature [degC]``): the balance's status, its
-    temperature [degC], friction power [W] and torque [N*m], the map's temperatures it
-    used, and a note (why there is none; the points not steady it rests on)."""
+    temperature [degC], friction power [W] and torque [N*m], the dissipation, the map's
+    temperatures it used, and a note (why there is none; the points not steady it rests
+    on)."""
     import pandas as pd
 
     rows = []
@@ -138,7 +193,8 @@ def balance_temperatures(frame, conductance: float, ambient: float):
         power = friction_power(group)
         ok = np.isfinite(power)
         temps = np.asarray(group["temperature [degC]"], dtype=float)[ok] + T0_CELSIUS
-        status, t_star, p_star = balance(temps, power[ok], conductance, ambient)
+        conductance, reference = dissipation.total, dissipation.reference
+        status, t_star, p_star = balance(temps, power[ok], conductance, reference)
         speed = float(key[0]) * RPM
         row = dict(zip(GROUP, key, strict=True))
         row.update(
@@ -147,12 +203,14 @@ def balance_temperatures(frame, conductance: float, ambient: float):
                 "balance temperature [degC]": t_star - T0_CELSIUS,
                 "friction power [W]": p_star,
                 "torque [N*m]": p_star / speed if speed > 0 else math.nan,
-                "heat dissipation [W/K]": conductance,
-                "ambient [degC]": ambient - T0_CELSIUS,
+                "heat dissipation [W/K]": dissipation.conductance,
+                "ambient [degC]": dissipation.ambient - T0_CELSIUS,
+                "oil [W/K]": dissipation.oil_rate,
+                "oil inlet [degC]": dissipation.oil_inlet - T0_CELSIUS,
                 "temperatures [degC]": ", ".join(f"{t - T0_CELSIUS:g}" for t in temps),
                 "lowest temperature [degC]": _in_celsius(temps, np.min),
                 "highest temperature [degC]": _in_celsius(temps, np.max),
-                "note": _note(status, temps, power[ok], conductance, ambient, group),
+                "note": _note(status, temps, power[ok], conductance, reference, group),
             }
         )
         rows.append(row)
@@ -164,13 +222,13 @@ def _in_celsius(temps: np.ndarray, pick) -> float:
     return float(pick(temps)) - T0_CELSIUS if len(temps) else math.nan
 
 
-def _note(status: str, temps, power, conductance: float, ambient: float, group) -> str:
+def _note(status: str, temps, power, conductance: float, reference: float, group) -> str:
     """Why a balance is outside the map or missing, and which points it rests on that are
     not steady."""
     from .maps import STEADY
 
     def at(i: int) -> str:
-        given = conductance * (temps[i] - ambient)
+        given = conductance * (temps[i] - reference)
         return (
             f"at {temps[i] - T0_CELSIUS:g} degC the friction makes {power[i]:.4g} W and "
             f"{conductance:g} W/K give off {given:.4g} W"
@@ -275,7 +333,7 @@ def _speed_note(status: str, low: float, high: float, permissible: float) -> str
 
 
 def write_balance_figure(
-    frame, thermal, conductance: float, ambient: float, out: Path, name: str
+    frame, thermal, dissipation: Dissipation, out: Path, name: str
 ) -> list[Path]:
     """The friction power over the oil temperature for each speed and loads of the map,
     the heat given off (a dashed line) and each balance (a star); PNG and SVG in
@@ -317,9 +375,9 @@ def write_balance_figure(
     t_line = np.linspace(np.nanmin(t_all), np.nanmax(t_all), 50)
     ax.plot(
         t_line,
-        conductance * (t_line - (ambient - T0_CELSIUS)),
+        dissipation.total * (t_line - (dissipation.reference - T0_CELSIUS)),
         "k--",
-        label=f"heat given off, {conductance:g} W/K above {ambient - T0_CELSIUS:g} degC",
+        label=f"heat given off: {dissipation.describe()}",
     )
     return _finish(
         fig,
