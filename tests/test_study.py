@@ -720,9 +720,18 @@ def test_steady_rule_needs_three_calm_windows_after_the_ramps():
             "max flange force [N]": 50.0,
             "inner race Lambda [1]": math.nan,
             "flange Lambda [1]": math.nan,
+            "ring vibration [m]": math.nan,  # no ring position recorded
         },
         nan_ok=True,
     )
+    # the ring's vibration: the peak-to-peak of its y over the window's outputs (a sine of
+    # 2 um amplitude sampled at its crests: 4 um), reported, not judged
+    y = 2e-6 * np.sin(2 * np.pi * 250.0 * calm.time.values)  # 4 ms period, 1 ms outputs
+    shaken = calm.assign(
+        ring_position=(("time", "xyz"), np.stack([0 * y, y, 0 * y], axis=1)),
+    ).assign_coords(xyz=["x", "y", "z"])
+    assert window_outputs(shaken, 0.04, 0.05, 0.5)["ring vibration [m]"] == pytest.approx(4e-6)
+    assert rule(shaken.sel(time=slice(0, 0.05))) == "steady at t = 0.05 s"
     # with the power losses recorded, the torque is their mean over the ring speed
     lossy = calm.assign(power_loss=("time", np.full(calm.sizes["time"], 25.0)))
     assert window_outputs(lossy, 0.04, 0.05, 0.5)["torque [N*m]"] == pytest.approx(0.25)
@@ -810,6 +819,14 @@ def test_map_point_stops_when_steady(tmp_path, client):
         assert on.any() or prefix == "flange"
         expected = float(np.median(lam[on])) if on.any() else math.nan
         assert row[column] == pytest.approx(expected, rel=1e-12, nan_ok=True), column
+    # the ring's vibration over the window: the peak-to-peak of its y. The statics turned
+    # over one roller pitch (docs/dynamics.md, "Vibration and torque ripple ...") give B1
+    # without axial load 36.2 nm at Z f_c and 4.1 nm at 2 Z f_c along the load, so a
+    # peak-to-peak of about 2 x 36.2 = 72 nm, 64-81 nm with the second harmonic's phase;
+    # 25 % for that, the higher harmonics and the window's drift (measured: 82 nm)
+    ring_y = ds.ring_position.sel(xyz="y").values[last]
+    assert row["ring vibration [m]"] == pytest.approx(float(np.ptp(ring_y)), rel=1e-12)
+    assert row["ring vibration [m]"] == pytest.approx(2 * 36.2e-9, rel=0.25)
     assert (tmp_path / "map" / "map.csv").is_file()
     assert {p.name for p in (tmp_path / "map" / "figures").iterdir()} >= {"map_torque.png"}
     # a worker stopped while writing the point's file (Ctrl-C) leaves point_0000.nc.tmp<pid>

@@ -425,7 +425,8 @@ def map_command(
     force [N], averaged over windows of simulated time, stop changing (see --tol,
     --window; docs/study.md), or until --max-time. The table (one row per point: values,
     status, time steady, the three outputs and the median specific film thickness Lambda
-    [-] of the inner race and of the flange contacts over the last window, wall time) is
+    [-] of the inner race and of the flange contacts and the inner ring's vibration peak
+    to peak along the load [m] over the last window, wall time) is
     printed and written; the maps go to figures/ (PNG, SVG), all onto report.html. With
     --heat-dissipation, the thermal balance of each speed and loads [degC, W] is printed
     and written too, and with --permissible-temperature the thermally permissible speed of

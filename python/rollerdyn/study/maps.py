@@ -27,7 +27,7 @@ from ..config.solver import OUTPUT_GROUPS
 from ..provenance import config_hash
 from ..units import QuantityError, parse_quantity
 from .runs import FINISHED, RunSpec, StudyError, inspect_run, lock_folder, open_run, record
-from .steady import SteadyRule, window_length, window_outputs
+from .steady import LAMBDAS, VIBRATION, SteadyRule, window_length, window_outputs
 
 RPM = 2.0 * math.pi / 60.0
 
@@ -52,6 +52,7 @@ OUTPUTS = (
     ("max flange force [N]", "largest flange normal force", "N"),
     ("inner race Lambda [1]", "median specific film thickness, inner race", "-"),
     ("flange Lambda [1]", "median specific film thickness, roller ends / flanges", "-"),
+    ("ring vibration [m]", "inner ring vibration along the radial load, peak to peak", "m"),
 )
 
 
@@ -69,6 +70,7 @@ MAP_COLUMNS = (
     ("max flange force [N]", "max flange force [N]", ".4g"),
     ("inner race Lambda [1]", "Lambda inner race [-]", ".3g"),
     ("flange Lambda [1]", "Lambda flanges [-]", ".3g"),
+    ("ring vibration [m]", "ring vibration p-p [m]", ".3g"),
     ("wall [s]", "wall [s]", ".1f"),
 )
 
@@ -690,6 +692,7 @@ def point_row(spec: RunSpec, ds, rec: dict, rule: SteadyRule) -> dict:
         "torque [N*m]": math.nan,
         "speed loss [1]": math.nan,
         "max flange force [N]": math.nan,
+        **dict.fromkeys((*LAMBDAS, VIBRATION), math.nan),
         "wall [s]": rec.get("wall [s]", math.nan),
         "file": rec.get("file", ""),
     }

@@ -16,8 +16,15 @@ The outputs, each averaged over a window of simulated time W:
 - the lubrication (a result that records it, ``solver.outputs`` "lubrication"; NaN
   otherwise): the median specific film thickness Lambda = h_c / sigma over the inner race
   contacts and over the roller end / flange contacts in contact in the window [1]
-  (:mod:`rollerdyn.lubrication`; below 1 boundary, above 3 full-film lubrication). They
-  are reported, not judged: the criterion compares the three outputs above.
+  (:mod:`rollerdyn.lubrication`; below 1 boundary, above 3 full-film lubrication);
+- the inner ring's vibration: the peak-to-peak of its centre's y coordinate (along the
+  radial load) over the window [m]. The window holds at least two roller passes (below),
+  so this spans the ring's motion at the roller pass frequency as the rollers' varying
+  compliance drives it (docs/dynamics.md, "Vibration and torque ripple at the roller pass
+  frequency"); a drift within the window counts in it too.
+
+The lubrication and the vibration are reported, not judged: the criterion compares the
+three outputs above.
 
 The criterion (:class:`SteadyRule`): from the end of the ramps on, the run is cut into
 windows of length W that end at the checkpoints (``solver.checkpoint_interval`` = W, so
@@ -51,6 +58,9 @@ FLOORS = {"torque [N*m]": 1e-4, "speed loss [1]": 5e-3, "max flange force [N]": 
 #: -> the contacts' variables' prefix.
 LAMBDAS = {"inner race Lambda [1]": "inner", "flange Lambda [1]": "flange"}
 
+#: The ring's vibration over the window (reported, not part of the criterion).
+VIBRATION = "ring vibration [m]"
+
 
 def window_length(window: float, speed: float, rollers: int, factor: float) -> float:
     """W [s]: ``window`` or two roller passing periods at ``speed`` [rad/s], the longer."""
@@ -64,7 +74,7 @@ def window_outputs(ds, t0: float, t1: float, factor: float) -> dict:
     t = np.asarray(ds.time.values, dtype=float)
     sel = (t > t0 + 1e-12) & (t <= t1 + 1e-12)
     if not sel.any():
-        return {k: math.nan for k in (*FLOORS, *LAMBDAS)}
+        return {k: math.nan for k in (*FLOORS, *LAMBDAS, VIBRATION)}
     ring = float(np.mean(ds.ring_speed.values[sel]))
     orbital = float(np.nanmean(ds.orbital_speed.values[sel]))
     epicyclic = ring * factor
@@ -82,7 +92,16 @@ def window_outputs(ds, t0: float, t1: float, factor: float) -> dict:
         "speed loss [1]": loss,
         "max flange force [N]": float(flange.max()) if flange.size else 0.0,
         **{key: median_lambda(ds, prefix, sel) for key, prefix in LAMBDAS.items()},
+        VIBRATION: ring_vibration(ds, sel),
     }
+
+
+def ring_vibration(ds, sel: np.ndarray) -> float:
+    """The peak-to-peak of the inner ring centre's y coordinate at the outputs ``sel``
+    [m]; NaN for a result without the ring's position."""
+    if "ring_position" not in ds:
+        return math.nan
+    return float(np.ptp(ds.ring_position.sel(xyz="y").values[sel]))
 
 
 def median_lambda(ds, prefix: str, sel: np.ndarray) -> float:
