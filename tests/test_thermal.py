@@ -132,7 +132,7 @@ def test_a_circulating_oil_adds_its_heat_capacity_rate_to_the_dissipation():
 def test_the_map_options_make_the_dissipation_with_the_configurations_oil():
     """--oil-flow 0.5 l/min at --oil-inlet 40 degC on B1: rho (887.6 - 0.6 * 25 kg/m^3 at 40
     degC) times Cragoe's c_p times the flow; the inlet defaults to the ambient."""
-    from rollerdyn.study.maps import _dissipation
+    from rollerdyn.study.thermal import dissipation_from_options as _dissipation
 
     cfg = load_b1()
     options = {

@@ -41,11 +41,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from ..config.base import T0_CELSIUS
+from ..units import QuantityError, parse_quantity
 from .maps import RPM
+from .runs import StudyError
 
 #: The speed and loads that make one balance (the map's axes other than temperature).
 GROUP = ("speed [rpm]", "radial_load [N]", "axial_load [N]")
@@ -431,11 +434,105 @@ def _finish(fig, ax, labels: tuple[str, str], title: str, path: Path) -> list[Pa
     return save_figure(fig, path.parent, path.name)
 
 
+def dissipation_from_options(cfg, temperatures: list[float], options: dict):
+    """The thermal balance's :class:`Dissipation` from the map's ``options`` (by
+    their command-line names), or None without ``--heat-dissipation``. Refuses a
+    dissipation or oil flow that is not above 0, the balance's other options without a
+    dissipation, an oil inlet without an oil flow, and a balance over fewer than two
+    temperatures."""
+    given = {k: v for k, v in options.items() if v is not None}
+    if "--heat-dissipation" not in given:
+        for option, value in given.items():
+            raise StudyError(
+                f"{option} {value!r}: belongs to the thermal balance, which needs "
+                "--heat-dissipation"
+            )
+        return None
+    if "--oil-inlet" in given and "--oil-flow" not in given:
+        raise StudyError(
+            f"--oil-inlet {given['--oil-inlet']!r}: the temperature of an oil flow, which "
+            "needs --oil-flow"
+        )
+    conductance = _quantity(
+        given["--heat-dissipation"], "--heat-dissipation", "thermal conductance", "W/K"
+    )
+    ambient = _quantity(given.get("--ambient", "20 degC"), "--ambient", "temperature", "degC")
+    flow = _quantity(given.get("--oil-flow", 0.0), "--oil-flow", "volume flow", "m^3/s")
+    for option, value in (("--heat-dissipation", conductance), ("--oil-flow", flow)):
+        if not value > 0 and (option == "--heat-dissipation" or option in given):
+            unit = "W/K" if option == "--heat-dissipation" else "m^3/s"
+            raise StudyError(f"{option} {given[option]!r}: must be above 0 {unit}")
+    if len(temperatures) < 2:
+        raise StudyError(
+            f"--heat-dissipation {given['--heat-dissipation']!r}: the thermal balance needs "
+            "the friction at two or more oil temperatures; give them with --temperature "
+            '(e.g. "60,80,100" in degC)'
+        )
+    inlet = _quantity(
+        given.get("--oil-inlet", f"{ambient!r} K"), "--oil-inlet", "temperature", "degC"
+    )
+    lub = cfg.lubricant
+    rate = flow * lub.density_at(inlet) * oil_specific_heat(inlet, lub.density.rho_15)
+    permissible = given.get("--permissible-temperature")
+    if permissible is not None:
+        permissible = _quantity(permissible, "--permissible-temperature", "temperature", "degC")
+    return Dissipation(conductance, ambient, rate, inlet if flow else math.nan, permissible)
+
+
+def _quantity(value: Any, option: str, family: str, unit: str) -> float:
+    """``value`` of a map option in SI: a number in ``unit``, or text with its own unit;
+    :class:`StudyError` naming ``option`` otherwise."""
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        value = f"{value!r} {unit}"
+    try:
+        number = float(str(value))
+    except ValueError:  # text with its unit
+        text = str(value).strip()
+    else:  # a bare number given as text: in the option's unit
+        text = f"{number!r} {unit}"
+    try:
+        return parse_quantity(text, family)
+    except QuantityError as err:
+        raise StudyError(f"{option} {value!r}: {err}") from None
+
+
+def write_thermal(frame, dissipation, out: Path, name: str, figures: list):
+    """(thermal balance, permissible speeds) of the map ``frame`` with ``dissipation``
+    (a :class:`Dissipation`; None, None without), their tables and figures written in
+    ``out`` (the figures appended to ``figures``); what an earlier invocation wrote and
+    this one does not is removed."""
+    thermal = permissible = None
+    if dissipation is not None:
+        thermal = balance_temperatures(frame, dissipation)
+        thermal.to_csv(out / "thermal.csv", index=False)
+        figures += write_balance_figure(frame, thermal, dissipation, out / "figures", name)
+        limit = dissipation.permissible
+        if limit is not None:
+            permissible = permissible_speeds(thermal, limit - T0_CELSIUS)
+            permissible.to_csv(out / "thermal_speed.csv", index=False)
+            figures += write_speed_figure(
+                thermal, permissible, limit - T0_CELSIUS, out / "figures", name
+            )
+    stale = []
+    for table, csv, figure in (
+        (thermal, "thermal.csv", "thermal_balance"),
+        (permissible, "thermal_speed.csv", "thermal_speed"),
+    ):
+        if table is None:
+            stale += [out / csv, *(out / "figures" / f"{figure}.{e}" for e in ("png", "svg"))]
+    for file in stale:
+        file.unlink(missing_ok=True)
+    return thermal, permissible
+
+
 __all__ = [
+    "Dissipation",
     "balance",
+    "dissipation_from_options",
     "balance_temperatures",
     "friction_power",
     "permissible_speeds",
     "write_balance_figure",
     "write_speed_figure",
+    "write_thermal",
 ]
