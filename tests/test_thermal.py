@@ -303,6 +303,15 @@ def test_permissible_speed_is_where_the_balance_reaches_the_permissible_temperat
             {"heat_dissipation": 0.3, "temperature": "60,80", "oil_flow": "1 l"},
             "--oil-flow '1 l': expected a volume flow",
         ),
+        (  # 887.6 - 0.6 (T - 15 degC) kg/m^3 is negative from 1494 degC on
+            {
+                "heat_dissipation": 0.3,
+                "temperature": "60,80",
+                "oil_flow": "1 l/min",
+                "oil_inlet": "1600 degC",
+            },
+            "--oil-inlet '1600 degC': the oil's density there is -63.4 kg/m",
+        ),
         (
             {"heat_dissipation": 0.3, "temperature": "60,80", "ambient": "hot"},
             "--ambient 'hot'",

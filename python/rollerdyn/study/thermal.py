@@ -472,7 +472,14 @@ def dissipation_from_options(cfg, temperatures: list[float], options: dict):
         given.get("--oil-inlet", f"{ambient!r} K"), "--oil-inlet", "temperature", "degC"
     )
     lub = cfg.lubricant
-    rate = flow * lub.density_at(inlet) * oil_specific_heat(inlet, lub.density.rho_15)
+    density = lub.density_at(inlet)
+    if flow and not density > 0:
+        raise StudyError(
+            f"--oil-inlet {given.get('--oil-inlet', given.get('--ambient', '20 degC'))!r}: "
+            f"the oil's density there is {density:.4g} kg/m^3 (lubricant.density); it must "
+            "be above 0"
+        )
+    rate = flow * density * oil_specific_heat(inlet, lub.density.rho_15)
     permissible = given.get("--permissible-temperature")
     if permissible is not None:
         permissible = _quantity(permissible, "--permissible-temperature", "temperature", "degC")
