@@ -8,21 +8,13 @@ from __future__ import annotations
 
 import base64
 import html
-import json
 import math
 from pathlib import Path
 
 from ..report import html_page, table
 from .maps import MAP_COLUMNS
+from .report_page import configuration_details, number_text
 from .thermal import PERMISSIBLE_COLUMNS, THERMAL_COLUMNS
-
-
-def _cell(value, spec: str) -> str:
-    if isinstance(value, float) and not math.isfinite(value):
-        return "n/a"
-    if spec and isinstance(value, int | float) and not isinstance(value, bool):
-        return format(value, spec)
-    return str(value)
 
 
 def frame_table(frame, columns) -> str:
@@ -30,7 +22,8 @@ def frame_table(frame, columns) -> str:
     the frame lacks is left empty."""
     header = [head for _, head, _ in columns]
     rows = [
-        [_cell(row.get(col, ""), spec) for col, _, spec in columns] for _, row in frame.iterrows()
+        [number_text(row.get(col, ""), spec) for col, _, spec in columns]
+        for _, row in frame.iterrows()
     ]
     return table(header, rows, numeric_from=len(columns))
 
@@ -42,10 +35,19 @@ def _png(path: Path) -> str:
 
 
 def build_map_page(
-    frame, figures, *, title: str, config, thermal=None, permissible=None, timing=None
+    frame,
+    figures,
+    *,
+    title: str,
+    config,
+    thermal=None,
+    permissible=None,
+    dissipation=None,
+    timing=None,
 ) -> str:
     """The map's page (see the module's doc). ``figures``: the files the map wrote (its
-    PNG files are embedded); ``config``: the map's configuration."""
+    PNG files are embedded); ``config``: the map's configuration; ``dissipation``: the
+    balance's :class:`.thermal.Dissipation`, with ``thermal``."""
     body = [f"<h1>{html.escape(title)}</h1>"]
     steady = int((frame["status"] == "steady").sum())
     body.append('<h2 id="points">Points</h2>')
@@ -62,26 +64,18 @@ def build_map_page(
         body.append("<p class='note'>This invocation ran nothing: every point was there.</p>")
     elif timing:
         eff = timing.get("parallel efficiency", math.nan)
-        wall = _cell(timing.get("study wall [s]", math.nan), ".1f")
+        wall = number_text(timing.get("study wall [s]", math.nan), ".1f")
         body.append(
             f"<p class='note'>This invocation: {wall} s of wall time, "
             f"{timing.get('runs run', 0)} point(s) run or continued on "
             f"{timing.get('workers', 0) or '?'} worker(s) (parallel efficiency "
-            f"{_cell(100 * eff, '.0f')} %); points already in the folder cost nothing.</p>"
+            f"{number_text(100 * eff, '.0f')} %); points already in the folder cost nothing.</p>"
         )
     if thermal is not None:
         body.append('<h2 id="thermal">Thermal balance</h2>')
-        first = thermal.iloc[0]
-        oil = ""
-        if first["oil [W/K]"] > 0:
-            oil = (
-                f", and with the circulating oil {first['oil [W/K]']:.4g} W/K above its inlet "
-                f"at {first['oil inlet [degC]']:g} °C"
-            )
         body.append(
             "<p>The temperature at which the friction power the map measured equals the heat "
-            f"the bearing gives off, {first['heat dissipation [W/K]']:g} W/K above "
-            f"{first['ambient [degC]']:g} °C{oil} (docs/study.md, "
+            f"the bearing gives off, {html.escape(dissipation.describe())} (docs/study.md, "
             '"The thermal balance").</p>'
         )
         body.append(frame_table(thermal, THERMAL_COLUMNS))
@@ -104,17 +98,13 @@ def build_map_page(
     else:
         body.append("<p class='warn'>No figure: no point has a value.</p>")
     body.append('<h2 id="configuration">Configuration</h2>')
-    text = getattr(config, "toml_text", "")
-    if text:
-        shown, what = text, "as read (TOML)"
-    else:
-        shown = json.dumps(config.model_dump(mode="json"), indent=2)
-        what = "resolved to SI (built in Python, no TOML text)"
     body.append(
-        f"<details><summary>the map's configuration, {what}</summary>"
-        f"<pre>{html.escape(shown)}</pre></details><p class='note'>Each point sets its speed, "
-        "loads and oil temperature and starts as the map says; its file records its "
-        "resolved configuration and hash.</p>"
+        configuration_details(
+            config,
+            "the map's",
+            "Each point sets its speed, loads and oil temperature and starts as the map says; "
+            "its file records its resolved configuration and hash.",
+        )
     )
     nav = ["points", "figures", "configuration"]
     if thermal is not None:

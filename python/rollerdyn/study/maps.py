@@ -111,14 +111,7 @@ def parse_range(
         texts = list(text)
 
     def value(v: Any) -> float:
-        if isinstance(v, int | float) and not isinstance(v, bool):
-            v = f"{v!r} {unit}"
-        v = str(v).strip()
-        try:
-            float(v)
-            v = f"{v} {unit}"
-        except ValueError:
-            pass
+        v = in_unit(v, unit)
         try:
             return parse_quantity(v, family)
         except QuantityError as err:
@@ -166,6 +159,19 @@ def parse_range(
             rule = "above 0" if positive else ">= 0"
             raise StudyError(f"{option} {text!r}: every value must be {rule}")
     return sorted(values)
+
+
+def in_unit(value: Any, unit: str) -> str:
+    """The text of a map option's value for :func:`parse_quantity`: a number, or a number
+    given as text, in ``unit``; other text (with its own unit) as it is."""
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return f"{value!r} {unit}"
+    text = str(value).strip()
+    try:
+        float(text)
+    except ValueError:
+        return text
+    return f"{text} {unit}"
 
 
 @dataclass
@@ -557,6 +563,7 @@ def _run_map(
             config=cfg,
             thermal=thermal,
             permissible=permissible,
+            dissipation=dissipation,
             timing=study_timing,
         )
         write_page(out / "report.html", page)

@@ -24,7 +24,9 @@ td.NOT-RUN { color: #777; font-weight: bold; } td.wrap { max-width: 60em; }
 """
 
 
-def _num(value, spec: str = ".4g") -> str:
+def number_text(value, spec: str = ".4g") -> str:
+    """A table cell: ``value`` formatted by ``spec`` where it is a number, "n/a" where it
+    is not finite, as text otherwise."""
     if isinstance(value, float) and not math.isfinite(value):
         return "n/a"
     return format(value, spec) if isinstance(value, int | float) else str(value)
@@ -75,10 +77,10 @@ def _runs_table(plan: Plan, records: dict) -> str:
                 spec.meta.get("changes", ""),
                 spec.detector,
                 rec.get("note") or rec.get("status", "not run"),
-                _num(rec.get("reached [s]", math.nan)),
-                _num(spec.t_end),
-                _num(rec.get("wall [s]", math.nan), ".1f"),
-                _num(rec.get("steps", 0), "d"),
+                number_text(rec.get("reached [s]", math.nan)),
+                number_text(spec.t_end),
+                number_text(rec.get("wall [s]", math.nan), ".1f"),
+                number_text(rec.get("steps", 0), "d"),
                 rec.get("action", ""),
                 f"runs/{spec.file}" if rec.get("file") else "",
             ]
@@ -86,9 +88,10 @@ def _runs_table(plan: Plan, records: dict) -> str:
     return table(header, rows, numeric_from=5)
 
 
-def _configuration(plan: Plan) -> str:
-    cfg = plan.config
-    text = cfg.toml_text
+def configuration_details(cfg, whose: str, note: str) -> str:
+    """``cfg`` as read (its TOML text) or, built in Python, resolved to SI, folded, with
+    ``note`` below (``whose``: "the study's", "the map's")."""
+    text = getattr(cfg, "toml_text", "")
     if text:
         body = f"<pre>{html.escape(text)}</pre>"
         what = "as read (TOML)"
@@ -96,10 +99,18 @@ def _configuration(plan: Plan) -> str:
         body = f"<pre>{html.escape(json.dumps(cfg.model_dump(mode='json'), indent=2))}</pre>"
         what = "resolved to SI (built in Python, no TOML text)"
     return (
-        f"<details><summary>the study's configuration, {what}</summary>{body}</details>"
-        "<p class='note'>Each run changes it as its line in the table above says (axial "
-        "load, inner_ring.tilt, detector, solver.dt_max); every run's file records its "
-        "resolved configuration and hash (attributes config_resolved, config_sha256).</p>"
+        f"<details><summary>{whose} configuration, {what}</summary>{body}</details>"
+        f"<p class='note'>{note}</p>"
+    )
+
+
+def _configuration(plan: Plan) -> str:
+    return configuration_details(
+        plan.config,
+        "the study's",
+        "Each run changes it as its line in the table above says (axial load, "
+        "inner_ring.tilt, detector, solver.dt_max); every run's file records its resolved "
+        "configuration and hash (attributes config_resolved, config_sha256).",
     )
 
 
@@ -132,12 +143,14 @@ def build_page(
     body.append('<h2 id="runs">Runs</h2>')
     body.append(_runs_table(plan, records))
     eff = timing.get("parallel efficiency", math.nan)
+    wall = number_text(timing.get("study wall [s]", math.nan), ".1f")
+    walls = number_text(timing.get("sum of run walls [s]", math.nan), ".1f")
     body.append(
-        f"<p>This invocation: {_num(timing.get('study wall [s]', math.nan), '.1f')} s of wall "
+        f"<p>This invocation: {wall} s of wall "
         f"time for the study, {timing.get('runs run', 0)} run(s) run or continued, their wall "
-        f"times summing to {_num(timing.get('sum of run walls [s]', math.nan), '.1f')} s on "
+        f"times summing to {walls} s on "
         f"{timing.get('workers', 0)} worker(s): parallel efficiency "
-        f"{_num(100 * eff, '.0f') if math.isfinite(eff) else 'n/a'} %. Runs reused from the "
+        f"{number_text(100 * eff, '.0f')} %. Runs reused from the "
         "study folder cost nothing. Wall [s] in the table is each run's own time (all its "
         "parts, one core).</p>"
     )

@@ -47,7 +47,7 @@ import numpy as np
 
 from ..config.base import T0_CELSIUS
 from ..units import QuantityError, parse_quantity
-from .maps import RPM
+from .maps import RPM, in_unit
 from .runs import StudyError
 
 #: The speed and loads that make one balance (the map's axes other than temperature).
@@ -191,12 +191,12 @@ def balance_temperatures(frame, dissipation: Dissipation):
     import pandas as pd
 
     rows = []
+    conductance, reference = dissipation.total, dissipation.reference
     for key, group in frame.groupby(list(GROUP), sort=True):
         group = group.sort_values("temperature [degC]")
         power = friction_power(group)
         ok = np.isfinite(power)
         temps = np.asarray(group["temperature [degC]"], dtype=float)[ok] + T0_CELSIUS
-        conductance, reference = dissipation.total, dissipation.reference
         status, t_star, p_star = balance(temps, power[ok], conductance, reference)
         speed = float(key[0]) * RPM
         row = dict(zip(GROUP, key, strict=True))
@@ -358,23 +358,9 @@ def write_balance_figure(
                 s = np.linspace(0.0, 1.0, 21)
                 p = _interpolant(power[i], power[i + 1])
                 ax.plot(temps[i] + s * (temps[i + 1] - temps[i]), p(s), color=line.get_color())
-        match = thermal
-        for col, value in zip(GROUP, key, strict=True):
-            match = match[match[col] == value]
-        for _, row in match[match["status"] == BALANCED].iterrows():
-            ax.plot(
-                row["balance temperature [degC]"],
-                row["friction power [W]"],
-                "*",
-                ms=14,
-                color=line.get_color(),
-            )
-            ax.annotate(
-                f"{row['balance temperature [degC]']:.1f} degC",
-                (row["balance temperature [degC]"], row["friction power [W]"]),
-                textcoords="offset points",
-                xytext=(6, 6),
-            )
+        for _, row in _rows_of(thermal, GROUP, key, BALANCED).iterrows():
+            t, p = row["balance temperature [degC]"], row["friction power [W]"]
+            _star(ax, t, p, f"{t:.1f} degC", line.get_color())
     t_line = np.linspace(np.nanmin(t_all), np.nanmax(t_all), 50)
     ax.plot(
         t_line,
@@ -409,11 +395,9 @@ def write_speed_figure(thermal, speeds, permissible: float, out: Path, name: str
             "o-",
             label=f"F_r = {key[0]:g} N, F_a = {key[1]:g} N",
         )
-        match = speeds[(speeds[GROUP[1]] == key[0]) & (speeds[GROUP[2]] == key[1])]
-        for _, row in match[match["status"] == FOUND].iterrows():
+        for _, row in _rows_of(speeds, GROUP[1:], key, FOUND).iterrows():
             n = row["permissible speed [rpm]"]
-            ax.plot(n, permissible, "*", ms=14, color=line.get_color())
-            ax.annotate(f"{n:.0f} rpm", (n, permissible), textcoords="offset points", xytext=(6, 6))
+            _star(ax, n, permissible, f"{n:.0f} rpm", line.get_color())
     ax.axhline(permissible, color="k", ls="--", label=f"permissible, {permissible:g} degC")
     return _finish(
         fig,
@@ -422,6 +406,21 @@ def write_speed_figure(thermal, speeds, permissible: float, out: Path, name: str
         f"{name}: thermally permissible speed",
         Path(out) / "thermal_speed",
     )
+
+
+def _rows_of(table, columns, key, status: str):
+    """The rows of ``table`` whose ``columns`` hold ``key`` and whose status is
+    ``status``."""
+    chosen = table["status"] == status
+    for column, value in zip(columns, key, strict=True):
+        chosen &= table[column] == value
+    return table[chosen]
+
+
+def _star(ax, x: float, y: float, text: str, color) -> None:
+    """A result marked on ``ax``: a star at (x, y) in ``color``, labelled ``text``."""
+    ax.plot(x, y, "*", ms=14, color=color)
+    ax.annotate(text, (x, y), textcoords="offset points", xytext=(6, 6))
 
 
 def _finish(fig, ax, labels: tuple[str, str], title: str, path: Path) -> list[Path]:
@@ -489,16 +488,8 @@ def dissipation_from_options(cfg, temperatures: list[float], options: dict):
 def _quantity(value: Any, option: str, family: str, unit: str) -> float:
     """``value`` of a map option in SI: a number in ``unit``, or text with its own unit;
     :class:`StudyError` naming ``option`` otherwise."""
-    if isinstance(value, int | float) and not isinstance(value, bool):
-        value = f"{value!r} {unit}"
     try:
-        number = float(str(value))
-    except ValueError:  # text with its unit
-        text = str(value).strip()
-    else:  # a bare number given as text: in the option's unit
-        text = f"{number!r} {unit}"
-    try:
-        return parse_quantity(text, family)
+        return parse_quantity(in_unit(value, unit), family)
     except QuantityError as err:
         raise StudyError(f"{option} {value!r}: {err}") from None
 
