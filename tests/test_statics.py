@@ -229,7 +229,7 @@ def test_the_distributed_law_is_the_statics_law_too(b1):
 def test_bad_cases_are_refused_with_a_message(b1):
     with pytest.raises(StaticsError, match="must be finite"):
         statics(b1, radial_load=math.nan)
-    with pytest.raises(StaticsError, match="statics sweeps vary the load case only"):
+    with pytest.raises(StaticsError, match="the grid holds the load case only"):
         parse_range("geometry.roller_count", "10:20:3")
     with pytest.raises(StaticsError, match="count"):
         parse_range("operating.radial_load", "0:10:x")
@@ -245,6 +245,113 @@ def test_bad_cases_are_refused_with_a_message(b1):
     assert parse_range("operating.inner_ring_speed", "0 rpm:3000 rpm:3")[-1] == pytest.approx(
         100 * math.pi
     )
+
+
+_UNLOADED_AT_REST = {"operating.radial_load": [5000.0], "operating.axial_load": [0.0]}
+
+
+def test_a_design_sweep_solves_each_design_as_alone_and_meets_stribeck_at_zero_clearance():
+    """A design sweep (``statics_sweep(design=...)``) over the diametral clearance, without
+    gravity and at rest: each case is its configuration solved alone (the same model, ratings
+    and cold start: the ring to 1 nm, the ratings exactly); at 0 um Z Q_max / F_r is
+    Stribeck's 4.08 within 1 % (published-values.md, as test_zero_clearance_follows_stribeck);
+    with clearance the load zone narrows, so the heaviest roller grows and L_10r falls
+    (Harris & Kotzalas, Rolling Bearing Analysis, sect. 7.2)."""
+    clearances = ["0 um", "10 um", "20 um"]
+    design = {"geometry.diametral_clearance": clearances, "operating.gravity": ["0 m/s^2"]}
+    grid = {**_UNLOADED_AT_REST, "operating.inner_ring_speed": [0.0]}
+    ds = statics_sweep(B1, grid, design=design)
+    assert ds.attrs["failed_cases"] == 0, list(ds.error.values)
+    swept = "diametral_clearance,gravity,radial_load,axial_load,inner_ring_speed"
+    assert ds.attrs["swept"] == swept
+    np.testing.assert_array_equal(ds.diametral_clearance.values, [0.0, 1e-5, 2e-5])
+    assert ds.diametral_clearance.attrs == {
+        "long_name": "geometry.diametral_clearance",
+        "units": "m",
+    }
+    for k, clearance in enumerate(clearances):
+        cfg = variant(**{"geometry.diametral_clearance": clearance, "operating.gravity": "0 m/s^2"})
+        alone = statics(cfg, radial_load=5000.0, axial_load=0.0, speed=0.0)
+        case = ds.isel(case=k)
+        got = case.ring_displacement.values
+        np.testing.assert_allclose(got, alone.ring_displacement.values, rtol=0, atol=1e-9)
+        assert float(case.dynamic_load_rating) == float(alone.dynamic_load_rating)
+        assert float(case.l10r) == pytest.approx(float(alone.l10r), rel=1e-6)
+    q_max = ds.max_roller_load.values
+    assert 17 * q_max[0] / 5000.0 == pytest.approx(4.08, rel=0.01)
+    assert np.all(np.diff(q_max) > 0) and np.all(np.diff(ds.l10r.values) < 0)
+
+
+def test_a_design_sweep_varies_text_values_and_the_oil_temperature(b1, tmp_path):
+    """Text values (``surfaces.flange_law``) and the oil temperature: the film ratio falls
+    with the temperature at an unchanged load distribution (the race films do not enter the
+    normal forces), so L_10r stays and L_nmr falls with kappa (ISO 281 a_ISO); the text
+    coordinate is written to netCDF and read back."""
+    design = {
+        "surfaces.flange_law": ["point", "distributed"],
+        "operating.temperature": ["60 degC", "100 degC"],
+    }
+    ds = statics_sweep(B1, {"operating.axial_load": [0.0]}, design=design)
+    assert list(ds.flange_law.values) == ["point", "point", "distributed", "distributed"]
+    np.testing.assert_allclose(ds.temperature.values, [333.15, 373.15] * 2)
+    assert ds.temperature.attrs["units"] == "K"
+    for law in range(2):
+        hot, cold = ds.isel(case=2 * law + 1), ds.isel(case=2 * law)
+        assert float(hot.l10r) == pytest.approx(float(cold.l10r), rel=1e-9)
+        assert float(hot.kappa) < float(cold.kappa) and float(hot.lnmr) < float(cold.lnmr)
+        assert float(hot.min_specific_film_thickness) < float(cold.min_specific_film_thickness)
+    path = tmp_path / "design.nc"
+    ds.to_netcdf(path, engine="h5netcdf")
+    import xarray as xr
+
+    with xr.open_dataset(path, engine="h5netcdf") as back:
+        assert list(back.flange_law.values) == list(ds.flange_law.values)
+
+
+def test_a_design_sweep_refuses_what_it_cannot_vary_by_name(b1):
+    with pytest.raises(StaticsError, match="geometry.roller_count: a statics sweep cannot vary"):
+        statics_sweep(B1, _UNLOADED_AT_REST, design={"geometry.roller_count": [16, 18]})
+    with pytest.raises(StaticsError, match="a load case's value; give it in the grid"):
+        statics_sweep(B1, _UNLOADED_AT_REST, design={"operating.axial_load": ["0 N"]})
+    bad = {"geometry.diametral_clearance": ["10 um", "-5 um"]}
+    with pytest.raises(StaticsError) as err:
+        statics_sweep(B1, _UNLOADED_AT_REST, design=bad)
+    text = str(err.value)
+    assert "1 of 2 grid points fail validation (nothing was solved)" in text
+    assert '"-5 um" — must be >= 0 (--set geometry.diametral_clearance)' in text
+    many = {"geometry.diametral_clearance": [f"{k} nm" for k in range(1001)]}
+    with pytest.raises(StaticsError, match="1001 bearing designs, more than 1000"):
+        statics_sweep(B1, _UNLOADED_AT_REST, design=many)
+
+
+def test_cli_sweeps_the_bearing_itself(tmp_path):
+    """``rollerdyn statics --set`` with a configuration path outside the load case: a design
+    sweep with every case in the table (up to 20), the netCDF file and the figure, one line
+    per value of the other swept values; its refusals exit with status 2, naming the path."""
+    runner = CliRunner()
+    out, png = tmp_path / "d.nc", tmp_path / "d.png"
+    args = [
+        "statics",
+        str(B1),
+        "--set",
+        "geometry.diametral_clearance=0 um:20 um:3",
+        "--set",
+        "operating.radial_load=2000,5000",
+        "--set",
+        "operating.axial_load=0",
+    ]
+    result = runner.invoke(app, [*args, "-o", str(out), "--plot", str(png)])
+    assert result.exit_code == 0, result.output
+    assert "quasi-static sweep: 6 cases" in result.output and "L_nmr" in result.output
+    assert out.is_file() and png.stat().st_size > 10_000
+    refused = runner.invoke(app, ["statics", str(B1), "--set", "geometry.roller_count=16,18"])
+    assert refused.exit_code == 2 and "geometry.roller_count" in refused.output
+    negative = runner.invoke(
+        app, ["statics", str(B1), "--set", "geometry.diametral_clearance=-5 um,5 um"]
+    )
+    assert negative.exit_code == 2 and "must be >= 0" in negative.output
+    single = runner.invoke(app, ["statics", str(B1), "--set", "geometry.diametral_clearance=0 um"])
+    assert single.exit_code == 0 and "quasi-static equilibrium" in single.output
 
 
 def test_a_vertical_shafts_flanges_carry_the_weights_of_ring_and_rollers():

@@ -5,8 +5,10 @@ detection); the bearing's 5x5 stiffness there; and the rating life from the slic
 (ISO 281, ISO/TS 16281; :mod:`rollerdyn.life`). The solver is the core's
 (``crates/rollerdyn-core/src/bearing/quasi_static``); docs/statics.md describes it.
 
-:func:`statics` solves one case, :func:`statics_sweep` a grid of cases, each returned as an
-:class:`xarray.Dataset` whose variables carry their units in ``attrs["units"]``.
+:func:`statics` solves one case, :func:`statics_sweep` a grid of cases (and, with ``design``,
+of bearings: configuration values such as the clearance or the oil temperature), each
+returned as an :class:`xarray.Dataset` whose variables carry their units in
+``attrs["units"]``.
 """
 
 from __future__ import annotations
@@ -30,7 +32,15 @@ from .provenance import record_attrs
 from .simulation import as_config, model_parameters
 from .units import QuantityError, family, parse_quantity
 
-__all__ = ["STATIC_FIELDS", "StaticCase", "StaticsError", "parse_range", "statics", "statics_sweep"]
+__all__ = [
+    "STATIC_FIELDS",
+    "StaticCase",
+    "StaticsError",
+    "design_configs",
+    "parse_range",
+    "statics",
+    "statics_sweep",
+]
 
 RING_DOF = ("x", "y", "z", "tilt_y", "tilt_z")
 RING_UNITS = ("m", "m", "m", "rad", "rad")
@@ -198,8 +208,8 @@ def _check_path(path: str) -> None:
     """Refuses a path a statics sweep cannot vary."""
     if path not in STATIC_FIELDS:
         raise StaticsError(
-            f"--set {path}: statics sweeps vary the load case only ({', '.join(STATIC_FIELDS)}); "
-            "sweep other values with 'rollerdyn sweep'"
+            f"--set {path}: the grid holds the load case only ({', '.join(STATIC_FIELDS)}); "
+            "give the bearing's other values as the design (statics_sweep(design=...))"
         )
 
 
@@ -308,10 +318,16 @@ def parse_range(path: str, text: str) -> list[float]:
     return [value(v) for v in items]
 
 
+#: The most configurations one design sweep builds (``statics_sweep(design=...)``): each
+#: is parsed and gets its own core model (about 0.1 s each).
+MAX_DESIGNS = 1_000
+
+
 def statics_sweep(
     config: BearingConfig | str | os.PathLike,
     grid: Mapping[str, Sequence[float]],
     *,
+    design: Mapping[str, Sequence[Any]] | None = None,
     contamination: float = DEFAULT_CONTAMINATION,
     stiffness: bool = True,
     progress: Callable[[int, int], None] | None = None,
@@ -320,7 +336,17 @@ def statics_sweep(
     :data:`STATIC_FIELDS`; the last varies fastest), along a ``case`` dimension with one
     coordinate per swept path. A case without equilibrium keeps NaN values and its message in
     ``error``; the others are solved, each from its neighbour's solution. At most
-    :data:`MAX_STATIC_CASES` cases, and ``stiffness`` is a boolean."""
+    :data:`MAX_STATIC_CASES` cases, and ``stiffness`` is a boolean.
+
+    ``design`` varies the bearing itself: configuration paths outside
+    :data:`STATIC_FIELDS` (``geometry.diametral_clearance``, ``operating.temperature``,
+    ``surfaces.flange_law``, ...) -> values written as in the configuration file (``"10
+    um"``; SI numbers when ``config`` is a :class:`BearingConfig`), as ``rollerdyn sweep
+    --set`` takes them. Each combination is validated as a configuration (a bad one raises
+    :class:`StaticsError` listing every problem), gets its own model, ratings and load
+    case, and is solved over ``grid``; the design paths vary slower than the load case's.
+    A coordinate per design path holds its SI value. The roller count and the slices
+    cannot be swept (they shape every case's arrays): run such bearings apart."""
     cfg = as_config(config)
     if not isinstance(grid, Mapping):
         raise StaticsError(
@@ -329,7 +355,10 @@ def statics_sweep(
         )
     if not isinstance(stiffness, bool):
         raise StaticsError(f"stiffness = {stiffness!r}: must be True or False")
-    check_grid_size({p: len(v) if hasattr(v, "__len__") else 1 for p, v in grid.items()})
+    design = dict(design or {})
+    check_grid_size(
+        {p: len(v) if hasattr(v, "__len__") else 1 for p, v in {**design, **grid}.items()}
+    )
     for path, values in grid.items():
         _check_path(path)
         if isinstance(values, str | bytes) or not isinstance(values, Sequence | np.ndarray):
@@ -337,46 +366,130 @@ def statics_sweep(
         numbers = [_number(f"grid[{path!r}]", v) for v in values]
         if STATIC_FIELDS[path][1] != "torque":
             check_range(cfg, path, "", numbers, label=f"grid[{path!r}]")
-    base = config_case(cfg)
+    designs = design_configs(config if design else cfg, design)
     paths = list(grid)
     combos = list(itertools.product(*(grid[p] for p in paths)))
     if not combos:
         raise StaticsError("statics sweep: the grid is empty")
-    cases = []
-    for combo in combos:
-        fields = {STATIC_FIELDS[p][0]: v for p, v in zip(paths, combo, strict=True)}
-        moment = None
-        if "moment_y" in fields or "moment_z" in fields:
-            moment = (fields.pop("moment_y", 0.0), fields.pop("moment_z", 0.0))
-        cases.append(_case_with(base, moment=moment, **fields))
-    results = _solve(cfg, cases, stiffness=stiffness, progress=progress)
-    parts, errors = [], []
-    ratings = _ratings(cfg)
-    for case, result in zip(cases, results, strict=True):
-        if isinstance(result, str):
-            errors.append(result)
-            parts.append(None)
-        else:
-            errors.append("")
-            parts.append(_case_variables(cfg, ratings, case, result, contamination))
+    cases, parts, errors = [], [], []
+    total = len(designs) * len(combos)
+    for values, design_cfg in designs:
+        base = config_case(design_cfg)
+        own = [_combined_case(base, paths, combo) for combo in combos]
+        done = len(cases)
+
+        def step(n: int, _: int, done: int = done) -> None:
+            if progress is not None:
+                progress(done + n, total)
+
+        results = _solve(design_cfg, own, stiffness=stiffness, progress=step)
+        ratings = _ratings(design_cfg)
+        for case, result in zip(own, results, strict=True):
+            cases.append((values, case))
+            if isinstance(result, str):
+                errors.append(result)
+                parts.append(None)
+            else:
+                errors.append("")
+                parts.append(_case_variables(design_cfg, ratings, case, result, contamination))
     template = next((p for p in parts if p is not None), None)
     if template is None:
         raise StaticsError(f"no case of the sweep has an equilibrium; the first: {errors[0]}")
     ds = _dataset(cfg, _stacked(template, parts), case_dim=True)
     ds = ds.assign_coords(case=np.arange(len(cases)))
+    swept = []
+    for path in design:
+        name = _coordinate_name(path, ds)
+        column = _column([v[path] for v, _ in cases])
+        unit = _si_unit_of(path)
+        attrs = {"long_name": path, **({"units": unit} if unit else {})}
+        ds = ds.assign_coords({name: ("case", column, attrs)})
+        swept.append(name)
     for path in paths:
         name = STATIC_FIELDS[path][0]
         column = [
-            getattr(c, name) if name != "misalignment" else (c.misalignment or 0.0) for c in cases
+            getattr(c, name) if name != "misalignment" else (c.misalignment or 0.0)
+            for _, c in cases
         ]
         unit = family(STATIC_FIELDS[path][1]).si_unit
         coordinate = ("case", np.asarray(column, float), {"units": unit, "long_name": path})
         ds = ds.assign_coords({path.split(".")[-1]: coordinate})
+        swept.append(path.split(".")[-1])
     ds["error"] = ("case", np.asarray(errors, dtype=object))
     ds.attrs.update(record_attrs(cfg))
-    ds.attrs["swept"] = ",".join(p.split(".")[-1] for p in paths)
+    ds.attrs["swept"] = ",".join(swept)
     ds.attrs["failed_cases"] = sum(1 for e in errors if e)
     return ds
+
+
+def _combined_case(base: StaticCase, paths: Sequence[str], combo: Sequence[float]) -> StaticCase:
+    """``base`` with the load-case values ``combo`` of ``paths`` (:data:`STATIC_FIELDS`)."""
+    fields = {STATIC_FIELDS[p][0]: v for p, v in zip(paths, combo, strict=True)}
+    moment = None
+    if "moment_y" in fields or "moment_z" in fields:
+        moment = (fields.pop("moment_y", 0.0), fields.pop("moment_z", 0.0))
+    return _case_with(base, moment=moment, **fields)
+
+
+#: Design paths a statics sweep cannot vary: they set the size of every case's arrays.
+_SHAPING_PATHS = ("geometry.roller_count", "geometry.roller.slices")
+
+
+def design_configs(
+    config: Any, design: Mapping[str, Sequence[Any]]
+) -> list[tuple[dict[str, Any], BearingConfig]]:
+    """(SI values of the design paths, configuration) of every combination of ``design``;
+    the configuration itself when there is none."""
+    from .sweep import SweepError, parsed_grid
+
+    if not design:
+        return [({}, as_config(config))]
+    for path in design:
+        if path in STATIC_FIELDS:
+            raise StaticsError(
+                f"design path {path}: a load case's value; give it in the grid (SI numbers)"
+            )
+        if path in _SHAPING_PATHS:
+            raise StaticsError(
+                f"--set {path}: a statics sweep cannot vary it (every case of one sweep has "
+                "the same rollers and slices); run each value with its own 'rollerdyn "
+                f"statics --set {path}=VALUE'"
+            )
+    count = math.prod(len(v) if hasattr(v, "__len__") else 1 for v in design.values())
+    if count > MAX_DESIGNS:
+        raise StaticsError(
+            f"statics sweep: {count} bearing designs, more than {MAX_DESIGNS} (each builds "
+            "its own model); sweep fewer values of the configuration's paths"
+        )
+    try:
+        points = parsed_grid(config, design)
+    except SweepError as err:
+        raise StaticsError(str(err).replace("no run was started", "nothing was solved")) from None
+    return [(point.si_values, cfg) for point, cfg in points]
+
+
+def _column(values: list[Any]) -> np.ndarray:
+    """A design coordinate's values: floats where every value is a number, else text."""
+    if all(isinstance(v, int | float) and not isinstance(v, bool) for v in values):
+        return np.asarray(values, float)
+    return np.asarray([str(v) for v in values], dtype=object)
+
+
+def _coordinate_name(path: str, ds: xr.Dataset) -> str:
+    """The coordinate of a design path: its last part, or the whole path with ``_`` for
+    ``.`` where that name is taken (``geometry.flange.height`` -> ``height``)."""
+    name = path.split(".")[-1]
+    loads = {p.split(".")[-1] for p in STATIC_FIELDS}
+    taken = name in ds.variables or name in ds.dims or name in loads
+    return path.replace(".", "_") if taken else name
+
+
+def _si_unit_of(path: str) -> str:
+    """The SI unit of a configuration path's values ("" for numbers without one or text)."""
+    from .sweep import _si_unit
+
+    unit = _si_unit(path)
+    return "" if unit in (None, "1") else unit
 
 
 # --------------------------------------------------------------------------- the dataset

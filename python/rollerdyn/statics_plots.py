@@ -29,23 +29,52 @@ def draw(ds: xr.Dataset, path: Path) -> None:
         b.plot(ds.slice.values, ds.inner_slice_pressure.values[heaviest] / 1e9, "o-")
         b.set(xlabel="slice", ylabel="p0 [GPa]", title=f"heaviest roller ({heaviest}), inner race")
     else:
-        x_name = ds.attrs["swept"].split(",")[0]
-        x = ds[x_name].values
-        unit = ds[x_name].attrs.get("units", "")
-        x_name = f"{x_name} [{unit}]" if unit else x_name
-        fig, (a, b, c) = plt.subplots(1, 3, figsize=(14, 4))
-        a.plot(x, ds.max_roller_load.values)
-        a.set(xlabel=x_name, ylabel="heaviest roller [N]")
-        b.plot(x, ds.ring_displacement.sel(ring_dof="y").values * 1e6)
-        b.set(xlabel=x_name, ylabel="ring displacement y [um]")
-        for name, label in (
-            ("l10", "L_10 (ISO 281)"),
-            ("l10r", "L_10r (ISO/TS 16281)"),
-            ("lnmr", "L_nmr"),
-        ):
-            c.plot(x, ds[name].values, label=label)
-        c.set(xlabel=x_name, ylabel="life [1e6 rev]", yscale="log")
-        c.legend()
+        fig = _draw_sweep(plt, ds)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
+
+
+def _sweep_axes(ds: xr.Dataset) -> tuple[str | None, list[str]]:
+    """The swept coordinate along the x axis (the first numeric one with more than one value;
+    None: none is) and the others, one line for each combination of their values."""
+    swept = [s for s in ds.attrs["swept"].split(",") if s]
+    varying = [s for s in swept if np.unique(ds[s].values.astype(str)).size > 1]
+    numeric = [s for s in varying if ds[s].dtype.kind in "fiu"]
+    x = numeric[0] if numeric else None
+    return x, [s for s in varying if s != x]
+
+
+def _label(ds: xr.Dataset, name: str, value) -> str:
+    unit = ds[name].attrs.get("units", "")
+    shown = f"{value:.4g}" if isinstance(value, float | np.floating) else str(value)
+    return f"{name} = {shown} {unit}".strip()
+
+
+def _draw_sweep(plt, ds: xr.Dataset):
+    """The heaviest roller, the ring's displacement and the lives over the first numeric
+    swept value, one line for each combination of the other swept values."""
+    x_name, others = _sweep_axes(ds)
+    cases = np.arange(ds.sizes["case"])
+    x = ds[x_name].values if x_name else cases
+    keys = [tuple(ds[o].values[i] for o in others) for i in cases]
+    groups = list(dict.fromkeys(keys))
+    fig, (a, b, c) = plt.subplots(1, 3, figsize=(14, 4.5))
+    lives = (("l10", "L_10 (ISO 281)"), ("l10r", "L_10r (ISO/TS 16281)"), ("lnmr", "L_nmr"))
+    for key in groups:
+        rows = np.array([i for i in cases if keys[i] == key])
+        name = ", ".join(_label(ds, o, v) for o, v in zip(others, key, strict=True))
+        a.plot(x[rows], ds.max_roller_load.values[rows], "o-", ms=3, label=name or None)
+        b.plot(x[rows], ds.ring_displacement.sel(ring_dof="y").values[rows] * 1e6, "o-", ms=3)
+        for var, label in lives if len(groups) == 1 else lives[1:2]:
+            c.plot(x[rows], ds[var].values[rows], "o-", ms=3, label=label if not others else name)
+    unit = ds[x_name].attrs.get("units", "") if x_name else ""
+    x_label = (f"{x_name} [{unit}]" if unit else x_name) if x_name else "case"
+    a.set(xlabel=x_label, ylabel="heaviest roller [N]")
+    b.set(xlabel=x_label, ylabel="ring displacement y [um]")
+    life = "life [1e6 rev]" if len(groups) == 1 else "L_10r (ISO/TS 16281) [1e6 rev]"
+    c.set(xlabel=x_label, ylabel=life, yscale="log")
+    if others:
+        a.legend(fontsize=7)
+    c.legend(fontsize=7)
+    return fig

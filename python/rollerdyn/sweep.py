@@ -308,6 +308,22 @@ def build_grid(
     :class:`SweepError` listing every point that fails."""
     from .simulation import check_cost
 
+    def cost(cfg: BearingConfig) -> None:
+        check_cost(cfg, cfg.end_time if t_end is None else t_end, remedy="")
+
+    return [point for point, _ in parsed_grid(config, parameters, check=cost)]
+
+
+def parsed_grid(
+    config: str | Path | Mapping | BearingConfig,
+    parameters: Mapping[str, Sequence[Any]],
+    check: Callable[[BearingConfig], None] | None = None,
+) -> list[tuple[GridPoint, BearingConfig]]:
+    """Every grid point of the cartesian product of ``parameters`` (the last path varies
+    fastest) with its parsed configuration, each validated (and by ``check``, which raises
+    ``ValueError`` naming what it refuses); raises :class:`SweepError` listing every point
+    that fails. Shared by :func:`build_grid` and the quasi-static design sweeps
+    (:func:`rollerdyn.statics.statics_sweep`)."""
     if not isinstance(parameters, Mapping):
         raise SweepError(
             f"parameters = {parameters!r}: expected a mapping of paths to lists of values, "
@@ -333,13 +349,14 @@ def build_grid(
                 lines.append(f"  {prob}{swept}")
             failures.append(f"run {run} ({label}):\n" + ("\n".join(lines) or f"  {err}"))
             continue
-        try:
-            check_cost(cfg, cfg.end_time if t_end is None else t_end, remedy="")
-        except ValueError as err:
-            failures.append(f"run {run} ({label}):\n  {err}")
-            continue
+        if check is not None:
+            try:
+                check(cfg)
+            except ValueError as err:
+                failures.append(f"run {run} ({label}):\n  {err}")
+                continue
         si = {p: _si_value(cfg, p) for p in paths}
-        points.append(GridPoint(run, values, si, point_data, si_numbers))
+        points.append((GridPoint(run, values, si, point_data, si_numbers), cfg))
     if failures:
         total = len(points) + len(failures)
         head = (

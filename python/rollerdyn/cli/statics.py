@@ -31,8 +31,14 @@ def statics_command(
             'varying compliance). Values carry a unit ("3000 rpm", "0.05 deg") or are bare '
             'numbers in the SI unit in brackets: --set operating.radial_load="0:10000:101"; '
             "quoted as in the configuration file or not. "
+            "Any other configuration path varies the bearing itself (a design sweep), with "
+            "values written as in the file, as 'rollerdyn sweep --set' takes them: --set "
+            'geometry.diametral_clearance="0 um,10 um,20 um", --set '
+            'operating.temperature="40 degC:100 degC:4" (each end with its unit); not '
+            "geometry.roller_count or geometry.roller.slices. "
             "One value changes the case; more make a sweep (the cartesian product of all "
-            "--set). Default: the configuration's loads and speed after its ramps.",
+            "--set, the bearing's values varying slowest). Default: the configuration's "
+            "loads and speed after its ramps.",
         ),
     ] = None,
     output: Annotated[
@@ -90,23 +96,22 @@ def statics_command(
                 overwrite=overwrite,
                 hint="; pass --overwrite to replace it",
             )
-    cfg = load(config)
-    grid: dict[str, list[float]] = {}
-    for option in sets or []:
-        path, sep, text = option.partition("=")
-        if not sep:
-            raise refuse(f"--set {option!r}: expected PATH=VALUES")
-        if path.strip() in grid:
-            raise refuse(f"--set {path.strip()}: given twice; list all its values in one --set")
+    grid, design = _split_sets(sets or [])
+    cfg = load(config, {p: v[0] for p, v in design.items() if len(v) == 1})
+    for path, (text, _) in list(grid.items()):
         try:
-            grid[path.strip()] = st.parse_range(path.strip(), text)
-            st.check_range(cfg, path.strip(), text, grid[path.strip()])
+            grid[path] = (text, st.parse_range(path, text))
+            st.check_range(cfg, path, text, grid[path][1])
         except st.StaticsError as err:
             raise refuse(err) from None
+    loads = {p: values for p, (_, values) in grid.items()}
     try:
-        st.check_grid_size({p: len(v) for p, v in grid.items()})
+        st.check_grid_size({p: len(v) for p, v in {**design, **loads}.items()})
+        if any(len(v) > 1 for v in design.values()):
+            st.design_configs(config, design)
     except st.StaticsError as err:
         raise refuse(err) from None
+    grid = loads
     moments = [p for p in ("moment_y", "moment_z") if any(grid.get(p, []))]
     if moments and "inner_ring.misalignment" in grid:
         raise refuse(
@@ -114,7 +119,7 @@ def statics_command(
             "holds the ring's tilt, so a tilting moment would act on nothing; give one or the "
             "other"
         )
-    single = all(len(v) == 1 for v in grid.values())
+    single = all(len(v) == 1 for v in [*grid.values(), *design.values()])
     try:
         if single:
             values = {st.STATIC_FIELDS[p][0]: v[0] for p, v in grid.items()}
@@ -125,7 +130,10 @@ def statics_command(
             _print_case(ds)
         else:
             with console.status("solving the load cases"):
-                ds = st.statics_sweep(cfg, grid, contamination=contamination)
+                if any(len(v) > 1 for v in design.values()):
+                    ds = st.statics_sweep(config, grid, design=design, contamination=contamination)
+                else:
+                    ds = st.statics_sweep(cfg, grid, contamination=contamination)
             _print_sweep(ds)
     except st.StaticsError as err:
         error(f"rollerdyn statics: {err}")
@@ -144,6 +152,39 @@ def statics_command(
         raise typer.Exit(1) from None
     if not single and ds.attrs["failed_cases"]:
         raise typer.Exit(1)  # as a sweep with a failed run: written, and said by the status
+
+
+def _split_sets(options: list[str]) -> tuple[dict[str, tuple[str, list]], dict[str, list]]:
+    """The ``--set`` options as the load case's (path -> its text, to be read by
+    :func:`rollerdyn.statics.parse_range`) and the bearing's (path -> its values as in the
+    configuration file, read as ``rollerdyn sweep --set`` reads them)."""
+    from ..statics import STATIC_FIELDS
+    from ..sweep import SweepError, parse_set
+
+    grid: dict[str, tuple[str, list]] = {}
+    design: dict[str, list] = {}
+    for option in options:
+        path, sep, text = option.partition("=")
+        path = path.strip()
+        if not sep:
+            raise refuse(f"--set {option!r}: expected PATH=VALUES")
+        if path in grid or path in design:
+            raise refuse(f"--set {path}: given twice; list all its values in one --set")
+        if path in STATIC_FIELDS:
+            grid[path] = (text, [])
+            continue
+        try:
+            _, values = parse_set(option)
+        except SweepError as err:
+            raise refuse(err) from None
+        for other in design:
+            if path.startswith(f"{other}.") or other.startswith(f"{path}."):
+                raise refuse(
+                    f"--set {option}: overlaps --set {other} (one sets a table, the other a "
+                    "key inside it); set the keys one by one"
+                )
+        design[path] = values
+    return grid, design
 
 
 def _check_image_format(path: Path) -> None:
@@ -222,17 +263,18 @@ def _print_sweep(ds) -> None:
         "s_0 (ISO 76)",
         "s_0 races",
         "L_10r [1e6 rev]",
+        "L_nmr [1e6 rev]",
         "smallest race Lambda",
     ]
     units = [ds[s].attrs.get("units", "") for s in swept]
     for name in [*(f"{s} [{u}]" if u else s for s, u in zip(swept, units, strict=True)), *columns]:
         table.add_column(name)
     n = ds.sizes["case"]
-    shown = sorted({0, n // 4, n // 2, 3 * n // 4, n - 1})
+    shown = range(n) if n <= 20 else sorted({0, n // 4, n // 2, 3 * n // 4, n - 1})
     for i in shown:
         row = ds.isel(case=i)
         table.add_row(
-            *[f"{float(row[s]):.6g}" for s in swept],
+            *[_cell(row[s].values) for s in swept],
             f"{float(row.max_roller_load):.6g}",
             # six digits: a sweep over roller_set_phase moves the ring by nanometres
             f"{float(row.ring_displacement[1]) * 1e6:.6g}",
@@ -240,9 +282,18 @@ def _print_sweep(ds) -> None:
             f"{float(row.s0):.4g}",
             f"{float(row.s0_races):.4g}",
             f"{float(row.l10r):.4g}",
+            f"{float(row.lnmr):.4g}",
             f"{float(row.min_specific_film_thickness):.3g}",
         )
     console.print(table)
+    if n > 20:
+        say(f"(5 of the {n} cases shown; -o writes them all)")
     if ds.attrs["failed_cases"]:
         first = next(e for e in ds.error.values if e)
         say(f"{ds.attrs['failed_cases']} cases without equilibrium (NaN); the first: {first}")
+
+
+def _cell(value) -> str:
+    """A swept value in the sweep's table: a number to six digits, a text as it is."""
+    item = value.item() if hasattr(value, "item") else value
+    return f"{item:.6g}" if isinstance(item, int | float) else str(item)
