@@ -555,6 +555,9 @@ def _case_variables(
         k: np.asarray(r[k]).reshape(z, 4)
         for k in ("flange_force", "flange_pressure", "flange_penetration", "flange_pairing")
     }
+    height = _flange_contact_height(cfg, np.asarray(r["flange_contact_radius"]).reshape(z, 4))
+    forces = flange["flange_force"]
+    heaviest = int(np.argmax(forces)) if forces.max() > 0.0 else None
     race_peak = float(max(slices["inner_pressures"].max(), slices["outer_pressures"].max()))
     inner_load = slices["inner_slices"].sum(axis=1)
     outer_load = slices["outer_slices"].sum(axis=1)
@@ -627,6 +630,14 @@ def _case_variables(
             "m",
             "roller end / flange penetration (negative: gap; NaN: none found)",
         ),
+        "flange_contact_height": _var(
+            height,
+            ("roller", "flange"),
+            "m",
+            "where the roller end presses the flange: the height of the force's point above "
+            "the raceway, along the ring's radius (the flange's own height is "
+            "geometry.flange.height; NaN where nothing is carried)",
+        ),
         "flange_pairing": _var(
             pairing.astype(str),
             ("roller", "flange"),
@@ -657,6 +668,19 @@ def _case_variables(
         ),
         "max_flange_force": _var(
             float(flange["flange_force"].max()), (), "N", "largest roller end / flange force"
+        ),
+        "max_flange_force_height": _var(
+            float(height.flat[heaviest]) if heaviest is not None else math.nan,
+            (),
+            "m",
+            "height above the raceway of the largest flange force (flange_contact_height; NaN "
+            "without flange force)",
+        ),
+        "max_flange_force_pairing": _var(
+            str(pairing.flat[heaviest]) if heaviest is not None else "",
+            (),
+            "",
+            "pairing of the largest flange force (paper fig. 1; empty without flange force)",
         ),
         "s0_races": _var(
             life.stress_static_safety(race_peak, "line"),
@@ -736,6 +760,16 @@ def _stacked(template: dict[str, _Var], parts: list[dict[str, _Var] | None]) -> 
         rows = [blank if p is None else np.asarray(p[name].data) for p in parts]
         out[name] = v._replace(data=np.stack(rows))
     return out
+
+
+def _flange_contact_height(cfg: BearingConfig, radius: np.ndarray) -> np.ndarray:
+    """Heights above their raceways of the flange contacts at ``radius`` from their rings'
+    axes (shape (Z, 4), flanges in the order of :data:`FLANGES`: the inner ring's flanges
+    rise outwards from the inner raceway, the outer ring's inwards from the outer one)."""
+    g = cfg.geometry
+    inner, outer = g.inner_raceway_diameter / 2.0, g.outer_raceway_diameter / 2.0
+    on_inner = np.array([name.startswith("inner") for name in FLANGES])
+    return np.where(on_inner, radius - inner, outer - radius)
 
 
 def _load_zone_angle(cfg: BearingConfig, ring: np.ndarray) -> float:

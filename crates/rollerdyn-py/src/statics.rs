@@ -64,6 +64,10 @@ fn solution_dict<'py>(
         flat(&|f| f.flanges.iter().map(|x| x.pressure).collect()),
     )?;
     d.set_item(
+        "flange_contact_radius",
+        flat(&|f| f.flanges.iter().map(|x| x.radius).collect()),
+    )?;
+    d.set_item(
         "flange_penetration",
         flat(&|f| f.flanges.iter().map(|x| x.penetration).collect()),
     )?;

@@ -226,7 +226,7 @@ def _print_case(ds) -> None:
         ("ring tilt about y, z", ", ".join(f"{v * 1e3:.4g} mrad" for v in ring[3:])),
         ("heaviest roller", f"{float(ds.max_roller_load):.6g} N"),
         ("largest race pressure", f"{float(ds.max_pressure) / 1e9:.4g} GPa"),
-        ("largest flange force", f"{float(ds.max_flange_force):.6g} N"),
+        ("largest flange force", _flange_force_text(ds)),
         (
             "load zone half-angle",
             f"{float(ds.load_zone_angle):.4g} deg ({int(ds.loaded_rollers)} rollers loaded)",
@@ -258,6 +258,7 @@ def _print_sweep(ds) -> None:
     table = Table(title=f"quasi-static sweep: {ds.sizes['case']} cases")
     columns = [
         "heaviest roller [N]",
+        "largest flange force [N] @ height [mm]",
         "ring y [um]",
         "ring z [um]",
         "s_0 (ISO 76)",
@@ -276,6 +277,7 @@ def _print_sweep(ds) -> None:
         table.add_row(
             *[_cell(row[s].values) for s in swept],
             f"{float(row.max_roller_load):.6g}",
+            _flange_cell(row),
             # six digits: a sweep over roller_set_phase moves the ring by nanometres
             f"{float(row.ring_displacement[1]) * 1e6:.6g}",
             f"{float(row.ring_displacement[2]) * 1e6:.6g}",
@@ -297,3 +299,22 @@ def _cell(value) -> str:
     """A swept value in the sweep's table: a number to six digits, a text as it is."""
     item = value.item() if hasattr(value, "item") else value
     return f"{item:.6g}" if isinstance(item, int | float) else str(item)
+
+
+def _flange_force_text(ds) -> str:
+    """The largest flange force, where on its flange it presses and with which pairing."""
+    force = float(ds.max_flange_force)
+    if not force > 0.0:
+        return "0 N"
+    height = float(ds.max_flange_force_height) * 1e3
+    return (
+        f"{force:.6g} N, {height:.3g} mm above the raceway ({ds.max_flange_force_pairing.item()})"
+    )
+
+
+def _flange_cell(row) -> str:
+    """The sweep table's largest flange force and its height above the raceway."""
+    force = float(row.max_flange_force)
+    if not force > 0.0:
+        return "0" if force == 0.0 else "nan"
+    return f"{force:.4g} @ {float(row.max_flange_force_height) * 1e3:.3g}"

@@ -83,6 +83,10 @@ pub struct FlangeLoad {
     /// Hertz pressure p₀ = 3F/(2πab) [Pa] of the exact ellipse ([`exact_max_pressure`]; with
     /// the distributed law [`peak_pressure`]), what ISO 76's flange limit judges.
     pub pressure: f64,
+    /// Distance [m] of the force's point (the detected point; with the distributed law the
+    /// overlap's centre) from the flange ring's axis: where on the flange the end presses
+    /// (NaN where nothing is carried).
+    pub radius: f64,
 }
 
 /// What the contacts of one roller do.
@@ -223,12 +227,13 @@ impl BearingSystem<'_> {
         ring: &Kinematics,
         out: &mut RollerForces,
     ) -> FlangeLoad {
+        let none = FlangeLoad {
+            penetration: f64::NAN,
+            radius: f64::NAN,
+            ..Default::default()
+        };
         if !self.params.flanges[k] {
-            // a ring without this flange (BearingParams::flanges)
-            return FlangeLoad {
-                penetration: f64::NAN,
-                ..Default::default()
-            };
+            return none; // a ring without this flange (BearingParams::flanges)
         }
         let end = self.roller_end(k, roller);
         let flange = self.flange(k, race);
@@ -242,15 +247,13 @@ impl BearingSystem<'_> {
         let Some(found) =
             pruning::composite_within_bounds(&end, &flange, &self.flange_bounds[k], reach)
         else {
-            return FlangeLoad {
-                penetration: f64::NAN,
-                ..Default::default()
-            };
+            return none;
         };
         let c: Contact = border::blend(&found, &end, &flange, &self.params.options.border_bands);
         let load = FlangeLoad {
             penetration: c.penetration,
             pairing: Pairing::ALL.iter().position(|q| *q == c.pairing),
+            radius: f64::NAN,
             ..Default::default()
         };
         let placed = if distributed {
@@ -268,6 +271,7 @@ impl BearingSystem<'_> {
         FlangeLoad {
             force,
             pressure,
+            radius: distance_from_axis(&location, race),
             ..load
         }
     }
@@ -362,4 +366,10 @@ fn add_force(
         out.on_ring.force -= f;
         out.on_ring.moment -= (p - ring.center).cross(&f);
     }
+}
+
+/// Distance of `point` from the axis of `body` (through its centre along its unit axis).
+fn distance_from_axis(point: &Vec3, body: &Kinematics) -> f64 {
+    let d = point - body.center;
+    (d - d.dot(&body.axis) * body.axis).norm()
 }
