@@ -431,6 +431,10 @@ def _combined_case(base: StaticCase, paths: Sequence[str], combo: Sequence[float
     return _case_with(base, moment=moment, **fields)
 
 
+#: The parts of the friction power of steady rolling (``friction_power``), as the core gives
+#: them.
+FRICTION_PARTS = ("flanges", "inner race", "outer race", "drag")
+
 #: Design paths a statics sweep cannot vary: they set the size of every case's arrays.
 _SHAPING_PATHS = ("geometry.roller_count", "geometry.roller.slices")
 
@@ -511,6 +515,7 @@ def _var(data, dims, units: str, description: str) -> _Var:
 #: The coordinates of a case's dimensions, but for roller and slice (from the configuration).
 _COORDS = {
     "flange": list(FLANGES),
+    "friction_part": list(FRICTION_PARTS),
     "ring_dof": list(RING_DOF),
     "ring_load_dof": ["force_x", "force_y", "force_z", "moment_y", "moment_z"],
 }
@@ -666,6 +671,22 @@ def _case_variables(
             "Pa",
             "largest race contact pressure",
         ),
+        "friction_power": _var(
+            np.asarray(r["friction_power"]),
+            ("friction_part",),
+            "W",
+            "the power the contacts and the drag take in steady rolling at the equilibrium "
+            "(the dynamic model's laws at its positions and the velocities of rolling "
+            "without slip; the roller-roller contacts, which the equilibrium does not hold, "
+            "left out; docs/statics.md, 'Friction of steady rolling')",
+        ),
+        "friction_torque": _var(
+            _friction_torque(r["friction_power"], case.speed),
+            (),
+            "N*m",
+            "frictional torque of steady rolling: the friction power over the inner ring's "
+            "speed (NaN at rest)",
+        ),
         "max_flange_force": _var(
             float(flange["flange_force"].max()), (), "N", "largest roller end / flange force"
         ),
@@ -760,6 +781,11 @@ def _stacked(template: dict[str, _Var], parts: list[dict[str, _Var] | None]) -> 
         rows = [blank if p is None else np.asarray(p[name].data) for p in parts]
         out[name] = v._replace(data=np.stack(rows))
     return out
+
+
+def _friction_torque(power: Sequence[float], speed: float) -> float:
+    """The torque of a friction power [W] at the inner ring's speed [rad/s] (NaN at rest)."""
+    return float(np.sum(power)) / abs(speed) if speed != 0.0 else math.nan
 
 
 def _flange_contact_height(cfg: BearingConfig, radius: np.ndarray) -> np.ndarray:

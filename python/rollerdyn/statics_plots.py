@@ -1,6 +1,6 @@
 """Figures of a quasi-static result (:mod:`rollerdyn.statics`): the load distribution of
-one case, or the heaviest roller, the ring's displacement and the rating lives over a
-sweep."""
+one case, or the heaviest roller, the ring's displacement, the rating lives and the
+friction of steady rolling over a sweep."""
 
 from __future__ import annotations
 
@@ -52,20 +52,22 @@ def _label(ds: xr.Dataset, name: str, value) -> str:
 
 
 def _draw_sweep(plt, ds: xr.Dataset):
-    """The heaviest roller, the ring's displacement and the lives over the first numeric
-    swept value, one line for each combination of the other swept values."""
+    """The heaviest roller, the ring's displacement, the lives and the friction of steady
+    rolling over the first numeric swept value, one line for each combination of the other
+    swept values."""
     x_name, others = _sweep_axes(ds)
     cases = np.arange(ds.sizes["case"])
     x = ds[x_name].values if x_name else cases
     keys = [tuple(ds[o].values[i] for o in others) for i in cases]
     groups = list(dict.fromkeys(keys))
-    fig, (a, b, c) = plt.subplots(1, 3, figsize=(14, 4.5))
+    fig, (a, b, c, d) = plt.subplots(1, 4, figsize=(18, 4.5))
     lives = (("l10", "L_10 (ISO 281)"), ("l10r", "L_10r (ISO/TS 16281)"), ("lnmr", "L_nmr"))
     for key in groups:
         rows = np.array([i for i in cases if keys[i] == key])
         name = ", ".join(_label(ds, o, v) for o, v in zip(others, key, strict=True))
         a.plot(x[rows], ds.max_roller_load.values[rows], "o-", ms=3, label=name or None)
         b.plot(x[rows], ds.ring_displacement.sel(ring_dof="y").values[rows] * 1e6, "o-", ms=3)
+        d.plot(x[rows], ds.friction_torque.values[rows], "o-", ms=3)
         for var, label in lives if len(groups) == 1 else lives[1:2]:
             c.plot(x[rows], ds[var].values[rows], "o-", ms=3, label=label if not others else name)
     unit = ds[x_name].attrs.get("units", "") if x_name else ""
@@ -74,6 +76,7 @@ def _draw_sweep(plt, ds: xr.Dataset):
     b.set(xlabel=x_label, ylabel="ring displacement y [um]")
     life = "life [1e6 rev]" if len(groups) == 1 else "L_10r (ISO/TS 16281) [1e6 rev]"
     c.set(xlabel=x_label, ylabel=life, yscale="log")
+    d.set(xlabel=x_label, ylabel="friction of steady rolling [N*m]")
     if others:
         a.legend(fontsize=7)
     c.legend(fontsize=7)

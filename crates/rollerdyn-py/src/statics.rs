@@ -1,6 +1,7 @@
 //! The quasi-static analysis (`rollerdyn.statics`): equilibria of load cases on a built
-//! model, each returned as a dict of SI values (flat lists, roller-major), and the
-//! stiffness at each.
+//! model, each returned as a dict of SI values (flat lists, roller-major), the stiffness
+//! at each, and the friction power of steady rolling there (flanges, inner race, outer
+//! race, drag).
 
 use crate::convert::core_err;
 use crate::simulation::PyModel;
@@ -8,6 +9,7 @@ use numpy::PyArray1;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use rollerdyn_core::bearing::quasi_static::{RingTilt, StaticCase, StaticSolution};
+use rollerdyn_core::bearing::statics::RollingFriction;
 
 /// A load case as Python hands it over: (radial load [N], axial load [N], moment about y
 /// [N·m], moment about z [N·m], inner ring speed [rad/s], prescribed tilt (θ_y, θ_z)
@@ -39,8 +41,21 @@ fn solution_dict<'py>(
     py: Python<'py>,
     s: &StaticSolution,
     stiffness: Option<[[f64; 5]; 5]>,
+    friction: &RollingFriction,
 ) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
+    d.set_item(
+        "friction_power",
+        array(
+            py,
+            vec![
+                friction.flanges,
+                friction.inner_race,
+                friction.outer_race,
+                friction.drag,
+            ],
+        ),
+    )?;
     let rollers = &s.rollers;
     let per_roller = |f: &dyn Fn(usize) -> f64| array(py, (0..rollers.len()).map(f).collect());
     d.set_item("ring", array(py, s.ring.to_vec()))?;
@@ -122,12 +137,13 @@ pub(crate) fn statics<'py>(
         let found = py.detach(|| {
             model.statics(&case_of(c), start).map(|s| {
                 let k = stiffness.then(|| model.stiffness(&s));
-                (s, k)
+                let friction = model.steady_rolling_friction(&s);
+                (s, k, friction)
             })
         });
         match found {
-            Ok((s, k)) => {
-                out.push(solution_dict(py, &s, k)?.into_any());
+            Ok((s, k, friction)) => {
+                out.push(solution_dict(py, &s, k, &friction)?.into_any());
                 last = Some(s);
             }
             Err(e) => out.push(core_err(e).value(py).str()?.into_any()),

@@ -231,6 +231,7 @@ def _print_case(ds) -> None:
             "load zone half-angle",
             f"{float(ds.load_zone_angle):.4g} deg ({int(ds.loaded_rollers)} rollers loaded)",
         ),
+        ("friction of steady rolling (no slip)", _friction_text(ds)),
         ("radial stiffness k_yy", f"{k[1, 1]:.4g} N/m"),
         ("tilt stiffness k_zz", f"{k[4, 4]:.4g} N*m/rad"),
         (
@@ -259,6 +260,7 @@ def _print_sweep(ds) -> None:
     columns = [
         "heaviest roller [N]",
         "largest flange force [N] @ height [mm]",
+        "steady rolling friction [N*m]",
         "ring y [um]",
         "ring z [um]",
         "s_0 (ISO 76)",
@@ -278,6 +280,7 @@ def _print_sweep(ds) -> None:
             *[_cell(row[s].values) for s in swept],
             f"{float(row.max_roller_load):.6g}",
             _flange_cell(row),
+            f"{float(row.friction_torque):.4g}",
             # six digits: a sweep over roller_set_phase moves the ring by nanometres
             f"{float(row.ring_displacement[1]) * 1e6:.6g}",
             f"{float(row.ring_displacement[2]) * 1e6:.6g}",
@@ -318,3 +321,17 @@ def _flange_cell(row) -> str:
     if not force > 0.0:
         return "0" if force == 0.0 else "nan"
     return f"{force:.4g} @ {float(row.max_flange_force_height) * 1e3:.3g}"
+
+
+def _friction_text(ds) -> str:
+    """The frictional torque of steady rolling and its power's largest parts."""
+    power = ds.friction_power
+    total = float(power.sum())
+    if not float(ds.speed_applied):
+        return "n/a at rest"
+    parts = ", ".join(
+        f"{name} {100 * float(v) / total:.0f} %"
+        for name, v in zip(power.friction_part.values, power.values, strict=True)
+        if total > 0 and float(v) >= 0.005 * total
+    )
+    return f"{float(ds.friction_torque):.4g} N*m ({total:.4g} W: {parts})"

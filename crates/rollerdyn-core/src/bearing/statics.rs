@@ -16,10 +16,11 @@
 
 use super::params::FlangeLaw;
 use super::quasi_static::{flange_loads, StaticCase, StaticSolution, FLANGE_PRESSURE_LIMIT};
-use super::state::ROLLER_STATES;
-use super::topology::FLANGE_NAMES;
+use super::state::{roller_kinematics, BearingKinematics, Kinematics, ROLLER_STATES};
+use super::topology::{Element, FLANGE_NAMES};
 use crate::bearing::workspace::BearingSystem;
 use crate::contact::Pairing;
+use crate::dynamics::rigid::axis_from_angles;
 use crate::error::{Error, Result};
 use crate::geometry::primitives::Vec3;
 
@@ -165,6 +166,90 @@ impl BearingSystem<'_> {
             y[s..s + ROLLER_STATES].copy_from_slice(&state);
         }
         y
+    }
+}
+
+/// The friction power of steady rolling at a quasi-static equilibrium
+/// ([`BearingSystem::steady_rolling_friction`]), by contact kind [W], and the inner ring's
+/// speed of the case [rad/s].
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct RollingFriction {
+    /// The roller end / flange contacts (sliding, in the model's mixed friction).
+    pub flanges: f64,
+    /// The inner race's line contacts (rolling resistance, eqs. 55–57, and any film shear).
+    pub inner_race: f64,
+    /// The outer race's line contacts.
+    pub outer_race: f64,
+    /// The oil–air mixture's drag on the rollers.
+    pub drag: f64,
+    /// The inner ring's speed [rad/s].
+    pub speed: f64,
+}
+
+impl RollingFriction {
+    /// All of it [W].
+    pub fn total(&self) -> f64 {
+        self.flanges + self.inner_race + self.outer_race + self.drag
+    }
+
+    /// The frictional torque it means, total / speed [N·m] (NaN at rest).
+    pub fn torque(&self) -> f64 {
+        if self.speed == 0.0 {
+            f64::NAN
+        } else {
+            self.total() / self.speed.abs()
+        }
+    }
+}
+
+impl BearingSystem<'_> {
+    /// The power the contacts and the drag take from the bodies in steady rolling at the
+    /// quasi-static equilibrium `solution`: every contact evaluated by the dynamic model's
+    /// laws at the positions of the equilibrium and the velocities of rolling without slip
+    /// ([`Self::steady_state`], the state `solution.start = "equilibrium"` starts from),
+    /// the inner ring turning at the case's speed about its axis of the equilibrium: the
+    /// run's power loss at its first instant, as [`super::run::record`] sums it
+    /// (`ElementResult::power_loss`), without the roller–roller contacts, which the
+    /// equilibrium does not hold (the rollers at the top, fallen onto the inner ring,
+    /// overlap their neighbours there by micrometres until a run's first steps part them).
+    /// What it leaves out is what settles in a run: the races' slip that balances the
+    /// rollers' friction moments, the skid outside the load zone, the roller–roller
+    /// forces (docs/statics.md, "Friction of steady rolling").
+    pub fn steady_rolling_friction(&self, solution: &StaticSolution) -> RollingFriction {
+        let y = self.steady_state(solution);
+        let axis = axis_from_angles(solution.ring[3], solution.ring[4]);
+        let speed = solution.case.speed;
+        let kin = BearingKinematics {
+            inner_ring: Kinematics {
+                center: Vec3::new(y[0], y[1], y[2]),
+                axis,
+                velocity: Vec3::zeros(),
+                omega: speed * axis,
+            },
+            rollers: (0..self.layout.rollers)
+                .map(|i| roller_kinematics(&self.layout, &y, i))
+                .collect(),
+        };
+        let results = self.evaluate_all(&kin);
+        let fixed = Kinematics::fixed();
+        let mut out = RollingFriction {
+            speed,
+            ..Default::default()
+        };
+        for (element, r) in self.elements().iter().zip(&results) {
+            let [a, b] = element.bodies(self.layout.rollers);
+            let loss = r.power_loss(kin.of(a, &fixed), kin.of(b, &fixed));
+            match element {
+                Element::Inner(_) => out.inner_race += loss,
+                Element::Outer(_) => out.outer_race += loss,
+                Element::End(..) => out.flanges += loss,
+                Element::Pair(_) => {}
+            }
+        }
+        for k in &kin.rollers {
+            out.drag -= self.roller_drag(k).power(k);
+        }
+        out
     }
 }
 
