@@ -451,7 +451,7 @@ def bench_statics(cfg, cases: int) -> None:
         "one equilibrium",
         f"{single * 1e3:.2f} ms",
         f"radial {base.radial_load:g} N, axial {base.axial_load:g} N, cold start, "
-        "with the 5x5 stiffness; median of 20",
+        "with the 5x5 stiffness and the friction of steady rolling; median of 20",
     )
     table.add_row(
         f"{cases}-case radial sweep, core",

@@ -71,7 +71,10 @@ def statics_command(
     (centrifugal forces), with the dynamic model's contact laws: race slices (eq. 11) and
     roller end / flange contacts by the semi-analytical detector, with the configuration's
     surfaces.flange_law (the paper's point contact or the distributed overlap). Prints the ring's
-    displacement, the heaviest roller, the load zone, the stiffness, the static safety
+    displacement, the heaviest roller, the largest flange force and its height above the
+    raceway, the friction of steady rolling (the dynamic model's laws at the equilibrium
+    with the velocities of rolling without slip: a quick estimate, docs/statics.md), the
+    load zone, the stiffness, the static safety
     (ISO 76 s_0 = C_0r / F_r, and by stress the load factor to 4 000 MPa at the races and
     at the flanges) and the rating lives (ISO 281 L_10, ISO/TS 16281 L_10r and L_nmr, in
     10^6 revolutions). A sweep keeps its cases without equilibrium as NaN with their
