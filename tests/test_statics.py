@@ -461,6 +461,30 @@ def test_the_friction_of_steady_rolling_at_the_flanges_is_boundary_friction_time
     assert np.isnan(at_rest.friction_torque)
 
 
+def test_a_sweep_stopped_by_ctrl_c_keeps_the_cases_it_solved(b1, tmp_path):
+    """Ctrl-C in a sweep (here raised by its progress callback after the first chunk of 50
+    cases) raises ``StaticsInterrupted``, a KeyboardInterrupt carrying the cases solved
+    until then, the same as in the whole sweep; in a design sweep too."""
+    from rollerdyn.statics import StaticsInterrupted
+
+    loads = list(np.linspace(1000.0, 8000.0, 120))
+    grid = {"operating.radial_load": loads, "operating.axial_load": [0.0]}
+
+    def stop(done: int, total: int) -> None:
+        raise KeyboardInterrupt
+
+    with pytest.raises(StaticsInterrupted, match="after 50 of 120 cases") as err:
+        statics_sweep(b1, grid, progress=stop)
+    partial = err.value.dataset
+    assert isinstance(err.value, KeyboardInterrupt)
+    assert partial.sizes["case"] == 50 and partial.attrs["interrupted"] == "50 of 120 cases solved"
+    whole = statics_sweep(b1, grid)
+    np.testing.assert_array_equal(partial.max_roller_load, whole.max_roller_load[:50])
+    design = {"geometry.diametral_clearance": ["0 um", "10 um"]}
+    with pytest.raises(StaticsInterrupted, match="after 50 of 240 cases"):
+        statics_sweep(B1, grid, design=design, progress=stop)
+
+
 def test_a_vertical_shafts_flanges_carry_the_weights_of_ring_and_rollers():
     """A type NJ arrangement (B1 without the inner ring's -x flange) on a vertical shaft,
     gravity along -x, no axial load: the inner ring's +x flange carries the ring's weight

@@ -36,6 +36,7 @@ __all__ = [
     "STATIC_FIELDS",
     "StaticCase",
     "StaticsError",
+    "StaticsInterrupted",
     "design_configs",
     "parse_range",
     "statics",
@@ -65,6 +66,24 @@ DEFAULT_CONTAMINATION = 0.5
 
 class StaticsError(ValueError):
     """A load case without equilibrium, or a bad statics option: the message names it."""
+
+
+class StaticsInterrupted(KeyboardInterrupt):
+    """A sweep stopped by Ctrl-C: a :class:`KeyboardInterrupt` that carries the cases solved
+    until then (:attr:`dataset`, None where none was; its ``attrs["interrupted"]`` says how
+    many of how many)."""
+
+    def __init__(self, message: str, dataset: xr.Dataset | None):
+        super().__init__(message)
+        self.dataset = dataset
+
+
+class _Stopped(KeyboardInterrupt):
+    """Ctrl-C within :func:`_solve`, with the results of the cases solved before it."""
+
+    def __init__(self, results: list[dict | str]):
+        super().__init__("interrupted")
+        self.results = results
 
 
 @dataclass(frozen=True)
@@ -126,11 +145,14 @@ def _solve(
     model = _core_model(cfg)
     out: list[dict | str] = []
     chunk = 50
-    for start in range(0, len(cases), chunk):
-        part = [c.core() for c in cases[start : start + chunk]]
-        out.extend(_core.statics(model, part, chain=True, stiffness=stiffness))
-        if progress is not None:
-            progress(len(out), len(cases))
+    try:
+        for start in range(0, len(cases), chunk):
+            part = [c.core() for c in cases[start : start + chunk]]
+            out.extend(_core.statics(model, part, chain=True, stiffness=stiffness))
+            if progress is not None:
+                progress(len(out), len(cases))
+    except KeyboardInterrupt:
+        raise _Stopped(out) from None
     return out
 
 
@@ -371,30 +393,67 @@ def statics_sweep(
     combos = list(itertools.product(*(grid[p] for p in paths)))
     if not combos:
         raise StaticsError("statics sweep: the grid is empty")
-    cases, parts, errors = [], [], []
     total = len(designs) * len(combos)
-    for values, design_cfg in designs:
-        base = config_case(design_cfg)
-        own = [_combined_case(base, paths, combo) for combo in combos]
-        done = len(cases)
+    # (design values, case, variables or None, message): one tuple per solved case, each
+    # appended whole, so that Ctrl-C at any moment leaves the list consistent
+    solved: list[tuple[dict[str, Any], StaticCase, dict[str, _Var] | None, str]] = []
+    stopped = False
+    try:
+        for values, design_cfg in designs:
+            base = config_case(design_cfg)
+            own = [_combined_case(base, paths, combo) for combo in combos]
+            done = len(solved)
 
-        def step(n: int, _: int, done: int = done) -> None:
-            if progress is not None:
-                progress(done + n, total)
+            def step(n: int, _: int, done: int = done) -> None:
+                if progress is not None:
+                    progress(done + n, total)
 
-        results = _solve(design_cfg, own, stiffness=stiffness, progress=step)
-        ratings = _ratings(design_cfg)
-        for case, result in zip(own, results, strict=True):
-            cases.append((values, case))
-            if isinstance(result, str):
-                errors.append(result)
-                parts.append(None)
-            else:
-                errors.append("")
-                parts.append(_case_variables(design_cfg, ratings, case, result, contamination))
-    template = next((p for p in parts if p is not None), None)
-    if template is None:
+            try:
+                results = _solve(design_cfg, own, stiffness=stiffness, progress=step)
+            except _Stopped as stop:
+                results, stopped = stop.results, True
+            ratings = _ratings(design_cfg)
+            for case, result in zip(own, results, strict=False):
+                if isinstance(result, str):
+                    solved.append((values, case, None, result))
+                else:
+                    part = _case_variables(design_cfg, ratings, case, result, contamination)
+                    solved.append((values, case, part, ""))
+            if stopped:
+                break
+    except KeyboardInterrupt:
+        stopped = True
+    return _finished(cfg, design, paths, solved, total, stopped)
+
+
+def _finished(cfg, design, paths, solved, total: int, stopped: bool) -> xr.Dataset:
+    """The dataset of a sweep's ``solved`` cases; :class:`StaticsInterrupted` carrying it
+    when the sweep was ``stopped`` before its ``total`` cases."""
+    parts = [part for _, _, part, _ in solved]
+    errors = [message for _, _, _, message in solved]
+    if all(part is None for part in parts):
+        if stopped:
+            raise StaticsInterrupted(f"interrupted after {len(solved)} of {total} cases", None)
         raise StaticsError(f"no case of the sweep has an equilibrium; the first: {errors[0]}")
+    cases = [(values, case) for values, case, _, _ in solved]
+    ds = _sweep_dataset(cfg, design, paths, cases, parts, errors)
+    if stopped:
+        ds.attrs["interrupted"] = f"{len(solved)} of {total} cases solved"
+        raise StaticsInterrupted(f"interrupted after {len(solved)} of {total} cases", ds)
+    return ds
+
+
+def _sweep_dataset(
+    cfg: BearingConfig,
+    design: Mapping[str, Sequence[Any]],
+    paths: Sequence[str],
+    cases: list[tuple[dict[str, Any], StaticCase]],
+    parts: list[dict[str, _Var] | None],
+    errors: list[str],
+) -> xr.Dataset:
+    """The dataset of a sweep's ``cases`` (design values, load case), with their variables
+    (``parts``, None where no equilibrium) and messages, a coordinate per swept path."""
+    template = next(p for p in parts if p is not None)
     ds = _dataset(cfg, _stacked(template, parts), case_dim=True)
     ds = ds.assign_coords(case=np.arange(len(cases)))
     swept = []

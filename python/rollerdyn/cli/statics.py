@@ -141,6 +141,8 @@ def statics_command(
     except st.StaticsError as err:
         error(f"rollerdyn statics: {err}")
         raise typer.Exit(1) from None
+    except st.StaticsInterrupted as stop:
+        _keep_interrupted(stop, output)
     try:
         if output is not None:
             ds.to_netcdf(output, engine="h5netcdf")
@@ -338,3 +340,20 @@ def _friction_text(ds) -> str:
         if total > 0 and float(v) >= 0.005 * total
     )
     return f"{float(ds.friction_torque):.4g} N*m ({total:.4g} W: {parts})"
+
+
+def _keep_interrupted(stop, output: Path | None) -> None:
+    """A sweep stopped by Ctrl-C: the cases solved until then written to ``output`` (when
+    given), one line saying so, exit status 130."""
+    ds = stop.dataset
+    if ds is not None and output is not None:
+        try:
+            ds.to_netcdf(output, engine="h5netcdf")
+        except OSError as err:
+            error(f"rollerdyn statics: {stop}; could not write them ({err.strerror or err})")
+            raise typer.Exit(130) from None
+        error(f"rollerdyn statics: {stop}; wrote those to {output}")
+    else:
+        kept = "; -o FILE keeps the cases solved" if ds is not None else ""
+        error(f"rollerdyn statics: {stop}{kept}")
+    raise typer.Exit(130)
