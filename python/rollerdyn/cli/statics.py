@@ -339,7 +339,7 @@ def _friction_text(ds) -> str:
         for name, v in zip(power.friction_part.values, power.values, strict=True)
         if total > 0 and float(v) >= 0.005 * total
     )
-    return f"{float(ds.friction_torque):.4g} N*m ({total:.4g} W: {parts})"
+    return f"{float(ds.friction_torque):.4g} N*m ({total:.4g} W{': ' + parts if parts else ''})"
 
 
 def _keep_interrupted(stop, output: Path | None) -> None:

@@ -170,8 +170,7 @@ impl BearingSystem<'_> {
 }
 
 /// The friction power of steady rolling at a quasi-static equilibrium
-/// ([`BearingSystem::steady_rolling_friction`]), by contact kind [W], and the inner ring's
-/// speed of the case [rad/s].
+/// ([`BearingSystem::steady_rolling_friction`]), by contact kind [W].
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct RollingFriction {
     /// The roller end / flange contacts (sliding, in the model's mixed friction).
@@ -182,31 +181,13 @@ pub struct RollingFriction {
     pub outer_race: f64,
     /// The oil–air mixture's drag on the rollers.
     pub drag: f64,
-    /// The inner ring's speed [rad/s].
-    pub speed: f64,
-}
-
-impl RollingFriction {
-    /// All of it [W].
-    pub fn total(&self) -> f64 {
-        self.flanges + self.inner_race + self.outer_race + self.drag
-    }
-
-    /// The frictional torque it means, total / speed [N·m] (NaN at rest).
-    pub fn torque(&self) -> f64 {
-        if self.speed == 0.0 {
-            f64::NAN
-        } else {
-            self.total() / self.speed.abs()
-        }
-    }
 }
 
 impl BearingSystem<'_> {
     /// The power the contacts and the drag take from the bodies in steady rolling at the
     /// quasi-static equilibrium `solution`: every contact evaluated by the dynamic model's
     /// laws at the positions of the equilibrium and the velocities of rolling without slip
-    /// ([`Self::steady_state`], the state `solution.start = "equilibrium"` starts from),
+    /// ([`Self::steady_state`], the state `solver.start = "equilibrium"` starts from),
     /// the inner ring turning at the case's speed about its axis of the equilibrium: the
     /// run's power loss at its first instant, as [`super::run::record`] sums it
     /// (`ElementResult::power_loss`), without the roller–roller contacts, which the
@@ -232,10 +213,7 @@ impl BearingSystem<'_> {
         };
         let results = self.evaluate_all(&kin);
         let fixed = Kinematics::fixed();
-        let mut out = RollingFriction {
-            speed,
-            ..Default::default()
-        };
+        let mut out = RollingFriction::default();
         for (element, r) in self.elements().iter().zip(&results) {
             let [a, b] = element.bodies(self.layout.rollers);
             let loss = r.power_loss(kin.of(a, &fixed), kin.of(b, &fixed));
