@@ -12,10 +12,14 @@
 //! ω_s = −(Ω − ω_c)·r_i/r about its axis, the inner ring only spins. Friction, the
 //! roller–roller contacts and the oil films are not in the equilibrium: with the speeds
 //! prescribed, the traction could only be balanced by slip, which is not an unknown here,
-//! and the run settles them within its first steps (tests/test_oil_and_threads.py).
+//! and the run settles them within its first steps (tests/test_oil_and_threads.py). So
+//! that no roller starts pressed on its neighbour, the roller set is spread where the
+//! equilibrium's rollers overlap ([`spaced_azimuths`]).
 
 use super::params::FlangeLaw;
-use super::quasi_static::{flange_loads, StaticCase, StaticSolution, FLANGE_PRESSURE_LIMIT};
+use super::quasi_static::{
+    flange_loads, RollerPose, StaticCase, StaticSolution, FLANGE_PRESSURE_LIMIT,
+};
 use super::state::{roller_kinematics, BearingKinematics, Kinematics, ROLLER_STATES};
 use super::topology::{Element, FLANGE_NAMES};
 use crate::bearing::workspace::BearingSystem;
@@ -149,7 +153,12 @@ impl BearingSystem<'_> {
         let orbit = 0.5 * omega * (1.0 - r / self.pitch_radius());
         let spin = -(omega - orbit) * p.inner_raceway_radius / r;
         let orbit_vector = Vec3::new(orbit, 0.0, 0.0);
+        let azimuths = spaced_azimuths(&solution.rollers, self.pitch_radius(), 2.0 * r);
         for (i, pose) in solution.rollers.iter().enumerate() {
+            let pose = RollerPose {
+                azimuth: azimuths[i],
+                ..*pose
+            };
             let kin = pose.kinematics(self.pitch_radius());
             let a = kin.axis;
             // The angles of the axis a = R_z(θ_z)·R_y(θ_y)·e_x (dynamics/rigid.rs).
@@ -191,8 +200,9 @@ impl BearingSystem<'_> {
     /// the inner ring turning at the case's speed about its axis of the equilibrium: the
     /// run's power loss at its first instant, as [`super::run::record`] sums it
     /// (`ElementResult::power_loss`), without the roller–roller contacts, which the
-    /// equilibrium does not hold (the rollers at the top, fallen onto the inner ring,
-    /// overlap their neighbours there by micrometres until a run's first steps part them).
+    /// equilibrium does not hold: where it put neighbours on each other (the rollers at the
+    /// top, fallen onto the inner ring), the start stands them [`START_GAP`] apart, a gap
+    /// of the start's choosing whose oil film a run's first steps reset.
     /// What it leaves out is what settles in a run: the races' slip that balances the
     /// rollers' friction moments, the skid outside the load zone, the roller–roller
     /// forces (docs/statics.md, "Friction of steady rolling").
@@ -229,6 +239,53 @@ impl BearingSystem<'_> {
         }
         out
     }
+}
+
+/// Least gap [m] between neighbouring rollers at the start ([`spaced_azimuths`]).
+const START_GAP: f64 = 1e-6;
+
+/// The azimuths of `rollers` (poses of an equilibrium, on a pitch circle of radius
+/// `pitch_radius`) moved as little as needed for neighbouring rollers of diameter `diameter`
+/// to stand [`START_GAP`] apart. The equilibrium holds each roller at its azimuth and does
+/// not see its neighbours: the unloaded rollers at the top, fallen onto the inner ring
+/// (B1: 23 µm inwards), overlap theirs by micrometres (B1 at 0 N: 1.6 µm, 145–220 N) where
+/// the set is evenly spaced. Each overlapping pair is pushed apart symmetrically, sweep
+/// after sweep, until no neighbours are closer than the gap (to 1e-12 rad) or 10 000 sweeps
+/// have passed (a set with no circumferential play to give); the centres' distance is
+/// taken in the plane across the axis, from their distances to the bearing axis by the
+/// law of cosines. Rollers with room to spare (the load zone's, pushed outwards) keep
+/// their azimuths.
+fn spaced_azimuths(rollers: &[RollerPose], pitch_radius: f64, diameter: f64) -> Vec<f64> {
+    let z = rollers.len();
+    let mut psi: Vec<f64> = rollers.iter().map(|p| p.azimuth).collect();
+    if z < 2 {
+        return psi;
+    }
+    let radius: Vec<f64> = rollers.iter().map(|p| pitch_radius + p.radial).collect();
+    let least = |i: usize, j: usize| {
+        let (a, b, d) = (radius[i], radius[j], diameter + START_GAP);
+        ((a * a + b * b - d * d) / (2.0 * a * b))
+            .clamp(-1.0, 1.0)
+            .acos()
+    };
+    let minimum: Vec<f64> = (0..z).map(|i| least(i, (i + 1) % z)).collect();
+    for _ in 0..10_000 {
+        let mut worst: f64 = 0.0;
+        for i in 0..z {
+            let j = (i + 1) % z;
+            let spacing = (psi[j] - psi[i]).rem_euclid(2.0 * std::f64::consts::PI);
+            let deficit = minimum[i] - spacing;
+            if deficit > 0.0 {
+                psi[i] -= 0.5 * deficit;
+                psi[j] += 0.5 * deficit;
+                worst = worst.max(deficit);
+            }
+        }
+        if worst < 1e-12 {
+            break;
+        }
+    }
+    psi
 }
 
 /// Where the most loaded roller end of `solution` touches its flange with the end sphere
@@ -338,5 +395,109 @@ mod tests {
         assert_eq!(super::shown(0.0), "0");
         assert_eq!(super::shown(1e-320), "1e-320");
         assert_eq!(super::shown(2.5e12), "2.5e12");
+    }
+}
+
+#[cfg(test)]
+mod start_spacing_tests {
+    use super::{spaced_azimuths, START_GAP};
+    use crate::bearing::quasi_static::{RollerPose, StaticCase};
+    use crate::bearing::test_b1::{in_workspace, model, B1};
+    use proptest::prelude::*;
+    use std::f64::consts::PI;
+
+    /// B1's pitch radius and roller diameter [m].
+    const PITCH_RADIUS: f64 = 12.25e-3;
+    const DIAMETER: f64 = 4.495e-3;
+
+    /// The distance of the centres of neighbours i, i+1 across the axis.
+    fn distances(poses: &[RollerPose], psi: &[f64]) -> Vec<f64> {
+        let z = poses.len();
+        let centre = |i: usize| {
+            let r = PITCH_RADIUS + poses[i].radial;
+            (r * psi[i].cos(), r * psi[i].sin())
+        };
+        (0..z)
+            .map(|i| {
+                let (a, b) = (centre(i), centre((i + 1) % z));
+                (a.0 - b.0).hypot(a.1 - b.1)
+            })
+            .collect()
+    }
+
+    proptest! {
+        /// Evenly spaced rollers whose radial offsets (−30 … +10 µm: fallen onto the inner
+        /// ring, or pushed outwards in a load zone; B1's neighbours stand 6.9 µm apart on
+        /// the pitch circle, so those fallen together overlap by up to 4 µm): spread, no
+        /// two stand closer than the start's gap (to 1e-12 m, the sweeps' 1e-12 rad on
+        /// the 12 mm pitch circle), and no roller moves further than the sum of all the
+        /// overlaps there were. Sets with no play left (the least spacings summing to more
+        /// than a turn: most rollers fallen at once, which no equilibrium gives) are
+        /// skipped.
+        #[test]
+        fn spread_rollers_stand_apart_and_move_no_more_than_needed(
+            offsets in prop::collection::vec(-30e-6..10e-6f64, 17),
+        ) {
+            let z = offsets.len();
+            let least: f64 = (0..z)
+                .map(|i| {
+                    let (a, b) = (PITCH_RADIUS + offsets[i], PITCH_RADIUS + offsets[(i + 1) % z]);
+                    let d = DIAMETER + START_GAP;
+                    ((a * a + b * b - d * d) / (2.0 * a * b)).acos()
+                })
+                .sum();
+            prop_assume!(least < 2.0 * PI - 1e-9);
+            let poses: Vec<RollerPose> = (0..z)
+                .map(|i| RollerPose {
+                    azimuth: PI + 2.0 * PI * i as f64 / z as f64,
+                    radial: offsets[i],
+                    axial: 0.0,
+                    tilt: 0.0,
+                })
+                .collect();
+            let before: Vec<f64> = poses.iter().map(|p| p.azimuth).collect();
+            let psi = spaced_azimuths(&poses, PITCH_RADIUS, DIAMETER);
+            for d in distances(&poses, &psi) {
+                prop_assert!(d >= DIAMETER + START_GAP - 1e-12, "{d}");
+            }
+            let overlap: f64 = distances(&poses, &before)
+                .iter()
+                .map(|d| (DIAMETER + START_GAP - d).max(0.0))
+                .sum();
+            for (a, b) in psi.iter().zip(&before) {
+                prop_assert!((a - b).abs() * PITCH_RADIUS <= overlap + 1e-12);
+            }
+        }
+    }
+
+    /// B1 without axial load: the equilibrium's rollers at the top, fallen onto the inner
+    /// ring, overlapped their neighbours by 1.6 µm (145–220 N at the start of a run from
+    /// it); spread, no pair of the start touches, and the loaded rollers (the load zone,
+    /// ψ within 90° of the bottom) keep their azimuths.
+    #[test]
+    fn the_start_from_equilibrium_has_no_roller_pressed_on_its_neighbour() {
+        let m = model(&B1);
+        in_workspace(&m, |s| {
+            let case = StaticCase::at_time(&s.params, 0.0);
+            let case = StaticCase {
+                axial_load: 0.0,
+                ..case
+            };
+            let solution = s.statics(&case, None).expect("an equilibrium");
+            let y = s.steady_state(&solution);
+            let kin = s.kinematics(0.0, &y);
+            for (element, result) in s.elements().iter().zip(s.evaluate_all(&kin)) {
+                if let crate::bearing::topology::Element::Pair(_) = element {
+                    assert!(result.normal < 0.01, "{element:?}: {}", result.normal);
+                }
+            }
+            for (i, pose) in solution.rollers.iter().enumerate() {
+                let azimuth = crate::bearing::state::azimuth(&kin.rollers[i].center);
+                if pose.azimuth.cos() < 0.0 {
+                    let moved = (azimuth - pose.azimuth).rem_euclid(2.0 * PI);
+                    assert!(moved.min(2.0 * PI - moved) < 1e-12, "roller {i}: {moved}");
+                }
+            }
+        });
     }
 }
