@@ -247,7 +247,7 @@ def test_bad_cases_are_refused_with_a_message(b1):
     )
 
 
-_UNLOADED_AT_REST = {"operating.radial_load": [5000.0], "operating.axial_load": [0.0]}
+_RADIAL_ONLY = {"operating.radial_load": [5000.0], "operating.axial_load": [0.0]}
 
 
 def test_a_design_sweep_solves_each_design_as_alone_and_meets_stribeck_at_zero_clearance():
@@ -259,7 +259,7 @@ def test_a_design_sweep_solves_each_design_as_alone_and_meets_stribeck_at_zero_c
     (Harris & Kotzalas, Rolling Bearing Analysis, sect. 7.2)."""
     clearances = ["0 um", "10 um", "20 um"]
     design = {"geometry.diametral_clearance": clearances, "operating.gravity": ["0 m/s^2"]}
-    grid = {**_UNLOADED_AT_REST, "operating.inner_ring_speed": [0.0]}
+    grid = {**_RADIAL_ONLY, "operating.inner_ring_speed": [0.0]}
     ds = statics_sweep(B1, grid, design=design)
     assert ds.attrs["failed_cases"] == 0, list(ds.error.values)
     swept = "diametral_clearance,gravity,radial_load,axial_load,inner_ring_speed"
@@ -310,18 +310,18 @@ def test_a_design_sweep_varies_text_values_and_the_oil_temperature(b1, tmp_path)
 
 def test_a_design_sweep_refuses_what_it_cannot_vary_by_name(b1):
     with pytest.raises(StaticsError, match="geometry.roller_count: a statics sweep cannot vary"):
-        statics_sweep(B1, _UNLOADED_AT_REST, design={"geometry.roller_count": [16, 18]})
+        statics_sweep(B1, _RADIAL_ONLY, design={"geometry.roller_count": [16, 18]})
     with pytest.raises(StaticsError, match="a load case's value; give it in the grid"):
-        statics_sweep(B1, _UNLOADED_AT_REST, design={"operating.axial_load": ["0 N"]})
+        statics_sweep(B1, _RADIAL_ONLY, design={"operating.axial_load": ["0 N"]})
     bad = {"geometry.diametral_clearance": ["10 um", "-5 um"]}
     with pytest.raises(StaticsError) as err:
-        statics_sweep(B1, _UNLOADED_AT_REST, design=bad)
+        statics_sweep(B1, _RADIAL_ONLY, design=bad)
     text = str(err.value)
     assert "1 of 2 grid points fail validation (nothing was solved)" in text
     assert '"-5 um" — must be >= 0 (--set geometry.diametral_clearance)' in text
     many = {"geometry.diametral_clearance": [f"{k} nm" for k in range(1001)]}
     with pytest.raises(StaticsError, match="1001 bearing designs, more than 1000"):
-        statics_sweep(B1, _UNLOADED_AT_REST, design=many)
+        statics_sweep(B1, _RADIAL_ONLY, design=many)
 
 
 def test_cli_sweeps_the_bearing_itself(tmp_path):
@@ -356,6 +356,18 @@ def test_cli_sweeps_the_bearing_itself(tmp_path):
     assert "friction of steady rolling (no slip)" in single.output
 
 
+def _roller_axis_radius(cfg, ds, j: int, k: int) -> float:
+    """Roller j's axis's distance from the axis of flange k's ring in the equilibrium ``ds``:
+    from the roller's azimuth and radial offset, around the displaced inner ring's axis for
+    the inner flanges (k < 2), the fixed outer ring's for the outer ones."""
+    psi = math.radians(float(ds.roller_azimuth[j]))
+    centre = (cfg.geometry.pitch_diameter / 2 + float(ds.roller_radial_offset[j])) * np.array(
+        [math.cos(psi), math.sin(psi)]
+    )
+    ring = ds.ring_displacement.values[1:3] if k < 2 else np.zeros(2)
+    return float(np.linalg.norm(centre - ring))
+
+
 def _edge_torus_heights(cfg, ds, j: int, k: int) -> tuple[float, float]:
     """The band of heights above the raceway at which roller j's edge torus touches flange k
     (TO-CO) by the geometry alone: the point of the torus tube (minor radius r_t) whose
@@ -364,15 +376,10 @@ def _edge_torus_heights(cfg, ds, j: int, k: int) -> tuple[float, float]:
     theta (whichever way it leans), less the roller's approach to that ring's raceway (from
     its centre's radial offset, its azimuth and the ring's displacement)."""
     g = cfg.geometry
-    psi = math.radians(float(ds.roller_azimuth[j]))
-    centre = (g.pitch_diameter / 2 + float(ds.roller_radial_offset[j])) * np.array(
-        [math.cos(psi), math.sin(psi)]
-    )
-    if k < 2:  # the inner ring's flanges, around the displaced ring's axis
-        radius = float(np.linalg.norm(centre - ds.ring_displacement.values[1:3]))
+    radius = _roller_axis_radius(cfg, ds, j, k)
+    if k < 2:
         approach = g.inner_raceway_diameter / 2 + g.roller_diameter / 2 - radius
     else:
-        radius = float(np.linalg.norm(centre))
         approach = radius + g.roller_diameter / 2 - g.outer_raceway_diameter / 2
     gamma, theta, r_t = g.flange.opening_angle, abs(float(ds.roller_tilt[j])), g.roller.edge_radius
     low = r_t * (1 - math.sin(gamma + theta)) - approach
@@ -422,16 +429,11 @@ def _rib_sliding_speed(cfg, ds, j: int, k: int) -> float:
     omega = float(ds.speed_applied)
     omega_c = 0.5 * omega * (1 - r / (g.pitch_diameter / 2))
     omega_s = (omega - omega_c) * r_i / r
-    psi = math.radians(float(ds.roller_azimuth[j]))
-    centre = (g.pitch_diameter / 2 + float(ds.roller_radial_offset[j])) * np.array(
-        [math.cos(psi), math.sin(psi)]
-    )
     height = float(ds.flange_contact_height[j, k])
+    axis = _roller_axis_radius(cfg, ds, j, k)
     if k < 2:
-        axis = float(np.linalg.norm(centre - ds.ring_displacement.values[1:3]))
         rho = r_i + height
         return abs((omega - omega_c) * rho - omega_s * (axis - rho))
-    axis = float(np.linalg.norm(centre))
     rho = r_o - height
     return abs(omega_s * (rho - axis) - omega_c * rho)
 

@@ -9,6 +9,7 @@ options is never read as rich markup.
 from __future__ import annotations
 
 import contextlib
+from collections.abc import Iterable
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -161,14 +162,20 @@ def set_options(options: list[str] | None) -> dict[str, Any]:
             )
         if path in changes:
             raise refuse(f"--set {option}: {path} is set twice")
-        for other in changes:
-            if path.startswith(f"{other}.") or other.startswith(f"{path}."):
-                raise refuse(
-                    f"--set {option}: overlaps --set {other} (one sets a table, the other a "
-                    "key inside it); set the keys one by one"
-                )
+        refuse_overlap(option, path, changes)
         changes[path] = values[0]
     return changes
+
+
+def refuse_overlap(option: str, path: str, others: Iterable[str]) -> None:
+    """Exits with status 2 where ``--set option`` (at ``path``) and one of the ``others``
+    paths lie one inside the other (a table and a key of it)."""
+    for other in others:
+        if path.startswith(f"{other}.") or other.startswith(f"{path}."):
+            raise refuse(
+                f"--set {option}: overlaps --set {other} (one sets a table, the other a "
+                "key inside it); set the keys one by one"
+            )
 
 
 @contextlib.contextmanager

@@ -13,7 +13,7 @@ import typer
 from rich.table import Table
 
 from ..paths import check_output_file, same_file
-from .common import checked, console, error, load, refuse, say
+from .common import checked, console, error, load, refuse, refuse_overlap, say
 
 
 def statics_command(
@@ -182,12 +182,7 @@ def _split_sets(options: list[str]) -> tuple[dict[str, tuple[str, list]], dict[s
             _, values = parse_set(option)
         except SweepError as err:
             raise refuse(err) from None
-        for other in design:
-            if path.startswith(f"{other}.") or other.startswith(f"{path}."):
-                raise refuse(
-                    f"--set {option}: overlaps --set {other} (one sets a table, the other a "
-                    "key inside it); set the keys one by one"
-                )
+        refuse_overlap(option, path, design)
         design[path] = values
     return grid, design
 

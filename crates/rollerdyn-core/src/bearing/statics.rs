@@ -20,7 +20,9 @@ use super::params::FlangeLaw;
 use super::quasi_static::{
     flange_loads, RollerPose, StaticCase, StaticSolution, FLANGE_PRESSURE_LIMIT,
 };
-use super::state::{roller_kinematics, BearingKinematics, Kinematics, ROLLER_STATES};
+use super::state::{
+    ring_kinematics, roller_kinematics, BearingKinematics, Kinematics, ROLLER_STATES,
+};
 use super::topology::{Element, FLANGE_NAMES};
 use crate::bearing::workspace::BearingSystem;
 use crate::contact::Pairing;
@@ -211,12 +213,9 @@ impl BearingSystem<'_> {
         let axis = axis_from_angles(solution.ring[3], solution.ring[4]);
         let speed = solution.case.speed;
         let kin = BearingKinematics {
-            inner_ring: Kinematics {
-                center: Vec3::new(y[0], y[1], y[2]),
-                axis,
-                velocity: Vec3::zeros(),
-                omega: speed * axis,
-            },
+            // a free ring's axis comes from its tilt states, which steady_state set from
+            // the same angles; a locked one's is the equilibrium's
+            inner_ring: ring_kinematics(&self.layout, &y, speed, &axis),
             rollers: (0..self.layout.rollers)
                 .map(|i| roller_kinematics(&self.layout, &y, i))
                 .collect(),
