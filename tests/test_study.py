@@ -10,6 +10,7 @@ at 3000 rpm from equilibrium for about 20 ms.
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import math
 import os
 from pathlib import Path
@@ -827,6 +828,15 @@ def test_map_point_stops_when_steady(tmp_path, client):
     ring_y = ds.ring_position.sel(xyz="y").values[last]
     assert row["ring vibration [m]"] == pytest.approx(float(np.ptp(ring_y)), rel=1e-12)
     assert row["ring vibration [m]"] == pytest.approx(2 * 36.2e-9, rel=0.25)
+    # beside it the quasi-static estimate: the friction torque of steady rolling at the
+    # point's loads and speed, as `rollerdyn statics` gives it (the same solve: 1e-9), and
+    # the dynamic torque over it
+    from rollerdyn.statics import statics
+    from rollerdyn.study.estimates import STEADY_ROLLING, TORQUE_RATIO
+
+    alone = float(statics(B1, speed=3000 * math.pi / 30, axial_load=0.0).friction_torque)
+    assert row[STEADY_ROLLING] == pytest.approx(alone, rel=1e-9)
+    assert row[TORQUE_RATIO] == pytest.approx(row["torque [N*m]"] / alone, rel=1e-12)
     assert (tmp_path / "map" / "map.csv").is_file()
     assert {p.name for p in (tmp_path / "map" / "figures").iterdir()} >= {"map_torque.png"}
     # a worker stopped while writing the point's file (Ctrl-C) leaves point_0000.nc.tmp<pid>
@@ -913,6 +923,40 @@ def test_map_figures_cross_points_not_steady_and_label_points_without_a_value(
     ax = _drawn_maps(line, tmp_path, monkeypatch)[0]
     assert [t.get_text() for t in ax.get_legend().get_texts()] == ["map point", "not steady"]
     assert [t.get_text() for t in ax.texts] == ["failed"]
+
+
+def test_map_torque_figure_draws_the_steady_rolling_estimate_beside_it(tmp_path, monkeypatch):
+    from rollerdyn.study.estimates import STEADY_ROLLING
+
+    line = _map_frame(
+        [(500.0, 5000.0, 0.0, "steady", 0.005), (500.0, 5000.0, 1000.0, "steady", 0.30)]
+    )
+    line[STEADY_ROLLING] = [0.006, 0.28]
+    ax = _drawn_maps(line, tmp_path, monkeypatch)[0]
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert legend == ["map point", "steady rolling (quasi-static, no slip)"]
+    assert list(ax.lines[1].get_ydata()) == [0.006, 0.28]
+
+
+def test_map_steady_rolling_estimates_are_each_points_statics():
+    """The estimate of every grid point (speed x radial x axial x temperature, the
+    temperature fastest, as the map numbers its points) is that point's own quasi-static
+    friction torque of steady rolling: the sweep behind it solves each case from its
+    neighbour's equilibrium, so to the equilibrium's tolerance (measured: 2e-4 relative
+    at B1's 1000 N after 0 N, the unloaded rollers' positions); 1e-3."""
+    from rollerdyn.statics import statics
+    from rollerdyn.study.estimates import steady_rolling_torques
+
+    rpm = math.pi / 30
+    axes = ([500 * rpm, 3000 * rpm], [5000.0], [0.0, 1000.0], [333.15, 353.15])
+    estimates = steady_rolling_torques(load_b1(), axes)
+    assert len(estimates) == 8
+    for estimate, (w, fr, fa, temp) in zip(estimates, itertools.product(*axes), strict=True):
+        cfg = variant(**{"operating.temperature": f"{temp} K"})
+        alone = statics(cfg, speed=w, radial_load=fr, axial_load=fa)
+        assert estimate == pytest.approx(float(alone.friction_torque), rel=1e-3), (w, fa, temp)
+    # the oil's temperature matters: hotter oil, thinner films, less torque at 0 N
+    assert estimates[1] < estimates[0]
 
 
 def test_map_points_are_sampled_a_hundred_times_a_window():

@@ -1,8 +1,10 @@
 """The maps of ``rollerdyn study map`` (matplotlib, PNG and SVG): one figure per output
-(friction torque, roller-set speed loss, largest flange force, the median Lambdas). With
+(friction torque, its ratio to the torque of steady rolling, roller-set speed loss, largest
+flange force, the median Lambdas, the ring's vibration). With
 two or more swept quantities (speed, radial and axial load, oil temperature), a colour map
 over the two with the most values (one panel per value of the others); with one, a line
-over it. Points that are not steady are marked with a cross;
+over it, the torque's with the quasi-static torque of steady rolling beside it. Points that
+are not steady are marked with a cross;
 points without a value (failed, or stopped before a whole window after the ramps) are
 left blank and labelled with their status.
 """
@@ -32,6 +34,7 @@ def write_maps(frame, out: Path, name: str) -> list[Path]:
     import matplotlib.pyplot as plt
 
     from ..plots import save_figure
+    from .estimates import STEADY_ROLLING
     from .maps import OUTPUTS, STEADY
 
     out = Path(out)
@@ -90,6 +93,10 @@ def write_maps(frame, out: Path, name: str) -> list[Path]:
             fig, ax = plt.subplots(figsize=(7, 4.2))
             rows = frame.sort_values(x)
             ax.plot(rows[x], rows[column], "o-", label="map point")
+            if column == "torque [N*m]" and STEADY_ROLLING in rows:
+                # the quasi-static estimate beside it (docs/study.md)
+                label = "steady rolling (quasi-static, no slip)"
+                ax.plot(rows[x], rows[STEADY_ROLLING], "s--", color="0.45", label=label)
             valued = np.isfinite(rows[column].astype(float))
             bad = rows[(rows["status"] != STEADY) & valued]
             if len(bad):

@@ -57,7 +57,10 @@ def build_map_page(
         'windows of simulated time, stopped changing (docs/study.md, "The outputs and the '
         'steady-state criterion"); the values are those of its last window. Λ is the median '
         "specific film thickness h_c/σ of the contacts in contact (below 1 boundary, above 3 "
-        "full-film lubrication).</p>"
+        "full-film lubrication). Beside each point, the quasi-static estimate: the friction "
+        "torque of steady rolling at its speed, loads and oil temperature (rollerdyn statics, "
+        "no slip; docs/study.md), which the point's torque is divided by in the map "
+        "torque_over_steady_rolling.</p>"
     )
     body.append(frame_table(frame, MAP_COLUMNS))
     if timing and not timing.get("runs run", 0):

@@ -1,7 +1,8 @@
 """``rollerdyn study map``: operating maps beyond the paper. A grid of inner ring speeds,
 radial and axial loads and oil temperatures, each point run on Dask until its outputs are
-steady (:mod:`.steady`), and maps of friction torque, roller-set speed loss (skidding) and
-largest flange force; over two or more temperatures, with a heat dissipation, the thermal
+steady (:mod:`.steady`), and maps of friction torque (with the quasi-static torque of steady
+rolling beside it, :mod:`.estimates`), roller-set speed loss (skidding) and largest flange
+force; over two or more temperatures, with a heat dissipation, the thermal
 balance (:mod:`.thermal`): the temperature at which the bearing gives off the heat its
 friction makes.
 
@@ -26,6 +27,7 @@ from ..config.base import T0_CELSIUS
 from ..config.solver import OUTPUT_GROUPS
 from ..provenance import config_hash
 from ..units import QuantityError, parse_quantity
+from .estimates import STEADY_ROLLING, TORQUE_RATIO, steady_rolling_torques
 from .runs import FINISHED, RunSpec, StudyError, inspect_run, lock_folder, open_run, record
 from .steady import LAMBDAS, VIBRATION, SteadyRule, window_length, window_outputs
 
@@ -48,6 +50,7 @@ OPTIONS = {
 #: Map outputs: column, title, unit.
 OUTPUTS = (
     ("torque [N*m]", "friction torque", "N·m"),
+    (TORQUE_RATIO, "torque / quasi-static torque of steady rolling", "-"),
     ("speed loss [1]", "roller-set speed loss 1 - cage / epicyclic speed", "-"),
     ("max flange force [N]", "largest flange normal force", "N"),
     ("inner race Lambda [1]", "median specific film thickness, inner race", "-"),
@@ -66,6 +69,7 @@ MAP_COLUMNS = (
     ("status", "status", ""),
     ("steady at [s]", "steady at [s]", ".4g"),
     ("torque [N*m]", "torque [N*m]", ".4g"),
+    (STEADY_ROLLING, "steady rolling [N*m]", ".4g"),
     ("speed loss [1]", "speed loss [-]", ".3g"),
     ("max flange force [N]", "max flange force [N]", ".4g"),
     ("inner race Lambda [1]", "Lambda inner race [-]", ".3g"),
@@ -359,6 +363,8 @@ def operating_map(
         raise StudyError(f"--workers = {workers!r}: must be a whole number >= 1")
     specs, rules = _map_points(cfg, axes, start, ramp, window, tol, max_time)
     check_scheduler(scheduler)
+    # the quasi-static estimate of every point (milliseconds each), before any run
+    estimates = dict(zip((s.name for s in specs), steady_rolling_torques(cfg, axes), strict=True))
     settings = {"start": start, "ramp": ramp, "window": window, "tol": tol, "max_time": max_time}
     # the points are files by number: a folder continues only the grid it was made with
     grid = axes if axes[3] != [cfg.operating.temperature] else axes[:3]
@@ -381,6 +387,7 @@ def operating_map(
         clock,
         source=_source_name(config),
         dissipation=dissipation,
+        estimates=estimates,
     )
 
 
@@ -524,10 +531,23 @@ def _point_start(cfg: Any, point, start: str, ramp: float, traction):
 
 
 def _run_map(
-    cfg, out, specs, rules, settings, run, overwrite, progress, clock, *, source, dissipation
+    cfg,
+    out,
+    specs,
+    rules,
+    settings,
+    run,
+    overwrite,
+    progress,
+    clock,
+    *,
+    source,
+    dissipation,
+    estimates,
 ):
     """Runs the grid's points ``specs`` in the folder ``out`` (prepared, and locked
-    meanwhile; ``run``: max_wall, scheduler, workers and force), writes map.csv, map.parquet and
+    meanwhile; ``run``: max_wall, scheduler, workers and force; ``estimates``: each
+    point's friction torque of steady rolling by name), writes map.csv, map.parquet and
     the figures (and with ``dissipation``, a :class:`.thermal.Dissipation`, the thermal
     balance: thermal.csv, thermal_speed.csv and their figures), and returns the study."""
     import pandas as pd
@@ -548,7 +568,8 @@ def _run_map(
         rows = []
         for spec in specs:
             ds = open_run(points_dir / spec.file)
-            rows.append(point_row(spec, ds, records[spec.name], rules[spec.name]))
+            rec, rule = records[spec.name], rules[spec.name]
+            rows.append(point_row(spec, ds, rec, rule, estimates[spec.name]))
         frame = pd.DataFrame(rows)
         frame.to_csv(out / "map.csv", index=False)
         frame.to_parquet(out / "map.parquet", engine="pyarrow", index=False)
@@ -586,10 +607,11 @@ def _final(value) -> float:
 STEADY, NOT_STEADY = "steady", "not steady"
 
 
-def point_row(spec: RunSpec, ds, rec: dict, rule: SteadyRule) -> dict:
+def point_row(spec: RunSpec, ds, rec: dict, rule: SteadyRule, estimate: float = math.nan) -> dict:
     """One row of the map table: the point's values, its status (steady; not steady at
     its maximum time; not finished, with the time reached; failed), the time it became
-    steady, its outputs over the last window and its wall time."""
+    steady, its outputs over the last window, the quasi-static ``estimate`` (the friction
+    torque of steady rolling, :mod:`.estimates`) and its wall time."""
     row = {
         "point": spec.name,
         **spec.meta,
@@ -599,6 +621,8 @@ def point_row(spec: RunSpec, ds, rec: dict, rule: SteadyRule) -> dict:
         "window [s]": rule.window,
         "reached [s]": rec.get("reached [s]", math.nan),
         "torque [N*m]": math.nan,
+        STEADY_ROLLING: estimate,
+        TORQUE_RATIO: math.nan,
         "speed loss [1]": math.nan,
         "max flange force [N]": math.nan,
         **dict.fromkeys((*LAMBDAS, VIBRATION), math.nan),
@@ -616,6 +640,7 @@ def point_row(spec: RunSpec, ds, rec: dict, rule: SteadyRule) -> dict:
         row["note"] = rule.unmet(spec.t_end)
     if t_k - rule.window >= rule.settle - 1e-12:  # a whole window after the ramps
         row.update(window_outputs(ds, t_k - rule.window, t_k, rule.factor))
+        row[TORQUE_RATIO] = row["torque [N*m]"] / estimate if estimate > 0 else math.nan
     forced = str(ds.attrs.get("forced", ""))
     if forced:  # run past the point law's load check
         row["note"] = f"{row['note']}; {forced}" if row["note"] else forced
