@@ -206,6 +206,39 @@ def test_balance_table_has_one_row_per_speed_and_loads_with_its_reasons(tmp_path
     assert all(f.stat().st_size > 1000 for f in files)
 
 
+def test_balance_table_gives_the_steady_rolling_estimates_balance_beside_it():
+    """The quasi-static estimate's power (the map's steady rolling torque times the
+    speed) is balanced by the same rule as the dynamic one: its temperature is
+    balance()'s on those powers; outside the map it is NaN and the note says on which
+    side."""
+    from rollerdyn.study.estimates import STEADY_ROLLING
+    from rollerdyn.study.thermal import STEADY_ROLLING_BALANCE
+
+    w = 1000 * math.pi / 30
+    frame = _frame(
+        [
+            (1000.0, 5000.0, 0.0, 60.0, "steady", 10.5 / w),
+            (1000.0, 5000.0, 0.0, 100.0, "steady", 2.1 / w),
+            (2000.0, 5000.0, 0.0, 60.0, "steady", 10.5 / (2 * w)),
+            (2000.0, 5000.0, 0.0, 100.0, "steady", 2.1 / (2 * w)),
+        ]
+    )
+    # at 1000 rpm 12 and 4 W (balanced, hotter than the dynamic balance); at 2000 rpm
+    # 40 and 30 W against 8 and 16 W given off: above the map
+    frame[STEADY_ROLLING] = [12.0 / w, 4.0 / w, 40.0 / (2 * w), 30.0 / (2 * w)]
+    table = balance_temperatures(frame, Dissipation(0.2, C + 20.0))
+    slow, fast = table.iloc[0], table.iloc[1]
+    _, t_star, _ = balance(np.array([C + 60, C + 100]), np.array([12.0, 4.0]), 0.2, C + 20)
+    assert slow[STEADY_ROLLING_BALANCE] == pytest.approx(t_star - C, rel=1e-12)
+    assert slow[STEADY_ROLLING_BALANCE] > slow["balance temperature [degC]"]
+    assert slow["note"] == ""
+    assert math.isnan(fast[STEADY_ROLLING_BALANCE]) and fast["status"] == BALANCED
+    assert fast["note"] == "steady rolling (quasi-static): above the map"
+    # a table of before (no estimate column): NaN, no note
+    old = balance_temperatures(frame.drop(columns=STEADY_ROLLING), Dissipation(0.2, C + 20.0))
+    assert old[STEADY_ROLLING_BALANCE].isna().all() and (old["note"] == "").all()
+
+
 def _balances(rows):
     """A balance table: (speed, axial load, status, T* [degC]) per row, the map's
     temperatures 60 ... 100 degC."""

@@ -22,6 +22,9 @@ films follows the viscosity, which the Vogel law makes nearly exponential in T o
 of kelvin (B1 without axial load at 3000 rpm: 9.8 W at 60 degC, 3.3 W at 100 degC);
 linearly where P is not positive at both ends. T* is then the root of P - Q in s,
 found by bisection to 1e-12 of the interval.
+The same balance of the quasi-static estimate beside each point (:mod:`.estimates`, the
+friction of steady rolling) is the table's ``steady rolling balance [degC]`` (NaN where it
+lies outside the map's temperatures): what a quasi-static tool would predict.
 Where P - Q is negative already at the lowest temperature, the balance lies below the
 map; where it is positive still at the highest, above it (or the bearing runs away
 thermally); neither is extrapolated. The oil is taken at the bearing's temperature (one
@@ -47,6 +50,7 @@ import numpy as np
 
 from ..config.base import T0_CELSIUS
 from ..units import QuantityError, parse_quantity
+from .estimates import STEADY_ROLLING
 from .maps import RPM, in_unit
 from .runs import StudyError
 
@@ -65,6 +69,10 @@ FOUND, BRACKETED, FASTER, SLOWER, UNKNOWN = (
     "undetermined",
 )
 
+#: The balance's column of the quasi-static estimate: the temperature at which the
+#: friction power of steady rolling (:mod:`.estimates`) equals the heat given off.
+STEADY_ROLLING_BALANCE = "steady rolling balance [degC]"
+
 #: The balance's table as printed and on the map's page (the note last): column,
 #: heading, number format.
 THERMAL_COLUMNS = (
@@ -73,6 +81,7 @@ THERMAL_COLUMNS = (
     ("axial_load [N]", "F_a [N]", ".4g"),
     ("status", "balance", ""),
     ("balance temperature [degC]", "T [degC]", ".4g"),
+    (STEADY_ROLLING_BALANCE, "T, steady rolling [degC]", ".4g"),
     ("friction power [W]", "friction power [W]", ".4g"),
     ("torque [N*m]", "torque [N*m]", ".4g"),
     ("temperatures [degC]", "map's T [degC]", ""),
@@ -140,10 +149,13 @@ def oil_specific_heat(temperature: float, rho_15: float) -> float:
 BTU_PER_LB_F = 4186.8
 
 
-def friction_power(rows) -> np.ndarray:
-    """The friction power [W] of map rows: the steady torque times the ring speed."""
-    torque = np.asarray(rows["torque [N*m]"], dtype=float)
-    return torque * np.asarray(rows["speed [rpm]"], dtype=float) * RPM
+def friction_power(rows, torque: str = "torque [N*m]") -> np.ndarray:
+    """The friction power [W] of map rows: the steady torque (or the column ``torque``:
+    the quasi-static estimate's) times the ring speed; NaN where a row lacks it."""
+    if torque not in rows:  # a table written before the estimate
+        return np.full(len(rows), math.nan)
+    values = np.asarray(rows[torque], dtype=float)
+    return values * np.asarray(rows["speed [rpm]"], dtype=float) * RPM
 
 
 def balance(
@@ -199,11 +211,21 @@ def balance_temperatures(frame, dissipation: Dissipation):
         temps = np.asarray(group["temperature [degC]"], dtype=float)[ok] + T0_CELSIUS
         status, t_star, p_star = balance(temps, power[ok], conductance, reference)
         speed = float(key[0]) * RPM
+        estimate = friction_power(group, STEADY_ROLLING)
+        known = np.isfinite(estimate)
+        quasi = balance(
+            np.asarray(group["temperature [degC]"], dtype=float)[known] + T0_CELSIUS,
+            estimate[known],
+            conductance,
+            reference,
+        )
         row = dict(zip(GROUP, key, strict=True))
         row.update(
             {
                 "status": status,
                 "balance temperature [degC]": t_star - T0_CELSIUS,
+                # NaN where that balance lies outside the map's temperatures too
+                STEADY_ROLLING_BALANCE: quasi[1] - T0_CELSIUS,
                 "friction power [W]": p_star,
                 "torque [N*m]": p_star / speed if speed > 0 else math.nan,
                 "heat dissipation [W/K]": dissipation.conductance,
@@ -213,7 +235,14 @@ def balance_temperatures(frame, dissipation: Dissipation):
                 "temperatures [degC]": ", ".join(f"{t - T0_CELSIUS:g}" for t in temps),
                 "lowest temperature [degC]": _in_celsius(temps, np.min),
                 "highest temperature [degC]": _in_celsius(temps, np.max),
-                "note": _note(status, temps, power[ok], conductance, reference, group),
+                "note": "; ".join(
+                    text
+                    for text in (
+                        _note(status, temps, power[ok], conductance, reference, group),
+                        _estimate_note(quasi[0]),
+                    )
+                    if text
+                ),
             }
         )
         rows.append(row)
@@ -254,6 +283,14 @@ def _note(status: str, temps, power, conductance: float, reference: float, group
         more = f"points not steady at {listed} degC"
         note = f"{note}; {more}" if note else more
     return note
+
+
+def _estimate_note(status: str) -> str:
+    """Where the quasi-static estimate's balance lies when not within the map ("" when it
+    is, or when there is no estimate)."""
+    if status in (BELOW, ABOVE):
+        return f"steady rolling (quasi-static): {status}"
+    return ""
 
 
 def _side(row, permissible: float) -> tuple[float, float]:
@@ -339,8 +376,8 @@ def write_balance_figure(
     frame, thermal, dissipation: Dissipation, out: Path, name: str
 ) -> list[Path]:
     """The friction power over the oil temperature for each speed and loads of the map,
-    the heat given off (a dashed line) and each balance (a star); PNG and SVG in
-    ``out`` as ``thermal_balance``."""
+    the quasi-static estimate's (dotted), the heat given off (a dashed line) and each
+    balance (a star); PNG and SVG in ``out`` as ``thermal_balance``."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -361,6 +398,11 @@ def write_balance_figure(
         for _, row in _rows_of(thermal, GROUP, key, BALANCED).iterrows():
             t, p = row["balance temperature [degC]"], row["friction power [W]"]
             _star(ax, t, p, f"{t:.1f} degC", line.get_color())
+        estimate = friction_power(group, STEADY_ROLLING)
+        if np.isfinite(estimate).any():  # the quasi-static estimate, dotted
+            ax.plot(temps, estimate, ":", marker="s", ms=4, color=line.get_color())
+    if STEADY_ROLLING in frame and np.isfinite(friction_power(frame, STEADY_ROLLING)).any():
+        ax.plot([], [], ":", marker="s", ms=4, color="0.4", label="steady rolling (quasi-static)")
     t_line = np.linspace(np.nanmin(t_all), np.nanmax(t_all), 50)
     ax.plot(
         t_line,
