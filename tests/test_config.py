@@ -284,6 +284,16 @@ def test_crowned_profile(raw: dict) -> None:
     assert cfg.geometry.roller.crown_length == 1e-3
 
 
+def test_logarithmic_profile(raw: dict) -> None:
+    """ISO/TS 16281's relief 0.00035 D by default, or the configuration's factor."""
+    data = mutate(raw, "geometry.roller.profile", "logarithmic")
+    cfg = parse_config(data)
+    assert cfg.geometry.log_relief == pytest.approx(0.00035 * cfg.geometry.roller_diameter)
+    cfg = parse_config(mutate(data, "geometry.roller.relief_factor", 0.0005))
+    assert cfg.geometry.log_relief == pytest.approx(0.0005 * cfg.geometry.roller_diameter)
+    assert parse_config(raw).geometry.log_relief == 0.0  # B1 is straight
+
+
 def test_roelands_z_number(raw: dict) -> None:
     data = mutate(raw, "lubricant.roelands", {"z": 0.6})
     data = mutate(data, "lubricant.dicke", DEL)
@@ -714,6 +724,20 @@ BAD = [
         "2 um",
         "geometry.roller.crown_drop",
         'needs profile = "crowned"',
+    ),
+    (
+        "relief on a straight roller",
+        "geometry.roller.relief_factor",
+        0.00035,
+        "geometry.roller.relief_factor",
+        'only used with profile = "logarithmic" (profile is "straight")',
+    ),
+    (
+        "relief factor too large",
+        "geometry.roller.relief_factor",
+        0.5,
+        "geometry.roller.relief_factor",
+        "<= 0.01",
     ),
     (
         "unknown detector",

@@ -195,6 +195,7 @@ def scalars() -> st.SearchStrategy:
                 "gradient",
                 "straight",
                 "crowned",
+                "logarithmic",
                 "semi-analytical",
                 "cosine",
                 "linear",

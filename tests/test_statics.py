@@ -601,3 +601,37 @@ def test_the_traction_table_does_not_enter_the_equilibrium(b1):
             exact.pop("friction_power"), tab.pop("friction_power"), rtol=1e-3
         )
     assert repr(fast) == repr(table)
+
+
+@pytest.mark.parametrize("factor", [None, 0.001])
+def test_logarithmic_profile_relieves_each_slice_by_its_drop(factor):
+    """With Lundberg's logarithmic profile (ISO/TS 16281) a slice at s from the roller's
+    centre stands k D ln[1 / (1 - (2 s / L_we)^2)] lower than the middle. Without axial
+    load or misalignment B1's rollers do not tilt, so every slice of a roller meets the
+    inner race with the same approach less its drop: each slice's deflection by the
+    inverse of eq. 11 (delta = k1^k2 (Q / l)^k2), plus the drop, is the same along the
+    roller (measured: within 5e-5 of it; 2e-4 here), and the relief shifts the load to the
+    middle (with the straight roller every slice carries the same load)."""
+    from rollerdyn.model import Model
+
+    changes = {"geometry.roller.profile": "logarithmic", "operating.axial_load": "0 N"}
+    if factor is not None:
+        changes["geometry.roller.relief_factor"] = factor
+    cfg = variant(**changes)
+    g = cfg.geometry
+    k = 0.00035 if factor is None else factor
+    assert g.log_relief == pytest.approx(k * g.roller_diameter, rel=1e-15)
+    length, n = g.roller.effective_length, g.roller.slices
+    width = length / n
+    s = -length / 2 + (np.arange(n) + 0.5) * width
+    drop = k * g.roller_diameter * np.log(1.0 / (1.0 - (2.0 * s / length) ** 2))
+    law = Model(cfg).line_contacts["inner"]
+    loads = statics(cfg).inner_slice_load.values
+    heaviest = loads[np.argmax(loads.sum(axis=1))]
+    deflection = law.k1**law.k2 * (heaviest / width) ** law.k2
+    approach = deflection + drop
+    assert approach == pytest.approx(np.full(n, approach.mean()), rel=2e-4)
+    assert heaviest[n // 2] > heaviest[0] > 0.0  # relieved ends, still in contact
+    straight = statics(variant(**{"operating.axial_load": "0 N"})).inner_slice_load.values
+    flat = straight[np.argmax(straight.sum(axis=1))]
+    assert flat == pytest.approx(np.full(n, flat.mean()), rel=1e-6)

@@ -101,6 +101,11 @@ fn params(r: &mut Reader) -> Option<BearingParams> {
         slices: (r.byte() % 40) as usize,
         crown_drop: r.range(0.0, 0.1) * radius,
         crown_length: r.range(0.0, 0.5) * roller.length,
+        log_relief: if r.flag() {
+            r.range(0.0, 0.02) * radius
+        } else {
+            0.0
+        },
         roller_density: r.log_range(1e2, 2e4),
         inner_raceway_radius,
         outer_raceway_radius,

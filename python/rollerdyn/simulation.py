@@ -237,6 +237,7 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
                 "slices": int(roller.slices),
                 "crown_drop": roller.crown_drop if crowned else 0.0,
                 "crown_length": (roller.crown_length or 0.0) if crowned else 0.0,
+                "log_relief": g.log_relief,
             },
             "inner_raceway_radius": g.inner_raceway_diameter / 2.0,
             "outer_raceway_radius": g.outer_raceway_diameter / 2.0,

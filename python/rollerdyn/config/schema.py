@@ -57,9 +57,10 @@ class RollerConfig(RollerDerived, _Section):
     length: Quantity("length", positive=True, le="1 m", example="5 mm")
     edge_radius: Quantity("length", positive=True, example="0.5 mm")
     end_face_radius: Quantity("length", positive=True, example="5000 mm")
-    profile: Literal["straight", "crowned"] = "straight"
+    profile: Literal["straight", "crowned", "logarithmic"] = "straight"
     crown_drop: Quantity("length", nonnegative=True, example="2 um") = "0 um"
     crown_length: Quantity("length", positive=True, example="1 mm") | None = None
+    relief_factor: Number(gt=0.0, le=0.01) | None = None
     slices: Integer(ge=1, le=MAX_SLICES) = 20
 
     @model_validator(mode="after")
@@ -73,12 +74,18 @@ class RollerConfig(RollerDerived, _Section):
                 f"must be < length/2 = {_mm(self.length / 2)} "
                 "(the roller length must exceed 2*edge_radius)",
             )
-        if self.profile == "straight":
+        if self.relief_factor is not None and self.profile != "logarithmic":
+            cross.add(
+                "relief_factor",
+                repr(self.relief_factor),
+                f'only used with profile = "logarithmic" (profile is "{self.profile}")',
+            )
+        if self.profile != "crowned":
             if self.crown_drop != 0.0:
                 cross.add(
                     "crown_drop",
                     _mm(self.crown_drop),
-                    'a crown drop needs profile = "crowned" (profile is "straight")',
+                    f'a crown drop needs profile = "crowned" (profile is "{self.profile}")',
                 )
             if self.crown_length is not None:
                 cross.add(

@@ -173,6 +173,8 @@ pub struct BearingParams {
     pub crown_drop: f64,
     /// Length of the crowned zone at each end [m].
     pub crown_length: f64,
+    /// Relief k·D of the logarithmic profile [m] (0: none; see [`Self::crown_drop`]).
+    pub log_relief: f64,
     /// Roller density [kg/m³].
     pub roller_density: f64,
     /// Inner raceway radius [m].
@@ -518,10 +520,18 @@ impl BearingParams {
             ("damping_ratio", self.damping_ratio),
             ("inner_axial_play", self.inner_axial_play),
             ("outer_axial_play", self.outer_axial_play),
+            ("log_relief", self.log_relief),
         ] {
             if !(v >= 0.0 && v.is_finite()) {
                 return Err(Error::invalid(name, v, "non-negative and finite"));
             }
+        }
+        if self.log_relief > 0.0 && self.crown_drop > 0.0 {
+            return Err(Error::invalid(
+                "log_relief",
+                self.log_relief,
+                "0 with a crown drop (a roller has one profile)",
+            ));
         }
         Ok(())
     }
@@ -580,9 +590,20 @@ impl BearingParams {
         Ok(())
     }
 
-    /// Crown drop of the roller profile at axial position s (0 for a straight roller):
-    /// a circular-arc-like quadratic drop over `crown_length` at each end.
+    /// Crown drop of the roller profile at axial position s from the roller's centre,
+    /// `straight` the length L_we of the generatrix between the edge tori (0 for a
+    /// straight roller):
+    /// - crowned: a circular-arc-like quadratic drop over `crown_length` at each end;
+    /// - logarithmic (`log_relief` = k·D > 0): Lundberg's profile as ISO/TS 16281:2008
+    ///   takes it for rollers whose profile is not known, k·D·ln[1 / (1 − (2s/L_we)²)]
+    ///   (k = 0.00035 by default there). It grows without bound towards the generatrix's
+    ///   ends; the slices' centres lie inside them (the outermost of 20 at 2s/L_we = 0.95:
+    ///   2.33·k·D). At or beyond the ends it is infinite.
     pub fn crown_drop(&self, s: f64, straight: f64) -> f64 {
+        if self.log_relief > 0.0 {
+            let u = 2.0 * s / straight;
+            return self.log_relief * -(1.0 - u * u).ln();
+        }
         if self.crown_drop <= 0.0 || self.crown_length <= 0.0 {
             return 0.0;
         }
@@ -659,6 +680,38 @@ mod tests {
             .unwrap_err()
             .to_string()
             .contains("no inner+x flange"));
+    }
+
+    /// Lundberg's logarithmic profile as ISO/TS 16281:2008 writes it: k·D·ln[1/(1 − u²)]
+    /// with u = 2s/L_we; ln 2 · k·D where u² = 1/2, 0 at the centre, symmetric, growing
+    /// towards the ends (2.33 k·D at B1's outermost slice centre, u = 0.95), and refused
+    /// beside a crown drop or when negative.
+    #[test]
+    fn logarithmic_profile_is_lundbergs_relief() {
+        let mut p = params(&B1);
+        let (kd, length) = (0.00035 * 4.495e-3, 4.6e-3);
+        p.log_relief = kd;
+        assert_eq!(p.crown_drop(0.0, length), 0.0);
+        let at_half = 0.5 * length * 0.5f64.sqrt();
+        assert!((p.crown_drop(at_half, length) - kd * 2f64.ln()).abs() < 1e-15 * kd);
+        let end = 0.95 * 0.5 * length;
+        let expected = kd * (1.0 / (1.0 - 0.95f64 * 0.95)).ln();
+        assert!((p.crown_drop(end, length) - expected).abs() < 1e-14 * expected);
+        assert!((expected / kd - 2.3279).abs() < 1e-4);
+        assert_eq!(p.crown_drop(-end, length), p.crown_drop(end, length));
+        let mut previous = 0.0;
+        for i in 1..100 {
+            let drop = p.crown_drop(0.5 * length * i as f64 / 100.0, length);
+            assert!(drop > previous, "{i}");
+            previous = drop;
+        }
+        assert!(p.check().is_ok());
+        p.crown_drop = 2e-6;
+        p.crown_length = 1e-3;
+        assert!(p.check().unwrap_err().to_string().starts_with("log_relief"));
+        p.crown_drop = 0.0;
+        p.log_relief = -1e-6;
+        assert!(p.check().unwrap_err().to_string().starts_with("log_relief"));
     }
 
     #[test]

@@ -106,6 +106,7 @@ pub(crate) fn params(b: &Bearing) -> BearingParams {
         slices: 20,
         crown_drop: 0.0,
         crown_length: 0.0,
+        log_relief: 0.0,
         roller_density: 7850.0,
         inner_raceway_radius: b.inner / 2.0,
         outer_raceway_radius: b.outer / 2.0,

@@ -118,6 +118,7 @@ fn to_core(p: ModelParameters, traction: &EhlTraction) -> PyResult<BearingParams
         slices: r.slices,
         crown_drop: r.crown_drop,
         crown_length: r.crown_length,
+        log_relief: r.log_relief,
         roller_density: m.roller_density,
         inner_raceway_radius: g.inner_raceway_radius,
         outer_raceway_radius: g.outer_raceway_radius,

@@ -51,6 +51,8 @@ section! {
         crown_drop: f64,
         /// Length of the crowned zone at each end (0: straight profile).
         crown_length: f64,
+        /// Relief k·D of the logarithmic profile (0: none).
+        log_relief: f64,
     }
 
     /// One ring's flanges (both sides) [m, rad].
