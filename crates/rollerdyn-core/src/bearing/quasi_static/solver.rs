@@ -489,7 +489,12 @@ impl<'a> Problem<'a> {
             return self.solve_by_both_paths(None);
         }
         self.solve_by_both_paths(start).or_else(|_| {
+            // a cold search exactly as without a start: a warm start must never decide
+            // whether an equilibrium is found (the evaluations spent from the start would
+            // otherwise cut the cold fast path short; B1 at 0.03° misalignment and 0 N
+            // after 0° and 500 N was refused so, 2026-12-01)
             self.careful = false;
+            self.evaluations = 0;
             self.roller_jacobians.iter_mut().for_each(|j| *j = None);
             self.solve_by_both_paths(None)
         })
