@@ -626,7 +626,11 @@ def test_logarithmic_profile_relieves_each_slice_by_its_drop(factor):
     s = -length / 2 + (np.arange(n) + 0.5) * width
     drop = k * g.roller_diameter * np.log(1.0 / (1.0 - (2.0 * s / length) ** 2))
     law = Model(cfg).line_contacts["inner"]
-    loads = statics(cfg).inner_slice_load.values
+    ds = statics(cfg)
+    # the dataset's slice positions are the core's stations: centred, one width apart
+    assert ds.slice_position.values == pytest.approx(s, rel=1e-12)
+    assert ds.slice_position.attrs["units"] == "m"
+    loads = ds.inner_slice_load.values
     heaviest = loads[np.argmax(loads.sum(axis=1))]
     deflection = law.k1**law.k2 * (heaviest / width) ** law.k2
     approach = deflection + drop

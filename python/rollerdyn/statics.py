@@ -644,6 +644,12 @@ def _case_variables(
         "roller_tilt": _var(
             r["roller_tilt"], ("roller",), "rad", "roller tilt about its tangential axis"
         ),
+        "slice_position": _var(
+            np.asarray(cfg.geometry.roller.slice_centres),
+            ("slice",),
+            "m",
+            "slice centre along the roller axis from the roller's middle",
+        ),
         "inner_slice_load": _var(
             slices["inner_slices"],
             ("roller", "slice"),

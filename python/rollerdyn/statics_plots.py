@@ -19,15 +19,24 @@ def draw(ds: xr.Dataset, path: Path) -> None:
 
     if "case" not in ds.dims:
         fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4))
-        azimuth = ds.roller_azimuth.values
+        # from the radial load's direction (180 deg), within -180 ... 180 deg
+        azimuth = ds.roller_azimuth.values % 360.0 - 180.0
         order = np.argsort(azimuth)
         a.plot(azimuth[order], ds.inner_race_load.values[order], "o-", label="inner race")
         a.plot(azimuth[order], ds.outer_race_load.values[order], "s--", label="outer race")
-        a.set(xlabel="roller azimuth [deg] (load along 180 deg)", ylabel="roller load [N]")
+        a.set(xlabel="roller azimuth from the radial load [deg]", ylabel="roller load [N]")
         a.legend()
         heaviest = int(np.argmax(ds.inner_race_load.values))
-        b.plot(ds.slice.values, ds.inner_slice_pressure.values[heaviest] / 1e9, "o-")
-        b.set(xlabel="slice", ylabel="p0 [GPa]", title=f"heaviest roller ({heaviest}), inner race")
+        along = ds.slice_position.values * 1e3  # mm
+        for race, style in (("inner", "o-"), ("outer", "s--")):
+            pressure = ds[f"{race}_slice_pressure"].values[heaviest] / 1e9
+            b.plot(along, pressure, style, label=f"{race} race")
+        b.set(
+            xlabel="along the roller from its middle [mm]",
+            ylabel="p0 [GPa]",
+            title=f"heaviest roller ({heaviest}): contact pressure by slice",
+        )
+        b.legend()
     else:
         fig = _draw_sweep(plt, ds)
     fig.tight_layout()

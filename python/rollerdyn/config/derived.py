@@ -39,6 +39,13 @@ class RollerDerived:
         """Width of one slice, ``effective_length / slices``, m."""
         return self.effective_length / self.slices
 
+    @property
+    def slice_centres(self) -> list[float]:
+        """The slices' centres along the roller axis from its middle, m (the core's
+        stations of the line contacts, ``bearing/line_contacts.rs``)."""
+        half, width = 0.5 * self.effective_length, self.slice_width
+        return [-half + (j + 0.5) * width for j in range(self.slices)]
+
 
 #: The flanges an axial load on the inner ring presses, by its direction: along +x the
 #: inner ring's -x flange pushes the rollers onto the outer ring's +x flange (the core's
