@@ -363,8 +363,6 @@ def operating_map(
         raise StudyError(f"--workers = {workers!r}: must be a whole number >= 1")
     specs, rules = _map_points(cfg, axes, start, ramp, window, tol, max_time)
     check_scheduler(scheduler)
-    # the quasi-static estimate of every point (milliseconds each), before any run
-    estimates = dict(zip((s.name for s in specs), steady_rolling_torques(cfg, axes), strict=True))
     settings = {"start": start, "ramp": ramp, "window": window, "tol": tol, "max_time": max_time}
     # the points are files by number: a folder continues only the grid it was made with
     grid = axes if axes[3] != [cfg.operating.temperature] else axes[:3]
@@ -387,7 +385,7 @@ def operating_map(
         clock,
         source=_source_name(config),
         dissipation=dissipation,
-        estimates=estimates,
+        axes=axes,
     )
 
 
@@ -531,23 +529,11 @@ def _point_start(cfg: Any, point, start: str, ramp: float, traction):
 
 
 def _run_map(
-    cfg,
-    out,
-    specs,
-    rules,
-    settings,
-    run,
-    overwrite,
-    progress,
-    clock,
-    *,
-    source,
-    dissipation,
-    estimates,
+    cfg, out, specs, rules, settings, run, overwrite, progress, clock, *, source, dissipation, axes
 ):
-    """Runs the grid's points ``specs`` in the folder ``out`` (prepared, and locked
-    meanwhile; ``run``: max_wall, scheduler, workers and force; ``estimates``: each
-    point's friction torque of steady rolling by name), writes map.csv, map.parquet and
+    """Runs the grid's points ``specs`` of the grid ``axes`` in the folder ``out``
+    (prepared, and locked meanwhile; ``run``: max_wall, scheduler, workers and force),
+    each beside its quasi-static estimate (:mod:`.estimates`), writes map.csv, map.parquet and
     the figures (and with ``dissipation``, a :class:`.thermal.Dissipation`, the thermal
     balance: thermal.csv, thermal_speed.csv and their figures), and returns the study."""
     import pandas as pd
@@ -564,6 +550,9 @@ def _run_map(
     points_dir.mkdir(exist_ok=True)
     lock = lock_folder(out)
     try:
+        # the quasi-static estimate of every point (milliseconds each), before any run
+        torques = steady_rolling_torques(cfg, axes)
+        estimates = dict(zip((spec.name for spec in specs), torques, strict=True))
         records = run_all(specs, points_dir, progress=progress, stop_rules=rules, **run)
         rows = []
         for spec in specs:
