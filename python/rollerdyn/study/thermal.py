@@ -213,11 +213,15 @@ def balance_temperatures(frame, dissipation: Dissipation):
         speed = float(key[0]) * RPM
         estimate = friction_power(group, STEADY_ROLLING)
         known = np.isfinite(estimate)
-        quasi = balance(
+        quasi_status, quasi_t, _ = balance(
             np.asarray(group["temperature [degC]"], dtype=float)[known] + T0_CELSIUS,
             estimate[known],
             conductance,
             reference,
+        )
+        notes = (
+            _note(status, temps, power[ok], conductance, reference, group),
+            _estimate_note(quasi_status),
         )
         row = dict(zip(GROUP, key, strict=True))
         row.update(
@@ -225,7 +229,7 @@ def balance_temperatures(frame, dissipation: Dissipation):
                 "status": status,
                 "balance temperature [degC]": t_star - T0_CELSIUS,
                 # NaN where that balance lies outside the map's temperatures too
-                STEADY_ROLLING_BALANCE: quasi[1] - T0_CELSIUS,
+                STEADY_ROLLING_BALANCE: quasi_t - T0_CELSIUS,
                 "friction power [W]": p_star,
                 "torque [N*m]": p_star / speed if speed > 0 else math.nan,
                 "heat dissipation [W/K]": dissipation.conductance,
@@ -235,14 +239,7 @@ def balance_temperatures(frame, dissipation: Dissipation):
                 "temperatures [degC]": ", ".join(f"{t - T0_CELSIUS:g}" for t in temps),
                 "lowest temperature [degC]": _in_celsius(temps, np.min),
                 "highest temperature [degC]": _in_celsius(temps, np.max),
-                "note": "; ".join(
-                    text
-                    for text in (
-                        _note(status, temps, power[ok], conductance, reference, group),
-                        _estimate_note(quasi[0]),
-                    )
-                    if text
-                ),
+                "note": "; ".join(text for text in notes if text),
             }
         )
         rows.append(row)

@@ -141,6 +141,16 @@ impl BearingSystem<'_> {
         ))
     }
 
+    /// The roller set's orbital speed ω_c and each roller's spin about its axis ω_s [rad/s]
+    /// of rolling without slip at the inner ring's speed Ω, the outer ring fixed (module
+    /// doc): ω_c = Ω·(1 − r/R_p)/2, ω_s = −(Ω − ω_c)·r_i/r.
+    pub(crate) fn rolling_speeds(&self, speed: f64) -> (f64, f64) {
+        let p = &self.params;
+        let r = p.roller.radius;
+        let orbit = 0.5 * speed * (1.0 - r / self.pitch_radius());
+        (orbit, -(speed - orbit) * p.inner_raceway_radius / r)
+    }
+
     /// The state of steady rolling (module doc) at the positions of `solution`.
     pub(super) fn steady_state(&self, solution: &StaticSolution) -> Vec<f64> {
         let mut y = vec![0.0; self.layout.len()];
@@ -149,11 +159,8 @@ impl BearingSystem<'_> {
             y[6] = solution.ring[3];
             y[7] = solution.ring[4];
         }
-        let p = &self.params;
-        let omega = solution.case.speed;
-        let r = p.roller.radius;
-        let orbit = 0.5 * omega * (1.0 - r / self.pitch_radius());
-        let spin = -(omega - orbit) * p.inner_raceway_radius / r;
+        let r = self.params.roller.radius;
+        let (orbit, spin) = self.rolling_speeds(solution.case.speed);
         let orbit_vector = Vec3::new(orbit, 0.0, 0.0);
         let azimuths = spaced_azimuths(&solution.rollers, self.pitch_radius(), 2.0 * r);
         for (i, pose) in solution.rollers.iter().enumerate() {

@@ -83,7 +83,7 @@ impl<'a> Problem<'a> {
         let p = &model.model.params;
         let pitch = model.pitch_radius();
         let r = p.roller.radius;
-        let orbit = 0.5 * case.speed * (1.0 - r / pitch);
+        let (orbit, spin) = model.rolling_speeds(case.speed);
         let azimuths: Vec<f64> = model
             .roller_azimuths()
             .into_iter()
@@ -96,7 +96,7 @@ impl<'a> Problem<'a> {
             azimuths,
             pitch,
             orbit,
-            spin: -(case.speed - orbit) * p.inner_raceway_radius / r,
+            spin,
             load_factor: 1.0,
             scale: r,
             evaluations: 0,
