@@ -57,6 +57,37 @@ def test_pass_frequencies_are_those_of_rolling_without_slip(z, pitch, share, spe
     assert f.outer_pass + f.inner_pass == pytest.approx(z * f.ring, rel=1e-12, abs=1e-300)
 
 
+@settings(max_examples=200, deadline=None)
+@given(
+    z=st.integers(3, 60),
+    pitch=st.floats(5e-3, 1.0),
+    share=st.floats(0.02, 0.5),
+    speed=st.floats(-2000.0, 2000.0),
+    outer=st.floats(-2000.0, 2000.0),
+)
+def test_pass_frequencies_with_the_outer_ring_turning(z, pitch, share, speed, outer):
+    # Independent: the inner raceway's surface moves at Omega r_i, the outer's at
+    # Omega_o r_o (r_o = (d_m + D)/2); rolling without slip puts the roller's centre, on
+    # the pitch radius, at the mean of the two: omega_c = (Omega r_i + Omega_o r_o)/d_m.
+    # Relative to the set the rings turn at Omega - omega_c and Omega_o - omega_c, and the
+    # roller spins at (Omega - omega_c) r_i / (D/2).
+    d = share * pitch
+    f = pass_frequencies(z, d, pitch, speed, outer)
+    r_i, r_o = (pitch - d) / 2.0, (pitch + d) / 2.0
+    omega_c = (speed * r_i + outer * r_o) / pitch
+    two_pi = 2.0 * math.pi
+    expected = (
+        abs(speed - outer) / two_pi,
+        abs(omega_c) / two_pi,
+        z * abs(omega_c - outer) / two_pi,
+        z * abs(speed - omega_c) / two_pi,
+        abs(speed - omega_c) * r_i / (d / 2.0) / two_pi,
+    )
+    got = (f.ring, f.roller_set, f.outer_pass, f.inner_pass, f.roller_spin)
+    scale = (abs(speed) + abs(outer)) / two_pi
+    assert got == pytest.approx(expected, rel=1e-9, abs=1e-12 * z * scale + 1e-300)
+
+
 def test_pass_frequencies_refuse_a_roller_larger_than_its_pitch_circle():
     with pytest.raises(ValueError, match="0 < D < d_m"):
         pass_frequencies(17, 0.03, 0.0245, 52.0)

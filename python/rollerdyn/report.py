@@ -203,11 +203,21 @@ def _labels(paths: list[Path], sets: list[xr.Dataset]) -> list[str]:
     ]
 
 
+def relative_speed(ds: xr.Dataset) -> np.ndarray:
+    """The inner ring's speed relative to the outer ring at every output [rad/s] (a result
+    without ``outer_ring_speed``, recorded before the outer ring could turn: its fixed)."""
+    inner = np.asarray(ds.ring_speed.values, dtype=float)
+    if "outer_ring_speed" not in ds:
+        return inner
+    return inner - np.asarray(ds.outer_ring_speed.values, dtype=float)
+
+
 def max_abs_srr_inner(ds: xr.Dataset) -> float:
-    """Largest |slide-to-roll ratio| at the inner race over the outputs at which the inner
-    ring turns (any roller; NaN outputs ignored); NaN if it never turns: before the ring
-    turns the ratio has no meaning (it divides by a rolling speed that is not there)."""
-    turning = np.abs(np.asarray(ds.ring_speed.values, dtype=float)) > 0.0
+    """Largest |slide-to-roll ratio| at the inner race over the outputs at which the rings
+    turn relative to each other (any roller; NaN outputs ignored); NaN if they never do:
+    without it the ratio has no meaning (it divides by a rolling speed that is not
+    there)."""
+    turning = np.abs(relative_speed(ds)) > 0.0
     if not turning.any():
         return float("nan")
     return nanmax(np.abs(ds.srr_inner.values[turning]))
@@ -332,7 +342,7 @@ def power_summary(ds: xr.Dataset, last: np.ndarray) -> dict:
         parts = [sum(_mean_total(ds, n, last) for n in names) for _, names in groups]
         return " / ".join(f"{100.0 * x / power:.1f}" if power > 0.0 else "n/a" for x in parts)
 
-    speed = float(np.mean(ds.ring_speed.values[last]))
+    speed = abs(float(np.mean(relative_speed(ds)[last])))
     return {
         "mean_power_loss": power,
         "power_shares": shares(POWER_SOURCES),

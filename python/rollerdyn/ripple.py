@@ -15,7 +15,9 @@ pass frequency", compares the two for B1.
 Kinematic frequencies of a bearing whose inner ring turns at f_i with the outer ring
 fixed, rolling without slip (Harris & Kotzalas, Rolling Bearing Analysis, 5th ed., vol. 1,
 ch. 8; contact angle 0): roller set f_c = f_i (1 - D/d_m)/2, roller pass on the outer ring
-Z f_c, on the inner ring Z (f_i - f_c), roller spin f_i d_m/(2D) (1 - (D/d_m)^2).
+Z f_c, on the inner ring Z (f_i - f_c), roller spin f_i d_m/(2D) (1 - (D/d_m)^2); with the
+outer ring turning too, :func:`pass_frequencies`. Where the radial load's direction is
+fixed, the ring vibrates at Z f_c whichever ring turns.
 """
 
 from __future__ import annotations
@@ -64,24 +66,34 @@ class PassFrequencies:
 
 
 def pass_frequencies(
-    roller_count: int, roller_diameter: float, pitch_diameter: float, ring_speed: float
+    roller_count: int,
+    roller_diameter: float,
+    pitch_diameter: float,
+    ring_speed: float,
+    outer_speed: float = 0.0,
 ) -> PassFrequencies:
     """The kinematic frequencies [Hz] of ``roller_count`` rollers of diameter D on the pitch
-    diameter d_m [m], the inner ring turning at ``ring_speed`` [rad/s], the outer fixed."""
+    diameter d_m [m], the inner ring turning at ``ring_speed`` and the outer ring at
+    ``outer_speed`` [rad/s] (by default fixed): the module's doc, with the roller set at
+    f_c = f_i (1 - D/d_m)/2 + f_o (1 + D/d_m)/2 (Harris & Kotzalas, eq. 8.23), ``ring``
+    the inner ring's frequency relative to the outer one, the pass frequencies relative
+    to each ring. All magnitudes."""
     if not (roller_count >= 1 and 0.0 < roller_diameter < pitch_diameter):
         raise ValueError(
             f"pass_frequencies: {roller_count} rollers of {roller_diameter} m on a pitch "
             f"diameter of {pitch_diameter} m: needs at least one roller and 0 < D < d_m"
         )
     ratio = roller_diameter / pitch_diameter
-    f_i = abs(ring_speed) / (2.0 * math.pi)
-    f_c = 0.5 * f_i * (1.0 - ratio)
+    f_i = ring_speed / (2.0 * math.pi)
+    f_o = outer_speed / (2.0 * math.pi)
+    f_c = 0.5 * f_i * (1.0 - ratio) + 0.5 * f_o * (1.0 + ratio)
+    f_rel = abs(f_i - f_o)
     return PassFrequencies(
-        ring=f_i,
-        roller_set=f_c,
-        outer_pass=roller_count * f_c,
-        inner_pass=roller_count * (f_i - f_c),
-        roller_spin=0.5 * f_i / ratio * (1.0 - ratio * ratio),
+        ring=f_rel,
+        roller_set=abs(f_c),
+        outer_pass=roller_count * abs(f_c - f_o),
+        inner_pass=roller_count * abs(f_i - f_c),
+        roller_spin=0.5 * f_rel / ratio * (1.0 - ratio * ratio),
     )
 
 
@@ -155,10 +167,13 @@ def ripple(ds: xr.Dataset, geometry: tuple[float, float] | None = None) -> dict:
     t = np.asarray(part.time.values, dtype=float)
     z = int(ds.sizes.get("roller", 0))
     ring_speed = float(np.mean(part.ring_speed.values))
+    outer_speed = 0.0
+    if "outer_ring_speed" in part:
+        outer_speed = float(np.mean(part.outer_ring_speed.values))
     geometry = geometry if geometry is not None else result_geometry(ds)
     kinematic = math.nan
     if geometry is not None:
-        kinematic = pass_frequencies(z, *geometry, ring_speed).roller_set
+        kinematic = pass_frequencies(z, *geometry, ring_speed, outer_speed).roller_set
     measured = math.nan
     if recorded(part, "rollers"):
         measured = abs(float(np.nanmean(part.orbital_speed.values))) / (2.0 * math.pi)

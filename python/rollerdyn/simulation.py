@@ -51,12 +51,15 @@ def carried_axial_force(ds: xr.Dataset) -> xr.DataArray:
 
 
 def full_speed(ds: xr.Dataset) -> xr.Dataset:
-    """The part of a result at (at least 99 % of) full inner ring speed, the outputs the
-    azimuth figures use; the whole result if the ring never turns."""
-    speed = np.abs(ds.ring_speed.values)
-    if speed.max() <= 0:
+    """The part of a result at (at least 99 % of) full speed of each ring that turns, the
+    outputs the azimuth figures use; the whole result if neither ring turns."""
+    names = [n for n in ("ring_speed", "outer_ring_speed") if n in ds]
+    speeds = [np.abs(np.asarray(ds[n].values, dtype=float)) for n in names]
+    turning = [s for s in speeds if s.max() > 0]
+    if not turning:
         return ds
-    return ds.isel(time=np.nonzero(speed >= 0.99 * speed.max())[0])
+    full = np.logical_and.reduce([s >= 0.99 * s.max() for s in turning])
+    return ds.isel(time=np.nonzero(full)[0])
 
 
 class SimulationError(RuntimeError):
@@ -294,6 +297,7 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
             "radial_load": _history(op.radial_load, op.load_ramp),
             "axial_load": _history(op.axial_load, op.load_ramp),
             "inner_ring_speed": _history(op.inner_ring_speed, op.speed_ramp),
+            "outer_ring_speed": _history(op.outer_ring_speed, op.speed_ramp),
             "gravity": list(op.gravity),
         },
         "cavity": {
@@ -358,6 +362,7 @@ class Progress:
 
 _SCALARS = {
     "ring_speed": ("rad/s", "inner ring angular velocity about +x"),
+    "outer_ring_speed": ("rad/s", "outer ring angular velocity about +x"),
     "radial_load": ("N", "radial load on the inner ring (along -y)"),
     "axial_load": ("N", "axial load on the inner ring (along +x)"),
     "frictional_torque": (
@@ -369,7 +374,8 @@ _SCALARS = {
     "power_loss": (
         "W",
         "power taken from the bodies' motion by every contact and the oil-air drag; its mean "
-        "in steady running is the friction power, frictional_torque times ring_speed",
+        "in steady running is the friction power, frictional_torque times the inner ring's "
+        "speed relative to the outer ring (ring_speed - outer_ring_speed)",
     ),
     "sliding_power_loss": (
         "W",

@@ -51,6 +51,7 @@ STATIC_FIELDS: dict[str, tuple[str, str]] = {
     "operating.radial_load": ("radial_load", "force"),
     "operating.axial_load": ("axial_load", "force"),
     "operating.inner_ring_speed": ("speed", "angular velocity"),
+    "operating.outer_ring_speed": ("outer_speed", "angular velocity"),
     "inner_ring.misalignment": ("misalignment", "angle"),
     "moment_y": ("moment_y", "torque"),
     "moment_z": ("moment_z", "torque"),
@@ -90,9 +91,10 @@ class _Stopped(KeyboardInterrupt):
 class StaticCase:
     """One load case (SI): loads on the inner ring (radial along -y, axial along +x), the
     tilting moment about y and z, the inner ring speed, the ring's misalignment about z
-    (None: the ring's tilt is free and found from the moment), and the roller set's phase
+    (None: the ring's tilt is free and found from the moment), the roller set's phase
     [rad]: its turn from the place with roller 0 under the load (the ring's equilibrium
-    repeats every roller pitch, 2 pi / Z: the varying compliance, docs/statics.md)."""
+    repeats every roller pitch, 2 pi / Z: the varying compliance, docs/statics.md), and the
+    outer ring's speed."""
 
     radial_load: float
     axial_load: float
@@ -101,6 +103,14 @@ class StaticCase:
     moment_y: float = 0.0
     moment_z: float = 0.0
     roller_set_phase: float = 0.0
+    outer_speed: float = 0.0
+
+    @property
+    def relative_speed(self) -> float:
+        """The inner ring's speed relative to the outer ring [rad/s]: what sets the
+        rolling speeds, the friction torque of a friction power and the rating life's
+        revolutions."""
+        return self.speed - self.outer_speed
 
     def core(self) -> tuple:
         tilt = None if self.misalignment is None else (0.0, self.misalignment)
@@ -112,6 +122,7 @@ class StaticCase:
             self.speed,
             tilt,
             self.roller_set_phase,
+            self.outer_speed,
         )
 
 
@@ -125,6 +136,7 @@ def config_case(cfg: BearingConfig) -> StaticCase:
         axial_load=op.axial_load_at(late),
         speed=op.inner_ring_speed_at(late),
         misalignment=None if cfg.inner_ring.tilt == "free" else cfg.inner_ring.misalignment,
+        outer_speed=op.outer_ring_speed_at(late),
     )
 
 
@@ -166,6 +178,7 @@ def statics(
     moment: tuple[float, float] | None = None,
     roller_set_phase: float | None = None,
     contamination: float = DEFAULT_CONTAMINATION,
+    outer_speed: float | None = None,
 ) -> xr.Dataset:
     """The equilibrium of one load case (SI values; None: the configuration's, after its
     ramps). A ``moment`` (N*m about y and z) frees the ring's tilt; a ``misalignment`` (rad)
@@ -178,6 +191,7 @@ def statics(
         speed=speed,
         misalignment=misalignment,
         roller_set_phase=roller_set_phase,
+        outer_speed=outer_speed,
     )
     case = _case_with(config_case(cfg), moment=moment, **given)
     for path, (field, _) in STATIC_FIELDS.items():
@@ -256,7 +270,10 @@ def check_range(
             rule = f"must be at most {limit:.6g} N in size (the configuration's load limit)"
         elif field == "axial_load" and (flanges := axial_load_flange_rule(cfg, v)) is not None:
             rule = flanges
-        elif field == "speed" and not abs(v) * cfg.geometry.pitch_diameter / 2.0 <= MAX_PITCH_SPEED:
+        elif (
+            field in ("speed", "outer_speed")
+            and not abs(v) * cfg.geometry.pitch_diameter / 2.0 <= MAX_PITCH_SPEED
+        ):
             rule = f"must give a pitch-circle speed of at most {MAX_PITCH_SPEED:g} m/s"
         elif field == "misalignment" and not abs(v) <= math.radians(MAX_MISALIGNMENT_DEG):
             rule = f"must lie within +-{MAX_MISALIGNMENT_DEG:g} deg, as inner_ring.misalignment"
@@ -746,11 +763,11 @@ def _case_variables(
             "left out; docs/statics.md, 'Friction of steady rolling')",
         ),
         "friction_torque": _var(
-            _friction_torque(r["friction_power"], case.speed),
+            _friction_torque(r["friction_power"], case.relative_speed),
             (),
             "N*m",
             "frictional torque of steady rolling: the friction power over the inner ring's "
-            "speed (NaN at rest)",
+            "speed relative to the outer ring (NaN at rest)",
         ),
         "max_flange_force": _var(
             float(flange["flange_force"].max()), (), "N", "largest roller end / flange force"
@@ -824,6 +841,7 @@ def _case_variables(
         case.axial_load, (), "N", "axial load on the inner ring, along +x"
     )
     data["speed_applied"] = _var(case.speed, (), "rad/s", "inner ring speed")
+    data["outer_speed_applied"] = _var(case.outer_speed, (), "rad/s", "outer ring speed")
     data["misalignment_applied"] = _var(
         np.nan if case.misalignment is None else case.misalignment,
         (),
@@ -849,7 +867,8 @@ def _stacked(template: dict[str, _Var], parts: list[dict[str, _Var] | None]) -> 
 
 
 def _friction_torque(power: Sequence[float], speed: float) -> float:
-    """The torque of a friction power [W] at the inner ring's speed [rad/s] (NaN at rest)."""
+    """The torque of a friction power [W] at the inner ring's speed relative to the outer
+    ring [rad/s] (NaN at rest)."""
     return float(np.sum(power)) / abs(speed) if speed != 0.0 else math.nan
 
 
@@ -901,16 +920,24 @@ def _ratings(cfg: BearingConfig) -> _Ratings:
     )
 
 
+def _rotating_ring(case: StaticCase) -> life.Ring:
+    """The ring that turns relative to the radial load (fixed in direction): the faster
+    one, the inner ring when both stand or turn alike (ISO/TS 16281's equivalent lamina
+    loads, :func:`rollerdyn.life.equivalent_lamina_loads`)."""
+    return "outer" if abs(case.outer_speed) > abs(case.speed) else "inner"
+
+
 def _film_variables(cfg: BearingConfig, ratings: _Ratings, case: StaticCase, slices) -> dict:
     """The central film and the specific film thickness Lambda = h_c / sigma of each
-    roller's most loaded slice at each race, rolling without slip at the case's speed
+    roller's most loaded slice at each race, rolling without slip at the case's speeds
     (:func:`rollerdyn.lubrication.rolling_race_films`, the dynamic model's film of a race
-    slice; docs/dynamics.md, "Lubrication at the contacts"); NaN unloaded or at rest."""
+    slice; docs/dynamics.md, "Lubrication at the contacts"); NaN unloaded or without
+    relative speed."""
     loads = {race: slices[f"{race}_slices"] for race in RACES}
-    if case.speed == 0.0:
+    if case.relative_speed == 0.0:
         films = {race: np.full(loads[race].shape[0], np.nan) for race in RACES}
     else:
-        films = rolling_race_films(cfg, ratings.films, case.speed, loads)
+        films = rolling_race_films(cfg, ratings.films, case.relative_speed, loads)
     sigma = cfg.surfaces.raceway.roughness
     lam = {race: films[race] / sigma for race in RACES}
     smallest = np.concatenate([lam[race] for race in RACES])
@@ -950,17 +977,29 @@ def _life_variables(
     cylindrical roller bearing's equivalent load ignores the axial load), ISO/TS 16281's
     L_10r from the slice loads and its modified L_nmr with a_ISO from the lubricant's
     viscosity ratio kappa at the operating temperature and speed and the contamination
-    factor e_C. Lives in 10^6 revolutions of the inner ring."""
+    factor e_C. Lives in 10^6 revolutions of one ring relative to the other (ISO 281:2007,
+    3.6). The ring that turns relative to the load (the radial load's direction is fixed)
+    takes ISO/TS 16281's equivalent load of a rotating ring: the outer ring where it turns
+    faster than the inner one (a planet gear's bearing), else the inner ring."""
     c_r, c_u, nu = ratings.dynamic, ratings.fatigue_limit, ratings.viscosity
     d, dpw = cfg.geometry.roller_diameter, cfg.geometry.pitch_diameter
+    rotating = _rotating_ring(case)
     l10 = life.basic_rating_life(c_r, case.radial_load) if case.radial_load > 0 else math.inf
-    l10r = life.reference_rating_life(inner, outer, c_r, d, dpw)
-    rpm = abs(case.speed) * 60.0 / (2.0 * math.pi)
+    l10r = life.reference_rating_life(inner, outer, c_r, d, dpw, rotating=rotating)
+    rpm = abs(case.relative_speed) * 60.0 / (2.0 * math.pi)
     kappa = life.viscosity_ratio(nu, rpm, dpw) if rpm > 0 else math.nan
     lnmr = math.nan
     if rpm > 0 and math.isfinite(l10r):
         lnmr = life.modified_reference_rating_life(
-            inner, outer, c_r, d, dpw, kappa=kappa, contamination=contamination, fatigue_limit=c_u
+            inner,
+            outer,
+            c_r,
+            d,
+            dpw,
+            rotating=rotating,
+            kappa=kappa,
+            contamination=contamination,
+            fatigue_limit=c_u,
         )
     return {
         "dynamic_load_rating": _var(

@@ -13,8 +13,8 @@ use rollerdyn_core::bearing::statics::RollingFriction;
 
 /// A load case as Python hands it over: (radial load [N], axial load [N], moment about y
 /// [N·m], moment about z [N·m], inner ring speed [rad/s], prescribed tilt (θ_y, θ_z)
-/// [rad] or None for a free tilt, the roller set's phase [rad]).
-type Case = (f64, f64, f64, f64, f64, Option<(f64, f64)>, f64);
+/// [rad] or None for a free tilt, the roller set's phase [rad], outer ring speed [rad/s]).
+type Case = (f64, f64, f64, f64, f64, Option<(f64, f64)>, f64, f64);
 
 /// The core's case of `c`.
 fn case_of(c: &Case) -> StaticCase {
@@ -23,6 +23,7 @@ fn case_of(c: &Case) -> StaticCase {
         axial_load: c.1,
         moment: [c.2, c.3],
         speed: c.4,
+        outer_speed: c.7,
         tilt: match c.5 {
             Some((a, b)) => RingTilt::Prescribed(a, b),
             None => RingTilt::Free,

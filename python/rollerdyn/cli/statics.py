@@ -25,7 +25,8 @@ def statics_command(
             metavar="PATH=VALUES",
             help="Vary the load case: PATH=START:STOP:COUNT or PATH=VALUE[,VALUE...], PATH "
             "one of operating.radial_load, operating.axial_load [N], "
-            "operating.inner_ring_speed [rad/s], inner_ring.misalignment [rad], moment_y, "
+            "operating.inner_ring_speed, operating.outer_ring_speed [rad/s], "
+            "inner_ring.misalignment [rad], moment_y, "
             "moment_z [N*m], roller_set_phase [rad] (the roller set turned from roller 0 "
             "under the load; over one pitch, 360 deg / Z, the ring's equilibrium shows the "
             'varying compliance). Values carry a unit ("3000 rpm", "0.05 deg") or are bare '
@@ -221,7 +222,7 @@ def _print_case(ds) -> None:
             "radial / axial load",
             f"{float(ds.radial_load_applied):.6g} N / {float(ds.axial_load_applied):.6g} N",
         ),
-        ("speed", f"{float(ds.speed_applied) * 30 / math.pi:.6g} rpm"),
+        ("speed", _speed_text(ds)),
         ("ring displacement x, y, z", ", ".join(f"{v * 1e6:.4g} um" for v in ring[:3])),
         ("ring tilt about y, z", ", ".join(f"{v * 1e3:.4g} mrad" for v in ring[3:])),
         ("heaviest roller", f"{float(ds.max_roller_load):.6g} N"),
@@ -323,12 +324,19 @@ def _flange_cell(row) -> str:
     return f"{force:.4g} @ {float(row.max_flange_force_height) * 1e3:.3g}"
 
 
+def _speed_text(ds) -> str:
+    """The inner ring's speed, and the outer ring's where it turns."""
+    text = f"{float(ds.speed_applied) * 30 / math.pi:.6g} rpm"
+    outer = float(ds.get("outer_speed_applied", 0.0))
+    return text + (f" (outer ring {outer * 30 / math.pi:.6g} rpm)" if outer else "")
+
+
 def _friction_text(ds) -> str:
     """The frictional torque of steady rolling and its power's largest parts."""
     power = ds.friction_power
     total = float(power.sum())
-    if not float(ds.speed_applied):
-        return "n/a at rest"
+    if float(ds.speed_applied) == float(ds.get("outer_speed_applied", 0.0)):
+        return "n/a without relative speed"
     parts = ", ".join(
         f"{name} {100 * float(v) / total:.0f} %"
         for name, v in zip(power.friction_part.values, power.values, strict=True)

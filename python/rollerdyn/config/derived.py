@@ -100,6 +100,12 @@ class GeometryDerived:
         return (1.0 - self.roller_diameter / self.pitch_diameter) / 2.0
 
     @property
+    def outer_epicyclic_factor(self) -> float:
+        """omega_c / omega_o of the roller set rolling without slip, the inner ring fixed:
+        ``(1 + D/d_m)/2`` (Harris & Kotzalas, eq. 8.23)."""
+        return (1.0 + self.roller_diameter / self.pitch_diameter) / 2.0
+
+    @property
     def fill_ratio(self) -> float:
         """Share of the pitch circle covered by rollers, ``Z*D/(pi*d_m)``."""
         return self.roller_count * self.roller_diameter / (math.pi * self.pitch_diameter)
@@ -286,6 +292,12 @@ class RampDerived:
         return _core.ramp_factor(self.shape, (t - self.start) / (self.end - self.start))
 
 
+def roller_set_speed(geometry, inner: float, outer: float) -> float:
+    """The roller set's orbital speed [rad/s] rolling without slip at the inner and outer
+    rings' speeds [rad/s] (Harris & Kotzalas, eq. 8.23; the core's ``rolling_speeds``)."""
+    return inner * geometry.epicyclic_factor + outer * geometry.outer_epicyclic_factor
+
+
 def _history_peak(value: float | TimeTable) -> float:
     """Largest magnitude a load or speed history reaches (NaN stays NaN)."""
     if isinstance(value, TimeTable):
@@ -306,17 +318,35 @@ class OperatingDerived:
 
     @property
     def speed_history_end(self) -> float:
-        """Time from which the inner ring speed is constant, s."""
-        v = self.inner_ring_speed
-        if isinstance(v, TimeTable):
-            return v.end
-        return 0.0 if self.speed_ramp is None else self.speed_ramp.end
+        """Time from which both rings' speeds are constant, s."""
+        ends = [
+            v.end if isinstance(v, TimeTable) else 0.0
+            for v in (self.inner_ring_speed, self.outer_ring_speed)
+        ]
+        ramp = self.speed_ramp
+        if ramp is not None and not all(
+            isinstance(v, TimeTable) for v in (self.inner_ring_speed, self.outer_ring_speed)
+        ):
+            ends.append(ramp.end)
+        return max(ends)
 
     @property
     def final_inner_ring_speed(self) -> float:
         """Inner ring speed after the ramp/table, rad/s."""
         v = self.inner_ring_speed
         return v.final if isinstance(v, TimeTable) else v
+
+    @property
+    def final_outer_ring_speed(self) -> float:
+        """Outer ring speed after the ramp/table, rad/s."""
+        v = self.outer_ring_speed
+        return v.final if isinstance(v, TimeTable) else v
+
+    @property
+    def final_relative_speed(self) -> float:
+        """Inner ring speed relative to the outer ring after the ramp/table, rad/s: what
+        sets the rolling (entrainment) speeds and the rating life's revolutions."""
+        return self.final_inner_ring_speed - self.final_outer_ring_speed
 
     def radial_load_at(self, t: float) -> float:
         """Radial load (N, along -y) at time ``t`` (s)."""
@@ -329,6 +359,10 @@ class OperatingDerived:
     def inner_ring_speed_at(self, t: float) -> float:
         """Inner ring angular velocity (rad/s) at time ``t`` (s)."""
         return _history_at(self.inner_ring_speed, self.speed_ramp, t)
+
+    def outer_ring_speed_at(self, t: float) -> float:
+        """Outer ring angular velocity (rad/s) at time ``t`` (s)."""
+        return _history_at(self.outer_ring_speed, self.speed_ramp, t)
 
 
 # --------------------------------------------------------------------------- top level
@@ -362,11 +396,16 @@ class BearingDerived:
 
     @property
     def roller_set_speed(self) -> float:
-        """Roller-set (cage) angular velocity at full speed, rad/s, outer ring fixed.
+        """Roller-set (cage) angular velocity at full speed, rad/s.
 
-        Epicyclic kinematics without slip: ``omega_c = omega_i*(1 - D/d_m)/2``.
+        Epicyclic kinematics without slip (Harris & Kotzalas, eq. 8.23):
+        ``omega_c = omega_i*(1 - D/d_m)/2 + omega_o*(1 + D/d_m)/2``.
         """
-        return self.operating.final_inner_ring_speed * self.geometry.epicyclic_factor
+        return roller_set_speed(
+            self.geometry,
+            self.operating.final_inner_ring_speed,
+            self.operating.final_outer_ring_speed,
+        )
 
     @property
     def end_time(self) -> float:

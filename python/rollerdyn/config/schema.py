@@ -559,11 +559,15 @@ class RampConfig(RampDerived, _Section):
 
 
 class OperatingConfig(OperatingDerived, _Section):
-    """``[operating]``: loads on the inner ring, its speed, temperature, ramps, end time."""
+    """``[operating]``: loads on the inner ring, the rings' speeds, temperature, ramps, end
+    time."""
 
     radial_load: RadialHistory
     axial_load: ForceHistory
     inner_ring_speed: SpeedHistory
+    # Not in the paper (its outer ring is fixed): a planet gear turns its bearing's outer
+    # ring about a fixed pin (inner_ring_speed = "0 rpm").
+    outer_ring_speed: SpeedHistory = "0 rpm"
     temperature: Quantity("temperature", example="80 degC")
     load_ramp: RampConfig | None = None
     speed_ramp: RampConfig | None = None
@@ -583,12 +587,13 @@ class OperatingConfig(OperatingDerived, _Section):
                 "",
                 "both loads are time tables; a load ramp only applies to constant loads",
             )
-        if self.speed_ramp is not None and isinstance(self.inner_ring_speed, TimeTable):
-            cross.add(
-                "speed_ramp",
-                "",
-                "inner_ring_speed is a time table; a speed ramp only applies to a constant speed",
-            )
+        for ring in ("inner_ring_speed", "outer_ring_speed"):
+            if self.speed_ramp is not None and isinstance(getattr(self, ring), TimeTable):
+                cross.add(
+                    "speed_ramp",
+                    "",
+                    f"{ring} is a time table; a speed ramp only applies to a constant speed",
+                )
         if self.end_time is not None and self.end_time <= self.speed_history_end:
             cross.add(
                 "end_time",
@@ -682,11 +687,11 @@ class BearingConfig(BearingDerived, _Section):
             )
         self._check_operating_limits(cross)
         self._check_axial_load_flanges(cross)
-        if op.end_time is None and op.final_inner_ring_speed == 0.0:
+        if op.end_time is None and self.roller_set_speed == 0.0:
             cross.add(
                 "operating.end_time",
                 "(missing)",
-                "required when the final inner ring speed is 0 "
+                "required when the roller set does not orbit at the final ring speeds "
                 "(no roller-set revolutions to count)",
             )
         elif self.solver.output_interval >= self.end_time:
@@ -753,12 +758,13 @@ class BearingConfig(BearingDerived, _Section):
                     f"{MAX_HERTZ_PRESSURE / 1e9:g} GPa, far beyond what bearing steel carries "
                     "(ISO 76 allows 4 GPa)",
                 )
-        speed = _history_peak(op.inner_ring_speed)
-        pitch_speed = speed * self.geometry.pitch_diameter / 2.0
-        if not pitch_speed <= MAX_PITCH_SPEED:
-            cross.add(
-                "operating.inner_ring_speed",
-                f"{speed * 30.0 / math.pi:.6g} rpm",
-                f"must give a pitch-circle speed of at most {MAX_PITCH_SPEED:g} m/s "
-                f"(here {pitch_speed:.3g} m/s), beyond the fastest rolling bearings",
-            )
+        for ring in ("inner_ring_speed", "outer_ring_speed"):
+            speed = _history_peak(getattr(op, ring))
+            pitch_speed = speed * self.geometry.pitch_diameter / 2.0
+            if not pitch_speed <= MAX_PITCH_SPEED:
+                cross.add(
+                    f"operating.{ring}",
+                    f"{speed * 30.0 / math.pi:.6g} rpm",
+                    f"must give a pitch-circle speed of at most {MAX_PITCH_SPEED:g} m/s "
+                    f"(here {pitch_speed:.3g} m/s), beyond the fastest rolling bearings",
+                )

@@ -346,6 +346,7 @@ def operating_map(
     clock = Clock()
     cfg = as_config(config)
     _check_map_settings(start, ramp, window, tol, max_time, max_wall)
+    _check_outer_ring_fixed(cfg)
     axes = _map_axes(cfg, speed, radial_load, axial_load, temperature)
     dissipation = dissipation_from_options(
         cfg,
@@ -406,6 +407,19 @@ def _check_map_settings(
         if not ok:
             below = " below 1" if name == "--tol" else ""
             raise StudyError(f"{name} = {value!r}: must be a positive number{below}")
+
+
+def _check_outer_ring_fixed(cfg: Any) -> None:
+    """A map sweeps the inner ring's speed with the outer ring fixed (its speed loss,
+    windows and thermal balance count on it): a configuration whose outer ring turns is
+    refused, naming the value."""
+    outer = cfg.operating.outer_ring_speed
+    if not (isinstance(outer, float) and outer == 0.0):
+        raise StudyError(
+            f"operating.outer_ring_speed = {cfg.operating.final_outer_ring_speed / RPM:g} rpm: "
+            "a map sweeps the inner ring's speed with the outer ring fixed; map a turning "
+            "outer ring with 'rollerdyn sweep' (--set operating.outer_ring_speed=...)"
+        )
 
 
 def _map_axes(cfg: Any, speed: Any, radial_load: Any, axial_load: Any, temperature: Any = None):

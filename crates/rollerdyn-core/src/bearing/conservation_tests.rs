@@ -34,7 +34,10 @@ fn net(on_a: &Wrench, a: &Kinematics, on_b: &Wrench, b: &Kinematics) -> (Vec3, V
 /// Without the axial load (`axial` false) the rollers' ends stand 20 µm from the flanges
 /// (the squeeze film's reach), and the roller at the top is moved 10 µm along +x, so that
 /// its +x end meets the squeeze film across a gap.
-fn loaded_sliding_state(how: RollingResistance, axial: bool) -> (BearingModel, Vec<f64>) {
+pub(super) fn loaded_sliding_state(
+    how: RollingResistance,
+    axial: bool,
+) -> (BearingModel, Vec<f64>) {
     let mut p = params(&B1);
     p.rolling_resistance = how;
     if !axial {
@@ -89,12 +92,11 @@ fn largest_imbalance(how: RollingResistance, axial: bool) -> Imbalance {
     let workspace = Workspace::single(&model);
     let model = model.system(&workspace);
     let kin = model.kinematics(0.0, &y);
-    let fixed = Kinematics::fixed();
     let mut found = Imbalance::default();
     for element in model.elements() {
         let r = model.evaluate(element, &kin);
         let [a, b] = element.bodies(model.layout.rollers);
-        let (ka, kb) = (kin.of(a, &fixed), kin.of(b, &fixed));
+        let (ka, kb) = (kin.of(a), kin.of(b));
         let (f, m) = net(&r.on_a, ka, &r.on_b, kb);
         found.force = found.force.max(f.norm());
         found.moment = found.moment.max(m.norm());
@@ -228,12 +230,11 @@ fn a_contacts_power_loss_splits_into_sliding_normal_and_rolling_resistance() {
         let workspace = Workspace::single(&model);
         let system = model.system(&workspace);
         let kin = system.kinematics(0.0, &y);
-        let fixed = Kinematics::fixed();
         let mut rolling_total = 0.0;
         for element in system.elements() {
             let r = system.evaluate(element, &kin);
             let [a, b] = element.bodies(system.layout.rollers);
-            let loss = r.power_loss(kin.of(a, &fixed), kin.of(b, &fixed));
+            let loss = r.power_loss(kin.of(a), kin.of(b));
             let rest = loss - r.sliding_power - r.normal_power;
             let scale = r.sliding_power.abs() + r.normal_power.abs() + loss.abs();
             assert!(r.sliding_power >= 0.0, "{element:?}: {}", r.sliding_power);

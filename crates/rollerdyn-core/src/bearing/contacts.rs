@@ -162,15 +162,14 @@ pub(super) enum Geometry {
 }
 
 impl BearingSystem<'_> {
-    /// The bodies A and B of `element` at `kin` (`fixed`: the outer ring).
+    /// The bodies A and B of `element` at `kin`.
     fn bodies<'a>(
         &self,
         element: &Element,
         kin: &'a BearingKinematics,
-        fixed: &'a Kinematics,
     ) -> (&'a Kinematics, &'a Kinematics) {
         let [a, b] = element.bodies(self.layout.rollers);
-        (kin.of(a, fixed), kin.of(b, fixed))
+        (kin.of(a), kin.of(b))
     }
 
     /// Evaluates one contact: its geometry ([`Self::geometry`]), then its forces
@@ -189,8 +188,7 @@ impl BearingSystem<'_> {
     /// The part of `element` that depends on positions only (slice geometry, detected
     /// flange contact), for [`Self::evaluate_at`].
     pub(super) fn geometry(&self, element: &Element, kin: &BearingKinematics) -> Geometry {
-        let fixed = Kinematics::fixed();
-        let (a, b) = self.bodies(element, kin, &fixed);
+        let (a, b) = self.bodies(element, kin);
         let Some(line) = element.line() else {
             let Element::End(i, k) = *element else {
                 unreachable!("an element is a line contact or a roller end")
@@ -218,8 +216,7 @@ impl BearingSystem<'_> {
         kin: &BearingKinematics,
         geometry: &Geometry,
     ) -> ElementResult {
-        let fixed = Kinematics::fixed();
-        let (a, b) = self.bodies(element, kin, &fixed);
+        let (a, b) = self.bodies(element, kin);
         match (element.line(), geometry) {
             (Some(line), Geometry::Line(sections)) => self.line_forces(line, a, b, sections),
             (Some(_), Geometry::Apart(bound)) => Self::apart(*bound),

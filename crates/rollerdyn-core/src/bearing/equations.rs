@@ -42,11 +42,12 @@ impl Loads {
 }
 
 impl BearingSystem<'_> {
-    /// Kinematics of all bodies: inner ring, then the rollers.
+    /// Kinematics of all bodies: the rings, then the rollers.
     pub fn kinematics(&self, t: f64, y: &[f64]) -> BearingKinematics {
         let spin = self.params.inner_ring_speed.at(t).0;
         BearingKinematics {
             inner_ring: ring_kinematics(&self.layout, y, spin, &self.locked_axis),
+            outer_ring: Kinematics::turning(self.params.outer_ring_speed.at(t).0),
             rollers: (0..self.layout.rollers)
                 .map(|i| roller_kinematics(&self.layout, y, i))
                 .collect(),
@@ -195,9 +196,8 @@ impl BearingSystem<'_> {
         for element in &self.topology.elements {
             if let (Element::End(i, k), FlangeLaw::Distributed) = (*element, self.params.flange_law)
             {
-                let fixed = Kinematics::fixed();
                 let [a, b] = element.bodies(self.layout.rollers);
-                energy += self.end_energy(i, k, kin.of(a, &fixed), kin.of(b, &fixed));
+                energy += self.end_energy(i, k, kin.of(a), kin.of(b));
                 continue;
             }
             match (self.geometry(element, kin), element.line()) {

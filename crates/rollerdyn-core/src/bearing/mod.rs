@@ -28,6 +28,8 @@ pub mod workspace;
 #[cfg(test)]
 mod conservation_tests;
 #[cfg(test)]
+mod frame_tests;
+#[cfg(test)]
 mod lubrication_tests;
 #[cfg(test)]
 pub(crate) mod test_b1;

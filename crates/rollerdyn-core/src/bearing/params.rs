@@ -253,6 +253,9 @@ pub struct BearingParams {
     pub axial_load: History,
     /// Inner ring speed [rad/s] about +x.
     pub inner_ring_speed: History,
+    /// Outer ring speed [rad/s] about +x (not in the paper, whose outer ring is fixed; a
+    /// planet gear turns its bearing's outer ring about a fixed pin).
+    pub outer_ring_speed: History,
     /// Squeeze-film damping of the roller end–flange gaps (not in the paper;
     /// [`crate::tribology::squeeze`]).
     pub squeeze_film: SqueezeFilm,
@@ -344,6 +347,7 @@ impl BearingParams {
         self.radial_load.check("radial_load")?;
         self.axial_load.check("axial_load")?;
         self.inner_ring_speed.check("inner_ring_speed")?;
+        self.outer_ring_speed.check("outer_ring_speed")?;
         self.check_flanges()?;
         let (least, most) = self.axial_load.extremes();
         for axial_load in [least, most] {

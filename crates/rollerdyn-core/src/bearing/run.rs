@@ -304,10 +304,13 @@ pub struct Record {
     pub ring_tilt: (f64, f64),
     /// Inner ring speed [rad/s].
     pub ring_speed: f64,
+    /// Outer ring speed [rad/s] about +x.
+    pub outer_ring_speed: f64,
     /// Radial and axial load applied [N].
     pub loads: (f64, f64),
     /// Bearing frictional torque: the moment of all contact forces on the inner ring about
-    /// its axis, positive when it resists a positive rotation [N m].
+    /// its axis, positive when it resists the inner ring's rotation relative to the outer
+    /// ring (a positive one where the two stand or turn alike) [N m].
     pub frictional_torque: f64,
     /// The same taken from the outer ring's contact forces (reaction, about +x) [N m].
     pub outer_ring_torque: f64,
@@ -551,12 +554,11 @@ pub fn record(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> Record {
         (0.0, system.params.inner_ring_misalignment)
     };
     let mut rollers = vec![RollerRecord::default(); layout.rollers];
-    let fixed = Kinematics::fixed();
     let mut power_loss = 0.0;
     let mut by_mechanism = PowerByMechanism::default();
     for (element, r) in system.elements().iter().zip(&results) {
         let [a, b] = element.bodies(layout.rollers);
-        let power = ContactPower::of(r, kin.of(a, &fixed), kin.of(b, &fixed));
+        let power = ContactPower::of(r, kin.of(a), kin.of(b));
         power_loss += power.loss;
         by_mechanism.sliding += power.sliding;
         by_mechanism.normal += r.normal_power;
@@ -578,22 +580,34 @@ pub fn record(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> Record {
         rec.spin_speed = k.omega.dot(&k.axis);
         rec.orbital_speed = k.orbital_speed();
         rec.srr_inner = slide_to_roll(system, &ring, k, true);
-        rec.srr_outer = slide_to_roll(system, &Kinematics::fixed(), k, false);
+        rec.srr_outer = slide_to_roll(system, &kin.outer_ring, k, false);
     }
     Record {
         time: t,
         ring_position: ring.center,
         ring_tilt,
         ring_speed: system.params.inner_ring_speed.at(t).0,
+        outer_ring_speed: kin.outer_ring.omega.x,
         loads: (
             system.params.radial_load.at(t).0,
             system.params.axial_load.at(t).0,
         ),
-        frictional_torque: -loads.inner_ring.moment.dot(&ring.axis),
+        frictional_torque: -relative_sense(ring.omega.dot(&ring.axis), kin.outer_ring.omega.x)
+            * loads.inner_ring.moment.dot(&ring.axis),
         outer_ring_torque: loads.outer_ring.moment.x,
         power_loss,
         power_by_mechanism: by_mechanism,
         rollers,
+    }
+}
+
+/// The sense of the inner ring's rotation relative to the outer ring: −1 where it turns
+/// backwards relative to it (an outer ring turning faster, as in a planet gear), else 1.
+fn relative_sense(inner_speed: f64, outer_speed: f64) -> f64 {
+    if inner_speed < outer_speed {
+        -1.0
+    } else {
+        1.0
     }
 }
 

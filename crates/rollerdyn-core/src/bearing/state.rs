@@ -71,11 +71,17 @@ pub struct Kinematics {
 impl Kinematics {
     /// A body at rest at the origin with axis +x (the fixed outer ring).
     pub fn fixed() -> Self {
+        Self::turning(0.0)
+    }
+
+    /// The outer ring: centred at the origin with axis +x, turning at `speed` [rad/s]
+    /// about +x (0: fixed, B1; a planet gear's bearing turns its outer ring).
+    pub fn turning(speed: f64) -> Self {
         Self {
             center: Vec3::zeros(),
             axis: Vec3::x(),
             velocity: Vec3::zeros(),
-            omega: Vec3::zeros(),
+            omega: Vec3::new(speed, 0.0, 0.0),
         }
     }
 
@@ -139,22 +145,24 @@ pub fn ring_kinematics(layout: &Layout, y: &[f64], spin: f64, locked_axis: &Vec3
     }
 }
 
-/// The kinematics of every moving body at one state: the inner ring and the rollers (the
-/// outer ring is fixed, [`Kinematics::fixed`]).
+/// The kinematics of every body at one state: the inner ring, the outer ring (centred and
+/// aligned, turning at its prescribed speed, [`Kinematics::turning`]) and the rollers.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BearingKinematics {
     /// The inner ring.
     pub inner_ring: Kinematics,
+    /// The outer ring.
+    pub outer_ring: Kinematics,
     /// The rollers, in order.
     pub rollers: Vec<Kinematics>,
 }
 
 impl BearingKinematics {
-    /// The kinematics of `body`; `fixed` is the outer ring's.
-    pub fn of<'a>(&'a self, body: Body, fixed: &'a Kinematics) -> &'a Kinematics {
+    /// The kinematics of `body`.
+    pub fn of(&self, body: Body) -> &Kinematics {
         match body {
             Body::InnerRing => &self.inner_ring,
-            Body::OuterRing => fixed,
+            Body::OuterRing => &self.outer_ring,
             Body::Roller(i) => &self.rollers[i],
         }
     }

@@ -8,8 +8,9 @@
 //! and gravity; normal forces only, as in Harris & Kotzalas and ISO/TS 16281) at the loads,
 //! speed and ring tilt of the start time. The velocities are those of rolling without
 //! slip: the roller set orbits at the epicyclic speed ω_c = Ω·(1 − D/d_m)/2 of a fixed
-//! outer ring (Harris & Kotzalas, 2007, sect. 8.2), each roller spins relative to it at
-//! ω_s = −(Ω − ω_c)·r_i/r about its axis, the inner ring only spins. Friction, the
+//! outer ring (Harris & Kotzalas, 2007, sect. 8.2; with a turning outer ring
+//! [`BearingSystem::rolling_speeds`]), each roller spins relative to it at
+//! ω_s = −(Ω − ω_c)·r_i/r about its axis, the rings only spin. Friction, the
 //! roller–roller contacts and the oil films are not in the equilibrium: with the speeds
 //! prescribed, the traction could only be balanced by slip, which is not an unknown here,
 //! and the run settles them within its first steps (tests/test_oil_and_threads.py). So
@@ -141,14 +142,18 @@ impl BearingSystem<'_> {
         ))
     }
 
-    /// The roller set's orbital speed ω_c and each roller's spin about its axis ω_s [rad/s]
-    /// of rolling without slip at the inner ring's speed Ω, the outer ring fixed (module
-    /// doc): ω_c = Ω·(1 − r/R_p)/2, ω_s = −(Ω − ω_c)·r_i/r.
-    pub(crate) fn rolling_speeds(&self, speed: f64) -> (f64, f64) {
+    /// The roller set's orbital speed ω_c and each roller's spin about its axis ω_s
+    /// relative to the orbit [rad/s] of rolling without slip at the inner ring's speed Ω
+    /// and the outer ring's Ω_o (module doc): ω_c = [Ω·(1 − γ) + Ω_o·(1 + γ)]/2 with
+    /// γ = r/R_p (Harris & Kotzalas, 2007, sect. 8.2, eq. 8.23 for a roller without
+    /// contact angle), ω_s = (ω_c − Ω)·r_i/r. Both rings at one speed turn the whole
+    /// bearing rigidly: ω_c = Ω, ω_s = 0.
+    pub(crate) fn rolling_speeds(&self, speed: f64, outer_speed: f64) -> (f64, f64) {
         let p = &self.params;
         let r = p.roller.radius;
-        let orbit = 0.5 * speed * (1.0 - r / self.pitch_radius());
-        (orbit, -(speed - orbit) * p.inner_raceway_radius / r)
+        let gamma = r / self.pitch_radius();
+        let orbit = 0.5 * speed * (1.0 - gamma) + 0.5 * outer_speed * (1.0 + gamma);
+        (orbit, (orbit - speed) * p.inner_raceway_radius / r)
     }
 
     /// The state of steady rolling (module doc) at the positions of `solution`.
@@ -160,7 +165,7 @@ impl BearingSystem<'_> {
             y[7] = solution.ring[4];
         }
         let r = self.params.roller.radius;
-        let (orbit, spin) = self.rolling_speeds(solution.case.speed);
+        let (orbit, spin) = self.rolling_speeds(solution.case.speed, solution.case.outer_speed);
         let orbit_vector = Vec3::new(orbit, 0.0, 0.0);
         let azimuths = spaced_azimuths(&solution.rollers, self.pitch_radius(), 2.0 * r);
         for (i, pose) in solution.rollers.iter().enumerate() {
@@ -223,16 +228,16 @@ impl BearingSystem<'_> {
             // a free ring's axis comes from its tilt states, which steady_state set from
             // the same angles; a locked one's is the equilibrium's
             inner_ring: ring_kinematics(&self.layout, &y, speed, &axis),
+            outer_ring: Kinematics::turning(solution.case.outer_speed),
             rollers: (0..self.layout.rollers)
                 .map(|i| roller_kinematics(&self.layout, &y, i))
                 .collect(),
         };
         let results = self.evaluate_all(&kin);
-        let fixed = Kinematics::fixed();
         let mut out = RollingFriction::default();
         for (element, r) in self.elements().iter().zip(&results) {
             let [a, b] = element.bodies(self.layout.rollers);
-            let loss = r.power_loss(kin.of(a, &fixed), kin.of(b, &fixed));
+            let loss = r.power_loss(kin.of(a), kin.of(b));
             match element {
                 Element::Inner(_) => out.inner_race += loss,
                 Element::Outer(_) => out.outer_race += loss,

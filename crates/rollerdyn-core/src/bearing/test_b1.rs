@@ -146,6 +146,7 @@ pub(crate) fn params(b: &Bearing) -> BearingParams {
         radial_load: History::constant(5000.0),
         axial_load: History::constant(1000.0),
         inner_ring_speed: History::constant(500.0 * std::f64::consts::PI / 30.0),
+        outer_ring_speed: History::constant(0.0),
         squeeze_film: SqueezeFilm::OFF,
         options: ModelOptions {
             detector: Detector::SemiAnalytical,

@@ -167,6 +167,7 @@ fn to_core(p: ModelParameters, traction: &EhlTraction) -> PyResult<BearingParams
         radial_load: history(op.radial_load),
         axial_load: history(op.axial_load),
         inner_ring_speed: history(op.inner_ring_speed),
+        outer_ring_speed: history(op.outer_ring_speed),
         squeeze_film: SqueezeFilm {
             enabled: s.squeeze_film.enabled,
             half_width: s.squeeze_film.half_width,

@@ -154,11 +154,12 @@ section! {
         suction_limit: f64,
     }
 
-    /// Loads [N] and speed [rad/s] over time, gravity [m/s²].
+    /// Loads [N] and the rings' speeds [rad/s] over time, gravity [m/s²].
     struct Operating {
         radial_load: History,
         axial_load: History,
         inner_ring_speed: History,
+        outer_ring_speed: History,
         gravity: [f64; 3],
     }
 

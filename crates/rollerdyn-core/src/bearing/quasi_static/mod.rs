@@ -67,6 +67,8 @@ pub struct StaticCase {
     pub moment: [f64; 2],
     /// Inner ring speed Ω [rad/s] (0: at rest).
     pub speed: f64,
+    /// Outer ring speed Ω_o [rad/s] (0: fixed).
+    pub outer_speed: f64,
     /// The ring's tilt.
     pub tilt: RingTilt,
     /// The roller set's turn from its reference place [rad]: roller i at azimuth
@@ -87,6 +89,7 @@ impl StaticCase {
             axial_load: params.axial_load.at(t).0,
             moment: [0.0, 0.0],
             speed: params.inner_ring_speed.at(t).0,
+            outer_speed: params.outer_ring_speed.at(t).0,
             tilt: if params.inner_ring_tilt_free {
                 RingTilt::Free
             } else {
@@ -104,6 +107,7 @@ impl StaticCase {
             ("moment about y", self.moment[0]),
             ("moment about z", self.moment[1]),
             ("speed", self.speed),
+            ("outer_speed", self.outer_speed),
             ("roller_set_phase", self.roller_set_phase),
         ];
         for (name, value) in named {

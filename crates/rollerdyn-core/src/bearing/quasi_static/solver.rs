@@ -83,7 +83,7 @@ impl<'a> Problem<'a> {
         let p = &model.model.params;
         let pitch = model.pitch_radius();
         let r = p.roller.radius;
-        let (orbit, spin) = model.rolling_speeds(case.speed);
+        let (orbit, spin) = model.rolling_speeds(case.speed, case.outer_speed);
         let azimuths: Vec<f64> = model
             .roller_azimuths()
             .into_iter()

@@ -16,6 +16,7 @@ fn at_rest(radial_load: f64, axial_load: f64) -> StaticCase {
         axial_load,
         moment: [0.0, 0.0],
         speed: 0.0,
+        outer_speed: 0.0,
         tilt: RingTilt::Prescribed(0.0, 0.0),
         roller_set_phase: 0.0,
     }

@@ -1,0 +1,143 @@
+//! The outer ring turning (a planet gear's bearing): the contacts see only the bodies'
+//! relative motion, so turning the whole bearing rigidly about its axis changes no
+//! contact force (the laws are objective: Truesdell & Noll, the principle of material
+//! frame-indifference); and the velocities of rolling without slip make the roller roll
+//! on both raceways for any pair of ring speeds (Harris & Kotzalas, 2007, sect. 8.2).
+
+use super::conservation_tests::loaded_sliding_state;
+use super::run::record;
+use super::test_b1::{in_workspace, params, Bearing, B1};
+use super::{BearingModel, History, RollingResistance};
+use crate::geometry::primitives::Vec3;
+use proptest::prelude::*;
+
+/// `model`'s parameters with the inner ring at Ω + w and the outer ring at w [rad/s].
+fn turned(model: &BearingModel, w: f64) -> BearingModel {
+    let mut p = model.params.clone();
+    let inner = p.inner_ring_speed.at(0.0).0;
+    p.inner_ring_speed = History::constant(inner + w);
+    p.outer_ring_speed = History::constant(w);
+    BearingModel::new(p).unwrap()
+}
+
+/// `y` with the whole bearing turned at w about +x added: every centre's velocity gains
+/// w x̂ × c, every angular velocity w x̂.
+fn turned_state(model: &BearingModel, y: &[f64], w: f64) -> Vec<f64> {
+    let turn = Vec3::new(w, 0.0, 0.0);
+    let mut y = y.to_vec();
+    let ring = turn.cross(&Vec3::new(y[0], y[1], y[2]));
+    for k in 0..3 {
+        y[3 + k] += ring[k];
+    }
+    for i in 0..model.layout.rollers {
+        let s = model.layout.roller(i);
+        let v = turn.cross(&Vec3::new(y[s], y[s + 1], y[s + 2]));
+        for k in 0..3 {
+            y[s + 5 + k] += v[k];
+            y[s + 8 + k] += turn[k];
+        }
+    }
+    y
+}
+
+/// B1 loaded, rolling and sliding at every contact, every oil film on (the state of the
+/// conservation tests), seen from a frame turning at w = ±300 rad/s (2 865 rpm, six times
+/// B1's speed): every contact's wrenches on both bodies are the same. Tolerance: 1e-8 of
+/// the largest contact force or moment. The turn adds up to w·R_o ≈ 4.4 m/s to surface
+/// speeds of which the contacts take differences of about 1 mm/s, so a relative rounding
+/// of 1e-16 becomes about 4e-13 of a sliding speed; the traction's slope at low sliding
+/// (1/(1 mm/s) of the boundary friction's smoothing) makes that about 1e-9 of a force.
+#[test]
+fn turning_the_whole_bearing_changes_no_contact_force() {
+    for axial in [true, false] {
+        let (model, y) = loaded_sliding_state(RollingResistance::Balanced, axial);
+        let reference = in_workspace(&model, |m| {
+            let kin = m.kinematics(0.0, &y);
+            m.evaluate_all(&kin)
+        });
+        let scale = reference
+            .iter()
+            .map(|r| r.on_b.force.norm().max(r.on_b.moment.norm() / 1e-3))
+            .fold(0.0, f64::max);
+        assert!(scale > 100.0, "{scale}");
+        for w in [300.0, -300.0] {
+            let other = turned(&model, w);
+            let y_turned = turned_state(&other, &y, w);
+            let results = in_workspace(&other, |m| {
+                let kin = m.kinematics(0.0, &y_turned);
+                assert_eq!(kin.outer_ring.omega, Vec3::new(w, 0.0, 0.0));
+                m.evaluate_all(&kin)
+            });
+            for (e, (a, b)) in model.elements().iter().zip(reference.iter().zip(&results)) {
+                for (wa, wb) in [(&a.on_a, &b.on_a), (&a.on_b, &b.on_b)] {
+                    let df = (wa.force - wb.force).norm();
+                    let dm = (wa.moment - wb.moment).norm() / 1e-3;
+                    assert!(
+                        df.max(dm) < 1e-8 * scale,
+                        "{e:?} at w = {w}: {df} N, {dm} N (moment / 1 mm) of {scale} N"
+                    );
+                }
+                assert_eq!(a.pairing, b.pairing, "{e:?}");
+            }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The velocities of rolling without slip (`rolling_speeds`, the equilibrium start's)
+    /// at any inner and outer ring speeds of ±1000 rad/s, given to B1 with a clearance of
+    /// 1 pm (each roller on the pitch circle touches both raceways, the inner ring
+    /// centred; without it rounding makes them overlap by 1e-18 m at the start): the
+    /// record's slide-to-roll ratios, taken from the surfaces' velocities at the contact
+    /// points, are zero at both raceways. Tolerance 1e-9: the clearance's 1e-10 of a
+    /// raceway radius, and rounding over rolling speeds at least a thousandth of the
+    /// surfaces' speeds.
+    #[test]
+    fn rolling_speeds_roll_on_both_raceways(
+        inner in -1000.0..1000.0f64,
+        outer in -1000.0..1000.0f64,
+    ) {
+        prop_assume!((inner - outer).abs() > 1e-3 * inner.abs().max(outer.abs()));
+        let mut p = params(&Bearing { clearance: 1e-12, ..B1 });
+        p.inner_ring_speed = History::constant(inner);
+        p.outer_ring_speed = History::constant(outer);
+        let model = BearingModel::new(p).unwrap();
+        let rec = in_workspace(&model, |m| {
+            let mut y = m.initial_state().unwrap();
+            let (orbit, spin) = m.rolling_speeds(inner, outer);
+            let turn = Vec3::new(orbit, 0.0, 0.0);
+            for i in 0..m.layout.rollers {
+                let s = m.layout.roller(i);
+                let v = turn.cross(&Vec3::new(y[s], y[s + 1], y[s + 2]));
+                y[s + 5..s + 8].copy_from_slice(v.as_slice());
+                y[s + 8] = orbit + spin;
+            }
+            record(&m, 0.0, &y)
+        });
+        prop_assert_eq!(rec.outer_ring_speed, outer);
+        for (i, r) in rec.rollers.iter().enumerate() {
+            prop_assert!(r.srr_inner.abs() < 1e-9, "roller {}: inner {}", i, r.srr_inner);
+            prop_assert!(r.srr_outer.abs() < 1e-9, "roller {}: outer {}", i, r.srr_outer);
+        }
+    }
+}
+
+/// Both rings at one speed turn the bearing rigidly: the roller set orbits with them and
+/// the rollers do not spin relative to the orbit; with the outer ring alone turning, the
+/// roller set orbits at Ω_o(1 + γ)/2 (Harris & Kotzalas, 2007, eq. 8.23 inverted).
+#[test]
+fn rolling_speeds_closed_forms() {
+    let model = BearingModel::new(params(&B1)).unwrap();
+    in_workspace(&model, |m| {
+        let (orbit, spin) = m.rolling_speeds(80.0, 80.0);
+        assert!(
+            (orbit - 80.0).abs() < 1e-12 && spin.abs() < 1e-12,
+            "{orbit} {spin}"
+        );
+        let gamma = m.params.roller.radius / m.pitch_radius();
+        let (orbit, _) = m.rolling_speeds(0.0, 80.0);
+        assert!((orbit - 40.0 * (1.0 + gamma)).abs() < 1e-12, "{orbit}");
+    });
+}
