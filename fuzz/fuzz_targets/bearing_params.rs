@@ -185,6 +185,7 @@ fn params(r: &mut Reader) -> Option<BearingParams> {
         radial_load: history(r, 1e4),
         axial_load: history(r, 1e3),
         inner_ring_speed: history(r, 1e3),
+        outer_ring_speed: history(r, 1e3),
         // The configuration's ranges (surfaces.squeeze_film).
         squeeze_film: SqueezeFilm {
             enabled: r.flag(),

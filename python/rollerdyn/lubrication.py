@@ -140,9 +140,11 @@ def rolling_race_films(
     """The central film h_c [m] of each roller's most loaded slice at the inner and the
     outer race (``slice_loads[race]``: the slices' loads [N], shape (rollers, slices)),
     for an inner ring turning at ``speed`` [rad/s] with the outer ring fixed and the
-    rollers rolling without slip: the surfaces move at the entrainment speed
-    (omega_i - omega_c) R_i at the inner race and omega_c R_o at the outer, omega_c the
-    roller set's speed (``geometry.epicyclic_factor``).
+    rollers rolling without slip (with the outer ring turning, ``speed`` is the inner
+    ring's speed relative to it: the rolling speeds depend on that alone): the surfaces
+    move at the entrainment speed (omega_i - omega_c) R_i at the inner race and
+    omega_c R_o at the outer, omega_c the roller set's speed
+    (``geometry.epicyclic_factor``).
     The film is the dynamic model's of a race slice that does not slide: Moes (eqs.
     33-38) with the thermal correction (eq. 47), the speed regularised as there
     (``surfaces.boundary_friction.smoothing_speed``). NaN where the slice carries nothing."""

@@ -205,7 +205,7 @@ def _labels(paths: list[Path], sets: list[xr.Dataset]) -> list[str]:
 
 def relative_speed(ds: xr.Dataset) -> np.ndarray:
     """The inner ring's speed relative to the outer ring at every output [rad/s] (a result
-    without ``outer_ring_speed``, recorded before the outer ring could turn: its fixed)."""
+    without ``outer_ring_speed``, recorded before the outer ring could turn, had it fixed)."""
     inner = np.asarray(ds.ring_speed.values, dtype=float)
     if "outer_ring_speed" not in ds:
         return inner
@@ -240,7 +240,7 @@ SUMMARY_ROWS = (
     ),
     (
         "torque_from_power",
-        "frictional torque from the power loss (mean power loss / ring speed)",
+        "frictional torque from the power loss (mean power loss / relative ring speed)",
         "N*m",
     ),
     ("max_race_load", "max. roller-race load (inner and outer race)", "N"),
@@ -582,7 +582,7 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
     body.append(
         '<p class="note">Interactive: zoom by dragging, double-click to reset, click a '
         "legend entry to hide a run. Azimuth plots use the outputs at (at least 99 % of) "
-        "full inner ring speed, or the whole run if the ring never turns.</p>"
+        "full speed of the rings that turn, or the whole run if neither turns.</p>"
     )
     for key, fig in time_figures(labels, sets):
         body.append(embed(fig, key))

@@ -236,7 +236,8 @@ def pairing_figures(labels, sets) -> list:
 
 
 def inputs_figure(labels, sets):
-    """Radial and axial load and inner ring speed over time, one row each."""
+    """Radial and axial load and the rings' speeds over time, one row each (the outer
+    ring's dashed where it turns)."""
     import plotly.io as pio
     from plotly.subplots import make_subplots
 
@@ -255,9 +256,19 @@ def inputs_figure(labels, sets):
                 row=row,
                 col=1,
             )
+        if "outer_ring_speed" in ds and np.any(ds.outer_ring_speed.values != 0.0):
+            fig.add_scatter(
+                x=ds.time.values,
+                y=ds.outer_ring_speed.values,
+                name=f"{label}: outer ring",
+                legendgroup=label,
+                line=dict(color=colour, dash="dash"),
+                row=3,
+                col=1,
+            )
     fig.update_yaxes(title_text="radial load [N]", row=1, col=1)
     fig.update_yaxes(title_text="axial load [N]", row=2, col=1)
-    fig.update_yaxes(title_text="inner ring speed [rad/s]", row=3, col=1)
+    fig.update_yaxes(title_text="ring speed [rad/s]", row=3, col=1)
     fig.update_xaxes(title_text="time t [s]", row=3, col=1)
     fig.update_layout(title="loads and speed over time (from the data)", **LAYOUT)
     fig.update_layout(height=620)

@@ -3,8 +3,9 @@
 //! Inner ring first: position (3), velocity (3); with tilt free also the axis angles
 //! (θ_y, θ_z) and the transverse angular velocity (3). Then per roller: centre (3), axis
 //! angles θ_y, θ_z (2), velocity (3), angular velocity ω (3, spin included) — 11 states.
-//! The inner ring's spin is prescribed and not a state; the outer ring is fixed.
-//! [`BearingKinematics`] gathers the kinematics of all moving bodies at one state.
+//! The inner ring's spin is prescribed and not a state; the outer ring is centred and
+//! aligned, its spin prescribed too (0 unless it turns, [`Kinematics::turning`]).
+//! [`BearingKinematics`] gathers the kinematics of all bodies at one state.
 
 use super::topology::Body;
 use crate::dynamics::rigid::axis_from_angles;
@@ -69,7 +70,7 @@ pub struct Kinematics {
 }
 
 impl Kinematics {
-    /// A body at rest at the origin with axis +x (the fixed outer ring).
+    /// A body at rest at the origin with axis +x (a fixed outer ring).
     pub fn fixed() -> Self {
         Self::turning(0.0)
     }

@@ -14,7 +14,7 @@
 pub enum Body {
     /// The inner ring (with its shaft).
     InnerRing,
-    /// The fixed outer ring.
+    /// The outer ring (centred and aligned; fixed, or turning at its prescribed speed).
     OuterRing,
     /// Roller i.
     Roller(usize),

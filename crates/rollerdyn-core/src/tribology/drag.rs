@@ -6,7 +6,9 @@
 //! fraction X (a few per cent with circulating oil), through which a rolling element moves
 //! with the drag F = ½·C_D·ρ_e·A·v². Here the same mixture also has the viscosity
 //! η_e = X·η_oil + (1 − X)·η_air (a linear mixing rule, assumed), and the roller is a
-//! cylinder of diameter d and length L in a mixture at rest (the outer ring is fixed):
+//! cylinder of diameter d and length L in a mixture at rest in the inertial frame (the
+//! housing's; with a turning outer ring an assumption, docs/dynamics.md, "A turning outer
+//! ring"):
 //!
 //! * **Crossflow** of every section: f = ½·C_D(Re)·ρ_e·d·|v⊥|·v⊥ per unit length, v⊥ the
 //!   section's velocity across the axis (the orbit, and the sections' motion when the roller
