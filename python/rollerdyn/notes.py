@@ -141,7 +141,11 @@ def _capacity_note_at(cfg: BearingConfig, t: float) -> str | None:
     loads = (op.radial_load_at(t), op.axial_load_at(t))
     try:
         ds = statics(
-            cfg, radial_load=loads[0], axial_load=loads[1], speed=op.inner_ring_speed_at(t)
+            cfg,
+            radial_load=loads[0],
+            axial_load=loads[1],
+            speed=op.inner_ring_speed_at(t),
+            outer_speed=op.outer_ring_speed_at(t),
         )
     except ValueError as error:
         if "cannot carry it" in str(error):
