@@ -167,7 +167,7 @@ def test_page_is_self_contained_and_holds_every_part(page, result):
         "fig. 9",
         "bearing frictional torque [N·m]",
         "roller azimuth ψ [deg]",
-        "inner ring speed [rad/s]",
+        "ring speed [rad/s]",
         "tr-bdf2",
         "semi-analytical",
         # built in Python (no TOML text): the resolved configuration the result records
