@@ -24,14 +24,18 @@ from rollerdyn.ripple import (
 from rollerdyn.simulation import simulate
 from rollerdyn.statics import statics_sweep
 
-
-@settings(max_examples=200, deadline=None)
-@given(
+#: Bearings and inner ring speeds for the pass frequencies' property tests: roller count,
+#: pitch diameter [m], roller diameter over it, speed [rad/s].
+BEARINGS = dict(
     z=st.integers(3, 60),
     pitch=st.floats(5e-3, 1.0),
     share=st.floats(0.02, 0.5),
     speed=st.floats(-2000.0, 2000.0),
 )
+
+
+@settings(max_examples=200, deadline=None)
+@given(**BEARINGS)
 def test_pass_frequencies_are_those_of_rolling_without_slip(z, pitch, share, speed):
     # Independent: the speeds of the contact points. Outer race at rest, inner raceway
     # surface at |Omega| r_i (r_i = (d_m - D)/2); rolling without slip puts the roller's
@@ -58,13 +62,7 @@ def test_pass_frequencies_are_those_of_rolling_without_slip(z, pitch, share, spe
 
 
 @settings(max_examples=200, deadline=None)
-@given(
-    z=st.integers(3, 60),
-    pitch=st.floats(5e-3, 1.0),
-    share=st.floats(0.02, 0.5),
-    speed=st.floats(-2000.0, 2000.0),
-    outer=st.floats(-2000.0, 2000.0),
-)
+@given(**BEARINGS, outer=st.floats(-2000.0, 2000.0))
 def test_pass_frequencies_with_the_outer_ring_turning(z, pitch, share, speed, outer):
     # Independent: the inner raceway's surface moves at Omega r_i, the outer's at
     # Omega_o r_o (r_o = (d_m + D)/2); rolling without slip puts the roller's centre, on
