@@ -312,7 +312,8 @@ pub struct Record {
     /// its axis, positive when it resists the inner ring's rotation relative to the outer
     /// ring (a positive one where the two stand or turn alike) [N m].
     pub frictional_torque: f64,
-    /// The same taken from the outer ring's contact forces (reaction, about +x) [N m].
+    /// The moment of all contact forces on the outer ring about +x, as it comes [N m]: the
+    /// reaction to the frictional torque, less what the drag and the rollers' inertia take.
     pub outer_ring_torque: f64,
     /// Power taken from the bodies' motion by every contact and the drag [W]: in steady
     /// running its mean is the friction power, the frictional torque times the ring speed.

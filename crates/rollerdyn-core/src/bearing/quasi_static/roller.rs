@@ -118,7 +118,8 @@ pub fn flange_loads(forces: &[RollerForces]) -> impl Iterator<Item = (usize, usi
 
 impl BearingSystem<'_> {
     /// The normal forces of the contacts of a roller at `roller` (at rest) against the
-    /// inner ring at `ring` and the outer ring (its position; speeds do not enter); with `details`, the slice loads too.
+    /// inner ring at `ring` and the outer ring (its position; speeds do not enter); with
+    /// `details`, the slice loads too.
     pub(crate) fn quasi_static_roller(
         &self,
         ring: &Kinematics,
