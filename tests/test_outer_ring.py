@@ -151,7 +151,7 @@ def test_bad_outer_ring_speeds_are_refused_naming_the_field(changes, path, rule)
     assert any(p.path == path and rule in p.rule for p in err.value.problems), str(err.value)
 
 
-def test_an_operating_map_refuses_a_turning_outer_ring(tmp_path):
+def test_an_operating_map_refuses_both_rings_turning(tmp_path):
     from rollerdyn.study import StudyError, operating_map
 
     cfg = variant(**{"operating.outer_ring_speed": "100 rpm"})

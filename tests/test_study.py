@@ -775,6 +775,35 @@ def _b1_map(tmp_path, client, **options):
     )
 
 
+def test_map_of_a_turning_outer_ring(tmp_path, client):
+    """A planet gear's bearing (inner ring 0 rpm, outer ring turning): --speed sweeps the
+    outer ring. The window counts roller passes of the roller set the outer ring drives,
+    omega_c = omega_o (1 + D/d_m)/2; the speed loss is taken against that orbit (with the
+    inner ring's alone it would divide by 0); the estimate beside the point is the statics'
+    of the outer ring at that speed (1e-3: the sweep's warm start, as for B1's map)."""
+    from rollerdyn.statics import statics
+
+    cfg = variant(
+        **{"operating.inner_ring_speed": "0 rpm", "operating.outer_ring_speed": "500 rpm"}
+    )
+    result = operating_map(
+        cfg,
+        tmp_path / "map",
+        speed="3000",
+        window=0.001,
+        tol=0.5,
+        max_time=0.03,
+        scheduler=client,
+    )
+    row = result.points.iloc[0]
+    gamma = 4.495 / 24.5
+    assert row["window [s]"] == pytest.approx(2 * 60 / (17 * 3000 * (1 + gamma) / 2))
+    assert abs(row["speed loss [1]"]) < 0.02, row["speed loss [1]"]
+    estimate = float(statics(cfg, speed=0.0, outer_speed=3000 * np.pi / 30).friction_torque)
+    assert row["steady rolling torque [N*m]"] == pytest.approx(estimate, rel=1e-3)
+    assert 0.8 < row["torque over steady rolling [1]"] < 1.5, row["torque over steady rolling [1]"]
+
+
 def test_map_point_stops_when_steady(tmp_path, client):
     def run_map():
         return _b1_map(tmp_path, client, axial_load="0", start="equilibrium", max_time=0.03)

@@ -505,5 +505,5 @@ def test_map_figure_of_four_swept_quantities_has_a_panel_per_combination_of_the_
         for fr, fa in itertools.product([3000.0, 5000.0], [0.0, 1000.0])
     ]
     assert {(ax.get_xlabel(), ax.get_ylabel()) for ax in panels} == {
-        ("inner ring speed [rpm]", "oil temperature [degC]")
+        ("speed of the turning ring [rpm]", "oil temperature [degC]")
     }

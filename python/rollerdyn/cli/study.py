@@ -262,7 +262,9 @@ def map_command(
             "--speed",
             help="Inner ring speeds in rpm: a:b:n (n evenly spaced from a to b, a < b), a "
             "list v1,v2,... or one value; a value may carry its own unit (3000 rpm, 50 "
-            "rad/s). Above 0.",
+            "rad/s). Above 0. Where the configuration turns the outer ring about a still "
+            "inner ring (operating.inner_ring_speed = 0 rpm, a planet gear's bearing), "
+            "the outer ring's speeds.",
             metavar="A:B:N",
         ),
     ],

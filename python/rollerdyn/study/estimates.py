@@ -20,15 +20,16 @@ TORQUE_RATIO = "torque over steady rolling [1]"
 
 def steady_rolling_torques(cfg: Any, axes: Sequence[Sequence[float]]) -> list[float]:
     """The friction torque of steady rolling [N*m] at every point of the map's grid
-    ``axes`` (speeds [rad/s], radial and axial loads [N], oil temperatures [K]; the
-    points in the map's order, the temperature fastest), NaN where the statics find no
-    equilibrium. ``cfg``: the map's configuration (its flange law, tilt and the rest as
-    the points have them)."""
+    ``axes`` (speeds [rad/s] of the turning ring, radial and axial loads [N], oil
+    temperatures [K]; the points in the map's order, the temperature fastest), NaN where
+    the statics find no equilibrium. ``cfg``: the map's configuration (its flange law,
+    tilt and the rest as the points have them)."""
     from ..statics import StaticsError, statics_sweep
+    from .maps import turning_ring
 
     speeds, radial, axial, temperatures = (list(a) for a in axes)
     grid = {
-        "operating.inner_ring_speed": speeds,
+        f"operating.{turning_ring(cfg)}_ring_speed": speeds,
         "operating.radial_load": radial,
         "operating.axial_load": axial,
     }

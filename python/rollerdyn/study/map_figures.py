@@ -17,7 +17,7 @@ import numpy as np
 
 #: The grid's axes: column, label.
 AXES = (
-    ("speed [rpm]", "inner ring speed [rpm]"),
+    ("speed [rpm]", "speed of the turning ring [rpm]"),
     ("radial_load [N]", "radial load [N]"),
     ("axial_load [N]", "axial load [N]"),
     ("temperature [degC]", "oil temperature [degC]"),

@@ -1,5 +1,6 @@
-"""``rollerdyn study map``: operating maps beyond the paper. A grid of inner ring speeds,
-radial and axial loads and oil temperatures, each point run on Dask until its outputs are
+"""``rollerdyn study map``: operating maps beyond the paper. A grid of speeds (of the inner
+ring, or of a turning outer ring about a still inner one: :func:`turning_ring`), radial and
+axial loads and oil temperatures, each point run on Dask until its outputs are
 steady (:mod:`.steady`), and maps of friction torque (with the quasi-static torque of steady
 rolling beside it, :mod:`.estimates`), roller-set speed loss (skidding) and largest flange
 force; over two or more temperatures, with a heat dissipation, the thermal
@@ -204,15 +205,17 @@ def point_config(
     ramp: float,
     temperature: float | None = None,
 ):
-    """(configuration of a grid point, end of its ramps [s]): ``cfg`` at ``speed``
-    [rad/s], the loads [N] and the oil ``temperature`` [K] (default the configuration's),
-    started as ``start`` says (:data:`STARTS`)."""
+    """(configuration of a grid point, end of its ramps [s]): ``cfg`` with its turning
+    ring (:func:`turning_ring`) at ``speed`` [rad/s], the loads [N] and the oil
+    ``temperature`` [K] (default the configuration's), started as ``start`` says
+    (:data:`STARTS`)."""
     from ..config import parse_config
     from ..sweep import changed
 
     data = cfg.model_dump()
     op = data["operating"]
-    op.update(inner_ring_speed=speed, radial_load=radial, axial_load=axial)
+    op.update({f"{turning_ring(cfg)}_ring_speed": speed, "radial_load": radial})
+    op["axial_load"] = axial
     if temperature is not None:
         op["temperature"] = temperature
     op.pop("end_time", None)
@@ -346,7 +349,7 @@ def operating_map(
     clock = Clock()
     cfg = as_config(config)
     _check_map_settings(start, ramp, window, tol, max_time, max_wall)
-    _check_outer_ring_fixed(cfg)
+    turning_ring(cfg)
     axes = _map_axes(cfg, speed, radial_load, axial_load, temperature)
     dissipation = dissipation_from_options(
         cfg,
@@ -409,17 +412,23 @@ def _check_map_settings(
             raise StudyError(f"{name} = {value!r}: must be a positive number{below}")
 
 
-def _check_outer_ring_fixed(cfg: Any) -> None:
-    """A map sweeps the inner ring's speed with the outer ring fixed (its speed loss,
-    windows and thermal balance count on it): a configuration whose outer ring turns is
-    refused, naming the value."""
-    outer = cfg.operating.outer_ring_speed
-    if not (isinstance(outer, float) and outer == 0.0):
-        raise StudyError(
-            f"operating.outer_ring_speed = {cfg.operating.final_outer_ring_speed / RPM:g} rpm: "
-            "a map sweeps the inner ring's speed with the outer ring fixed; map a turning "
-            "outer ring with 'rollerdyn sweep' (--set operating.outer_ring_speed=...)"
-        )
+def turning_ring(cfg: Any) -> str:
+    """The ring whose speed a map sweeps, the other one standing: "inner" where the outer
+    ring is fixed (B1), "outer" where the configuration turns the outer ring about a still
+    inner ring (a planet gear's bearing). Both turning is refused, naming the values."""
+    op = cfg.operating
+    inner, outer = op.inner_ring_speed, op.outer_ring_speed
+    if isinstance(outer, float) and outer == 0.0:
+        return "inner"
+    if isinstance(inner, float) and inner == 0.0:
+        return "outer"
+    raise StudyError(
+        f"operating.inner_ring_speed = {op.final_inner_ring_speed / RPM:g} rpm with "
+        f"operating.outer_ring_speed = {op.final_outer_ring_speed / RPM:g} rpm: a map sweeps "
+        "the speed of one ring with the other standing (--speed turns the inner ring where "
+        "the outer one is fixed, the outer ring where the inner one is at 0 rpm); map both "
+        "turning with 'rollerdyn sweep'"
+    )
 
 
 def _map_axes(cfg: Any, speed: Any, radial_load: Any, axial_load: Any, temperature: Any = None):
@@ -467,6 +476,8 @@ def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time):
 
     g = cfg.geometry
     factor = g.epicyclic_factor
+    # the roller set's speed per swept speed: of the inner ring, or of a turning outer one
+    cage_factor = factor if turning_ring(cfg) == "inner" else g.outer_epicyclic_factor
     rules, specs, problems = {}, [], []
     # the equilibrium does not evaluate the traction: its untabulated model, built at once
     traction = Model(cfg).traction_model(tabulated=False) if start == "equilibrium" else None
@@ -484,7 +495,7 @@ def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time):
             if not err.problems:
                 problems.append(f"point {i} ({label}): {str(err).splitlines()[-1].strip()}")
             continue
-        win = window_length(window, w, g.roller_count, factor)
+        win = window_length(window, w, g.roller_count, cage_factor)
         if settle + 3 * win > max_time:
             raise StudyError(
                 f"--max-time = {max_time:g} s: too short for point {i} ({label}): the ramps "

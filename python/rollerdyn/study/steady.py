@@ -2,16 +2,17 @@
 
 The outputs, each averaged over a window of simulated time W:
 
-- friction torque: the mean power loss over the mean ring speed, mean(``power_loss``) /
-  mean(``ring_speed``) [N*m] (the mean of ``frictional_torque`` for a result without
-  power losses over the whole window, or where the ring stands): in steady running the
+- friction torque: the mean power loss over the mean speed of the rings relative to each
+  other, mean(``power_loss``) / |mean(``ring_speed`` - ``outer_ring_speed``)| [N*m] (the
+  mean of ``frictional_torque`` for a result without power losses over the whole window,
+  or where the rings do not turn relative to each other): in steady running the
   two agree, but at light loads the torque's mean is pulled up by the velocity errors the
   tolerances allow (B1 without axial load: 15 % at its tolerances) and the power loss's
   is not (docs/dynamics.md, "Where the power goes");
 - roller-set speed loss (skidding): ``1 - cage-equivalent speed / epicyclic speed``, where
   the cage-equivalent speed is the mean of every roller's ``orbital_speed`` and the
-  epicyclic speed is ``omega_i (1 - D / d_m) / 2`` of the mean inner ring speed
-  ``omega_i`` (outer ring fixed, no slip) [1];
+  epicyclic speed is ``omega_i (1 - D / d_m) / 2 + omega_o (1 + D / d_m) / 2`` of the
+  mean ring speeds (no slip; ``omega_o`` = 0 where the outer ring is fixed) [1];
 - largest flange force: the largest ``flange_normal_force`` of any roller and flange [N];
 - the lubrication (a result that records it, ``solver.outputs`` "lubrication"; NaN
   otherwise): the median specific film thickness Lambda = h_c / sigma over the inner race
@@ -76,17 +77,20 @@ def window_outputs(ds, t0: float, t1: float, factor: float) -> dict:
     if not sel.any():
         return {k: math.nan for k in (*FLOORS, *LAMBDAS, VIBRATION)}
     ring = float(np.mean(ds.ring_speed.values[sel]))
+    outer = float(np.mean(ds.outer_ring_speed.values[sel])) if "outer_ring_speed" in ds else 0.0
     orbital = float(np.nanmean(ds.orbital_speed.values[sel]))
-    epicyclic = ring * factor
+    # the outer ring's epicyclic factor, (1 + D/d_m)/2, is 1 less the inner ring's
+    epicyclic = ring * factor + outer * (1.0 - factor)
     loss = 1.0 - orbital / epicyclic if epicyclic != 0 else math.nan
+    relative = abs(ring - outer)
     flange = np.asarray(ds.flange_normal_force.values[sel], dtype=float)
     flange = flange[np.isfinite(flange)]
     torque = float(np.mean(ds.frictional_torque.values[sel]))
     power = np.asarray(ds.power_loss.values[sel], dtype=float) if "power_loss" in ds else []
     # a window reaching back into a result continued from one without power losses (NaN
     # there) keeps the torque's mean
-    if len(power) and np.isfinite(power).all() and ring != 0.0:
-        torque = float(np.mean(power)) / ring
+    if len(power) and np.isfinite(power).all() and relative != 0.0:
+        torque = float(np.mean(power)) / relative
     return {
         "torque [N*m]": torque,
         "speed loss [1]": loss,
@@ -133,7 +137,7 @@ class SteadyRule:
     settle: float  # end of the ramps [s]
     window: float  # W [s]
     tol: float
-    factor: float  # epicyclic factor
+    factor: float  # the inner ring's epicyclic factor, (1 - D/d_m)/2
 
     def verdict(self, ds) -> tuple[bool, float, dict]:
         """(steady, t_k, outputs over the last window) at the last multiple t_k of W

@@ -441,7 +441,7 @@ def write_speed_figure(thermal, speeds, permissible: float, out: Path, name: str
     return _finish(
         fig,
         ax,
-        ("inner ring speed [rpm]", "balance temperature [degC]"),
+        ("speed of the turning ring [rpm]", "balance temperature [degC]"),
         f"{name}: thermally permissible speed",
         Path(out) / "thermal_speed",
     )
