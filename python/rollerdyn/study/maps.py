@@ -214,8 +214,9 @@ def point_config(
 
     data = cfg.model_dump()
     op = data["operating"]
-    op.update({f"{turning_ring(cfg)}_ring_speed": speed, "radial_load": radial})
-    op["axial_load"] = axial
+    op.update(
+        {f"{turning_ring(cfg)}_ring_speed": speed, "radial_load": radial, "axial_load": axial}
+    )
     if temperature is not None:
         op["temperature"] = temperature
     op.pop("end_time", None)
