@@ -34,7 +34,7 @@ from .report_figures import (
     ripple_figures,
     time_figures,
 )
-from .simulation import recorded
+from .simulation import recorded, ring_speeds
 
 __all__ = [
     "LAST_SHARE",
@@ -204,12 +204,10 @@ def _labels(paths: list[Path], sets: list[xr.Dataset]) -> list[str]:
 
 
 def relative_speed(ds: xr.Dataset) -> np.ndarray:
-    """The inner ring's speed relative to the outer ring at every output [rad/s] (a result
-    without ``outer_ring_speed``, recorded before the outer ring could turn, had it fixed)."""
-    inner = np.asarray(ds.ring_speed.values, dtype=float)
-    if "outer_ring_speed" not in ds:
-        return inner
-    return inner - np.asarray(ds.outer_ring_speed.values, dtype=float)
+    """The inner ring's speed relative to the outer ring at every output [rad/s]
+    (:func:`rollerdyn.simulation.ring_speeds`)."""
+    inner, outer = ring_speeds(ds)
+    return inner - outer
 
 
 def max_abs_srr_inner(ds: xr.Dataset) -> float:

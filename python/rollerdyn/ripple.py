@@ -161,15 +161,12 @@ def ripple(ds: xr.Dataset, geometry: tuple[float, float] | None = None) -> dict:
     amplitudes are NaN, with a ``note``, where the full-speed part holds fewer than
     :data:`MIN_PERIODS` roller passes, or where the roller set's frequency is known
     neither way."""
-    from .simulation import full_speed, recorded
+    from .simulation import full_speed, recorded, ring_speeds
 
     part = full_speed(ds)
     t = np.asarray(part.time.values, dtype=float)
     z = int(ds.sizes.get("roller", 0))
-    ring_speed = float(np.mean(part.ring_speed.values))
-    outer_speed = 0.0
-    if "outer_ring_speed" in part:
-        outer_speed = float(np.mean(part.outer_ring_speed.values))
+    ring_speed, outer_speed = (float(np.mean(s)) for s in ring_speeds(part))
     geometry = geometry if geometry is not None else result_geometry(ds)
     kinematic = math.nan
     if geometry is not None:

@@ -50,12 +50,19 @@ def carried_axial_force(ds: xr.Dataset) -> xr.DataArray:
     return carried.assign_attrs(units="N", long_name="axial force carried by the roller")
 
 
+def ring_speeds(ds: xr.Dataset) -> tuple[np.ndarray, np.ndarray]:
+    """The inner and the outer ring's speeds at every output [rad/s]; a result without
+    ``outer_ring_speed``, recorded before the outer ring could turn, had it fixed (0)."""
+    inner = np.asarray(ds.ring_speed.values, dtype=float)
+    if "outer_ring_speed" not in ds:
+        return inner, np.zeros_like(inner)
+    return inner, np.asarray(ds.outer_ring_speed.values, dtype=float)
+
+
 def full_speed(ds: xr.Dataset) -> xr.Dataset:
     """The part of a result at (at least 99 % of) full speed of each ring that turns, the
     outputs the azimuth figures use; the whole result if neither ring turns."""
-    names = [n for n in ("ring_speed", "outer_ring_speed") if n in ds]
-    speeds = [np.abs(np.asarray(ds[n].values, dtype=float)) for n in names]
-    turning = [s for s in speeds if s.max() > 0]
+    turning = [s for s in map(np.abs, ring_speeds(ds)) if s.max() > 0]
     if not turning:
         return ds
     full = np.logical_and.reduce([s >= 0.99 * s.max() for s in turning])

@@ -48,6 +48,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..simulation import ring_speeds
+
 #: Changes below these count as steady whatever ``tol`` says (values near zero):
 #: torque [N*m], speed loss [1], flange force [N]. The speed loss of a bearing that barely
 #: skids is a small number whose window means swing by a few 1e-3 (B1 at 3000 rpm and
@@ -76,8 +78,7 @@ def window_outputs(ds, t0: float, t1: float, factor: float) -> dict:
     sel = (t > t0 + 1e-12) & (t <= t1 + 1e-12)
     if not sel.any():
         return {k: math.nan for k in (*FLOORS, *LAMBDAS, VIBRATION)}
-    ring = float(np.mean(ds.ring_speed.values[sel]))
-    outer = float(np.mean(ds.outer_ring_speed.values[sel])) if "outer_ring_speed" in ds else 0.0
+    ring, outer = (float(np.mean(s[sel])) for s in ring_speeds(ds))
     orbital = float(np.nanmean(ds.orbital_speed.values[sel]))
     # the outer ring's epicyclic factor, (1 + D/d_m)/2, is 1 less the inner ring's
     epicyclic = ring * factor + outer * (1.0 - factor)
