@@ -30,6 +30,7 @@
 //! stiffness is the Schur complement of the rollers in the Jacobian at the equilibrium
 //! ([`stiffness`]).
 
+mod axial;
 mod condense;
 mod mirror;
 mod relax;

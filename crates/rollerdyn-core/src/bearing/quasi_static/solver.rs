@@ -76,6 +76,9 @@ pub(super) struct Problem<'a> {
     /// The careful path: every roller searched at every trial, no kept Jacobians
     /// ([`Self::newton`]).
     pub(super) careful: bool,
+    /// The ring's axial position [m] while it is held there and searched apart
+    /// ([`super::axial`]); `None`: an unknown like the others.
+    pub(super) axial_position: Option<f64>,
 }
 
 impl<'a> Problem<'a> {
@@ -102,6 +105,7 @@ impl<'a> Problem<'a> {
             evaluations: 0,
             roller_jacobians: vec![None; model.layout.rollers],
             careful: false,
+            axial_position: None,
             reference_stiffness: {
                 let lines = &model.model.lines;
                 let law = lines.kind(LineContact::InnerRace).law;
@@ -148,13 +152,16 @@ impl<'a> Problem<'a> {
     }
 
     /// The unknowns Newton moves: the ring's centre, its tilt when free, every roller's;
-    /// with a mirror symmetry, not the ring's move along z nor its tilt about y.
+    /// with a mirror symmetry, not the ring's move along z nor its tilt about y; while the
+    /// ring's axial position is searched apart, not that.
     pub(super) fn active(&self) -> Vec<usize> {
         let free_tilt = self.case.tilt == RingTilt::Free;
         let mirrored = self.mirror.is_some();
+        let axial_held = self.axial_position.is_some();
         (0..self.len())
             .filter(|&k| !(3..RING_UNKNOWNS).contains(&k) || free_tilt)
             .filter(|&k| !(mirrored && (k == 2 || k == 3)))
+            .filter(|&k| !(axial_held && k == 0))
             .collect()
     }
 
@@ -437,7 +444,7 @@ impl<'a> Problem<'a> {
     /// and 1 µm, the rollers it faces (or whose body forces push them out) on the outer
     /// race, the others on the inner; along an axial load the rollers against the outer
     /// ring's loaded flange and the ring by both axial plays and 3 µm more.
-    fn guess(&self) -> Vec<f64> {
+    pub(super) fn guess(&self) -> Vec<f64> {
         let mut u = vec![0.0; self.len()];
         let p = &self.model.params;
         if let RingTilt::Prescribed(a, b) = self.case.tilt {
@@ -472,6 +479,9 @@ impl<'a> Problem<'a> {
         if force.x != 0.0 {
             u[0] = force.x.signum() * (p.inner_axial_play + p.outer_axial_play + 3e-6);
         }
+        if let Some(x) = self.axial_position {
+            u[0] = x;
+        }
         u
     }
 
@@ -482,6 +492,21 @@ impl<'a> Problem<'a> {
     /// neighbour's state (B1 swept from 0 to 1000 N axially found no equilibrium at 1000 N
     /// from the 0 N solution, and one from the guess).
     pub(super) fn solve(
+        &mut self,
+        start: Option<Vec<f64>>,
+    ) -> Result<(Vec<f64>, DVector<f64>, usize)> {
+        let found = self.solve_coupled(start);
+        match found {
+            // The axial position of a lightly loaded ring searched apart ([`super::axial`]);
+            // where that finds none either, the coupled solver's error stands.
+            Err(e) if self.axial_load_is_light() => self.axial_search().map_err(|_| e),
+            found => found,
+        }
+    }
+
+    /// [`Self::solve`] with every unknown solved together: from `start`, and where that
+    /// fails, cold.
+    fn solve_coupled(
         &mut self,
         start: Option<Vec<f64>>,
     ) -> Result<(Vec<f64>, DVector<f64>, usize)> {
@@ -501,7 +526,7 @@ impl<'a> Problem<'a> {
     }
 
     /// [`Self::solve`] from `start` by the fast path, then the careful one.
-    fn solve_by_both_paths(
+    pub(super) fn solve_by_both_paths(
         &mut self,
         start: Option<Vec<f64>>,
     ) -> Result<(Vec<f64>, DVector<f64>, usize)> {

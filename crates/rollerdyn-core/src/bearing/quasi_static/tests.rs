@@ -686,3 +686,62 @@ fn a_missing_flange_has_no_contact_and_an_idle_one_changes_nothing() {
         "{pressed} ends pressed the inner ring's -x flange"
     );
 }
+
+/// A misaligned ring under a light axial load (`super::axial`; docs/statics.md). The
+/// misaligned raceway's normals are perpendicular to the ring's axis, so the race loads
+/// push the ring along the axis by P = tan θ (F_r + m g), the ring's radial balance
+/// turned through θ (B1 at 5 kN, 0.01°: 0.8744 N; 0.1°: 8.744 N), and the rollers the
+/// other way. In equilibrium the inner ring's flanges carry P − F_a between them (flange 1
+/// (+x) less flange 0 (−x), the roller ends pressing them along ±x) and the outer ring's,
+/// whose race normals are radial, F_a (flange 3 less flange 2). Checked within 1.5 mN:
+/// three times the solver's tolerance on each balance (0.5 mN, 1e-7 of the load), the
+/// flange normals' tilt from the axis far below that (B1's flange faces are normal to the
+/// axis). The coupled solver found none of these before the axial search (the table in
+/// docs/statics.md); both `statics` and the search alone must find each, the ring on the
+/// −x side of the plays' centre while F_a < P and past the +x plays (B1: 20 µm each)
+/// once F_a > P.
+#[test]
+fn a_misaligned_ring_under_a_light_axial_load_balances_the_race_push_on_its_flanges() {
+    let m = model(&B1);
+    let workspace = Workspace::single(&m);
+    let m = m.system(&workspace);
+    let weight = m.params.inner_ring_mass * m.params.gravity.norm();
+    for (degrees, axial) in [
+        (0.01, 0.0),
+        (0.01, 0.1),
+        (0.01, 0.8),
+        (0.01, 0.95),
+        (0.1, 0.1),
+    ] {
+        let theta = f64::to_radians(degrees);
+        let case = StaticCase {
+            tilt: RingTilt::Prescribed(0.0, theta),
+            ..at_rest(5000.0, axial)
+        };
+        let push = theta.tan() * (5000.0 + weight);
+        let by_statics = m.statics(&case, None).unwrap();
+        let mut problem = Problem::new(m, &case);
+        let (u, r, _) = problem.axial_search().unwrap();
+        assert!(problem.axial_position.is_none());
+        let forces = problem.evaluate(&u, true);
+        for (s, ring_x) in [(&by_statics.forces, by_statics.ring[0]), (&forces, u[0])] {
+            let total = |k: usize| s.iter().map(|f| f.flanges[k].force).sum::<f64>();
+            let (inner, outer) = (total(1) - total(0), total(3) - total(2));
+            let case_name = format!("{degrees} deg, {axial} N: push {push} N");
+            assert!(
+                (inner - (push - axial)).abs() < 1.5e-3,
+                "{case_name}: inner {inner} N"
+            );
+            assert!(
+                (outer - axial).abs() < 1.5e-3,
+                "{case_name}: outer {outer} N"
+            );
+            if axial < push {
+                assert!(ring_x < 0.0, "{case_name}: ring at {ring_x} m");
+            } else {
+                assert!(ring_x > 40e-6, "{case_name}: ring at {ring_x} m");
+            }
+        }
+        assert!(r[0].abs() < problem.tolerance(), "{}", r[0]);
+    }
+}
