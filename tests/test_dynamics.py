@@ -408,6 +408,15 @@ def test_overlapping_start_is_refused_with_the_rule_named():
         _core.initial_state(tall, traction)
     assert "inner_flange.height + outer_flange.height" in str(err.value), str(err.value)
     assert "annulus" in str(err.value)
+    # A misalignment whose tilted raceway meets the untilted rollers at rest (B1 above about
+    # 0.07 deg): the setting, its value and the start that fits it are named
+    tilted = variant(**{**STATIC, "inner_ring.misalignment": "0.08 deg"})
+    with pytest.raises(ValueError) as err:
+        _core.initial_state(model_parameters(tilted), traction)
+    message = str(err.value)
+    assert message.startswith("inner_ring.misalignment = 0.0800 deg"), message
+    assert "roller 0 and the inner race overlap by 0.164 um" in message, message
+    assert 'solver.start = "equilibrium"' in message, message
     taller = changed_b1({"geometry.inner_flange.height": 4.6e-3}, params)
     with pytest.raises(ValueError) as err:
         _core.initial_state(taller, traction)

@@ -184,13 +184,40 @@ impl BearingSystem<'_> {
             // NaN counts as overlap: a start whose forces are not defined is refused. (The
             // oil films act across gaps, so a force alone is no overlap.)
             if r.penetration > 0.0 || r.penetration.is_nan() || r.normal.is_nan() {
-                return Err(Error::invalid(
-                    format!("{element:?}"),
-                    format!("penetration {:.3e} m at the start", r.penetration),
-                    "bodies must not overlap at the start (rollers on the pitch circle, rings centred)",
-                ));
+                return Err(self.overlap_at_rest(element, r.penetration));
             }
         }
         Ok(y)
+    }
+
+    /// The error of a start at rest whose bodies overlap: the contact in words and, with a
+    /// misaligned ring (B1 above about 0.07°, whose tilted raceway meets the untilted
+    /// rollers), that setting and the start from equilibrium, which tilts the rollers with
+    /// the ring (B1 at 0.15° starts so).
+    fn overlap_at_rest(&self, element: &Element, penetration: f64) -> Error {
+        let contact = match *element {
+            Element::Inner(i) => format!("roller {i} and the inner race"),
+            Element::Outer(i) => format!("roller {i} and the outer race"),
+            Element::Pair(i) => format!("rollers {i} and {}", (i + 1) % self.layout.rollers),
+            Element::End(i, k) => format!("roller {i}'s end and the {} flange", FLANGE_NAMES[k]),
+        };
+        let overlap = format!(
+            "at solver.start = \"rest\" (rollers on the pitch circle, untilted, rings centred) \
+             {contact} overlap by {:.3} um; bodies must not overlap at the start",
+            penetration * 1e6
+        );
+        let misalignment = self.params.inner_ring_misalignment;
+        if misalignment != 0.0 {
+            Error::invalid(
+                "inner_ring.misalignment",
+                format!("{:.4} deg", misalignment.to_degrees()),
+                format!(
+                    "{overlap}; start from the quasi-static equilibrium instead \
+                     (solver.start = \"equilibrium\"), whose rollers follow the tilted ring"
+                ),
+            )
+        } else {
+            Error::invalid("solver.start", "\"rest\"", overlap)
+        }
     }
 }
