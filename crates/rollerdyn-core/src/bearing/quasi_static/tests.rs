@@ -745,3 +745,34 @@ fn a_misaligned_ring_under_a_light_axial_load_balances_the_race_push_on_its_flan
         assert!(r[0].abs() < problem.tolerance(), "{}", r[0]);
     }
 }
+
+/// A pure axial load tips B1's rollers onto their end faces (docs/statics.md): the point
+/// law finds no equilibrium for 1000 N without radial load, and its error names the
+/// distributed law, which finds one. There the outer ring's flanges carry the axial load
+/// (its race normals are radial: the axial balance of the rollers and the ring). The sum
+/// of their normal forces is checked, so within 1e-5 of the load: 1 − cos α for flange
+/// normals up to α = 4.5 mrad off the axis, the rollers' tilt under this load (measured
+/// 3.8e-6 above it; the solver's tolerance, 1e-7 of the loads, is far below).
+#[test]
+fn a_pure_axial_load_that_the_point_law_cannot_carry_names_the_distributed_law() {
+    let point = model(&B1);
+    let workspace = Workspace::single(&point);
+    let e = point
+        .system(&workspace)
+        .statics(&at_rest(0.0, 1000.0), None)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("no quasi-static equilibrium") && e.contains("flange_law = \"distributed\""),
+        "{e}"
+    );
+    let distributed = distributed_model();
+    let workspace = Workspace::single(&distributed);
+    let s = distributed
+        .system(&workspace)
+        .statics(&at_rest(0.0, 1000.0), None)
+        .unwrap();
+    let total = |k: usize| s.forces.iter().map(|f| f.flanges[k].force).sum::<f64>();
+    let outer = total(3) - total(2);
+    assert!((outer - 1000.0).abs() < 0.01, "{outer} N");
+}
