@@ -654,3 +654,24 @@ def test_a_sweeps_warm_start_never_decides_whether_a_case_has_an_equilibrium():
     assert list(ds.error.values) == ["", "", "", ""]
     alone = statics(cfg, misalignment=tilt, axial_load=0.0)
     assert float(ds.max_roller_load[2]) == pytest.approx(float(alone.max_roller_load), rel=1e-9)
+
+
+def test_a_sweeps_figure_draws_its_axis_in_the_units_engineers_give():
+    """The swept value along a sweep figure's x axis: angles in degrees (a misalignment of
+    0.1 deg is 1.745e-3 rad, whose tick labels ran into each other), speeds in rpm
+    (pi/30 rad/s per rpm), temperatures in degC (273.15 K at 0 degC), lengths below 1 mm
+    in um and below 1 m in mm; other units as they are."""
+    from rollerdyn.statics_plots import shown_axis
+
+    values, unit = shown_axis(np.array([0.0, math.radians(0.1)]), "rad")
+    assert unit == "deg" and values == pytest.approx([0.0, 0.1], rel=1e-12)
+    values, unit = shown_axis(np.array([500.0 * math.pi / 30.0]), "rad/s")
+    assert unit == "rpm" and values == pytest.approx([500.0], rel=1e-12)
+    values, unit = shown_axis(np.array([353.15]), "K")
+    assert unit == "degC" and values == pytest.approx([80.0], rel=1e-12)
+    values, unit = shown_axis(np.array([0.0, 20e-6]), "m")
+    assert unit == "um" and values == pytest.approx([0.0, 20.0], rel=1e-12)
+    values, unit = shown_axis(np.array([4e-3, 6e-3]), "m")
+    assert unit == "mm" and values == pytest.approx([4.0, 6.0], rel=1e-12)
+    values, unit = shown_axis(np.array([5000.0]), "N")
+    assert unit == "N" and values == pytest.approx([5000.0])

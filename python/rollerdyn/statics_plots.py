@@ -54,6 +54,27 @@ def _sweep_axes(ds: xr.Dataset) -> tuple[str | None, list[str]]:
     return x, [s for s in varying if s != x]
 
 
+#: SI unit of a swept value -> the unit its axis is drawn in and the factor to it: angles
+#: in degrees, as misalignments are given, speeds in rpm (temperatures and lengths in
+#: :func:`shown_axis`).
+_SHOWN = {"rad": ("deg", 180.0 / np.pi), "rad/s": ("rpm", 30.0 / np.pi)}
+
+
+def shown_axis(values: np.ndarray, unit: str) -> tuple[np.ndarray, str]:
+    """``values`` in SI ``unit`` converted to the unit an engineer reads them in (see
+    :data:`_SHOWN`; metres below 1 mm in um, below 1 m in mm), with that unit."""
+    values = np.asarray(values, dtype=float)
+    if unit == "K":
+        return values - 273.15, "degC"
+    if unit == "m":
+        largest = float(np.nanmax(np.abs(values))) if values.size else 0.0
+        return (values * 1e6, "um") if largest < 1e-3 else (values * 1e3, "mm")
+    if unit in _SHOWN:
+        shown, factor = _SHOWN[unit]
+        return values * factor, shown
+    return values, unit
+
+
 def _label(ds: xr.Dataset, name: str, value) -> str:
     unit = ds[name].attrs.get("units", "")
     shown = f"{value:.4g}" if isinstance(value, float | np.floating) else str(value)
@@ -66,7 +87,8 @@ def _draw_sweep(plt, ds: xr.Dataset):
     swept values."""
     x_name, others = _sweep_axes(ds)
     cases = np.arange(ds.sizes["case"])
-    x = ds[x_name].values if x_name else cases
+    unit = ds[x_name].attrs.get("units", "") if x_name else ""
+    x, unit = shown_axis(ds[x_name].values, unit) if x_name else (cases, "")
     keys = [tuple(ds[o].values[i] for o in others) for i in cases]
     groups = list(dict.fromkeys(keys))
     fig, (a, b, c, d) = plt.subplots(1, 4, figsize=(18, 4.5))
@@ -79,13 +101,14 @@ def _draw_sweep(plt, ds: xr.Dataset):
         d.plot(x[rows], ds.friction_torque.values[rows], "o-", ms=3)
         for var, label in lives if len(groups) == 1 else lives[1:2]:
             c.plot(x[rows], ds[var].values[rows], "o-", ms=3, label=label if not others else name)
-    unit = ds[x_name].attrs.get("units", "") if x_name else ""
     x_label = (f"{x_name} [{unit}]" if unit else x_name) if x_name else "case"
     a.set(xlabel=x_label, ylabel="heaviest roller [N]")
     b.set(xlabel=x_label, ylabel="ring displacement y [um]")
     life = "life [1e6 rev]" if len(groups) == 1 else "L_10r (ISO/TS 16281) [1e6 rev]"
     c.set(xlabel=x_label, ylabel=life, yscale="log")
     d.set(xlabel=x_label, ylabel="friction of steady rolling [N*m]")
+    for ax in (a, b, d):  # plain numbers: no offset above a panel of nearly equal values
+        ax.ticklabel_format(axis="y", useOffset=False)
     if others:
         a.legend(fontsize=7)
     c.legend(fontsize=7)
