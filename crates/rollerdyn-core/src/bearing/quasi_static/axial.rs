@@ -3,9 +3,8 @@
 //!
 //! Under a light axial load (none, or a few newtons) the ring's axial position is held by
 //! millinewtons or not at all: a misaligned raceway pushes the rollers and the ring apart
-//! along the axis by about the misalignment times the race loads (B1 at 5 kN and 0.01°:
-//! millinewtons on the ring), and until the rollers' ends meet a flange nothing holds that
-//! push. The ring and its rollers then slide together across their axial plays (about
+//! along the axis by the misalignment times the race loads (B1 at 5 kN: 0.87 N at 0.01°),
+//! and until the rollers' ends meet a flange nothing holds that push. The ring and its rollers then slide together across their axial plays (about
 //! 43 µm on B1), which Newton's steps, limited by the stiffness floor given to an unheld
 //! direction, do not cross; or, where the rollers rest on the ring's own flanges, the
 //! ring's axial position is free within the plays and the equilibrium is not unique.
@@ -69,17 +68,25 @@ impl Problem<'_> {
     /// The equilibrium with the ring's axial position searched apart (module doc): the
     /// unknowns, their residual (the ring's axial row included) and the Newton iterations
     /// taken over every solve. Fails where a solve at the start fails or no position
-    /// balances the ring within [`MAX_SOLVES`] solves.
+    /// balances the ring within [`MAX_SOLVES`] solves. The ring's axial position is an
+    /// unknown again afterwards, whatever the outcome.
     pub(super) fn axial_search(&mut self) -> Result<(Vec<f64>, DVector<f64>, usize)> {
+        let found = self.search_axial_position();
+        self.axial_position = None;
+        found
+    }
+
+    /// [`Self::axial_search`] with the ring's axial position left held where it ends.
+    fn search_axial_position(&mut self) -> Result<(Vec<f64>, DVector<f64>, usize)> {
         let tolerance = self.tolerance();
         // From the centre of the plays: the guess's position past both plays, where an
         // axial load pushes the ring, overlaps a misaligned ring's flanges with the rollers
         // (B1 at 0.1°: by micrometres).
         let start_x = 0.0;
         let mut tally = Tally::default();
-        let (first, r) = self.end_at(&mut tally, start_x, None)?;
+        let first = self.end_at(&mut tally, start_x, None)?;
         if first.force.abs() < tolerance {
-            return self.released(first.u, r, tally.iterations);
+            return self.released(first.u, tally.iterations);
         }
         // Step along the unbalanced force, doubling, until it changes sign.
         let direction = first.force.signum();
@@ -93,11 +100,11 @@ impl Problem<'_> {
                 return Err(self.unbalanced_axially(&a, tolerance));
             }
             match self.end_at(&mut tally, x, Some(&a)) {
-                Ok((end, r)) if end.force.abs() < tolerance => {
-                    return self.released(end.u, r, tally.iterations)
+                Ok(end) if end.force.abs() < tolerance => {
+                    return self.released(end.u, tally.iterations)
                 }
-                Ok((end, _)) if end.force.signum() != direction => b = Some(end),
-                Ok((end, _)) => {
+                Ok(end) if end.force.signum() != direction => b = Some(end),
+                Ok(end) => {
                     a = end;
                     step *= 2.0;
                 }
@@ -129,9 +136,9 @@ impl Problem<'_> {
             } else {
                 b.clone()
             };
-            let (end, r) = self.end_near(&mut tally, x, &from)?;
+            let end = self.end_near(&mut tally, x, &from)?;
             if end.force.abs() < tolerance {
-                return self.released(end.u, r, tally.iterations);
+                return self.released(end.u, tally.iterations);
             }
             let replaces_a = end.force.signum() == a.force.signum();
             if replaces_a {
@@ -154,21 +161,16 @@ impl Problem<'_> {
     }
 
     /// The bracket's end at `x` ([`Self::solve_at_axial_position`]), counted in `tally`.
-    fn end_at(
-        &mut self,
-        tally: &mut Tally,
-        x: f64,
-        from: Option<&End>,
-    ) -> Result<(End, DVector<f64>)> {
+    fn end_at(&mut self, tally: &mut Tally, x: f64, from: Option<&End>) -> Result<End> {
         tally.solves += 1;
         let (u, r, taken) = self.solve_at_axial_position(x, from.map(|e| e.u.as_slice()))?;
         tally.iterations += taken;
-        Ok((End { x, force: r[0], u }, r))
+        Ok(End { x, force: r[0], u })
     }
 
     /// The bracket's end at `x` from the end `from`, or where that finds none, from the
     /// guess, or nearer to `from` ([`RETRIES`] times halving the way).
-    fn end_near(&mut self, tally: &mut Tally, x: f64, from: &End) -> Result<(End, DVector<f64>)> {
+    fn end_near(&mut self, tally: &mut Tally, x: f64, from: &End) -> Result<End> {
         let mut x = x;
         let mut last = self.end_at(tally, x, Some(from));
         for _ in 0..RETRIES {
@@ -210,7 +212,6 @@ impl Problem<'_> {
     fn released(
         &mut self,
         u: Vec<f64>,
-        _r: DVector<f64>,
         iterations: usize,
     ) -> Result<(Vec<f64>, DVector<f64>, usize)> {
         self.axial_position = None;
