@@ -444,7 +444,7 @@ impl<'a> Problem<'a> {
     /// and 1 µm, the rollers it faces (or whose body forces push them out) on the outer
     /// race, the others on the inner; along an axial load the rollers against the outer
     /// ring's loaded flange and the ring by both axial plays and 3 µm more.
-    pub(super) fn guess(&self) -> Vec<f64> {
+    fn guess(&self) -> Vec<f64> {
         let mut u = vec![0.0; self.len()];
         let p = &self.model.params;
         if let RingTilt::Prescribed(a, b) = self.case.tilt {
