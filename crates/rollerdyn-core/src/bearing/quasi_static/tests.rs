@@ -776,3 +776,38 @@ fn a_pure_axial_load_that_the_point_law_cannot_carry_names_the_distributed_law()
     let outer = total(3) - total(2);
     assert!((outer - 1000.0).abs() < 0.01, "{outer} N");
 }
+
+/// The axial search's refusal (docs/statics.md): B1 at 0.1°, 100 N and 500 rpm, a light
+/// axial load (2 % of the radial one) above the race push of 8.74 N, which puts the ring
+/// across its plays onto the rollers, whose most loaded end then lies on its face, where
+/// the point law's contact jumps (at rest an equilibrium is found). Neither the coupled
+/// solver nor the search finds one, and the error is the coupled solver's, naming the
+/// distributed law, which finds one; its outer flanges carry the 100 N (within 1e-5, as
+/// in the test above).
+#[test]
+fn where_the_point_law_jumps_the_axial_search_refuses_and_the_distributed_law_finds_it() {
+    let case = StaticCase {
+        tilt: RingTilt::Prescribed(0.0, f64::to_radians(0.1)),
+        speed: 500.0 * std::f64::consts::PI / 30.0,
+        ..at_rest(5000.0, 100.0)
+    };
+    let point = model(&B1);
+    let workspace = Workspace::single(&point);
+    let e = match point.system(&workspace).statics(&case, None) {
+        Ok(s) => panic!("an equilibrium: ring at {:?}", s.ring),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        e.contains("no quasi-static equilibrium: reached") && e.contains("\"distributed\""),
+        "{e}"
+    );
+    let distributed = distributed_model();
+    let workspace = Workspace::single(&distributed);
+    let s = distributed.system(&workspace).statics(&case, None).unwrap();
+    let total = |k: usize| s.forces.iter().map(|f| f.flanges[k].force).sum::<f64>();
+    assert!(
+        (total(3) - total(2) - 100.0).abs() < 1e-3,
+        "{}",
+        total(3) - total(2)
+    );
+}
