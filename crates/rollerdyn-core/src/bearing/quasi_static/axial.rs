@@ -228,10 +228,7 @@ impl Problem<'_> {
         self.axial_position = None;
         Error::invalid(
             "load",
-            format!(
-                "radial {} N, axial {} N",
-                self.case.radial_load, self.case.axial_load
-            ),
+            self.case.describe(),
             format!(
                 "no quasi-static equilibrium: with the inner ring's axial position searched \
                  apart, the nearest found leaves {:.3e} N along the axis at {:.2} um \

@@ -811,3 +811,26 @@ fn where_the_point_law_jumps_the_axial_search_refuses_and_the_distributed_law_fi
         total(3) - total(2)
     );
 }
+
+/// A misalignment far past what the bearing takes (B1 at 1°: its 10 µm of clearance against
+/// a tilt of 87 µm over the roller's 5 mm): the error names the case whole, misalignment
+/// included, and the setting, since the continuation scales the loads and not the tilt.
+#[test]
+fn a_misalignment_the_bearing_cannot_take_is_named_in_the_error() {
+    let m = model(&B1);
+    let workspace = Workspace::single(&m);
+    let case = StaticCase {
+        tilt: RingTilt::Prescribed(0.0, f64::to_radians(1.0)),
+        ..at_rest(5000.0, 1000.0)
+    };
+    let e = match m.system(&workspace).statics(&case, None) {
+        Ok(s) => panic!("an equilibrium: ring at {:?}", s.ring),
+        Err(e) => e.to_string(),
+    };
+    assert!(
+        e.starts_with("load = radial 5000 N, axial 1000 N, misalignment 1.0000 deg:")
+            && e.contains("reached 0 % of the load")
+            && e.contains("(inner_ring.misalignment)"),
+        "{e}"
+    );
+}
