@@ -9,6 +9,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from .config.base import T0_CELSIUS
+
 
 def draw(ds: xr.Dataset, path: Path) -> None:
     """Draws ``ds`` (one case or a sweep) to the PNG file ``path``."""
@@ -65,7 +67,7 @@ def shown_axis(values: np.ndarray, unit: str) -> tuple[np.ndarray, str]:
     :data:`_SHOWN`; metres below 1 mm in um, below 1 m in mm), with that unit."""
     values = np.asarray(values, dtype=float)
     if unit == "K":
-        return values - 273.15, "degC"
+        return values - T0_CELSIUS, "degC"
     if unit == "m":
         largest = float(np.nanmax(np.abs(values))) if values.size else 0.0
         return (values * 1e6, "um") if largest < 1e-3 else (values * 1e3, "mm")

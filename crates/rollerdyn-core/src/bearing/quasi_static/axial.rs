@@ -45,7 +45,6 @@ const NARROWEST: f64 = 1e-12;
 
 /// One end of the bracket: the axial position, the ring's unbalanced axial force there
 /// and the unknowns of its equilibrium.
-#[derive(Clone)]
 struct End {
     x: f64,
     force: f64,
@@ -134,11 +133,11 @@ impl Problem<'_> {
                 0.5 * (a.x + b.x)
             };
             let from = if (x - a.x).abs() < (x - b.x).abs() {
-                a.clone()
+                &a
             } else {
-                b.clone()
+                &b
             };
-            let end = self.end_near(&mut tally, x, &from)?;
+            let end = self.end_near(&mut tally, x, from)?;
             if end.force.abs() < tolerance {
                 return self.released(end.u, tally.iterations);
             }

@@ -100,20 +100,26 @@ impl StaticCase {
         }
     }
 
+    /// The prescribed tilt (θ_y, θ_z) [rad] where it is not zero: a misalignment.
+    pub fn misalignment(&self) -> Option<(f64, f64)> {
+        match self.tilt {
+            RingTilt::Prescribed(a, b) if a != 0.0 || b != 0.0 => Some((a, b)),
+            _ => None,
+        }
+    }
+
     /// The case as an error names it: its loads, and its misalignment or moments where it
     /// has them (the misalignment is applied whole at every load level of the solver's
     /// continuation, so an error at "0 % of the load" may be the misalignment's).
     pub fn describe(&self) -> String {
         let mut text = format!("radial {} N, axial {} N", self.radial_load, self.axial_load);
-        if let RingTilt::Prescribed(a, b) = self.tilt {
-            if a != 0.0 || b != 0.0 {
-                let angle = if a == 0.0 {
-                    format!("{:.4} deg", b.to_degrees())
-                } else {
-                    format!("({:.4}, {:.4}) deg", a.to_degrees(), b.to_degrees())
-                };
-                text.push_str(&format!(", misalignment {angle}"));
-            }
+        if let Some((a, b)) = self.misalignment() {
+            let angle = if a == 0.0 {
+                format!("{:.4} deg", b.to_degrees())
+            } else {
+                format!("({:.4}, {:.4}) deg", a.to_degrees(), b.to_degrees())
+            };
+            text.push_str(&format!(", misalignment {angle}"));
         }
         if self.moment != [0.0, 0.0] {
             text.push_str(&format!(

@@ -644,8 +644,7 @@ impl<'a> Problem<'a> {
         // The continuation scales the loads, not a misalignment: where not even a sixteenth
         // of the load is carried, the tilt itself may be too much (B1 at 0.3° without axial
         // load presses its flanges at 6.3 GPa; at 1° no equilibrium is found).
-        let tilted = matches!(self.case.tilt, RingTilt::Prescribed(a, b) if a != 0.0 || b != 0.0);
-        let misalignment = if tilted && reached == 0.0 {
+        let misalignment = if self.case.misalignment().is_some() && reached == 0.0 {
             "; the misalignment is applied whole at every load level, so it may itself be more \
              than the rollers take (inner_ring.misalignment)"
         } else {
