@@ -295,7 +295,14 @@ class RampDerived:
 def roller_set_speed(geometry, inner: float, outer: float) -> float:
     """The roller set's orbital speed [rad/s] rolling without slip at the inner and outer
     rings' speeds [rad/s] (Harris & Kotzalas, eq. 8.23; the core's ``rolling_speeds``)."""
-    return inner * geometry.epicyclic_factor + outer * geometry.outer_epicyclic_factor
+    return epicyclic_speed(inner, outer, geometry.epicyclic_factor)
+
+
+def epicyclic_speed(inner: float, outer: float, inner_factor: float) -> float:
+    """The roller set's orbital speed [rad/s] rolling without slip at the inner and outer
+    rings' speeds [rad/s], from the inner ring's epicyclic factor ``(1 - D/d_m)/2`` alone:
+    the outer ring's, ``(1 + D/d_m)/2``, is 1 less it (Harris & Kotzalas, eq. 8.23)."""
+    return inner * inner_factor + outer * (1.0 - inner_factor)
 
 
 def _history_peak(value: float | TimeTable) -> float:

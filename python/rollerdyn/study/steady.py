@@ -48,6 +48,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..config.derived import epicyclic_speed
 from ..simulation import ring_speeds
 
 #: Changes below these count as steady whatever ``tol`` says (values near zero):
@@ -80,8 +81,7 @@ def window_outputs(ds, t0: float, t1: float, factor: float) -> dict:
         return {k: math.nan for k in (*FLOORS, *LAMBDAS, VIBRATION)}
     ring, outer = (float(np.mean(s[sel])) for s in ring_speeds(ds))
     orbital = float(np.nanmean(ds.orbital_speed.values[sel]))
-    # the outer ring's epicyclic factor, (1 + D/d_m)/2, is 1 less the inner ring's
-    epicyclic = ring * factor + outer * (1.0 - factor)
+    epicyclic = epicyclic_speed(ring, outer, factor)
     loss = 1.0 - orbital / epicyclic if epicyclic != 0 else math.nan
     relative = abs(ring - outer)
     flange = np.asarray(ds.flange_normal_force.values[sel], dtype=float)
