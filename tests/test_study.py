@@ -963,7 +963,7 @@ def test_map_torque_figure_draws_the_steady_rolling_estimate_beside_it(tmp_path,
     line[STEADY_ROLLING] = [0.006, 0.28]
     ax = _drawn_maps(line, tmp_path, monkeypatch)[0]
     legend = [t.get_text() for t in ax.get_legend().get_texts()]
-    assert legend == ["map point", "steady rolling (quasi-static, no slip)"]
+    assert legend == ["map point", "steady rolling (quasi-static, spins balanced)"]
     assert list(ax.lines[1].get_ydata()) == [0.006, 0.28]
 
 

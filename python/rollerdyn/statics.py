@@ -758,9 +758,18 @@ def _case_variables(
             ("friction_part",),
             "W",
             "the power the contacts and the drag take in steady rolling at the equilibrium "
-            "(the dynamic model's laws at its positions and the velocities of rolling "
-            "without slip; the roller-roller contacts, which the equilibrium does not hold, "
-            "left out; docs/statics.md, 'Friction of steady rolling')",
+            "(the dynamic model's laws at its positions, the roller set orbiting at the "
+            "epicyclic speed, each roller spinning where its friction moments balance "
+            "(roller_slip); the roller-roller contacts, which the equilibrium does not "
+            "hold, left out; docs/statics.md, 'Friction of steady rolling')",
+        ),
+        "roller_slip": _var(
+            np.asarray(r["roller_slip"]),
+            ("roller",),
+            "1",
+            "each roller's slip in steady rolling, 1 - spin / spin of rolling without slip: "
+            "negative where the flanges' friction drives it faster, near 1 where an "
+            "unloaded roller's films and drag stop it (0 at rest)",
         ),
         "friction_torque": _var(
             _friction_torque(r["friction_power"], case.relative_speed),

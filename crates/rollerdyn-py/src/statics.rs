@@ -57,6 +57,7 @@ fn solution_dict<'py>(
             ],
         ),
     )?;
+    d.set_item("roller_slip", array(py, friction.roller_slip.clone()))?;
     let rollers = &s.rollers;
     let per_roller = |f: &dyn Fn(usize) -> f64| array(py, (0..rollers.len()).map(f).collect());
     d.set_item("ring", array(py, s.ring.to_vec()))?;

@@ -73,9 +73,9 @@ def statics_command(
     roller end / flange contacts by the semi-analytical detector, with the configuration's
     surfaces.flange_law (the paper's point contact or the distributed overlap). Prints the ring's
     displacement, the heaviest roller, the largest flange force and its height above the
-    raceway, the friction of steady rolling (the dynamic model's laws at the equilibrium
-    with the velocities of rolling without slip: a quick estimate, docs/statics.md), the
-    load zone, the stiffness, the static safety
+    raceway, the friction of steady rolling (the dynamic model's laws at the equilibrium,
+    each roller spinning where its friction moments balance: a quick estimate) and the
+    rollers' slip there (docs/statics.md), the load zone, the stiffness, the static safety
     (ISO 76 s_0 = C_0r / F_r, and by stress the load factor to 4 000 MPa at the races and
     at the flanges) and the rating lives (ISO 281 L_10, ISO/TS 16281 L_10r and L_nmr, in
     10^6 revolutions). A sweep keeps its cases without equilibrium as NaN with their
@@ -232,7 +232,8 @@ def _print_case(ds) -> None:
             "load zone half-angle",
             f"{float(ds.load_zone_angle):.4g} deg ({int(ds.loaded_rollers)} rollers loaded)",
         ),
-        ("friction of steady rolling (no slip)", _friction_text(ds)),
+        ("friction of steady rolling", _friction_text(ds)),
+        ("roller slip (1 - spin / spin of rolling)", _slip_text(ds)),
         ("radial stiffness k_yy", f"{k[1, 1]:.4g} N/m"),
         ("tilt stiffness k_zz", f"{k[4, 4]:.4g} N*m/rad"),
         (
@@ -329,6 +330,22 @@ def _speed_text(ds) -> str:
     text = f"{float(ds.speed_applied) * 30 / math.pi:.6g} rpm"
     outer = float(ds.get("outer_speed_applied", 0.0))
     return text + (f" (outer ring {outer * 30 / math.pi:.6g} rpm)" if outer else "")
+
+
+def _slip_text(ds) -> str:
+    """The slip of the rollers in steady rolling: its range over the rollers that carry at
+    least a tenth of the heaviest roller's load at the inner race, and over the others."""
+    if not math.isfinite(float(ds.friction_torque)):
+        return "n/a without relative speed"
+    slip = np.asarray(ds.roller_slip.values, dtype=float)
+    load = np.asarray(ds.inner_race_load.values, dtype=float)
+    heavy = load >= 0.1 * load.max() if load.max() > 0.0 else np.zeros(load.shape, bool)
+    parts = []
+    for name, rows in (("loaded (>= 10 % of the heaviest)", heavy), ("others", ~heavy)):
+        if rows.any():
+            low, high = slip[rows].min(), slip[rows].max()
+            parts.append(f"{name} {low * 100:.3g} ... {high * 100:.3g} %")
+    return ", ".join(parts)
 
 
 def _friction_text(ds) -> str:

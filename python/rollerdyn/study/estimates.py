@@ -1,10 +1,11 @@
 """The quasi-static estimate beside each point of an operating map: the friction torque of
 steady rolling (:func:`rollerdyn.statics.statics_sweep`'s ``friction_torque``, the contacts
-evaluated at the quasi-static equilibrium with the velocities of rolling without slip;
-docs/statics.md, "Friction of steady rolling"). It costs milliseconds a point where the
-point's dynamic run costs seconds, and the two side by side show what the dynamics add:
-the rollers' slip and the roller ends' own positions on the flanges (docs/study.md, "The
-quasi-static estimate beside each point").
+evaluated at the quasi-static equilibrium with each roller spinning where its friction
+moments balance; docs/statics.md, "Friction of steady rolling"). It costs milliseconds a
+point where the point's dynamic run costs seconds, and the two side by side show what the
+dynamics add: the neighbours' friction on the unloaded rollers, the rollers' skew and the
+roller ends' own positions on the flanges (docs/study.md, "The quasi-static estimate
+beside each point").
 """
 
 from __future__ import annotations

@@ -95,7 +95,7 @@ def write_maps(frame, out: Path, name: str) -> list[Path]:
             ax.plot(rows[x], rows[column], "o-", label="map point")
             if column == "torque [N*m]" and STEADY_ROLLING in rows:
                 # the quasi-static estimate beside it (docs/study.md)
-                label = "steady rolling (quasi-static, no slip)"
+                label = "steady rolling (quasi-static, spins balanced)"
                 ax.plot(rows[x], rows[STEADY_ROLLING], "s--", color="0.45", label=label)
             valued = np.isfinite(rows[column].astype(float))
             bad = rows[(rows["status"] != STEADY) & valued]

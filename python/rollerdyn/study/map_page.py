@@ -59,8 +59,8 @@ def build_map_page(
         "specific film thickness h_c/σ of the contacts in contact (below 1 boundary, above 3 "
         "full-film lubrication). Beside each point, the quasi-static estimate: the friction "
         "torque of steady rolling at its speed, loads and oil temperature (rollerdyn statics, "
-        "no slip; docs/study.md), which the point's torque is divided by in the map "
-        "torque_over_steady_rolling.</p>"
+        "each roller spinning where its friction moments balance; docs/statics.md), which "
+        "the point's torque is divided by in the map torque_over_steady_rolling.</p>"
     )
     body.append(frame_table(frame, MAP_COLUMNS))
     if timing and not timing.get("runs run", 0):
