@@ -3,9 +3,9 @@
 Commands: ``validate`` (every model against published values), ``check`` (validate a
 configuration file and show its derived quantities), ``bench`` (time the hot paths),
 ``run``, ``plot``, ``sweep``, ``report``, ``compare`` (two runs output by output), ``modes``
-(the fastest growing modes at a run's final state) and ``statics`` (quasi-static
-analysis); ``rollerdyn --version`` prints the version and the git commit a result file
-would record. All inputs
+(the fastest growing modes at a run's final state), ``statics`` (quasi-static
+analysis) and ``new`` (a starting configuration for another bearing); ``rollerdyn
+--version`` prints the version and the git commit a result file would record. All inputs
 and outputs are SI unless a column says otherwise.
 
 Bad input (an option value, a configuration, a file that is no result, an output path that
@@ -16,9 +16,9 @@ options is never read as rich markup.
 
 This package builds the typer :data:`app` and registers the commands, one module each:
 :mod:`.validate` (``validate``, ``check``), :mod:`.bench` (its targets in
-:mod:`.bench_targets`), :mod:`.run`, :mod:`.plot`, :mod:`.sweep`, :mod:`.report` and
-:mod:`.statics`; :mod:`.common` holds the console and what the commands share. It is the
-only part of rollerdyn that imports typer.
+:mod:`.bench_targets`), :mod:`.run`, :mod:`.plot`, :mod:`.sweep`, :mod:`.report`,
+:mod:`.statics` and :mod:`.new`; :mod:`.common` holds the console and what the commands
+share. It is the only part of rollerdyn that imports typer.
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ from typing import Annotated
 
 import typer
 
-from . import bench, compare, modes, plot, report, run, statics, study, sweep, validate
+from . import bench, compare, modes, new, plot, report, run, statics, study, sweep, validate
 from .common import say
 
 # rich_markup_mode=None: help texts are plain text (a "[s]" or "[arrays]" stays as typed)
@@ -77,6 +77,7 @@ app.command("report")(report.report_command)
 app.command("compare")(compare.compare_command)
 app.command("modes")(modes.modes_command)
 app.command("statics")(statics.statics_command)
+app.command("new")(new.new_command)
 app.add_typer(study.app, name="study")
 
 __all__ = ["app"]

@@ -1,0 +1,276 @@
+"""A starting configuration for another full-complement cylindrical roller bearing
+(``rollerdyn new``), made from its raceway diameters by B1's proportions.
+
+The raceway diameters D_i, D_o and the radial clearance c give the roller diameter
+D = (D_o - D_i)/2 - c/2 and the pitch diameter d_m = (D_i + D_o)/2, as for B1
+(shared/reference/B1.md, note 1); the roller count is the most that fit the pitch circle
+with neighbours apart by 0.1 % of D (B1's 17 stand 7 µm apart, 0.16 %). Every other
+length of the roller and the flanges, the outer ring's wall, the loads and the ring's
+mass are B1's (``examples/b1.toml``) scaled by the size, each line saying by what, so
+that B1's own raceways give B1's values back. Materials, lubricant, surfaces, ramps and
+solver settings are B1's with B1's sources. The file is a start: a bearing's drawing
+replaces the scaled values (docs/configuration.md, "Another bearing").
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from .validation import default_config_path
+
+__all__ = ["StarterError", "StarterGeometry", "starter_config", "starter_geometry"]
+
+#: B1's roller diameter and pitch diameter [m] (examples/b1.toml: 20 / 29 mm raceways,
+#: 10 µm clearance), the size every scaled value is taken relative to.
+B1_ROLLER_DIAMETER = 4.495e-3
+B1_PITCH_DIAMETER = 24.5e-3
+B1_ROLLERS = 17
+#: The least distance between neighbouring rollers' centres, over the roller diameter.
+LEAST_SPACING = 1.001
+
+
+class StarterError(ValueError):
+    """An option of ``rollerdyn new`` that makes no bearing: its message names the option,
+    the value and the rule."""
+
+
+@dataclass(frozen=True)
+class StarterGeometry:
+    """The main dimensions of the new bearing [m] and its roller count."""
+
+    inner_raceway: float
+    outer_raceway: float
+    clearance: float
+    rollers: int
+
+    @property
+    def roller_diameter(self) -> float:
+        return (self.outer_raceway - self.inner_raceway) / 2.0 - self.clearance / 2.0
+
+    @property
+    def pitch_diameter(self) -> float:
+        return (self.inner_raceway + self.outer_raceway) / 2.0
+
+    @property
+    def size(self) -> float:
+        """The roller diameter over B1's: the factor of every scaled length."""
+        return self.roller_diameter / B1_ROLLER_DIAMETER
+
+
+def most_rollers(pitch_diameter: float, roller_diameter: float) -> int:
+    """The most rollers of ``roller_diameter`` on the pitch circle whose neighbours' centres
+    stand at least :data:`LEAST_SPACING` roller diameters apart (the chord d_m sin(pi/Z))."""
+    z = int(math.pi / math.asin(min(1.0, LEAST_SPACING * roller_diameter / pitch_diameter)))
+    while z > 3 and pitch_diameter * math.sin(math.pi / z) < LEAST_SPACING * roller_diameter:
+        z -= 1
+    return z
+
+
+def starter_geometry(
+    inner_raceway: float,
+    outer_raceway: float,
+    clearance: float | None = None,
+    rollers: int | None = None,
+) -> StarterGeometry:
+    """The new bearing's dimensions [m]: ``clearance`` by default B1's 10 µm scaled by the
+    pitch diameter, ``rollers`` by default the most that fit (:func:`most_rollers`).
+    :class:`StarterError` names the option where the raceways make no roller or the
+    rollers do not fit."""
+    if not (math.isfinite(inner_raceway) and inner_raceway > 0.0):
+        raise StarterError(f"--inner-raceway {inner_raceway:g} m: must be a positive length")
+    if not (math.isfinite(outer_raceway) and outer_raceway > inner_raceway):
+        raise StarterError(
+            f"--outer-raceway {outer_raceway:g} m: must be larger than --inner-raceway "
+            f"({inner_raceway:g} m)"
+        )
+    pitch = (inner_raceway + outer_raceway) / 2.0
+    if clearance is None:
+        clearance = 10e-6 * pitch / B1_PITCH_DIAMETER
+    gap = (outer_raceway - inner_raceway) / 2.0
+    if not (math.isfinite(clearance) and 0.0 <= clearance < gap):
+        raise StarterError(
+            f"--clearance {clearance:g} m: must be >= 0 and below the raceways' radial gap "
+            f"(D_o - D_i)/2 = {gap:g} m"
+        )
+    geometry = StarterGeometry(inner_raceway, outer_raceway, clearance, 0)
+    most = most_rollers(pitch, geometry.roller_diameter)
+    if rollers is None:
+        rollers = most
+    if not 3 <= rollers <= most:
+        raise StarterError(
+            f"--rollers {rollers}: must be 3 ... {most}, the most rollers of "
+            f"{geometry.roller_diameter * 1e3:.4g} mm that fit the pitch circle of "
+            f"{pitch * 1e3:.4g} mm"
+        )
+    return StarterGeometry(inner_raceway, outer_raceway, clearance, rollers)
+
+
+def _number(value: float) -> str:
+    """``value`` to 4 significant digits, without a trailing point."""
+    return f"{value:.4g}"
+
+
+def _set(text: str, section: str, key: str, value: str, comment: str) -> str:
+    """``text`` (a TOML file) with ``key`` of ``[section]`` set to ``value`` (as written in
+    TOML) and its comment replaced by ``comment``."""
+    header = re.search(rf"^\[{re.escape(section)}\]\s*$", text, re.M)
+    start = header.end() if header else 0
+    end_header = re.search(r"^\[", text[start:], re.M)
+    end = start + end_header.start() if end_header else len(text)
+    line = re.search(rf"^{re.escape(key)} = .*$", text[start:end], re.M)
+    if line is None:
+        raise KeyError(f"{section}.{key} is not in B1's configuration")
+    new = f"{key} = {value}".ljust(33) + f"  # {comment}"
+    a, b = start + line.start(), start + line.end()
+    return text[:a] + new + text[b:]
+
+
+def starter_config(
+    geometry: StarterGeometry,
+    name: str,
+    roller_length: float | None = None,
+    radial_load: float | None = None,
+    axial_load: float | None = None,
+    speed: float | None = None,
+) -> str:
+    """The TOML text of the new bearing (module doc): ``roller_length`` [m] by default
+    B1's 5 mm scaled by the size; ``radial_load`` [N] B1's 5000 N scaled by the rollers'
+    count and projected area (Z D L, the term the load ratings grow with),
+    ``axial_load`` [N] B1's fifth of it, ``speed`` [rad/s] B1's 500 rpm at B1's n d_m."""
+    k = geometry.size
+    pitch_ratio = geometry.pitch_diameter / B1_PITCH_DIAMETER
+    if roller_length is None:
+        roller_length = 5.0e-3 * k
+    if not (math.isfinite(roller_length) and roller_length > 0.0):
+        raise StarterError(f"--roller-length {roller_length:g} m: must be a positive length")
+    area = geometry.rollers * k * roller_length / (B1_ROLLERS * 5.0e-3)
+    if radial_load is None:
+        radial_load = 5000.0 * area
+    if axial_load is None:
+        axial_load = 0.2 * radial_load
+    if speed is None:
+        speed = 500.0 * math.pi / 30.0 / pitch_ratio
+    text = default_config_path().read_text(encoding="utf-8")
+    body = text[text.index("\nname = ") + 1 :]
+    mm, um = 1e3, 1e6
+    scaled = f"rollerdyn new: B1's scaled by the roller diameter ({k:.4g} times B1's); replace"
+    lines = [
+        ("", "name", _toml_string(name), "rollerdyn new"),
+        ("", "description", _toml_string(f"{name}: from rollerdyn new"), "rollerdyn new"),
+        ("geometry", "roller_count", str(geometry.rollers), _count_source(geometry)),
+        (
+            "geometry",
+            "inner_raceway_diameter",
+            f'"{_number(geometry.inner_raceway * mm)} mm"',
+            "rollerdyn new --inner-raceway",
+        ),
+        (
+            "geometry",
+            "outer_raceway_diameter",
+            f'"{_number(geometry.outer_raceway * mm)} mm"',
+            "rollerdyn new --outer-raceway",
+        ),
+        (
+            "geometry",
+            "diametral_clearance",
+            f'"{_number(geometry.clearance * um)} um"',
+            "rollerdyn new: B1's 10 um scaled by the pitch diameter unless --clearance",
+        ),
+        ("geometry", "outer_ring_wall_thickness", f'"{_number(2.5 * k)} mm"', scaled),
+        (
+            "geometry.roller",
+            "length",
+            f'"{_number(roller_length * mm)} mm"',
+            "rollerdyn new --roller-length" if roller_length != 5.0e-3 * k else scaled,
+        ),
+        ("geometry.roller", "edge_radius", f'"{_number(0.5 * k)} mm"', scaled),
+        ("geometry.flange", "height", f'"{_number(1.1 * k)} mm"', scaled),
+        ("geometry.flange", "root_radius", f'"{_number(0.2 * k)} mm"', scaled),
+        ("geometry.flange", "rim_radius", f'"{_number(0.3 * k)} mm"', scaled),
+        (
+            "inner_ring",
+            "mass",
+            f'"{_number(pitch_ratio**3)} kg"',
+            "rollerdyn new: B1's 1 kg (ring and shaft section) times (d_m / B1's)^3; replace",
+        ),
+        (
+            "inner_ring",
+            "transverse_inertia",
+            f'"{_number(5e-4 * pitch_ratio**5)} kg*m^2"',
+            "rollerdyn new: B1's times (d_m / B1's)^5; replace",
+        ),
+        (
+            "operating",
+            "radial_load",
+            f'"{_number(radial_load)} N"',
+            "rollerdyn new: "
+            + _given(
+                "--radial-load", radial_load, 5000.0 * area, "B1's 5000 N times Z D L over B1's"
+            ),
+        ),
+        (
+            "operating",
+            "axial_load",
+            f'"{_number(axial_load)} N"',
+            "rollerdyn new: "
+            + _given(
+                "--axial-load", axial_load, 0.2 * radial_load, "a fifth of the radial load, as B1's"
+            ),
+        ),
+        (
+            "operating",
+            "inner_ring_speed",
+            f'"{_number(speed * 30.0 / math.pi)} rpm"',
+            "rollerdyn new: "
+            + _given(
+                "--speed", speed, 500.0 * math.pi / 30.0 / pitch_ratio, "B1's 500 rpm at B1's n d_m"
+            ),
+        ),
+    ]
+    for section, key, value, comment in lines:
+        body = _set(body, section, key, value, comment)
+    return _header(geometry, name) + body
+
+
+def _given(option: str, value: float, default: float, rule: str) -> str:
+    return option if value != default else rule
+
+
+def _count_source(geometry: StarterGeometry) -> str:
+    most = most_rollers(geometry.pitch_diameter, geometry.roller_diameter)
+    if geometry.rollers == most:
+        return "rollerdyn new: the most that fit the pitch circle (full complement)"
+    return f"rollerdyn new --rollers (at most {most} fit)"
+
+
+def _toml_string(text: str) -> str:
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+
+def _header(geometry: StarterGeometry, name: str) -> str:
+    g = geometry
+    return (
+        f"# {name}: a full-complement cylindrical roller bearing, made by `rollerdyn new` from\n"
+        f"# its raceway diameters {_number(g.inner_raceway * 1e3)} / "
+        f"{_number(g.outer_raceway * 1e3)} mm by the proportions of B1\n"
+        "# (examples/b1.toml, the reference paper's bearing).\n"
+        "#\n"
+        f"# Derived: roller diameter {_number(g.roller_diameter * 1e3)} mm, pitch diameter "
+        f"{_number(g.pitch_diameter * 1e3)} mm, {g.rollers} rollers,\n"
+        f"# {_number(g.size)} times B1's roller diameter. Every line marked 'rollerdyn new' was "
+        "made from\n"
+        "# these; those marked 'replace' are B1's scaled and should come from the bearing's\n"
+        "# drawing. Every other value is B1's, with B1's source in its comment.\n"
+        "# Check it with `rollerdyn check`, solve it with `rollerdyn statics`.\n\n"
+    )
+
+
+def write_starter(path: Path, text: str) -> None:
+    """Writes ``text`` to ``path`` through a temporary file beside it, so that an
+    interrupted write leaves no half file."""
+    tmp = path.with_name(f".{path.name}.tmp")
+    tmp.write_text(text, encoding="utf-8")
+    tmp.replace(path)

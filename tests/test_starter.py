@@ -1,0 +1,118 @@
+"""``rollerdyn new``: a starting configuration for another bearing by B1's proportions
+(:mod:`rollerdyn.starter`)."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+from b1 import B1
+from hypothesis import given
+from hypothesis import strategies as st
+from typer.testing import CliRunner
+
+from rollerdyn.cli import app
+from rollerdyn.config import load_config
+from rollerdyn.starter import LEAST_SPACING, StarterError, most_rollers, starter_geometry
+from rollerdyn.statics import statics
+
+
+def _new(tmp_path, *args: str):
+    out = tmp_path / "new.toml"
+    result = CliRunner().invoke(app, ["new", str(out), *args])
+    return result, out
+
+
+def test_b1s_raceways_give_b1_back(tmp_path):
+    """B1's raceways (20 / 29 mm) and clearance (10 µm) give B1's configuration: every value
+    of the loaded file equals examples/b1.toml's but the name and description (the scale
+    factor is 1; the values are written to 4 digits, B1's have at most 4), and the roller
+    count 17 is the most that fit, as the paper's full complement."""
+    result, out = _new(
+        tmp_path, "--inner-raceway", "20 mm", "--outer-raceway", "29", "--clearance", "10"
+    )
+    assert result.exit_code == 0, result.output
+    made, b1 = load_config(out).model_dump(), load_config(B1).model_dump()
+    for key in ("name", "description"):
+        made.pop(key), b1.pop(key)
+    assert made == b1
+    assert "17 rollers of 4.495 x 5 mm on a pitch diameter of 24.5 mm" in result.output
+    assert "L_10r 47.95 1e6 rev" in result.output
+
+
+def test_a_larger_bearing_is_b1_scaled_and_solves(tmp_path):
+    """40 / 52 mm raceways: roller diameter (52 - 40)/2 - c/2 with c B1's 10 µm times the
+    pitch diameter over B1's (18.78 µm), 24 rollers (the chord 46 sin(pi/24) = 6.004 mm
+    clears 1.001 D = 5.997 mm, 25 would not: 5.765 mm), every scaled length B1's times
+    D / 4.495 mm, and its quasi-static equilibrium is found at its loads (B1's scaled by
+    Z D L: 12.54 kN radially, a fifth of it axially)."""
+    result, out = _new(tmp_path, "--inner-raceway", "40 mm", "--outer-raceway", "52 mm")
+    assert result.exit_code == 0, result.output
+    cfg = load_config(out)
+    g = cfg.geometry
+    clearance = 10e-6 * 46.0 / 24.5
+    assert g.diametral_clearance == pytest.approx(clearance, rel=5e-4)  # written to 4 digits
+    assert g.roller_diameter == pytest.approx(6e-3 - clearance / 2, rel=1e-4)
+    assert g.roller_count == 24
+    k = g.roller_diameter / 4.495e-3
+    for value, b1 in (
+        (g.roller.length, 5.0e-3),
+        (g.roller.edge_radius, 0.5e-3),
+        (g.flange.height, 1.1e-3),
+        (g.flange.root_radius, 0.2e-3),
+        (g.flange.rim_radius, 0.3e-3),
+        (g.outer_ring_wall_thickness, 2.5e-3),
+    ):
+        assert value == pytest.approx(k * b1, rel=5e-4)
+    radial = 5000.0 * 24 * k * g.roller.length / (17 * 5e-3)
+    assert cfg.operating.radial_load == pytest.approx(radial, rel=5e-4)
+    assert cfg.operating.axial_load == pytest.approx(radial / 5, rel=5e-4)
+    ds = statics(cfg)
+    assert float(ds.max_roller_load) > 0 and math.isfinite(float(ds.friction_torque))
+
+
+@given(
+    pitch=st.floats(5e-3, 2.0),
+    ratio=st.floats(0.01, 0.5),
+)
+def test_the_roller_count_is_the_most_that_fit(pitch, ratio):
+    """For any pitch and roller diameter (rollers of 1 … 50 % of the pitch diameter): the
+    chord between neighbours' centres, d_m sin(pi/Z), clears LEAST_SPACING roller
+    diameters at the count returned and would not at one roller more (or the count is 3,
+    the least)."""
+    diameter = ratio * pitch
+    z = most_rollers(pitch, diameter)
+    assert z >= 3
+    if z > 3 or pitch * math.sin(math.pi / 3) >= LEAST_SPACING * diameter:
+        assert pitch * math.sin(math.pi / z) >= LEAST_SPACING * diameter
+    assert pitch * math.sin(math.pi / (z + 1)) < LEAST_SPACING * diameter
+
+
+def test_bad_options_are_named(tmp_path):
+    """Raceways that make no roller, too many rollers, a clearance larger than the gap, a
+    length in kilograms and an existing file each exit with status 2 and one line naming
+    the option and the rule; nothing is written."""
+    cases = [
+        (["--inner-raceway", "30", "--outer-raceway", "29"], "--outer-raceway"),
+        (
+            ["--inner-raceway", "20", "--outer-raceway", "29", "--rollers", "18"],
+            "--rollers 18: must be 3 ... 17",
+        ),
+        (["--inner-raceway", "20", "--outer-raceway", "29", "--clearance", "9 mm"], "--clearance"),
+        (["--inner-raceway", "20 kg", "--outer-raceway", "29"], "--inner-raceway"),
+        (
+            ["--inner-raceway", "20", "--outer-raceway", "29", "--roller-length", "-1"],
+            "--roller-length",
+        ),
+    ]
+    for args, named in cases:
+        result, out = _new(tmp_path, *args)
+        assert result.exit_code == 2, (args, result.output)
+        assert named in result.output, (args, result.output)
+        assert "Traceback" not in result.output and not out.exists()
+    out.write_text("keep")
+    result, out = _new(tmp_path, "--inner-raceway", "20", "--outer-raceway", "29")
+    assert result.exit_code == 2 and "--overwrite" in result.output
+    assert out.read_text() == "keep"
+    with pytest.raises(StarterError, match="--rollers 2"):
+        starter_geometry(20e-3, 29e-3, rollers=2)
