@@ -686,3 +686,37 @@ def test_a_sweeps_figure_draws_its_axis_in_the_units_engineers_give():
     assert unit == "mm" and values == pytest.approx([4.0, 6.0], rel=1e-12)
     values, unit = shown_axis(np.array([5000.0]), "N")
     assert unit == "N" and values == pytest.approx([5000.0])
+
+
+def test_the_balanced_spin_is_the_dynamic_models_at_the_bottom_of_the_load_zone():
+    """The statics' spin balance against the dynamic model: B1 started from equilibrium at
+    full load and speed (1000 N axially, 500 rpm), 5-30 ms, the rollers within 10 deg of
+    the load zone's centre: the run's spins about the rollers' axes, relative to the
+    roller set's frame, are 0.195 % faster than rolling without slip (measured), the
+    statics' balance 0.225 % for the roller there: within a quarter of it (13 % measured;
+    in the run the rollers skew and their ends press the flanges higher, which the
+    equilibrium leaves out). Rolling without slip, the estimate before the balance, is
+    the whole 0.195 % off."""
+    import rollerdyn
+
+    cfg = variant(
+        **{
+            "operating.load_ramp": None,
+            "operating.speed_ramp": None,
+            "operating.end_time": "30 ms",
+            "solver.start": "equilibrium",
+            "solver.output_interval": "0.1 ms",
+        }
+    )
+    ds = rollerdyn.simulate(cfg, t_end=0.03)
+    g, speed = cfg.geometry, cfg.operating.inner_ring_speed
+    r, r_i = g.roller_diameter / 2, g.inner_raceway_diameter / 2
+    orbit = 0.5 * speed * (1 - g.roller_diameter / g.pitch_diameter)
+    rolling = (orbit - speed) * r_i / r  # the spin of rolling without slip, relative
+    late = ds.time.values >= 5e-3
+    azimuth = np.degrees(ds.azimuth.values[late]) % 360
+    bottom = np.abs(azimuth - 180.0) < 10.0
+    run_slip = 1.0 - np.mean(ds.spin_speed.values[late][bottom] - orbit) / rolling
+    balanced = float(statics(cfg).roller_slip[0])  # roller 0 stands at 180 deg
+    assert run_slip < -1e-3  # spun up by the flanges
+    assert abs(balanced - run_slip) <= 0.25 * abs(run_slip), (balanced, run_slip)
