@@ -116,3 +116,17 @@ def test_bad_options_are_named(tmp_path):
     assert out.read_text() == "keep"
     with pytest.raises(StarterError, match="--rollers 2"):
         starter_geometry(20e-3, 29e-3, rollers=2)
+
+
+def test_the_python_function_writes_what_the_command_writes(tmp_path):
+    """``new_bearing`` (SI arguments) gives the text ``rollerdyn new`` writes."""
+    import tomllib
+
+    from rollerdyn.config import parse_config
+    from rollerdyn.starter import new_bearing
+
+    result, out = _new(tmp_path, "--inner-raceway", "40 mm", "--outer-raceway", "52 mm")
+    assert result.exit_code == 0, result.output
+    text = new_bearing(40e-3, 52e-3, "new")
+    assert text == out.read_text(encoding="utf-8")
+    assert parse_config(tomllib.loads(text)).geometry.roller_count == 24

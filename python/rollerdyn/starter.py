@@ -21,7 +21,13 @@ from pathlib import Path
 
 from .validation import default_config_path
 
-__all__ = ["StarterError", "StarterGeometry", "starter_config", "starter_geometry"]
+__all__ = [
+    "StarterError",
+    "StarterGeometry",
+    "new_bearing",
+    "starter_config",
+    "starter_geometry",
+]
 
 #: B1's roller diameter and pitch diameter [m] (examples/b1.toml: 20 / 29 mm raceways,
 #: 10 µm clearance), the size every scaled value is taken relative to.
@@ -233,6 +239,26 @@ def starter_config(
     for section, key, value, comment in lines:
         body = _set(body, section, key, value, comment)
     return _header(geometry, name) + body
+
+
+def new_bearing(
+    inner_raceway: float,
+    outer_raceway: float,
+    name: str = "bearing",
+    *,
+    clearance: float | None = None,
+    rollers: int | None = None,
+    roller_length: float | None = None,
+    radial_load: float | None = None,
+    axial_load: float | None = None,
+    speed: float | None = None,
+) -> str:
+    """The TOML text of a new bearing from its raceway diameters [m], as ``rollerdyn new``
+    writes it (lengths in m, loads in N, ``speed`` in rad/s; None: the defaults of
+    :func:`starter_geometry` and :func:`starter_config`). Load it with
+    ``rollerdyn.parse_config(tomllib.loads(text))`` or write it to a file."""
+    geometry = starter_geometry(inner_raceway, outer_raceway, clearance, rollers)
+    return starter_config(geometry, name, roller_length, radial_load, axial_load, speed)
 
 
 def _given(option: str, value: float, default: float, rule: str) -> str:
