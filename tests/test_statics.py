@@ -720,3 +720,23 @@ def test_the_balanced_spin_is_the_dynamic_models_at_the_bottom_of_the_load_zone(
     balanced = float(statics(cfg).roller_slip[0])  # roller 0 stands at 180 deg
     assert run_slip < -1e-3  # spun up by the flanges
     assert abs(balanced - run_slip) <= 0.25 * abs(run_slip), (balanced, run_slip)
+
+
+def test_cli_prints_every_rollers_loads_flange_forces_and_slip():
+    """``rollerdyn statics --per-roller``: one row per roller with the case's values (roller
+    0 of B1 at the load zone's centre: 1311 N at either race, 141.1 N at the inner -x and
+    outer +x flanges, slip -0.225 %); with a sweep it is refused before any work."""
+    runner = CliRunner()
+    result = runner.invoke(app, ["statics", str(B1), "--per-roller"])
+    assert result.exit_code == 0, result.output
+    rows = [line for line in result.output.splitlines() if line.startswith("│")]
+    table = rows[rows.index(next(r for r in rows if "180.0" in r)) :]
+    assert len(table) == 17
+    cells = [c.strip() for c in table[0].strip("│").split("│")]
+    assert cells[:4] == ["0", "180.0", "1311", "1311"]
+    assert cells[4] == cells[7] == "141.1" and cells[5] == cells[6] == "0"
+    assert cells[-1] == "-0.225"
+    sweep = runner.invoke(
+        app, ["statics", str(B1), "--per-roller", "--set", "operating.radial_load=1000,2000"]
+    )
+    assert sweep.exit_code == 2 and "--per-roller" in sweep.output

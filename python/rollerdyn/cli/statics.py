@@ -61,6 +61,15 @@ def statics_command(
             "(default 0.5: normal cleanliness)."
         ),
     ] = 0.5,
+    per_roller: Annotated[
+        bool,
+        typer.Option(
+            "--per-roller",
+            help="With one case, also print a table of every roller: azimuth [deg], its "
+            "loads at the inner and outer race [N], its ends' forces on the four flanges "
+            "[N], its tilt [mrad] and its slip in steady rolling [%].",
+        ),
+    ] = False,
     overwrite: Annotated[
         bool, typer.Option(help="Replace existing --output / --plot files.")
     ] = False,
@@ -124,6 +133,11 @@ def statics_command(
             "other"
         )
     single = all(len(v) == 1 for v in [*grid.values(), *design.values()])
+    if per_roller and not single:
+        raise refuse(
+            "--per-roller: prints the rollers of one case; a sweep's are in its --output "
+            "file (variables over case and roller)"
+        )
     try:
         if single:
             values = {st.STATIC_FIELDS[p][0]: v[0] for p, v in grid.items()}
@@ -132,6 +146,8 @@ def statics_command(
                 moment = (values.pop("moment_y", 0.0), values.pop("moment_z", 0.0))
             ds = st.statics(cfg, moment=moment, contamination=contamination, **values)
             _print_case(ds)
+            if per_roller:
+                _print_rollers(ds)
         else:
             with console.status("solving the load cases"):
                 if any(len(v) > 1 for v in design.values()):
@@ -210,6 +226,35 @@ def _thinnest_films(ds) -> str:
         ok = np.isfinite(film)
         parts.append(f"{film[ok].min() * 1e9:.4g} nm" if ok.any() else "n/a")
     return ", ".join(parts)
+
+
+def _print_rollers(ds) -> None:
+    """The table of ``--per-roller``: each roller's azimuth, race loads, flange forces,
+    tilt and slip."""
+    flanges = [str(f) for f in ds.flange.values]
+    table = Table(title="rollers")
+    for column in (
+        "roller",
+        "azimuth [deg]",
+        "inner race [N]",
+        "outer race [N]",
+        *(f"flange {f} [N]" for f in flanges),
+        "tilt [mrad]",
+        "slip [%]",
+    ):
+        table.add_column(column, justify="right")
+    for i in range(ds.sizes["roller"]):
+        force = ds.flange_force.values[i]
+        table.add_row(
+            str(i),
+            f"{float(ds.roller_azimuth[i]) % 360:.1f}",
+            f"{float(ds.inner_race_load[i]):.4g}",
+            f"{float(ds.outer_race_load[i]):.4g}",
+            *(f"{f:.4g}" for f in force),
+            f"{float(ds.roller_tilt[i]) * 1e3:.4g}",
+            f"{float(ds.roller_slip[i]) * 100:.3g}",
+        )
+    console.print(table)
 
 
 def _print_case(ds) -> None:
