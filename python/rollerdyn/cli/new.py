@@ -140,7 +140,7 @@ def new_command(
             _value("--axial-load", axial_load, _FORCE, "N"),
             _value("--speed", speed, _SPEED, "rpm"),
         )
-    except StarterError as err:
+    except (StarterError, FileNotFoundError) as err:  # the latter: B1's file not installed
         raise refuse(err) from None
     import tomllib
 
