@@ -133,13 +133,15 @@ pub(crate) fn statics<'py>(
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {
     let model = model.system();
     let mut last: Option<StaticSolution> = None;
+    let mut last_slip: Option<Vec<f64>> = None;
     let mut out = Vec::with_capacity(cases.len());
     for c in &cases {
         let start = if chain { last.as_ref() } else { None };
+        let warm = if chain { last_slip.as_deref() } else { None };
         let found = py.detach(|| {
             model.statics(&case_of(c), start).map(|s| {
                 let k = stiffness.then(|| model.stiffness(&s));
-                let friction = model.steady_rolling_friction(&s);
+                let friction = model.steady_rolling_friction(&s, warm);
                 (s, k, friction)
             })
         });
@@ -147,6 +149,7 @@ pub(crate) fn statics<'py>(
             Ok((s, k, friction)) => {
                 out.push(solution_dict(py, &s, k, &friction)?.into_any());
                 last = Some(s);
+                last_slip = Some(friction.roller_slip);
             }
             Err(e) => out.push(core_err(e).value(py).str()?.into_any()),
         }

@@ -227,7 +227,13 @@ impl BearingSystem<'_> {
     /// run: the rollers' skew and their positions under friction, the skid that the
     /// neighbours' friction brings outside the load zone, the roller–roller forces
     /// (docs/statics.md, "Friction of steady rolling").
-    pub fn steady_rolling_friction(&self, solution: &StaticSolution) -> RollingFriction {
+    /// `warm`: the rollers' slips of a neighbouring case (a sweep's last), where the
+    /// balance starts instead of at rolling without slip.
+    pub fn steady_rolling_friction(
+        &self,
+        solution: &StaticSolution,
+        warm: Option<&[f64]>,
+    ) -> RollingFriction {
         let y = self.steady_state(solution);
         let axis = axis_from_angles(solution.ring[3], solution.ring[4]);
         let speed = solution.case.speed;
@@ -241,7 +247,7 @@ impl BearingSystem<'_> {
                 .collect(),
         };
         let (orbit, rolling_spin) = self.rolling_speeds(speed, solution.case.outer_speed);
-        let spins = self.balanced_spins(&mut kin, orbit, rolling_spin);
+        let spins = self.balanced_spins(&mut kin, orbit, rolling_spin, warm);
         let results = self.evaluate_all(&kin);
         let mut out = RollingFriction {
             roller_slip: spins
@@ -309,13 +315,15 @@ impl BearingSystem<'_> {
     }
 
     /// The spins [rad/s] about their axes at which every roller's moment about its axis
-    /// vanishes ([`spin_balance`]), the rollers orbiting at `orbit` [rad/s]; `kin`'s
-    /// rollers are left spinning at them. At rest (`rolling_spin` = 0) nothing changes.
+    /// vanishes ([`spin_balance`]), the rollers orbiting at `orbit` [rad/s], the search
+    /// starting from the slips `warm` where given (one per roller); `kin`'s rollers are
+    /// left spinning at them. At rest (`rolling_spin` = 0) nothing changes.
     fn balanced_spins(
         &self,
         kin: &mut BearingKinematics,
         orbit: f64,
         rolling_spin: f64,
+        warm: Option<&[f64]>,
     ) -> Vec<f64> {
         let z = self.layout.rollers;
         if rolling_spin == 0.0 {
@@ -323,7 +331,10 @@ impl BearingSystem<'_> {
         }
         let contacts = self.spin_contacts(kin);
         let orbit = Vec3::new(orbit, 0.0, 0.0);
-        spin_balance(z, rolling_spin, |spins, active| {
+        let start: Option<Vec<f64>> = warm
+            .filter(|w| w.len() == z && w.iter().all(|x| x.is_finite()))
+            .map(|w| w.iter().map(|slip| rolling_spin * (1.0 - slip)).collect());
+        spin_balance(z, rolling_spin, start.as_deref(), |spins, active| {
             for (k, s) in kin.rollers.iter_mut().zip(spins) {
                 k.omega = orbit + *s * k.axis;
             }
@@ -374,6 +385,10 @@ impl SpinMoment {
         self.gross += part.abs();
     }
 }
+/// The first step of [`spin_balance`]'s bracketing, over the spin of rolling without slip:
+/// from rolling without slip, and from a neighbouring case's spins.
+const COLD_STEP: f64 = 0.0025;
+const WARM_STEP: f64 = 1e-4;
 /// The most evaluations [`spin_balance`] takes (each of every contact once).
 pub(crate) const SPIN_EVALUATIONS: usize = 60;
 
@@ -463,7 +478,8 @@ impl SpinSearch {
 /// once so that each evaluation of `moments` serves every roller still searching.
 /// A roller's moment falls with its spin (traction and drag oppose spinning faster than
 /// rolling), so its root lies on the side its moment points to from the spin of rolling
-/// without slip s₀: a bracket is found by steps from s₀/200 on, each the secant's or
+/// without slip s₀ (or from the spins `start`, a neighbouring case's): a bracket is
+/// found by steps from s₀/400 (from `start`: s₀/10⁴) on, each the secant's or
 /// twice the last ([`SpinSearch::next`]), towards that side, then narrowed by the
 /// Illinois variant of regula falsi (Dowell & Jarratt 1971) to [`SPIN_TOLERANCE`]·|s₀|,
 /// or until the moment is [`SPIN_BALANCE`] of the moments that meet on the roller.
@@ -475,21 +491,31 @@ impl SpinSearch {
 pub(crate) fn spin_balance(
     n: usize,
     rolling_spin: f64,
+    start: Option<&[f64]>,
     mut moments: impl FnMut(&[f64], &[bool]) -> Vec<SpinMoment>,
 ) -> Vec<f64> {
     let s0 = rolling_spin;
     let width = SPIN_TOLERANCE * s0.abs();
     let balanced = |m: &SpinMoment| m.net.abs() <= SPIN_BALANCE * m.gross;
-    let first = moments(&vec![s0; n], &vec![true; n]);
-    let mut best: Vec<(f64, f64)> = first.iter().map(|m| (s0, m.net.abs())).collect();
-    let mut search: Vec<SpinSearch> = first
+    let (from, first_step) = match start {
+        Some(spins) => (spins.to_vec(), WARM_STEP),
+        None => (vec![s0; n], COLD_STEP),
+    };
+    let first = moments(&from, &vec![true; n]);
+    let mut best: Vec<(f64, f64)> = from
         .iter()
-        .map(|m| match balanced(m) {
+        .zip(&first)
+        .map(|(s, m)| (*s, m.net.abs()))
+        .collect();
+    let mut search: Vec<SpinSearch> = from
+        .iter()
+        .zip(&first)
+        .map(|(&s, m)| match balanced(m) {
             true => SpinSearch::Done,
             false => SpinSearch::Bracketing {
-                last: (s0, m.net),
+                last: (s, m.net),
                 before: None,
-                step: 0.0025 * s0.abs() * m.net.signum(),
+                step: first_step * s0.abs() * m.net.signum(),
             },
         })
         .collect();
@@ -705,7 +731,7 @@ mod tests {
                 (solution, loaded)
             };
             let (solution, loaded) = at(1000.0);
-            let friction = s.steady_rolling_friction(&solution);
+            let friction = s.steady_rolling_friction(&solution, None);
             assert!(loaded.len() >= 5, "{loaded:?}");
             for &i in &loaded {
                 let slip = friction.roller_slip[i];
@@ -717,7 +743,7 @@ mod tests {
             let (orbit, rolling) = s.rolling_speeds(solution.case.speed, 0.0);
             let before = s.spin_moments_at(&kin, &vec![rolling; kin.rollers.len()], orbit);
             assert!(before[0].net.abs() > 0.05, "{:?}", before[0]);
-            let spins = s.balanced_spins(&mut kin, orbit, rolling);
+            let spins = s.balanced_spins(&mut kin, orbit, rolling, None);
             let after = s.spin_moments_at(&kin, &spins, orbit);
             for &i in &loaded {
                 let m = after[i];
@@ -733,7 +759,7 @@ mod tests {
                 );
             }
             let (solution, loaded) = at(0.0);
-            let light = s.steady_rolling_friction(&solution);
+            let light = s.steady_rolling_friction(&solution, None);
             for &i in &loaded {
                 assert!(
                     light.roller_slip[i].abs() < 2e-3,
@@ -883,7 +909,8 @@ mod spin_balance_tests {
 
     proptest! {
         /// Rollers with roots anywhere in the range searched (−s₀ … 3 s₀ less a margin),
-        /// of either sign of s₀, steep or flat moments: each spin returned balances its
+        /// of either sign of s₀, steep or flat moments, the search started at rolling
+        /// without slip or near the roots (a sweep's warm start): each spin returned balances its
         /// moment to the [`SPIN_BALANCE`] share of its parts, or lies within
         /// [`SPIN_TOLERANCE`]·|s₀| (twice, the regula falsi's last bracket) of the root;
         /// no more than [`SPIN_EVALUATIONS`] + 2 evaluations are taken; the last is at
@@ -893,10 +920,14 @@ mod spin_balance_tests {
             s0 in prop_oneof![-300.0..-1.0f64, 1.0..300.0f64],
             rollers in prop::collection::vec(
                 (-0.95..2.95f64, 0.0..1.0f64, 1e-6..1.0f64, 0.1..1e3f64, 1e-9..1e-3f64), 1..20),
+            warm in prop::option::of(-0.01..0.01f64),
         ) {
             let mut calls = 0;
             let mut last = Vec::new();
-            let spins = spin_balance(rollers.len(), s0, |spins, active| {
+            // a neighbouring case's spins: each root moved by up to a hundredth of s₀
+            let start: Option<Vec<f64>> = warm
+                .map(|d| rollers.iter().map(|r| s0 * (r.0 + d)).collect());
+            let spins = spin_balance(rollers.len(), s0, start.as_deref(), |spins, active| {
                 calls += 1;
                 last = spins.to_vec();
                 spins.iter().zip(&rollers).zip(active).map(|((&s, &(f, d, a, k, c)), on)| {
@@ -928,7 +959,7 @@ mod spin_balance_tests {
             beyond in prop_oneof![-20.0..-1.5f64, 3.5..20.0f64],
         ) {
             let root = s0 * beyond;
-            let spins = spin_balance(1, s0, |spins, _| {
+            let spins = spin_balance(1, s0, None, |spins, _| {
                 vec![moment(spins[0], 0.0, root, 1.0, 1.0 / s0.abs(), 0.0)]
             });
             let reached = (spins[0] - s0) / s0;
