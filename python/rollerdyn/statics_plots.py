@@ -20,7 +20,7 @@ def draw(ds: xr.Dataset, path: Path) -> None:
     import matplotlib.pyplot as plt
 
     if "case" not in ds.dims:
-        fig, (a, b) = plt.subplots(1, 2, figsize=(10, 4))
+        fig, (a, b, c) = plt.subplots(1, 3, figsize=(15, 4))
         # from the radial load's direction (180 deg), within -180 ... 180 deg
         azimuth = ds.roller_azimuth.values % 360.0 - 180.0
         order = np.argsort(azimuth)
@@ -39,11 +39,26 @@ def draw(ds: xr.Dataset, path: Path) -> None:
             title=f"heaviest roller ({heaviest}): contact pressure by slice",
         )
         b.legend()
+        _draw_slip(c, azimuth[order], ds.roller_slip.values[order])
     else:
         fig = _draw_sweep(plt, ds)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
+
+
+def _draw_slip(ax, azimuth: np.ndarray, slip: np.ndarray) -> None:
+    """The rollers' slip in steady rolling [%] over their azimuth from the radial load,
+    on a symmetric log scale (the loaded rollers' fractions of a per cent beside the
+    unloaded ones' tens)."""
+    ax.plot(azimuth, slip * 100.0, "o-")
+    ax.axhline(0.0, color="0.6", lw=0.8)
+    ax.set_yscale("symlog", linthresh=0.1)
+    ax.set(
+        xlabel="roller azimuth from the radial load [deg]",
+        ylabel="slip, 1 - spin / rolling spin [%]",
+        title="steady rolling: where the rollers slip",
+    )
 
 
 def _sweep_axes(ds: xr.Dataset) -> tuple[str | None, list[str]]:
