@@ -507,7 +507,8 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
     names = ", ".join(html.escape(str(p)) for p in paths)
     body.append(f"<h1>rollerdyn report</h1><p>Results: {names}</p>")
     body.append(
-        '<nav><a href="#summary">summary</a><a href="#lubrication">lubrication</a>'
+        '<nav><a href="#summary">summary</a><a href="#statics">quasi-static</a>'
+        '<a href="#lubrication">lubrication</a>'
         '<a href="#ripple">ripple</a>'
         '<a href="#inputs">inputs</a>'
         '<a href="#figures">figures</a><a href="#animation">roller set</a></nav>'
@@ -529,6 +530,7 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
     )
 
     body += _power_section(labels, sets)
+    body += _statics_section(labels, sets)
     body += _lubrication_section(labels, sets, embed)
     body += _ripple_section(labels, sets, embed)
 
@@ -643,6 +645,49 @@ def _power_section(labels: list[str], sets: list[xr.Dataset]) -> list[str]:
         "averages out), and the rolling resistance the rest.</p>"
     )
     return out
+
+
+def _statics_section(labels: list[str], sets: list[xr.Dataset]) -> list[str]:
+    """The page's tables of :func:`rollerdyn.crosscheck.beside_statics`, one per result:
+    the run beside the quasi-static estimate at its final loads and speed."""
+    from .crosscheck import beside_statics
+
+    out = ['<h3 id="statics">Beside the quasi-static estimate</h3>']
+    for label, ds in zip(labels, sets, strict=True):
+        rows = beside_statics(ds, last_outputs(ds))
+        if isinstance(rows, str):
+            out.append(f'<p class="note">{html.escape(label)}: {html.escape(rows)}</p>')
+            continue
+        cells = [
+            [r.label, r.unit, _fmt("", r.run), _fmt("", r.estimate), _ratio(r.run, r.estimate)]
+            for r in rows
+        ]
+        out.append(
+            f"<p>{html.escape(label)}: the run (means over its last {LAST_SHARE:.0%}) and the "
+            "quasi-static estimate at its final loads and speed</p>"
+        )
+        out.append(
+            table(
+                ["quantity", "unit", "run", "quasi-static", "run / quasi-static"],
+                cells,
+                numeric_from=2,
+            )
+        )
+    out.append(
+        '<p class="note">The estimate is <code>rollerdyn statics</code> of the run\'s own '
+        "configuration: the equilibrium without friction, and its friction of steady "
+        "rolling with each roller spinning where its moments balance (docs/statics.md). "
+        "What the dynamics add shows in the difference: the rollers' skew, their ends' "
+        "positions on the flanges, the neighbours' friction on the unloaded rollers; a "
+        "large one in the loads says the run is not steady at its end.</p>"
+    )
+    return out
+
+
+def _ratio(run: float, estimate: float) -> str:
+    if not (math.isfinite(run) and math.isfinite(estimate)) or estimate == 0.0:
+        return "n/a"
+    return f"{run / estimate:.3g}"
 
 
 def _lubrication_section(labels: list[str], sets: list[xr.Dataset], embed) -> list[str]:
