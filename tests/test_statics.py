@@ -740,3 +740,19 @@ def test_cli_prints_every_rollers_loads_flange_forces_and_slip():
         app, ["statics", str(B1), "--per-roller", "--set", "operating.radial_load=1000,2000"]
     )
     assert sweep.exit_code == 2 and "--per-roller" in sweep.output
+
+
+def test_cli_validates_the_bearing_with_the_load_case_it_solves():
+    """A bearing of type NU (the outer ring's flanges only) cannot carry B1's 1000 N
+    axially; `rollerdyn statics --set geometry.flanges=... --set operating.axial_load=0`
+    solves it (the configuration is validated with the case's axial load, as `rollerdyn
+    check` with the same --set), and a sweep that includes 100 N is refused naming
+    operating.axial_load."""
+    runner = CliRunner()
+    nu = ["statics", str(B1), "--set", 'geometry.flanges=["outer-x","outer+x"]']
+    ok = runner.invoke(app, [*nu, "--set", "operating.axial_load=0 N"])
+    assert ok.exit_code == 0, ok.output
+    assert "largest flange force" in ok.output and "quasi-static equilibrium" in ok.output
+    refused = runner.invoke(app, [*nu, "--set", "operating.axial_load=0,100"])
+    assert refused.exit_code == 2 and "operating.axial_load" in refused.output
+    assert 'geometry.flanges has no "inner-x"' in refused.output

@@ -110,13 +110,15 @@ def statics_command(
                 hint="; pass --overwrite to replace it",
             )
     grid, design = _split_sets(sets or [])
-    cfg = load(config, {p: v[0] for p, v in design.items() if len(v) == 1})
     for path, (text, _) in list(grid.items()):
         try:
             grid[path] = (text, st.parse_range(path, text))
-            st.check_range(cfg, path, text, grid[path][1])
         except st.StaticsError as err:
             raise refuse(err) from None
+    changes = {p: v[0] for p, v in design.items() if len(v) == 1}
+    _check_ranges(config, changes, grid)
+    cfg = load(config, {**changes, **_case_values(grid)})
+    _check_ranges(config, changes, grid, cfg)
     loads = {p: values for p, (_, values) in grid.items()}
     try:
         st.check_grid_size({p: len(v) for p, v in {**design, **loads}.items()})
@@ -174,6 +176,49 @@ def statics_command(
         raise typer.Exit(1) from None
     if not single and ds.attrs["failed_cases"]:
         raise typer.Exit(1)  # as a sweep with a failed run: written, and said by the status
+
+
+def _check_ranges(config: Path, changes: dict, grid: dict, cfg=None) -> None:
+    """Refuses a swept load-case value out of its range, naming the ``--set`` as typed
+    (:func:`rollerdyn.statics.check_range`), against ``cfg`` or else the configuration
+    with the bearing's ``changes`` only, where that is valid (with a bearing of type NU
+    and no axial load swept it is not: its case values are then checked with it)."""
+    from .. import statics as st
+    from ..config import ConfigError, load_config
+
+    if cfg is None:
+        try:
+            cfg = load_config(config, changes)
+        except (ConfigError, OSError):
+            return  # load() says what is wrong, with the case's values in it
+    for path, (text, values) in grid.items():
+        try:
+            st.check_range(cfg, path, text, values)
+        except st.StaticsError as err:
+            raise refuse(err) from None
+
+
+#: The SI unit each load-case path of the configuration is written in (`_case_values`).
+_CASE_UNITS = {
+    "operating.radial_load": "N",
+    "operating.axial_load": "N",
+    "operating.inner_ring_speed": "rad/s",
+    "operating.outer_ring_speed": "rad/s",
+    "inner_ring.misalignment": "rad",
+}
+
+
+def _case_values(grid: dict[str, tuple[str, list]]) -> dict[str, str]:
+    """The load case's values that are configuration fields, as the configuration is
+    validated with them (the largest in magnitude of a swept one, the most demanding):
+    a bearing of type NU swept at no axial load is not refused for the file's own
+    axial load."""
+    out = {}
+    for path, (_, values) in grid.items():
+        if path in _CASE_UNITS and values:
+            largest = max(values, key=abs)
+            out[path] = f"{largest!r} {_CASE_UNITS[path]}"
+    return out
 
 
 def _split_sets(options: list[str]) -> tuple[dict[str, tuple[str, list]], dict[str, list]]:
