@@ -756,3 +756,13 @@ def test_cli_validates_the_bearing_with_the_load_case_it_solves():
     refused = runner.invoke(app, [*nu, "--set", "operating.axial_load=0,100"])
     assert refused.exit_code == 2 and "operating.axial_load" in refused.output
     assert 'geometry.flanges has no "inner-x"' in refused.output
+    # ranges with units (numpy values inside) validate the same way
+    for option in (
+        'operating.inner_ring_speed="0 rpm:3000 rpm:4"',
+        'inner_ring.misalignment="0 deg:0.05 deg:3"',
+    ):
+        swept = runner.invoke(
+            app, ["statics", str(B1), "--set", option, "--set", "operating.axial_load=0"]
+        )
+        assert swept.exit_code == 0, swept.output
+        assert "quasi-static sweep: 4 cases" in swept.output or "3 cases" in swept.output

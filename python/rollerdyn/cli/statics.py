@@ -216,7 +216,7 @@ def _case_values(grid: dict[str, tuple[str, list]]) -> dict[str, str]:
     out = {}
     for path, (_, values) in grid.items():
         if path in _CASE_UNITS and values:
-            largest = max(values, key=abs)
+            largest = float(max(values, key=abs))
             out[path] = f"{largest!r} {_CASE_UNITS[path]}"
     return out
 
