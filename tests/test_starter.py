@@ -112,7 +112,7 @@ def test_bad_options_are_named(tmp_path):
         assert "Traceback" not in result.output and not out.exists()
     out.write_text("keep")
     result, out = _new(tmp_path, "--inner-raceway", "20", "--outer-raceway", "29")
-    assert result.exit_code == 2 and "--overwrite" in result.output
+    assert result.exit_code == 2 and "exists; pass --overwrite to replace it" in result.output
     assert out.read_text() == "keep"
     with pytest.raises(StarterError, match="--rollers 2"):
         starter_geometry(20e-3, 29e-3, rollers=2)

@@ -125,7 +125,13 @@ def new_command(
     """
     from ..starter import StarterError, starter_config, starter_geometry, write_starter
 
-    path = checked(check_output_file, output, "OUT", overwrite=overwrite, hint="--overwrite")
+    path = checked(
+        check_output_file,
+        output,
+        "OUT",
+        overwrite=overwrite,
+        hint="; pass --overwrite to replace it",
+    )
     inner = _value("--inner-raceway", inner_raceway, _LENGTH, "mm")
     outer = _value("--outer-raceway", outer_raceway, _LENGTH, "mm")
     try:
