@@ -756,6 +756,18 @@ def test_cli_validates_the_bearing_with_the_load_case_it_solves():
     refused = runner.invoke(app, [*nu, "--set", "operating.axial_load=0,100"])
     assert refused.exit_code == 2 and "operating.axial_load" in refused.output
     assert 'geometry.flanges has no "inner-x"' in refused.output
+    # and so is each bearing of a design sweep
+    design = runner.invoke(
+        app,
+        [
+            *nu,
+            "--set",
+            "geometry.diametral_clearance=0 um,10 um",
+            "--set",
+            "operating.axial_load=0",
+        ],
+    )
+    assert design.exit_code == 0 and "quasi-static sweep: 2 cases" in design.output, design.output
     # ranges with units (numpy values inside) validate the same way
     for option in (
         'operating.inner_ring_speed="0 rpm:3000 rpm:4"',

@@ -60,6 +60,24 @@ STATIC_FIELDS: dict[str, tuple[str, str]] = {
 """What a statics sweep can vary: the load case (path -> (case field, unit family)). Other
 configuration values change the model; sweep them with ``rollerdyn sweep``."""
 
+#: The loads of a load case, with the SI unit each is written in, that a configuration is
+#: validated with (:func:`case_config_values`): the rules across sections that a load case
+#: can break are the flanges' (an axial load needs a flange to carry it). The speeds and
+#: the misalignment stay the file's: a case at rest would ask the file for an end time.
+CASE_CONFIG_UNITS = {"operating.radial_load": "N", "operating.axial_load": "N"}
+
+
+def case_config_values(grid: Mapping[str, Sequence[float]]) -> dict[str, float]:
+    """The loads [N] of a load-case ``grid`` that a configuration is validated with, the
+    largest in magnitude of each (the most demanding), so that a bearing of type NU swept
+    at no axial load is not refused for its file's axial load."""
+    return {
+        path: float(max(values, key=abs))
+        for path, values in grid.items()
+        if path in CASE_CONFIG_UNITS and len(values)
+    }
+
+
 DEFAULT_CONTAMINATION = 0.5
 """ISO 281 contamination factor e_C by default: "normal cleanliness" (ISO 281:2007, table 15,
 0.6 ... 0.5 for D_pw < 100 mm)."""
@@ -405,7 +423,7 @@ def statics_sweep(
         numbers = [_number(f"grid[{path!r}]", v) for v in values]
         if STATIC_FIELDS[path][1] != "torque":
             check_range(cfg, path, "", numbers, label=f"grid[{path!r}]")
-    designs = design_configs(config if design else cfg, design)
+    designs = design_configs(config if design else cfg, design, case_config_values(grid))
     paths = list(grid)
     combos = list(itertools.product(*(grid[p] for p in paths)))
     if not combos:
@@ -516,10 +534,11 @@ _SHAPING_PATHS = ("geometry.roller_count", "geometry.roller.slices")
 
 
 def design_configs(
-    config: Any, design: Mapping[str, Sequence[Any]]
+    config: Any, design: Mapping[str, Sequence[Any]], case: Mapping[str, float] | None = None
 ) -> list[tuple[dict[str, Any], BearingConfig]]:
-    """(SI values of the design paths, configuration) of every combination of ``design``;
-    the configuration itself when there is none."""
+    """(SI values of the design paths, configuration) of every combination of ``design``,
+    each validated with the load case's values ``case`` (:func:`case_config_values`); the
+    configuration itself when there is none."""
     from .sweep import SweepError, parsed_grid
 
     if not design:
@@ -541,11 +560,19 @@ def design_configs(
             f"statics sweep: {count} bearing designs, more than {MAX_DESIGNS} (each builds "
             "its own model); sweep fewer values of the configuration's paths"
         )
+    si = isinstance(config, BearingConfig)
+    extra = {
+        p: [v if si else f"{v!r} {CASE_CONFIG_UNITS[p]}"]
+        for p, v in (case or {}).items()
+        if p not in design
+    }
     try:
-        points = parsed_grid(config, design)
+        points = parsed_grid(config, {**design, **extra})
     except SweepError as err:
         raise StaticsError(str(err).replace("no run was started", "nothing was solved")) from None
-    return [(point.si_values, cfg) for point, cfg in points]
+    return [
+        ({p: v for p, v in point.si_values.items() if p not in extra}, cfg) for point, cfg in points
+    ]
 
 
 def _column(values: list[Any]) -> np.ndarray:

@@ -123,7 +123,7 @@ def statics_command(
     try:
         st.check_grid_size({p: len(v) for p, v in {**design, **loads}.items()})
         if any(len(v) > 1 for v in design.values()):
-            st.design_configs(config, design)
+            st.design_configs(config, design, st.case_config_values(loads))
     except st.StaticsError as err:
         raise refuse(err) from None
     grid = loads
@@ -198,27 +198,13 @@ def _check_ranges(config: Path, changes: dict, grid: dict, cfg=None) -> None:
             raise refuse(err) from None
 
 
-#: The SI unit each load-case path of the configuration is written in (`_case_values`).
-_CASE_UNITS = {
-    "operating.radial_load": "N",
-    "operating.axial_load": "N",
-    "operating.inner_ring_speed": "rad/s",
-    "operating.outer_ring_speed": "rad/s",
-    "inner_ring.misalignment": "rad",
-}
-
-
 def _case_values(grid: dict[str, tuple[str, list]]) -> dict[str, str]:
-    """The load case's values that are configuration fields, as the configuration is
-    validated with them (the largest in magnitude of a swept one, the most demanding):
-    a bearing of type NU swept at no axial load is not refused for the file's own
-    axial load."""
-    out = {}
-    for path, (_, values) in grid.items():
-        if path in _CASE_UNITS and values:
-            largest = float(max(values, key=abs))
-            out[path] = f"{largest!r} {_CASE_UNITS[path]}"
-    return out
+    """The load case's values that the configuration is validated with
+    (:func:`rollerdyn.statics.case_config_values`), written as in the file."""
+    from ..statics import CASE_CONFIG_UNITS, case_config_values
+
+    values = case_config_values({p: v for p, (_, v) in grid.items()})
+    return {p: f"{v!r} {CASE_CONFIG_UNITS[p]}" for p, v in values.items()}
 
 
 def _split_sets(options: list[str]) -> tuple[dict[str, tuple[str, list]], dict[str, list]]:
