@@ -130,3 +130,38 @@ def test_the_python_function_writes_what_the_command_writes(tmp_path):
     text = new_bearing(40e-3, 52e-3, "new")
     assert text == out.read_text(encoding="utf-8")
     assert parse_config(tomllib.loads(text)).geometry.roller_count == 24
+
+
+def test_a_bearing_type_writes_its_flanges(tmp_path):
+    """``--type``: the flanges of ISO 15's types as docs/configuration.md maps them (NU the
+    outer ring's two, N the inner ring's, NJ and NF one more that carries +x), the
+    non-locating NU and N at no axial load by default (they carry none: a load given
+    anyway is refused naming operating.axial_load), NUP as B1 (no flanges line, all
+    four); an unknown type is named."""
+    from rollerdyn.starter import BEARING_TYPES
+
+    for kind, flanges in BEARING_TYPES.items():
+        out = tmp_path / f"{kind}.toml"
+        result = CliRunner().invoke(
+            app, ["new", str(out), "--inner-raceway", "40", "--outer-raceway", "52", "--type", kind]
+        )
+        assert result.exit_code == 0, (kind, result.output)
+        cfg = load_config(out)
+        assert list(cfg.geometry.flanges) == (
+            flanges or ["inner-x", "inner+x", "outer-x", "outer+x"]
+        ), kind
+        assert (cfg.operating.axial_load == 0.0) == (kind in ("NU", "N")), kind
+    result, out = _new(
+        tmp_path,
+        "--inner-raceway",
+        "40",
+        "--outer-raceway",
+        "52",
+        "--type",
+        "NU",
+        "--axial-load",
+        "100",
+    )
+    assert result.exit_code == 2 and "operating.axial_load" in result.output
+    result, out = _new(tmp_path, "--inner-raceway", "40", "--outer-raceway", "52", "--type", "NQ")
+    assert result.exit_code == 2 and "--type NQ: must be one of NUP, NU, N, NJ, NF" in result.output

@@ -14,6 +14,7 @@ replaces the scaled values (docs/configuration.md, "Another bearing").
 
 from __future__ import annotations
 
+import json
 import math
 import re
 from dataclasses import dataclass
@@ -22,6 +23,7 @@ from pathlib import Path
 from .validation import default_config_path
 
 __all__ = [
+    "BEARING_TYPES",
     "StarterError",
     "StarterGeometry",
     "new_bearing",
@@ -36,6 +38,20 @@ B1_PITCH_DIAMETER = 24.5e-3
 B1_ROLLERS = 17
 #: The least distance between neighbouring rollers' centres, over the roller diameter.
 LEAST_SPACING = 1.001
+
+
+#: Bearing types of ISO 15 / DIN 5412-1 by their flanges (docs/configuration.md, "Flange
+#: arrangements"; an axial load acts along +x on the inner ring): type -> flanges, or
+#: None for all four (B1, like NUP).
+BEARING_TYPES: dict[str, list[str] | None] = {
+    "NUP": None,
+    "NU": ["outer-x", "outer+x"],
+    "N": ["inner-x", "inner+x"],
+    "NJ": ["inner-x", "outer-x", "outer+x"],
+    "NF": ["inner-x", "inner+x", "outer+x"],
+}
+#: The types that carry no axial load (non-locating bearings).
+NON_LOCATING = ("NU", "N")
 
 
 class StarterError(ValueError):
@@ -141,11 +157,18 @@ def starter_config(
     radial_load: float | None = None,
     axial_load: float | None = None,
     speed: float | None = None,
+    bearing_type: str = "NUP",
 ) -> str:
     """The TOML text of the new bearing (module doc): ``roller_length`` [m] by default
     B1's 5 mm scaled by the size; ``radial_load`` [N] B1's 5000 N scaled by the rollers'
     count and projected area (Z D L, the term the load ratings grow with),
-    ``axial_load`` [N] B1's fifth of it, ``speed`` [rad/s] B1's 500 rpm at B1's n d_m."""
+    ``axial_load`` [N] B1's fifth of it (0 for the non-locating types NU and N),
+    ``speed`` [rad/s] B1's 500 rpm at B1's n d_m; ``bearing_type`` one of
+    :data:`BEARING_TYPES`, its flanges written to ``geometry.flanges``."""
+    if bearing_type not in BEARING_TYPES:
+        raise StarterError(
+            f"--type {bearing_type}: must be one of {', '.join(BEARING_TYPES)} (ISO 15)"
+        )
     k = geometry.size
     pitch_ratio = geometry.pitch_diameter / B1_PITCH_DIAMETER
     if roller_length is None:
@@ -155,8 +178,9 @@ def starter_config(
     area = geometry.rollers * k * roller_length / (B1_ROLLERS * 5.0e-3)
     if radial_load is None:
         radial_load = 5000.0 * area
+    default_axial = 0.0 if bearing_type in NON_LOCATING else 0.2 * radial_load
     if axial_load is None:
-        axial_load = 0.2 * radial_load
+        axial_load = default_axial
     if speed is None:
         speed = 500.0 * math.pi / 30.0 / pitch_ratio
     text = default_config_path().read_text(encoding="utf-8")
@@ -223,7 +247,12 @@ def starter_config(
             f'"{_number(axial_load)} N"',
             "rollerdyn new: "
             + _given(
-                "--axial-load", axial_load, 0.2 * radial_load, "a fifth of the radial load, as B1's"
+                "--axial-load",
+                axial_load,
+                default_axial,
+                f"type {bearing_type} carries none"
+                if bearing_type in NON_LOCATING
+                else "a fifth of the radial load, as B1's",
             ),
         ),
         (
@@ -238,7 +267,21 @@ def starter_config(
     ]
     for section, key, value, comment in lines:
         body = _set(body, section, key, value, comment)
+    flanges = BEARING_TYPES[bearing_type]
+    if flanges is not None:
+        line = f"flanges = {json.dumps(flanges)}"
+        body = _set_after(
+            body, "outer_ring_wall_thickness", f"{line}  # rollerdyn new --type {bearing_type}"
+        )
     return _header(geometry, name) + body
+
+
+def _set_after(text: str, key: str, line: str) -> str:
+    """``text`` with ``line`` inserted after the first line that sets ``key``."""
+    found = re.search(rf"^{re.escape(key)} = .*$", text, re.M)
+    if found is None:
+        raise KeyError(f"{key} is not in B1's configuration")
+    return text[: found.end()] + "\n" + line + text[found.end() :]
 
 
 def new_bearing(
@@ -252,13 +295,16 @@ def new_bearing(
     radial_load: float | None = None,
     axial_load: float | None = None,
     speed: float | None = None,
+    bearing_type: str = "NUP",
 ) -> str:
     """The TOML text of a new bearing from its raceway diameters [m], as ``rollerdyn new``
     writes it (lengths in m, loads in N, ``speed`` in rad/s; None: the defaults of
     :func:`starter_geometry` and :func:`starter_config`). Load it with
     ``rollerdyn.parse_config(tomllib.loads(text))`` or write it to a file."""
     geometry = starter_geometry(inner_raceway, outer_raceway, clearance, rollers)
-    return starter_config(geometry, name, roller_length, radial_load, axial_load, speed)
+    return starter_config(
+        geometry, name, roller_length, radial_load, axial_load, speed, bearing_type
+    )
 
 
 def _given(option: str, value: float, default: float, rule: str) -> str:

@@ -103,6 +103,16 @@ def new_command(
             metavar="SPEED",
         ),
     ] = None,
+    bearing_type: Annotated[
+        str,
+        typer.Option(
+            "--type",
+            help="The bearing's type by its flanges (ISO 15): NUP (all four, as B1), NU (the "
+            "outer ring's two), N (the inner ring's two), NJ (NU with the inner ring's -x "
+            "flange), NF (N with the outer ring's +x flange). NU and N carry no axial load, "
+            "so their axial load defaults to 0 N.",
+        ),
+    ] = "NUP",
     name: Annotated[
         str | None,
         typer.Option("--name", help="The bearing's name. Default: the file's name."),
@@ -145,6 +155,7 @@ def new_command(
             _value("--radial-load", radial_load, _FORCE, "N"),
             _value("--axial-load", axial_load, _FORCE, "N"),
             _value("--speed", speed, _SPEED, "rpm"),
+            bearing_type.upper(),
         )
     except (StarterError, FileNotFoundError) as err:  # the latter: B1's file not installed
         raise refuse(err) from None
