@@ -42,6 +42,7 @@ def beside_statics(ds: xr.Dataset, last: np.ndarray) -> list[Beside] | str:
     the run did not record the output. A string says why there is no estimate (no
     configuration recorded, no equilibrium)."""
     from .modes import run_config
+    from .report import power_summary
     from .statics import StaticsError, statics
 
     try:
@@ -64,7 +65,7 @@ def beside_statics(ds: xr.Dataset, last: np.ndarray) -> list[Beside] | str:
         Beside(
             "friction torque (mean power loss over the ring speed)",
             "N*m",
-            _run_torque(ds, last),
+            power_summary(ds, last)["torque_from_power"],
             float(st.friction_torque),
         ),
         Beside(
@@ -91,17 +92,6 @@ def beside_statics(ds: xr.Dataset, last: np.ndarray) -> list[Beside] | str:
         )
     )
     return rows
-
-
-def _run_torque(ds: xr.Dataset, last: np.ndarray) -> float:
-    """The run's mean power loss over its mean relative ring speed [N*m] (NaN without
-    power losses or relative speed)."""
-    from .report import relative_speed
-
-    if "power_loss" not in ds:
-        return math.nan
-    speed = abs(float(np.mean(relative_speed(ds)[last])))
-    return float(np.mean(ds.power_loss.values[last])) / speed if speed > 0.0 else math.nan
 
 
 def _mean_of_largest(ds: xr.Dataset, name: str, last: np.ndarray) -> float:

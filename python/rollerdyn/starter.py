@@ -19,6 +19,7 @@ import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from .validation import default_config_path
 
@@ -291,20 +292,16 @@ def new_bearing(
     *,
     clearance: float | None = None,
     rollers: int | None = None,
-    roller_length: float | None = None,
-    radial_load: float | None = None,
-    axial_load: float | None = None,
-    speed: float | None = None,
-    bearing_type: str = "NUP",
+    **options: Any,
 ) -> str:
     """The TOML text of a new bearing from its raceway diameters [m], as ``rollerdyn new``
-    writes it (lengths in m, loads in N, ``speed`` in rad/s; None: the defaults of
-    :func:`starter_geometry` and :func:`starter_config`). Load it with
-    ``rollerdyn.parse_config(tomllib.loads(text))`` or write it to a file."""
+    writes it: :func:`starter_geometry` of the raceways, ``clearance`` [m] and
+    ``rollers``, then :func:`starter_config` with ``options`` (``roller_length`` [m],
+    ``radial_load``, ``axial_load`` [N], ``speed`` [rad/s], ``bearing_type``; SI, None
+    their defaults). Load it with ``rollerdyn.parse_config(tomllib.loads(text))`` or write
+    it to a file."""
     geometry = starter_geometry(inner_raceway, outer_raceway, clearance, rollers)
-    return starter_config(
-        geometry, name, roller_length, radial_load, axial_load, speed, bearing_type
-    )
+    return starter_config(geometry, name, **options)
 
 
 def _given(option: str, value: float, default: float, rule: str) -> str:

@@ -11,7 +11,7 @@ import typer
 from ..paths import check_output_file
 from .common import checked, load, refuse, say
 
-#: The options in SI and the unit family each is read in.
+#: The unit families the options are read in.
 _LENGTH, _FORCE, _SPEED = "length", "force", "angular velocity"
 
 

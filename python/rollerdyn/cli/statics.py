@@ -116,9 +116,10 @@ def statics_command(
         except st.StaticsError as err:
             raise refuse(err) from None
     changes = {p: v[0] for p, v in design.items() if len(v) == 1}
-    _check_ranges(config, changes, grid)
+    checked_ranges = _check_ranges(config, changes, grid)
     cfg = load(config, {**changes, **_case_values(grid)})
-    _check_ranges(config, changes, grid, cfg)
+    if not checked_ranges:
+        _check_ranges(config, changes, grid, cfg)
     loads = {p: values for p, (_, values) in grid.items()}
     try:
         st.check_grid_size({p: len(v) for p, v in {**design, **loads}.items()})
@@ -178,11 +179,12 @@ def statics_command(
         raise typer.Exit(1)  # as a sweep with a failed run: written, and said by the status
 
 
-def _check_ranges(config: Path, changes: dict, grid: dict, cfg=None) -> None:
+def _check_ranges(config: Path, changes: dict, grid: dict, cfg=None) -> bool:
     """Refuses a swept load-case value out of its range, naming the ``--set`` as typed
     (:func:`rollerdyn.statics.check_range`), against ``cfg`` or else the configuration
     with the bearing's ``changes`` only, where that is valid (with a bearing of type NU
-    and no axial load swept it is not: its case values are then checked with it)."""
+    and no axial load swept it is not: its case values are then checked with it). False
+    where nothing was checked for that reason."""
     from .. import statics as st
     from ..config import ConfigError, load_config
 
@@ -190,12 +192,13 @@ def _check_ranges(config: Path, changes: dict, grid: dict, cfg=None) -> None:
         try:
             cfg = load_config(config, changes)
         except (ConfigError, OSError):
-            return  # load() says what is wrong, with the case's values in it
+            return False  # load() says what is wrong, with the case's values in it
     for path, (text, values) in grid.items():
         try:
             st.check_range(cfg, path, text, values)
         except st.StaticsError as err:
             raise refuse(err) from None
+    return True
 
 
 def _case_values(grid: dict[str, tuple[str, list]]) -> dict[str, str]:

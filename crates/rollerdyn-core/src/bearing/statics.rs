@@ -330,14 +330,11 @@ impl BearingSystem<'_> {
             return vec![0.0; z];
         }
         let contacts = self.spin_contacts(kin);
-        let orbit = Vec3::new(orbit, 0.0, 0.0);
         let start: Option<Vec<f64>> = warm
             .filter(|w| w.len() == z && w.iter().all(|x| x.is_finite()))
             .map(|w| w.iter().map(|slip| rolling_spin * (1.0 - slip)).collect());
         spin_balance(z, rolling_spin, start.as_deref(), |spins, active| {
-            for (k, s) in kin.rollers.iter_mut().zip(spins) {
-                k.omega = orbit + *s * k.axis;
-            }
+            set_spins(kin, orbit, spins);
             self.spin_moments(kin, &contacts, active)
         })
     }
@@ -355,11 +352,18 @@ impl BearingSystem<'_> {
     ) -> Vec<SpinMoment> {
         let z = self.layout.rollers;
         let mut kin = kin.clone();
-        for (k, s) in kin.rollers.iter_mut().zip(spins) {
-            k.omega = Vec3::new(orbit, 0.0, 0.0) + *s * k.axis;
-        }
+        set_spins(&mut kin, orbit, spins);
         let contacts = self.spin_contacts(&kin);
         self.spin_moments(&kin, &contacts, &vec![true; z])
+    }
+}
+
+/// The rollers of `kin` orbiting at `orbit` [rad/s] about the bearing axis and spinning at
+/// `spins` [rad/s] about their own axes.
+fn set_spins(kin: &mut BearingKinematics, orbit: f64, spins: &[f64]) {
+    let orbit = Vec3::new(orbit, 0.0, 0.0);
+    for (k, s) in kin.rollers.iter_mut().zip(spins) {
+        k.omega = orbit + *s * k.axis;
     }
 }
 
