@@ -23,7 +23,7 @@ from rollerdyn.config import BearingConfig
 from rollerdyn.model import Model
 from rollerdyn.simulation import model_parameters, run_options
 
-HISTORIES = ("radial_load", "axial_load", "inner_ring_speed", "outer_ring_speed")
+HISTORIES = ("radial_load", "axial_load", "inner_ring_speed", "outer_ring_speed", "carrier_speed")
 SECTIONS = (
     "geometry",
     "materials",

@@ -286,8 +286,11 @@ def equilibrium_state(params: _Params, traction: EhlTraction, t: float) -> list[
 
 #: A quasi-static load case: (radial load [N], axial load [N], moment about y [N*m], moment
 #: about z [N*m], inner ring speed [rad/s], prescribed tilt (about y, about z) [rad] or None
-#: for a free tilt, roller set's phase [rad], outer ring speed [rad/s]).
-_StaticCase = tuple[float, float, float, float, float, tuple[float, float] | None, float, float]
+#: for a free tilt, roller set's phase [rad], outer ring speed [rad/s], planet carrier speed
+#: [rad/s]).
+_StaticCase = tuple[
+    float, float, float, float, float, tuple[float, float] | None, float, float, float
+]
 
 def statics(
     model: Model, cases: Sequence[_StaticCase], chain: bool = True, stiffness: bool = False

@@ -58,6 +58,7 @@ def beside_statics(ds: xr.Dataset, last: np.ndarray) -> list[Beside] | str:
             axial_load=op.axial_load_at(t),
             speed=inner,
             outer_speed=outer,
+            carrier_speed=op.carrier_speed_at(t),
         )
     except (StaticsError, ValueError) as err:
         return f"no estimate: {err}"

@@ -146,6 +146,7 @@ def _capacity_note_at(cfg: BearingConfig, t: float) -> str | None:
             axial_load=loads[1],
             speed=op.inner_ring_speed_at(t),
             outer_speed=op.outer_ring_speed_at(t),
+            carrier_speed=op.carrier_speed_at(t),
         )
     except ValueError as error:
         if "cannot carry it" in str(error):

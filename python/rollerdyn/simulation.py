@@ -306,6 +306,8 @@ def model_parameters(config: BearingConfig, detector: str | None = None) -> dict
             "inner_ring_speed": _history(op.inner_ring_speed, op.speed_ramp),
             "outer_ring_speed": _history(op.outer_ring_speed, op.speed_ramp),
             "gravity": list(op.gravity),
+            "carrier_speed": _history(op.carrier_speed, op.speed_ramp),
+            "carrier_offset": list(op.carrier_offset),
         },
         "cavity": {
             "oil_fraction": cfg.cavity.oil_fraction,

@@ -52,6 +52,7 @@ STATIC_FIELDS: dict[str, tuple[str, str]] = {
     "operating.axial_load": ("axial_load", "force"),
     "operating.inner_ring_speed": ("speed", "angular velocity"),
     "operating.outer_ring_speed": ("outer_speed", "angular velocity"),
+    "operating.carrier_speed": ("carrier_speed", "angular velocity"),
     "inner_ring.misalignment": ("misalignment", "angle"),
     "moment_y": ("moment_y", "torque"),
     "moment_z": ("moment_z", "torque"),
@@ -111,8 +112,8 @@ class StaticCase:
     tilting moment about y and z, the inner ring speed, the ring's misalignment about z
     (None: the ring's tilt is free and found from the moment), the roller set's phase
     [rad]: its turn from the place with roller 0 under the load (the ring's equilibrium
-    repeats every roller pitch, 2 pi / Z: the varying compliance, docs/statics.md), and the
-    outer ring's speed."""
+    repeats every roller pitch, 2 pi / Z: the varying compliance, docs/statics.md), the
+    outer ring's speed, and a planet carrier's speed (the rings' speeds relative to it)."""
 
     radial_load: float
     axial_load: float
@@ -122,6 +123,7 @@ class StaticCase:
     moment_z: float = 0.0
     roller_set_phase: float = 0.0
     outer_speed: float = 0.0
+    carrier_speed: float = 0.0
 
     @property
     def relative_speed(self) -> float:
@@ -141,6 +143,7 @@ class StaticCase:
             tilt,
             self.roller_set_phase,
             self.outer_speed,
+            self.carrier_speed,
         )
 
 
@@ -155,6 +158,7 @@ def config_case(cfg: BearingConfig) -> StaticCase:
         speed=op.inner_ring_speed_at(late),
         misalignment=None if cfg.inner_ring.tilt == "free" else cfg.inner_ring.misalignment,
         outer_speed=op.outer_ring_speed_at(late),
+        carrier_speed=op.carrier_speed_at(late),
     )
 
 
@@ -197,6 +201,7 @@ def statics(
     roller_set_phase: float | None = None,
     contamination: float = DEFAULT_CONTAMINATION,
     outer_speed: float | None = None,
+    carrier_speed: float | None = None,
 ) -> xr.Dataset:
     """The equilibrium of one load case (SI values; None: the configuration's, after its
     ramps). A ``moment`` (N*m about y and z) frees the ring's tilt; a ``misalignment`` (rad)
@@ -210,6 +215,7 @@ def statics(
         misalignment=misalignment,
         roller_set_phase=roller_set_phase,
         outer_speed=outer_speed,
+        carrier_speed=carrier_speed,
     )
     case = _case_with(config_case(cfg), moment=moment, **given)
     for path, (field, _) in STATIC_FIELDS.items():
@@ -258,6 +264,15 @@ def _case_with(case: StaticCase, *, moment=None, **values) -> StaticCase:
     return case
 
 
+def _speed_radius(cfg: BearingConfig, field: str) -> float:
+    """The radius [m] whose speed the pitch-circle rule bounds: the pitch circle's, and for
+    the carrier's speed the bearing's farthest rollers from the carrier's axis."""
+    radius = cfg.geometry.pitch_diameter / 2.0
+    if field == "carrier_speed":
+        radius += math.hypot(*cfg.operating.carrier_offset)
+    return radius
+
+
 def _check_path(path: str) -> None:
     """Refuses a path a statics sweep cannot vary."""
     if path not in STATIC_FIELDS:
@@ -289,8 +304,8 @@ def check_range(
         elif field == "axial_load" and (flanges := axial_load_flange_rule(cfg, v)) is not None:
             rule = flanges
         elif (
-            field in ("speed", "outer_speed")
-            and not abs(v) * cfg.geometry.pitch_diameter / 2.0 <= MAX_PITCH_SPEED
+            field in ("speed", "outer_speed", "carrier_speed")
+            and not abs(v) * _speed_radius(cfg, field) <= MAX_PITCH_SPEED
         ):
             rule = f"must give a pitch-circle speed of at most {MAX_PITCH_SPEED:g} m/s"
         elif field == "misalignment" and not abs(v) <= math.radians(MAX_MISALIGNMENT_DEG):
@@ -878,6 +893,9 @@ def _case_variables(
     )
     data["speed_applied"] = _var(case.speed, (), "rad/s", "inner ring speed")
     data["outer_speed_applied"] = _var(case.outer_speed, (), "rad/s", "outer ring speed")
+    data["carrier_speed_applied"] = _var(
+        case.carrier_speed, (), "rad/s", "planet carrier speed (the rings' relative to it)"
+    )
     data["misalignment_applied"] = _var(
         np.nan if case.misalignment is None else case.misalignment,
         (),

@@ -13,8 +13,9 @@ use rollerdyn_core::bearing::statics::RollingFriction;
 
 /// A load case as Python hands it over: (radial load [N], axial load [N], moment about y
 /// [N·m], moment about z [N·m], inner ring speed [rad/s], prescribed tilt (θ_y, θ_z)
-/// [rad] or None for a free tilt, the roller set's phase [rad], outer ring speed [rad/s]).
-type Case = (f64, f64, f64, f64, f64, Option<(f64, f64)>, f64, f64);
+/// [rad] or None for a free tilt, the roller set's phase [rad], outer ring speed [rad/s],
+/// the planet carrier's speed [rad/s]).
+type Case = (f64, f64, f64, f64, f64, Option<(f64, f64)>, f64, f64, f64);
 
 /// The core's case of `c`.
 fn case_of(c: &Case) -> StaticCase {
@@ -24,6 +25,7 @@ fn case_of(c: &Case) -> StaticCase {
         moment: [c.2, c.3],
         speed: c.4,
         outer_speed: c.7,
+        carrier_speed: c.8,
         tilt: match c.5 {
             Some((a, b)) => RingTilt::Prescribed(a, b),
             None => RingTilt::Free,

@@ -318,6 +318,10 @@ def _history_at(value: float | TimeTable, ramp: RampConfig | None, t: float) -> 
     return value * (1.0 if ramp is None else ramp.factor(t))
 
 
+#: The speed histories of ``[operating]`` (the speed ramp takes each from 0).
+SPEEDS = ("inner_ring_speed", "outer_ring_speed", "carrier_speed")
+
+
 class OperatingDerived:
     """Derived values of ``[operating]``: the histories evaluated."""
 
@@ -325,15 +329,11 @@ class OperatingDerived:
 
     @property
     def speed_history_end(self) -> float:
-        """Time from which both rings' speeds are constant, s."""
-        ends = [
-            v.end if isinstance(v, TimeTable) else 0.0
-            for v in (self.inner_ring_speed, self.outer_ring_speed)
-        ]
+        """Time from which the rings' (and the carrier's) speeds are constant, s."""
+        speeds = [getattr(self, name) for name in SPEEDS]
+        ends = [v.end if isinstance(v, TimeTable) else 0.0 for v in speeds]
         ramp = self.speed_ramp
-        if ramp is not None and not all(
-            isinstance(v, TimeTable) for v in (self.inner_ring_speed, self.outer_ring_speed)
-        ):
+        if ramp is not None and not all(isinstance(v, TimeTable) for v in speeds):
             ends.append(ramp.end)
         return max(ends)
 
@@ -370,6 +370,10 @@ class OperatingDerived:
     def outer_ring_speed_at(self, t: float) -> float:
         """Outer ring angular velocity (rad/s) at time ``t`` (s)."""
         return _history_at(self.outer_ring_speed, self.speed_ramp, t)
+
+    def carrier_speed_at(self, t: float) -> float:
+        """The planet carrier's angular velocity (rad/s) at time ``t`` (s)."""
+        return _history_at(self.carrier_speed, self.speed_ramp, t)
 
 
 # --------------------------------------------------------------------------- top level

@@ -34,6 +34,7 @@ from .base import (
 )
 from .derived import (
     AXIAL_LOAD_FLANGES,
+    SPEEDS,
     BearingDerived,
     DickeDerived,
     GeometryDerived,
@@ -575,6 +576,12 @@ class OperatingConfig(OperatingDerived, _Section):
     gravity: Vector(
         "acceleration", example='"9.81 m/s^2" or ["0 m/s^2", "-9.81 m/s^2", "0 m/s^2"]'
     ) = "9.81 m/s^2"
+    # Not in the paper: a planet gear's bearing on the pin of a carrier turning about the
+    # sun's axis; the speeds above are then relative to the carrier (docs/dynamics.md).
+    carrier_speed: SpeedHistory = "0 rpm"
+    carrier_offset: Vector(
+        "length", example='"40 mm" or ["0 mm", "-40 mm", "0 mm"]', bound=10.0
+    ) = "0 m"
 
     @model_validator(mode="after")
     def _check(self) -> OperatingConfig:
@@ -587,7 +594,7 @@ class OperatingConfig(OperatingDerived, _Section):
                 "",
                 "both loads are time tables; a load ramp only applies to constant loads",
             )
-        for ring in ("inner_ring_speed", "outer_ring_speed"):
+        for ring in SPEEDS:
             if self.speed_ramp is not None and isinstance(getattr(self, ring), TimeTable):
                 cross.add(
                     "speed_ramp",
@@ -599,6 +606,13 @@ class OperatingConfig(OperatingDerived, _Section):
                 "end_time",
                 f"{self.end_time:g} s",
                 f"must be > the end of the speed ramp/table ({self.speed_history_end:g} s)",
+            )
+        if self.carrier_offset[0] != 0.0:
+            cross.add(
+                "carrier_offset",
+                f"{self.carrier_offset[0]:g} m along x",
+                "must lie across the axis (x part 0): the carrier's axis is parallel to the "
+                "bearing's",
             )
         cross.raise_if_any()
         return self
@@ -758,9 +772,12 @@ class BearingConfig(BearingDerived, _Section):
                     f"{MAX_HERTZ_PRESSURE / 1e9:g} GPa, far beyond what bearing steel carries "
                     "(ISO 76 allows 4 GPa)",
                 )
-        for ring in ("inner_ring_speed", "outer_ring_speed"):
+        for ring in SPEEDS:
             speed = _history_peak(getattr(op, ring))
-            pitch_speed = speed * self.geometry.pitch_diameter / 2.0
+            radius = self.geometry.pitch_diameter / 2.0
+            if ring == "carrier_speed":  # the bearing's outermost rollers in space
+                radius += math.hypot(*op.carrier_offset)
+            pitch_speed = speed * radius
             if not pitch_speed <= MAX_PITCH_SPEED:
                 cross.add(
                     f"operating.{ring}",

@@ -14,6 +14,7 @@ use super::topology::{Body, Element};
 use crate::bearing::workspace::BearingSystem;
 use crate::dynamics::rigid::{
     angle_rates, angular_acceleration, angular_momentum, driven_transverse_acceleration,
+    TurningFrame,
 };
 use crate::geometry::primitives::Vec3;
 use crate::tribology::drag::roller_drag;
@@ -41,7 +42,26 @@ impl Loads {
     }
 }
 
+/// What acts on every body alike at one time: gravity, and the planet carrier's frame
+/// with its inertial forces on the rollers (`BearingParams::carrier`).
+#[derive(Debug, Clone, Copy)]
+pub(super) struct BodyField {
+    /// Gravity in the bearing's frame [m/s²] (turned against a turning carrier).
+    gravity: Vec3,
+    /// The carrier's frame, where it turns.
+    carrier: Option<TurningFrame>,
+}
+
 impl BearingSystem<'_> {
+    /// Gravity and the carrier's frame at time t.
+    pub(super) fn body_field(&self, t: f64) -> BodyField {
+        let carrier = &self.params.carrier;
+        BodyField {
+            gravity: carrier.gravity_at(&self.params.gravity, t),
+            carrier: carrier.turns().then(|| carrier.frame(t)),
+        }
+    }
+
     /// Kinematics of all bodies: the rings, then the rollers.
     pub fn kinematics(&self, t: f64, y: &[f64]) -> BearingKinematics {
         let spin = self.params.inner_ring_speed.at(t).0;
@@ -95,9 +115,11 @@ impl BearingSystem<'_> {
 
     /// Rates of roller i's states under the contact load `w` and its drag `drag` (the
     /// Jacobian's columns of another body reuse the drag: it depends on the roller's own
-    /// kinematics only, [`Self::roller_drag`]).
+    /// kinematics only, [`Self::roller_drag`]), in the field `field` (gravity, and in a
+    /// turning carrier its inertial forces: [`TurningFrame`]).
     pub(super) fn roller_rates_with(
         &self,
+        field: &BodyField,
         kin: &Kinematics,
         y: &[f64],
         w: &Wrench,
@@ -106,14 +128,16 @@ impl BearingSystem<'_> {
     ) {
         let m = &self.roller_mass;
         let (drag, drag_moment) = (drag.force, drag.moment);
-        let acc = (w.force + drag) / m.mass + self.params.gravity;
-        let alpha = angular_acceleration(
-            &kin.axis,
-            &kin.omega,
-            &(w.moment + drag_moment),
-            m.axial_inertia,
-            m.transverse_inertia,
-        );
+        let moment = w.moment + drag_moment;
+        let mut acc = (w.force + drag) / m.mass + field.gravity;
+        let (ia, it) = (m.axial_inertia, m.transverse_inertia);
+        let alpha = match &field.carrier {
+            None => angular_acceleration(&kin.axis, &kin.omega, &moment, ia, it),
+            Some(frame) => {
+                acc += frame.inertial_acceleration(&kin.center, &kin.velocity);
+                frame.angular_acceleration(&kin.axis, &kin.omega, &moment, ia, it)
+            }
+        };
         let (dty, dtz) = angle_rates(y[3], y[4], &kin.omega);
         dy[..3].copy_from_slice(kin.velocity.as_slice());
         dy[3] = dty;
@@ -132,7 +156,8 @@ impl BearingSystem<'_> {
         dy: &mut [f64],
     ) {
         let p = &self.params;
-        let acc = (w.force + self.external_load(t)) / p.inner_ring_mass + p.gravity;
+        let gravity = p.carrier.gravity_at(&p.gravity, t);
+        let acc = (w.force + self.external_load(t)) / p.inner_ring_mass + gravity;
         dy[..3].copy_from_slice(kin.velocity.as_slice());
         dy[3..6].copy_from_slice(acc.as_slice());
         if self.layout.tilt_free {
@@ -175,10 +200,12 @@ impl BearingSystem<'_> {
     ) {
         let n = self.layout.ring_states();
         self.ring_rates(t, &kin.inner_ring, &y[..n], &loads.inner_ring, &mut dy[..n]);
+        let field = self.body_field(t);
         for i in 0..self.layout.rollers {
             let s = self.layout.roller(i);
             let r = s..s + ROLLER_STATES;
             self.roller_rates_with(
+                &field,
                 &kin.rollers[i],
                 &y[r.clone()],
                 &loads.rollers[i],
@@ -233,7 +260,8 @@ impl BearingSystem<'_> {
 
     /// Total mechanical energy [J]: kinetic energy of rollers and inner ring (its prescribed
     /// spin excluded), gravity, the contacts' elastic energy, and the potential −F·x of the
-    /// external load at time t (conserved for constant loads without friction and damping).
+    /// external load at time t (conserved for constant loads without friction and damping,
+    /// in a carrier at rest).
     pub fn energy(&self, t: f64, y: &[f64]) -> f64 {
         let kin = self.kinematics(t, y);
         let m = &self.roller_mass;

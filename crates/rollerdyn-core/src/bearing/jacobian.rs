@@ -400,6 +400,7 @@ impl BearingSystem<'_> {
             );
             column.extend((0..m).map(|row| (row, (fp[row] - f0[row]) / h)));
         }
+        let field = self.body_field(t);
         for (r, _) in changed.touched.iter().enumerate().filter(|(_, t)| **t) {
             let s = self.layout.roller(r);
             let range = s..s + ROLLER_STATES;
@@ -411,6 +412,7 @@ impl BearingSystem<'_> {
                 &base.drags[r]
             };
             self.roller_rates_with(
+                &field,
                 &kin_p.rollers[r],
                 &yp[range.clone()],
                 &changed.loads.rollers[r],

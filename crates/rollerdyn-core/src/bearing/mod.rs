@@ -36,6 +36,7 @@ pub(crate) mod test_b1;
 
 pub use model::BearingModel;
 pub use params::{
-    BearingParams, Detector, FlangeLaw, History, ModelOptions, RollingResistance, SurfacePair,
+    BearingParams, Carrier, Detector, FlangeLaw, History, ModelOptions, RollingResistance,
+    SurfacePair,
 };
 pub use workspace::{BearingSystem, Workspace};

@@ -4,6 +4,7 @@
 
 use super::topology::FLANGE_NAMES;
 use crate::contact::border::BorderBands;
+use crate::dynamics::rigid::TurningFrame;
 use crate::error::{Error, Result};
 use crate::geometry::end_flange::FlangeShape;
 use crate::geometry::primitives::Vec3;
@@ -88,6 +89,50 @@ impl History {
         }
     }
 
+    /// ∫₀ᵗ of the history, t ≥ 0 (a constant before its first row and after its last, as
+    /// [`Self::at`]): the angle a speed has turned through by t. Exact for both ramp shapes
+    /// (the cosine's ½v[τ − (T/π) sin(πτ/T)] over the ramp's time τ and span T) and for a
+    /// table's straight pieces (trapezoids).
+    pub fn integral(&self, t: f64) -> f64 {
+        match self {
+            History::Ramp {
+                value,
+                start,
+                end,
+                cosine,
+            } => {
+                if end <= start {
+                    return value * t.max(0.0);
+                }
+                let span = end - start;
+                let tau = (t - start).clamp(0.0, span);
+                let ramp = if *cosine {
+                    let arg = std::f64::consts::PI * tau / span;
+                    0.5 * value * (tau - span / std::f64::consts::PI * arg.sin())
+                } else {
+                    0.5 * value * tau * tau / span
+                };
+                ramp + value * (t - end).max(0.0)
+            }
+            History::Table(rows) => {
+                let t = t.max(0.0);
+                let (first, last) = (rows[0], rows[rows.len() - 1]);
+                // the constant pieces before the first row and after the last
+                let mut sum = first.1 * (t.min(first.0) - 0.0_f64.min(first.0)).max(0.0)
+                    + last.1 * (t - last.0.max(0.0)).max(0.0);
+                for w in rows.windows(2) {
+                    let (a, b) = (w[0].0.max(0.0), w[1].0.min(t));
+                    if b > a {
+                        let (va, _) = self.at(a);
+                        let (vb, _) = self.at(b);
+                        sum += 0.5 * (va + vb) * (b - a);
+                    }
+                }
+                sum
+            }
+        }
+    }
+
     /// The least and the largest value the history takes (a ramp starts from 0).
     pub fn extremes(&self) -> (f64, f64) {
         match self {
@@ -158,6 +203,60 @@ pub struct SurfacePair {
     pub roughness: f64,
     /// Zhou–Hoeprich load sharing (eq. 53).
     pub sharing: LoadSharing,
+}
+
+/// The planet carrier whose frame the bearing is simulated in (not in the paper): a planet
+/// gear's bearing sits on a pin of a carrier that turns about the sun's axis, parallel to
+/// the bearing's. The bodies' states are relative to the carrier, and the rollers feel the
+/// carrier's inertial forces ([`crate::dynamics::rigid::TurningFrame`]); gravity turns
+/// against the carrier. The rings' own inertial forces in the carrier (the planet's
+/// centrifugal force) are part of the bearing's load.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Carrier {
+    /// Carrier speed Ω_c [rad/s] about +x, over time (0: the bearing's frame is at rest).
+    pub speed: History,
+    /// The bearing's axis relative to the carrier's axis [m], across it (x = 0): the
+    /// carrier's centrifugal field at the bearing is Ω_c²·offset.
+    pub offset: Vec3,
+}
+
+impl Carrier {
+    /// A carrier at rest: the bearing's frame is inertial.
+    pub fn at_rest() -> Self {
+        Self {
+            speed: History::constant(0.0),
+            offset: Vec3::zeros(),
+        }
+    }
+
+    /// Whether the frame turns at any time.
+    pub fn turns(&self) -> bool {
+        self.speed.extremes() != (0.0, 0.0)
+    }
+
+    /// The carrier's frame at time t: Ω_c x̂, Ω̇_c x̂ and a point of its axis, −offset.
+    pub fn frame(&self, t: f64) -> TurningFrame {
+        let (speed, rate) = self.speed.at(t);
+        TurningFrame {
+            omega: Vec3::new(speed, 0.0, 0.0),
+            omega_rate: Vec3::new(rate, 0.0, 0.0),
+            axis_point: -self.offset,
+        }
+    }
+
+    /// `gravity` (fixed in space, given as the carrier stands at t = 0) in the carrier's
+    /// frame at time t: turned about x by −∫₀ᵗ Ω_c dt.
+    pub fn gravity_at(&self, gravity: &Vec3, t: f64) -> Vec3 {
+        if !self.turns() {
+            return *gravity;
+        }
+        let (s, c) = (-self.speed.integral(t)).sin_cos();
+        Vec3::new(
+            gravity.x,
+            c * gravity.y - s * gravity.z,
+            s * gravity.y + c * gravity.z,
+        )
+    }
 }
 
 /// Everything the dynamic model needs.
@@ -256,6 +355,8 @@ pub struct BearingParams {
     /// Outer ring speed [rad/s] about +x (not in the paper, whose outer ring is fixed; a
     /// planet gear turns its bearing's outer ring about a fixed pin).
     pub outer_ring_speed: History,
+    /// The planet carrier the bearing turns with (not in the paper; [`Carrier`]).
+    pub carrier: Carrier,
     /// Squeeze-film damping of the roller end–flange gaps (not in the paper;
     /// [`crate::tribology::squeeze`]).
     pub squeeze_film: SqueezeFilm,
@@ -348,10 +449,26 @@ impl BearingParams {
         self.axial_load.check("axial_load")?;
         self.inner_ring_speed.check("inner_ring_speed")?;
         self.outer_ring_speed.check("outer_ring_speed")?;
+        self.carrier.speed.check("carrier_speed")?;
+        self.check_carrier_offset()?;
         self.check_flanges()?;
         let (least, most) = self.axial_load.extremes();
         for axial_load in [least, most] {
             self.check_axial_load_path("axial_load", axial_load)?;
+        }
+        Ok(())
+    }
+
+    /// The carrier's offset: finite, across the axis (its x part would mean nothing: the
+    /// carrier's axis is parallel to the bearing's).
+    fn check_carrier_offset(&self) -> Result<()> {
+        let o = &self.carrier.offset;
+        if !(o.iter().all(|v| v.is_finite()) && o.x == 0.0) {
+            return Err(Error::invalid(
+                "carrier_offset",
+                format!("{:?}", o.as_slice()),
+                "finite, across the axis (x = 0): the carrier's axis is parallel to the bearing's",
+            ));
         }
         Ok(())
     }
@@ -633,6 +750,52 @@ fn present_flanges(flanges: &[bool; 4]) -> String {
 mod tests {
     use super::*;
     use crate::bearing::test_b1::{params, B1};
+    use proptest::prelude::*;
+
+    /// ∫₀ᵗ of `h` by the composite trapezoidal rule on 200 000 intervals: the reference
+    /// for [`History::integral`]. The integrand is piecewise smooth; at a kink of slope
+    /// jump J the rule errs by at most J·(t/200 000)²/8, below 4e-8 of |v|max·t for the
+    /// histories drawn below (ramps of at least 10 ms, rows at least 1 ms apart).
+    fn trapezoids(h: &History, t: f64) -> f64 {
+        let n = 200_000;
+        let dt = t / n as f64;
+        let inner: f64 = (1..n).map(|k| h.at(k as f64 * dt).0).sum();
+        dt * (0.5 * (h.at(0.0).0 + h.at(t).0) + inner)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(48))]
+
+        /// The angle a carrier has turned through, `History::integral`, against the
+        /// trapezoidal rule over `History::at`, for ramps of both shapes (and constants)
+        /// and tables of up to five rows, some before t = 0; tolerance 1e-7 of |v|max·t.
+        #[test]
+        fn a_historys_integral_is_its_quadrature(
+            value in -1000.0..1000.0f64,
+            start in 0.0..0.3f64,
+            // no span (a constant) or one much longer than the quadrature's intervals,
+            // whose error at the ramp's kinks grows as interval² / span
+            span in prop_oneof![Just(0.0), 0.01..0.3f64],
+            cosine in any::<bool>(),
+            rows in prop::collection::vec((-0.1..0.5f64, -1000.0..1000.0f64), 1..5),
+            t in 0.01..0.8f64,
+        ) {
+            let ramp = History::Ramp { value, start, end: start + span, cosine };
+            let mut rows = rows;
+            rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+            rows.dedup_by(|a, b| (a.0 - b.0).abs() < 1e-3);
+            let table = History::Table(rows);
+            for h in [ramp, table] {
+                let (least, most) = h.extremes();
+                let scale = least.abs().max(most.abs()).max(1e-3) * t;
+                let (exact, quadrature) = (h.integral(t), trapezoids(&h, t));
+                prop_assert!(
+                    (exact - quadrature).abs() < 1e-7 * scale,
+                    "{:?} to {}: {} against {}", h, t, exact, quadrature
+                );
+            }
+        }
+    }
 
     /// A bearing without a flange on one side of the rollers is refused by name, and so is
     /// an axial load (with the ring's weight along the axis) that one of its two flanges

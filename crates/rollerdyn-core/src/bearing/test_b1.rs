@@ -5,8 +5,8 @@
 //! and the films, drag and squeeze film off (a test turns them on).
 
 use crate::bearing::{
-    BearingModel, BearingParams, BearingSystem, Detector, FlangeLaw, History, ModelOptions,
-    RollingResistance, SurfacePair, Workspace,
+    BearingModel, BearingParams, BearingSystem, Carrier, Detector, FlangeLaw, History,
+    ModelOptions, RollingResistance, SurfacePair, Workspace,
 };
 use crate::contact::border::BorderBands;
 use crate::geometry::end_flange::FlangeShape;
@@ -147,6 +147,7 @@ pub(crate) fn params(b: &Bearing) -> BearingParams {
         axial_load: History::constant(1000.0),
         inner_ring_speed: History::constant(500.0 * std::f64::consts::PI / 30.0),
         outer_ring_speed: History::constant(0.0),
+        carrier: Carrier::at_rest(),
         squeeze_film: SqueezeFilm::OFF,
         options: ModelOptions {
             detector: Detector::SemiAnalytical,

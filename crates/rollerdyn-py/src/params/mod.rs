@@ -15,7 +15,7 @@ use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use read::{read_dict, Kind};
 use rollerdyn_core::bearing::run::RunOptions;
-use rollerdyn_core::bearing::{BearingParams, History, ModelOptions, SurfacePair};
+use rollerdyn_core::bearing::{BearingParams, Carrier, History, ModelOptions, SurfacePair};
 use rollerdyn_core::contact::border::BorderBands;
 use rollerdyn_core::dynamics::integrate::StepControl;
 use rollerdyn_core::geometry::end_flange::FlangeShape;
@@ -168,6 +168,10 @@ fn to_core(p: ModelParameters, traction: &EhlTraction) -> PyResult<BearingParams
         axial_load: history(op.axial_load),
         inner_ring_speed: history(op.inner_ring_speed),
         outer_ring_speed: history(op.outer_ring_speed),
+        carrier: Carrier {
+            speed: history(op.carrier_speed),
+            offset: Vec3::from(op.carrier_offset),
+        },
         squeeze_film: SqueezeFilm {
             enabled: s.squeeze_film.enabled,
             half_width: s.squeeze_film.half_width,

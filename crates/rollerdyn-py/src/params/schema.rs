@@ -154,13 +154,16 @@ section! {
         suction_limit: f64,
     }
 
-    /// Loads [N] and the rings' speeds [rad/s] over time, gravity [m/s²].
+    /// Loads [N] and the rings' speeds [rad/s] over time, gravity [m/s²], the planet
+    /// carrier's speed [rad/s] over time and the bearing's offset from its axis [m].
     struct Operating {
         radial_load: History,
         axial_load: History,
         inner_ring_speed: History,
         outer_ring_speed: History,
         gravity: [f64; 3],
+        carrier_speed: History,
+        carrier_offset: [f64; 3],
     }
 
     /// The oil–air mixture in the cavity.

@@ -1,8 +1,8 @@
 //! Mirror symmetry of a load case about the plane of the radial load (z = 0): with the
-//! radial load, gravity and any tilting moment or misalignment in that plane, and the
-//! rollers placed symmetrically about it (roller 0 at the bottom, ψ = π), roller i and
-//! roller Z − i are mirror images and the inner ring neither moves along z nor tilts
-//! about y. The quasi-static solver then computes the rollers of one half and mirrors
+//! radial load, gravity, a planet carrier's field and any tilting moment or misalignment
+//! in that plane, and the rollers placed symmetrically about it (roller 0 at the bottom,
+//! ψ = π), roller i and roller Z − i are mirror images and the inner ring neither moves
+//! along z nor tilts about y. The quasi-static solver then computes the rollers of one half and mirrors
 //! the other's (a standard reduction of the classical analysis; Harris & Kotzalas,
 //! "Rolling Bearing Analysis", 5th ed., ch. 7, sum over ψ = 0 … π). Friction, which
 //! alone would tell the two halves apart, is not in the quasi-static model; centrifugal
@@ -29,7 +29,7 @@ impl Mirror {
             RingTilt::Free => true,
             RingTilt::Prescribed(about_y, _) => about_y == 0.0,
         };
-        if case.moment[0] != 0.0 || model.params.gravity.z != 0.0 || !in_plane_tilt {
+        if case.moment[0] != 0.0 || case.roller_field(&model.params).z != 0.0 || !in_plane_tilt {
             return None;
         }
         let partner = azimuths

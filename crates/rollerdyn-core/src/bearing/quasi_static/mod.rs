@@ -46,6 +46,7 @@ pub use solver::{FLANGE_PRESSURE_LIMIT, RING_UNKNOWNS};
 use super::contacts::Wrench;
 use super::params::BearingParams;
 use crate::error::{Error, Result};
+use crate::geometry::primitives::Vec3;
 
 /// The inner ring's tilt in a quasi-static case.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -70,6 +71,9 @@ pub struct StaticCase {
     pub speed: f64,
     /// Outer ring speed Ω_o [rad/s] (0: fixed).
     pub outer_speed: f64,
+    /// The planet carrier's speed Ω_c [rad/s] about +x (`BearingParams::carrier`; 0: the
+    /// bearing's frame at rest). The speeds above are relative to the carrier.
+    pub carrier_speed: f64,
     /// The ring's tilt.
     pub tilt: RingTilt,
     /// The roller set's turn from its reference place [rad]: roller i at azimuth
@@ -91,6 +95,7 @@ impl StaticCase {
             moment: [0.0, 0.0],
             speed: params.inner_ring_speed.at(t).0,
             outer_speed: params.outer_ring_speed.at(t).0,
+            carrier_speed: params.carrier.speed.at(t).0,
             tilt: if params.inner_ring_tilt_free {
                 RingTilt::Free
             } else {
@@ -130,6 +135,13 @@ impl StaticCase {
         text
     }
 
+    /// The acceleration of the field every roller stands in, beyond its orbit's
+    /// centrifugal force: gravity (as the carrier stands at t = 0) and the carrier's
+    /// centrifugal field at the bearing's axis, Ω_c²·offset [m/s²].
+    pub fn roller_field(&self, params: &BearingParams) -> Vec3 {
+        params.gravity + self.carrier_speed * self.carrier_speed * params.carrier.offset
+    }
+
     /// Refuses values that are not finite.
     pub fn check(&self) -> Result<()> {
         let named = [
@@ -139,6 +151,7 @@ impl StaticCase {
             ("moment about z", self.moment[1]),
             ("speed", self.speed),
             ("outer_speed", self.outer_speed),
+            ("carrier_speed", self.carrier_speed),
             ("roller_set_phase", self.roller_set_phase),
         ];
         for (name, value) in named {

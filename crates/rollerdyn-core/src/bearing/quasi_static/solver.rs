@@ -56,9 +56,17 @@ pub(super) struct Problem<'a> {
     pub(super) azimuths: Vec<f64>,
     /// Pitch radius [m].
     pub(super) pitch: f64,
-    /// Roller-set speed ω_c and roller spin relative to the set ω_s [rad/s].
-    pub(super) orbit: f64,
+    /// Roller spin relative to the set ω_s [rad/s].
     spin: f64,
+    /// The roller set's speed in space, ω_c + Ω_c: its speed ω_c relative to the rings'
+    /// frame and a planet carrier's speed Ω_c [rad/s]:
+    /// what the centrifugal force and the gyroscopic moment of the orbit follow (the
+    /// carrier's centrifugal field about the bearing's axis and the Coriolis force of the
+    /// orbit together with the orbit's own centrifugal force make (ω_c + Ω_c)² r).
+    inertial_orbit: f64,
+    /// Gravity and the carrier's centrifugal field at the bearing's axis [m/s²]
+    /// ([`StaticCase::roller_field`]).
+    roller_field: Vec3,
     /// The share of the external loads applied (continuation).
     load_factor: f64,
     /// Roller radius: the length that turns angles into arcs and moments into forces.
@@ -98,8 +106,9 @@ impl<'a> Problem<'a> {
             mirror: Mirror::of(model.model, case, &azimuths),
             azimuths,
             pitch,
-            orbit,
             spin,
+            inertial_orbit: orbit + case.carrier_speed,
+            roller_field: case.roller_field(p),
             load_factor: 1.0,
             scale: r,
             evaluations: 0,
@@ -236,14 +245,15 @@ impl<'a> Problem<'a> {
         let kin = pose.kinematics(self.pitch);
         let m = &self.model.roller_mass;
         let e_r = pose.radial_direction();
-        let centrifugal = m.mass * self.orbit * self.orbit * (self.pitch + pose.radial) * e_r;
-        let force = f.on_roller.force + m.mass * self.model.params.gravity + centrifugal;
+        let orbit = self.inertial_orbit;
+        let centrifugal = m.mass * orbit * orbit * (self.pitch + pose.radial) * e_r;
+        let force = f.on_roller.force + m.mass * self.roller_field + centrifugal;
         let x = Vec3::x();
-        let omega = self.orbit * x + self.spin * kin.axis;
+        let omega = orbit * x + self.spin * kin.axis;
         let along = omega.dot(&kin.axis);
         let momentum =
             m.axial_inertia * along * kin.axis + m.transverse_inertia * (omega - along * kin.axis);
-        let needed = self.orbit * x.cross(&momentum);
+        let needed = orbit * x.cross(&momentum);
         [
             force.dot(&e_r),
             force.x,
@@ -313,8 +323,9 @@ impl<'a> Problem<'a> {
         let p = &self.model.params;
         let m = &self.model.roller_mass;
         let z = self.azimuths.len() as f64;
-        let body = (p.inner_ring_mass + z * m.mass) * p.gravity.norm()
-            + z * m.mass * self.orbit * self.orbit * self.pitch;
+        let body = p.inner_ring_mass * p.gravity.norm()
+            + z * m.mass * self.roller_field.norm()
+            + z * m.mass * self.inertial_orbit * self.inertial_orbit * self.pitch;
         let external = c.radial_load.abs()
             + c.axial_load.abs()
             + (c.moment[0].abs() + c.moment[1].abs()) / self.scale;
@@ -465,7 +476,9 @@ impl<'a> Problem<'a> {
         for i in 0..self.azimuths.len() {
             let pose = self.pose(&u, i);
             let e_r = pose.radial_direction();
-            let outward = m.mass * (p.gravity.dot(&e_r) + self.orbit * self.orbit * self.pitch);
+            let outward = m.mass
+                * (self.roller_field.dot(&e_r)
+                    + self.inertial_orbit * self.inertial_orbit * self.pitch);
             let s = RING_UNKNOWNS + ROLLER_UNKNOWNS * i;
             u[s] = if e_r.dot(&down) > 0.0 || outward > 0.0 {
                 0.5 * clearance

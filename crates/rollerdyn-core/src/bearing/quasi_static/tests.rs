@@ -17,6 +17,7 @@ fn at_rest(radial_load: f64, axial_load: f64) -> StaticCase {
         moment: [0.0, 0.0],
         speed: 0.0,
         outer_speed: 0.0,
+        carrier_speed: 0.0,
         tilt: RingTilt::Prescribed(0.0, 0.0),
         roller_set_phase: 0.0,
     }
@@ -832,5 +833,79 @@ fn a_misalignment_the_bearing_cannot_take_is_named_in_the_error() {
             && e.contains("reached 0 % of the load")
             && e.contains("(inner_ring.misalignment)"),
         "{e}"
+    );
+}
+
+/// A planet carrier turning at w with B1's rings at rest in it is, for the rollers' orbit,
+/// B1 with both rings turning at w (the rollers orbit at w in space either way, with their
+/// centrifugal force and gyroscopic moment), and its centrifugal field Ω²·offset at the
+/// bearing acts as gravity would: B1 in a carrier at 300 rad/s, 40 mm from the sun's axis
+/// (3 600 m/s², a roller's weight 367 times) with gravity off, against B1 with both rings
+/// at 300 rad/s and that field as gravity. The equilibria must agree to the solver's
+/// tolerance (1e-7 of the bearing's loads, 0.5 mN on B1): ring within 1 nm, every roller
+/// load within 1 mN.
+#[test]
+fn a_turning_carriers_equilibrium_is_both_rings_turning_in_its_field() {
+    use crate::bearing::{Carrier, History};
+    use crate::geometry::primitives::Vec3;
+    let (w, offset) = (300.0, Vec3::new(0.0, -0.04, 0.0));
+    // the rings' inertial forces in a carrier are the load's (`Carrier`): the ring's mass
+    // taken out of both, so that the second's gravity acts on the rollers alone
+    let mut b1 = params(&B1);
+    b1.inner_ring_mass = 1e-9;
+    let mut carried = b1.clone();
+    carried.gravity = Vec3::zeros();
+    carried.carrier = Carrier {
+        speed: History::constant(w),
+        offset,
+    };
+    let mut spinning = b1;
+    spinning.gravity = w * w * offset;
+    let solve = |p, case: StaticCase| {
+        let m = BearingModel::new(p).unwrap();
+        in_workspace(&m, |s| s.statics(&case, None).expect("an equilibrium"))
+    };
+    let base = at_rest(5000.0, 1000.0);
+    let a = solve(
+        carried,
+        StaticCase {
+            carrier_speed: w,
+            ..base
+        },
+    );
+    let b = solve(
+        spinning,
+        StaticCase {
+            speed: w,
+            outer_speed: w,
+            ..base
+        },
+    );
+    for k in 0..3 {
+        assert!(
+            (a.ring[k] - b.ring[k]).abs() < 1e-9,
+            "{:?} {:?}",
+            a.ring,
+            b.ring
+        );
+    }
+    for (i, (fa, fb)) in a.forces.iter().zip(&b.forces).enumerate() {
+        let (la, lb) = (
+            fa.inner_slices.iter().sum::<f64>(),
+            fb.inner_slices.iter().sum::<f64>(),
+        );
+        assert!((la - lb).abs() < 1e-3, "roller {i}: {la} N against {lb} N");
+    }
+    // the field is felt: it presses the top roller (roller 0 is at the bottom) onto the
+    // inner race with 2.2 N less its orbit's centrifugal 0.66 N, against its weight's
+    // 6 mN in the carrier at rest
+    let rest = solve(params(&B1), base);
+    let top = a.forces.len() / 2;
+    let inner = |s: &super::StaticSolution| s.forces[top].inner_slices.iter().sum::<f64>();
+    assert!(
+        inner(&a) > inner(&rest) + 1.0,
+        "{} against {}",
+        inner(&a),
+        inner(&rest)
     );
 }
