@@ -156,8 +156,17 @@ impl BearingSystem<'_> {
         dy: &mut [f64],
     ) {
         let p = &self.params;
-        let gravity = p.carrier.gravity_at(&p.gravity, t);
-        let acc = (w.force + self.external_load(t)) / p.inner_ring_mass + gravity;
+        let field = self.body_field(t);
+        let mut acc = (w.force + self.external_load(t)) / p.inner_ring_mass + field.gravity;
+        if let Some(frame) = &field.carrier {
+            // the ring's displacement from the bearing's axis and its velocity feel the
+            // carrier; its centrifugal force there is the load's (`Carrier`)
+            let about_axis = TurningFrame {
+                axis_point: Vec3::zeros(),
+                ..*frame
+            };
+            acc += about_axis.inertial_acceleration(&kin.center, &kin.velocity);
+        }
         dy[..3].copy_from_slice(kin.velocity.as_slice());
         dy[3..6].copy_from_slice(acc.as_slice());
         if self.layout.tilt_free {

@@ -146,8 +146,7 @@ fn rolling_speeds_closed_forms() {
 /// has turned by `angle` at speed w about the bearing's own axis: every position, velocity
 /// and axis turned back about x by the angle, the carrier's w x̂ × r taken off the
 /// velocities and w x̂ off the angular velocities (the inverse of [`turned_state`] at
-/// angle 0). The ring's states are left as they are (their inertial terms belong to the
-/// load, `Carrier`).
+/// angle 0); the ring's centre likewise (its tilt is locked here).
 fn seen_from_carrier(model: &BearingModel, y_space: &[f64], w: f64, angle: f64) -> Vec<f64> {
     use crate::dynamics::rigid::axis_from_angles;
     let back = |v: Vec3| {
@@ -156,6 +155,10 @@ fn seen_from_carrier(model: &BearingModel, y_space: &[f64], w: f64, angle: f64) 
     };
     let turn = Vec3::new(w, 0.0, 0.0);
     let mut y = y_space.to_vec();
+    let ring = Vec3::new(y[0], y[1], y[2]);
+    let ring_velocity = back(Vec3::new(y[3], y[4], y[5]) - turn.cross(&ring));
+    y[..3].copy_from_slice(back(ring).as_slice());
+    y[3..6].copy_from_slice(ring_velocity.as_slice());
     for i in 0..model.layout.rollers {
         let s = model.layout.roller(i);
         let r = Vec3::new(y[s], y[s + 1], y[s + 2]);
@@ -172,8 +175,8 @@ fn seen_from_carrier(model: &BearingModel, y_space: &[f64], w: f64, angle: f64) 
 }
 
 /// A planet carrier turning at w about the bearing's own axis (offset 0) is the same
-/// bearing seen from a frame that turns with it: the rollers' rates that the carrier's
-/// model computes with its inertial terms (`TurningFrame`: Coriolis, centrifugal,
+/// bearing seen from a frame that turns with it: the rates of the rollers and of the
+/// ring's centre that the carrier's model computes with its inertial terms (`TurningFrame`: Coriolis, centrifugal,
 /// Euler's equations for ω + Ω) must be the time derivative of the carrier at rest's
 /// motion (rings at Ω + w and w, the state turned by [`turned_state`]) seen from the
 /// turning frame: d/dt [T(−w t) y_space(t)] at t = 0, by central differences of
@@ -255,6 +258,20 @@ fn a_turning_carriers_rates_are_the_carrier_at_rests_motion_seen_from_it() {
                     );
                 }
             }
+        }
+        // the ring's centre, 50 µm off the axis: its velocity to 1e-10 m/s (the central
+        // difference's error h²w³|r|/6 is 2e-12 m/s; the frame's w × r, 6e-3 m/s) and its
+        // acceleration to 5e-6 m/s² (1e-9 of the contacts' 5e3 m/s² on it; the carrier's
+        // centrifugal w²|r| is 4.5 m/s²)
+        assert_eq!(model.layout.ring_states(), 6);
+        for k in 0..6 {
+            let tolerance = if k < 3 { 1e-10 } else { 5e-6 };
+            assert!(
+                (rates[k] - expected[k]).abs() < tolerance,
+                "w = {w}, ring row {k}: {} against {}",
+                rates[k],
+                expected[k]
+            );
         }
     }
 }

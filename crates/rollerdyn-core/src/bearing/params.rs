@@ -209,8 +209,11 @@ pub struct SurfacePair {
 /// gear's bearing sits on a pin of a carrier that turns about the sun's axis, parallel to
 /// the bearing's. The bodies' states are relative to the carrier, and the rollers feel the
 /// carrier's inertial forces ([`crate::dynamics::rigid::TurningFrame`]); gravity turns
-/// against the carrier. The rings' own inertial forces in the carrier (the planet's
-/// centrifugal force) are part of the bearing's load.
+/// against the carrier. The rings' own inertial forces at the bearing's axis (the planet's
+/// centrifugal force Ω_c²·offset) are part of the bearing's load; the inner ring's
+/// displacement from that axis and its velocity feel the carrier's centrifugal, Coriolis
+/// and Euler forces, and its tilt (when free) follows Euler's equations of its spin
+/// relative to the carrier.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Carrier {
     /// Carrier speed Ω_c [rad/s] about +x, over time (0: the bearing's frame is at rest).
