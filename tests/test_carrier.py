@@ -92,9 +92,10 @@ def test_a_roller_outside_the_load_zone_balances_the_carriers_field_and_its_orbi
     orbit = omega_carrier + 0.5 * 500 * RPM * (1 + gamma)
     field = 9.81 + omega_carrier**2 * 0.04
     azimuth = np.radians(ds.roller_azimuth.values)
-    from_top = np.angle(np.exp(1j * (azimuth - 0.0)))  # 0 at +y, the top
+    from_top = np.angle(np.exp(1j * azimuth))  # 0 at +y, the top
+    orbit_centrifugal = orbit**2 * cfg.geometry.pitch_diameter / 2
     for i in np.flatnonzero(np.abs(from_top) < math.radians(25)):
-        expected = mass * (field * math.cos(from_top[i]) - orbit**2 * cfg.geometry.pitch_diameter / 2)
+        expected = mass * (field * math.cos(from_top[i]) - orbit_centrifugal)
         load = float(ds.inner_race_load.values[i])
         assert load == pytest.approx(expected, rel=5e-3), (i, math.degrees(from_top[i]))
         assert float(ds.outer_race_load.values[i]) == 0.0
@@ -158,10 +159,7 @@ def test_a_carrier_about_the_bearings_own_axis_is_both_rings_turning_with_it():
     gamma = carried.geometry.roller_diameter / carried.geometry.pitch_diameter
     orbit = 0.5 * 500 * RPM * (1 + gamma)
     centrifugal = (
-        carried.roller_mass
-        * ((orbit + w) ** 2 - orbit**2)
-        * carried.geometry.pitch_diameter
-        / 2
+        carried.roller_mass * ((orbit + w) ** 2 - orbit**2) * carried.geometry.pitch_diameter / 2
     )
     gained = (a["outer"] - a["inner"]) - (rest["outer"] - rest["inner"])
     assert gained == pytest.approx(centrifugal, rel=0.03), (gained, centrifugal)
