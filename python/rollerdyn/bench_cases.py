@@ -65,6 +65,17 @@ CASES: dict[str, tuple[str, dict[str, Any]]] = {
         "bearing): inner ring 0 rpm, outer ring 500 rpm",
         {"operating.inner_ring_speed": "0 rpm", "operating.outer_ring_speed": "500 rpm"},
     ),
+    "planet-3000rpm": (
+        "a planet gear's bearing: the outer ring at 500 rpm on a pin in a carrier at 3000 rpm, "
+        "40 mm from the sun's axis, from an equilibrium start, to 0.1 s",
+        {
+            **_FROM_EQUILIBRIUM,
+            "operating.inner_ring_speed": "0 rpm",
+            "operating.outer_ring_speed": "500 rpm",
+            "operating.carrier_speed": "3000 rpm",
+            "operating.carrier_offset": "40 mm",
+        },
+    ),
     "axial-0N": ("the whole run with no axial load", {"operating.axial_load": "0 N"}),
     "axial-500N": ("the whole run with 500 N axial load", {"operating.axial_load": "500 N"}),
     "axial-2000N": ("the whole run with 2000 N axial load", {"operating.axial_load": "2000 N"}),
