@@ -25,7 +25,8 @@ def statics_command(
             metavar="PATH=VALUES",
             help="Vary the load case: PATH=START:STOP:COUNT or PATH=VALUE[,VALUE...], PATH "
             "one of operating.radial_load, operating.axial_load [N], "
-            "operating.inner_ring_speed, operating.outer_ring_speed [rad/s], "
+            "operating.inner_ring_speed, operating.outer_ring_speed, "
+            "operating.carrier_speed [rad/s], "
             "inner_ring.misalignment [rad], moment_y, "
             "moment_z [N*m], roller_set_phase [rad] (the roller set turned from roller 0 "
             "under the load; over one pitch, 360 deg / Z, the ring's equilibrium shows the "

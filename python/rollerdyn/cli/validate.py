@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Annotated
 
@@ -89,6 +90,13 @@ def check(
         ("roller transverse inertia", cfg.roller_transverse_inertia, "kg m^2"),
         ("roller-set speed at full speed", cfg.roller_set_speed, "rad/s"),
         ("end time", cfg.end_time, "s"),
+    ]
+    carrier = cfg.operating.final_carrier_speed
+    if carrier != 0.0:
+        field = carrier**2 * math.hypot(*cfg.operating.carrier_offset)
+        rows.append(("planet carrier's field at the bearing's axis, at full speed", field, "m/s^2"))
+        rows.append(("  ... on one roller", cfg.roller_mass * field, "N"))
+    rows += [
         ("eta0 at run temperature", model.eta0, "Pa s"),
         ("Roelands z", model.roelands_z, "-"),
         ("alpha* (eq. 32 fit)", model.alpha_star, "1/Pa"),

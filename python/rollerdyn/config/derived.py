@@ -350,6 +350,12 @@ class OperatingDerived:
         return v.final if isinstance(v, TimeTable) else v
 
     @property
+    def final_carrier_speed(self) -> float:
+        """The planet carrier's speed after the ramp/table, rad/s."""
+        v = self.carrier_speed
+        return v.final if isinstance(v, TimeTable) else v
+
+    @property
     def final_relative_speed(self) -> float:
         """Inner ring speed relative to the outer ring after the ramp/table, rad/s: what
         sets the rolling (entrainment) speeds and the rating life's revolutions."""
