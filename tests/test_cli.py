@@ -679,3 +679,30 @@ def test_resume_refuses_a_checkpoint_interval_changed_by_hand(tmp_path):
     res = RUNNER.invoke(app, args)
     assert res.exit_code == 2, res.output
     assert "checkpoint_interval_s = 'abc' is no positive number" in " ".join(res.output.split())
+
+
+def test_set_none_removes_an_optional_value(tmp_path):
+    """`--set PATH=none` (bare) removes the value, leaving its default: B1 without its load
+    ramp has its loads from t = 0, and the result's TOML record says what was removed; a
+    required value removed is refused as missing, naming it; a quoted "none" stays a
+    string (refused here, where a table is expected)."""
+    import tomllib
+
+    import xarray as xr
+
+    out = tmp_path / "no_ramp.nc"
+    sets = ["--set", "operating.load_ramp=none", "--set", "operating.speed_ramp=none"]
+    result = RUNNER.invoke(app, ["run", str(B1), "-o", str(out), "--t-end", "0.0004", *sets])
+    assert result.exit_code == 0, result.output
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        text = ds.attrs["config_toml"]
+        assert "operating.load_ramp = none (removed)" in text.splitlines()[0]
+        assert "load_ramp" not in tomllib.loads(text)["operating"]
+        assert float(ds.radial_load.isel(time=0)) == pytest.approx(5000.0)
+    for bad, rule in (
+        ("operating.radial_load=none", "operating.radial_load: (missing) — required"),
+        ('operating.load_ramp="none"', "expected a table"),
+    ):
+        refused = RUNNER.invoke(app, ["check", str(B1), "--set", bad])
+        assert refused.exit_code == 2, (bad, refused.output)
+        assert rule in refused.output and "Traceback" not in refused.output, bad

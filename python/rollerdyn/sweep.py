@@ -231,9 +231,10 @@ class GridPoint:
 
 
 def changed(data: Mapping, changes: Mapping[str, Any]) -> dict:
-    """A deep copy of ``data`` with dotted-path changes (``{"operating.axial_load": 0.0}``);
-    :class:`SweepError` naming the path where a parent is not a table. Shared with the
-    studies (:mod:`rollerdyn.study`) and the benchmark cases."""
+    """A deep copy of ``data`` with dotted-path changes (``{"operating.axial_load": 0.0}``;
+    None removes the key, leaving the field's default); :class:`SweepError` naming the path
+    where a parent is not a table. Shared with the studies (:mod:`rollerdyn.study`) and the
+    benchmark cases."""
     import copy
 
     out = copy.deepcopy(dict(data))
@@ -249,7 +250,10 @@ def changed(data: Mapping, changes: Mapping[str, Any]) -> dict:
                     "table, so it has no keys to set"
                 )
             section = nxt
-        section[key] = value
+        if value is None:
+            section.pop(key, None)
+        else:
+            section[key] = value
     return out
 
 

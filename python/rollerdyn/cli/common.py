@@ -139,7 +139,8 @@ def load(path: Path, changes: dict[str, Any] | None = None):
 SET_HELP = (
     "PATH=VALUE: a configuration value changed, written as in the file (e.g. "
     'surfaces.flange_law=distributed, operating.axial_load="500 N", solver.friction=false); '
-    "repeat for more."
+    "PATH=none removes an optional value, leaving its default (operating.load_ramp=none: "
+    "the loads from t = 0); repeat for more."
 )
 
 
@@ -163,7 +164,9 @@ def set_options(options: list[str] | None) -> dict[str, Any]:
         if path in changes:
             raise refuse(f"--set {option}: {path} is set twice")
         refuse_overlap(option, path, changes)
-        changes[path] = values[0]
+        # a bare none (not "none" quoted) removes the value: its default, or no ramp
+        removed = values == ["none"] and option.partition("=")[2].strip() == "none"
+        changes[path] = None if removed else values[0]
     return changes
 
 

@@ -152,6 +152,8 @@ def _string(text: str) -> str:
 
 def _shown(value: Any) -> str:
     """A changed value as a comment shows it: inline TOML where it is a TOML value."""
+    if value is None:
+        return "none (removed)"
     try:
         return _inline(value)
     except TypeError:
