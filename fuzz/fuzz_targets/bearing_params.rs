@@ -1,10 +1,10 @@
 //! The model parameters the Python bindings build (`BearingParams`) and their validation
 //! (`BearingParams::check`, run by `BearingModel::new`). Every field the check covers is
 //! drawn (roller count and slices, shapes through their validated constructors, raceway
-//! radii, plays, densities, ring mass and inertias, η₀, bands, damping, the three load and
-//! speed histories) plus the detector, pruning, mesh resolution, crowning, gravity, the
-//! flange law, the flanges present, the rolling resistance's form and the race film's
-//! suction limit;
+//! radii, plays, densities, ring mass and inertias, η₀, bands, damping, the load and speed
+//! histories, a planet carrier's speed and offset) plus the detector, pruning, mesh
+//! resolution, crowning, gravity, the flange law, the flanges present, the rolling
+//! resistance's form and the race film's suction limit;
 //! the tribology data are B1's (the Python config validates those). No panic anywhere; a
 //! model that builds and finds a start state must give finite rates f(t, y) at the start
 //! and at a perturbed state (rollers pushed into their contacts).
@@ -12,8 +12,8 @@
 
 use libfuzzer_sys::fuzz_target;
 use rollerdyn_core::bearing::{
-    BearingModel, BearingParams, Detector, FlangeLaw, History, ModelOptions, RollingResistance,
-    SurfacePair, Workspace,
+    BearingModel, BearingParams, Carrier, Detector, FlangeLaw, History, ModelOptions,
+    RollingResistance, SurfacePair, Workspace,
 };
 use rollerdyn_core::contact::border::BorderBands;
 use rollerdyn_core::dynamics::integrate::OdeSystem;
@@ -186,6 +186,19 @@ fn params(r: &mut Reader) -> Option<BearingParams> {
         axial_load: history(r, 1e3),
         inner_ring_speed: history(r, 1e3),
         outer_ring_speed: history(r, 1e3),
+        // A planet carrier half the time; its offset across the axis, up to 1 m.
+        carrier: if r.flag() {
+            Carrier {
+                speed: history(r, 1e3),
+                offset: rollerdyn_core::geometry::primitives::Vec3::new(
+                    0.0,
+                    r.range(-1.0, 1.0),
+                    r.range(-1.0, 1.0),
+                ),
+            }
+        } else {
+            Carrier::at_rest()
+        },
         // The configuration's ranges (surfaces.squeeze_film).
         squeeze_film: SqueezeFilm {
             enabled: r.flag(),
