@@ -177,3 +177,18 @@ def test_statics_sweeps_the_carrier_speed():
     loads = ds.inner_race_load.values[:, top]
     assert loads[0] < loads[1] < loads[2], loads
     assert ds.carrier_speed_applied.values.tolist() == pytest.approx([0.0, 1000 * RPM, 3000 * RPM])
+
+
+def test_a_strong_carrier_field_is_noted_before_a_run():
+    """`rollerdyn run` and `check` print the configuration's notes: a carrier whose field
+    at the bearing passes ten times gravity gets one naming the field and the push on each
+    roller (B1 at 3000 rpm and 40 mm: 3 948 m/s^2, m 3 948 = 2.41 N); about the bearing's
+    own axis (no field) or slow, none."""
+    from rollerdyn.notes import carrier_note, configuration_notes
+
+    cfg = parse_config(_planet("3000 rpm", "40 mm"))
+    note = carrier_note(cfg)
+    assert note is not None and "3948 m/s^2" in note and "2.41 N on each" in note, note
+    assert note in configuration_notes(cfg)
+    for carrier, offset in (("3000 rpm", "0 mm"), ("100 rpm", "40 mm")):
+        assert carrier_note(parse_config(_planet(carrier, offset))) is None

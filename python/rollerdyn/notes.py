@@ -19,12 +19,42 @@ def configuration_notes(
 ) -> list[str]:
     """The notes on ``config`` (a configuration or its TOML file) for a run to ``t_end``
     [s] (default: the configuration's end time), one line each, in the order ``rollerdyn
-    run`` prints them: :func:`slow_configuration_note`, :func:`unloaded_start_note`, then
-    :func:`capacity_note`."""
+    run`` prints them: :func:`slow_configuration_note`, :func:`carrier_note`,
+    :func:`unloaded_start_note`, then :func:`capacity_note`."""
     cfg = config if isinstance(config, BearingConfig) else load_config(config)
     t = cfg.end_time if t_end is None else float(t_end)
-    notes = (slow_configuration_note(cfg), unloaded_start_note(cfg), capacity_note(cfg, t))
+    notes = (
+        slow_configuration_note(cfg),
+        carrier_note(cfg),
+        unloaded_start_note(cfg),
+        capacity_note(cfg, t),
+    )
     return [note for note in notes if note is not None]
+
+
+#: The planet carrier's field [m/s^2] from which :func:`carrier_note` speaks: ten times
+#: gravity, ten times the pushes on the unloaded rollers that B1's own run has.
+CARRIER_FIELD_NOTED = 98.1
+
+
+def carrier_note(cfg: BearingConfig) -> str | None:
+    """A one-line note where a planet carrier's centrifugal field at the bearing (at its
+    final speed) is more than :data:`CARRIER_FIELD_NOTED`: the field's part along the orbit
+    pushes the unloaded rollers against each other, and such a run takes many small steps
+    (B1 at 400 g: 18 times the steps; docs/dynamics.md, "A planet carrier")."""
+    import math
+
+    op = cfg.operating
+    field = op.final_carrier_speed**2 * math.hypot(*op.carrier_offset)
+    if not field > CARRIER_FIELD_NOTED:
+        return None
+    return (
+        f"note: the planet carrier's field at the bearing, {field:.4g} m/s^2 "
+        f"({field / 9.81:.3g} g), pushes the unloaded rollers along their orbit against "
+        f"each other ({cfg.roller_mass * field:.3g} N on each): expect roller-roller "
+        "friction and many small steps (B1 at 400 g takes 18 times the steps of its run "
+        'without the carrier; docs/dynamics.md, "A planet carrier")'
+    )
 
 
 def slow_configuration_note(cfg: BearingConfig) -> str | None:
