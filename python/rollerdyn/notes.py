@@ -42,10 +42,7 @@ def carrier_note(cfg: BearingConfig) -> str | None:
     final speed) is more than :data:`CARRIER_FIELD_NOTED`: the field's part along the orbit
     pushes the unloaded rollers against each other, and such a run takes many small steps
     (B1 at 400 g: 18 times the steps; docs/dynamics.md, "A planet carrier")."""
-    import math
-
-    op = cfg.operating
-    field = op.final_carrier_speed**2 * math.hypot(*op.carrier_offset)
+    field = cfg.carrier_field
     if not field > CARRIER_FIELD_NOTED:
         return None
     return (

@@ -264,15 +264,6 @@ def _case_with(case: StaticCase, *, moment=None, **values) -> StaticCase:
     return case
 
 
-def _speed_radius(cfg: BearingConfig, field: str) -> float:
-    """The radius [m] whose speed the pitch-circle rule bounds: the pitch circle's, and for
-    the carrier's speed the bearing's farthest rollers from the carrier's axis."""
-    radius = cfg.geometry.pitch_diameter / 2.0
-    if field == "carrier_speed":
-        radius += math.hypot(*cfg.operating.carrier_offset)
-    return radius
-
-
 def _check_path(path: str) -> None:
     """Refuses a path a statics sweep cannot vary."""
     if path not in STATIC_FIELDS:
@@ -305,7 +296,7 @@ def check_range(
             rule = flanges
         elif (
             field in ("speed", "outer_speed", "carrier_speed")
-            and not abs(v) * _speed_radius(cfg, field) <= MAX_PITCH_SPEED
+            and not abs(v) * cfg.speed_radius(path.split(".")[-1]) <= MAX_PITCH_SPEED
         ):
             rule = f"must give a pitch-circle speed of at most {MAX_PITCH_SPEED:g} m/s"
         elif field == "misalignment" and not abs(v) <= math.radians(MAX_MISALIGNMENT_DEG):

@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Annotated
 
@@ -91,9 +90,8 @@ def check(
         ("roller-set speed at full speed", cfg.roller_set_speed, "rad/s"),
         ("end time", cfg.end_time, "s"),
     ]
-    carrier = cfg.operating.final_carrier_speed
-    if carrier != 0.0:
-        field = carrier**2 * math.hypot(*cfg.operating.carrier_offset)
+    field = cfg.carrier_field
+    if field != 0.0:
         rows.append(("planet carrier's field at the bearing's axis, at full speed", field, "m/s^2"))
         rows.append(("  ... on one roller", cfg.roller_mass * field, "N"))
     rows += [

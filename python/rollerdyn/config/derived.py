@@ -409,6 +409,22 @@ class BearingDerived:
         q = MAX_HERTZ_PRESSURE**2 * 2.0 * math.pi * r_eff * straight / e_prime
         return q * g.roller_count / 4.08
 
+    def speed_radius(self, speed: str) -> float:
+        """The radius [m] at which the configuration bounds the speed ``speed`` (one of
+        :data:`SPEEDS`) by the pitch-circle rule: the pitch circle's, and for the planet
+        carrier's speed the bearing's farthest rollers from the carrier's axis."""
+        radius = self.geometry.pitch_diameter / 2.0
+        if speed == "carrier_speed":
+            radius += math.hypot(*self.operating.carrier_offset)
+        return radius
+
+    @property
+    def carrier_field(self) -> float:
+        """The planet carrier's centrifugal field at the bearing's axis at full speed,
+        Omega_c^2 |offset| [m/s^2] (0 without a carrier)."""
+        op = self.operating
+        return op.final_carrier_speed**2 * math.hypot(*op.carrier_offset)
+
     # ---- kinematics and run length
 
     @property

@@ -774,10 +774,7 @@ class BearingConfig(BearingDerived, _Section):
                 )
         for ring in SPEEDS:
             speed = _history_peak(getattr(op, ring))
-            radius = self.geometry.pitch_diameter / 2.0
-            if ring == "carrier_speed":  # the bearing's outermost rollers in space
-                radius += math.hypot(*op.carrier_offset)
-            pitch_speed = speed * radius
+            pitch_speed = speed * self.speed_radius(ring)
             if not pitch_speed <= MAX_PITCH_SPEED:
                 cross.add(
                     f"operating.{ring}",
