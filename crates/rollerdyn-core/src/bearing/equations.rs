@@ -150,13 +150,13 @@ impl BearingSystem<'_> {
     pub(super) fn ring_rates(
         &self,
         t: f64,
+        field: &BodyField,
         kin: &Kinematics,
         y: &[f64],
         w: &Wrench,
         dy: &mut [f64],
     ) {
         let p = &self.params;
-        let field = self.body_field(t);
         let mut acc = (w.force + self.external_load(t)) / p.inner_ring_mass + field.gravity;
         if let Some(frame) = &field.carrier {
             // the ring's displacement from the bearing's axis and its velocity feel the
@@ -208,8 +208,9 @@ impl BearingSystem<'_> {
         dy: &mut [f64],
     ) {
         let n = self.layout.ring_states();
-        self.ring_rates(t, &kin.inner_ring, &y[..n], &loads.inner_ring, &mut dy[..n]);
         let field = self.body_field(t);
+        let ring = &loads.inner_ring;
+        self.ring_rates(t, &field, &kin.inner_ring, &y[..n], ring, &mut dy[..n]);
         for i in 0..self.layout.rollers {
             let s = self.layout.roller(i);
             let r = s..s + ROLLER_STATES;

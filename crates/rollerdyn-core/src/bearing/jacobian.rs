@@ -21,7 +21,7 @@
 //! tolerances.
 
 use super::contacts::{ElementResult, Geometry, Wrench};
-use super::equations::Loads;
+use super::equations::{BodyField, Loads};
 use super::state::{ring_kinematics, roller_kinematics, BearingKinematics, ROLLER_STATES};
 use super::topology::Body;
 use crate::bearing::workspace::BearingSystem;
@@ -42,6 +42,8 @@ struct Linearisation<'a> {
     loads: Loads,
     /// Each roller's drag at the state.
     drags: Vec<Wrench>,
+    /// Gravity and the carrier's frame at t.
+    field: BodyField,
 }
 
 /// One column of the Jacobian: (row, value) pairs and, for a roller's translation or
@@ -159,6 +161,7 @@ impl BearingSystem<'_> {
             loads: self.loads(&evaluation.results),
             results: &evaluation.results,
             drags: kin.rollers.iter().map(|r| self.roller_drag(r)).collect(),
+            field: self.body_field(t),
         };
         let mut f0 = vec![0.0; self.layout.len()];
         self.rates_with(t, y, &kin, &base.loads, |i| base.drags[i], &mut f0);
@@ -393,6 +396,7 @@ impl BearingSystem<'_> {
             let m = self.layout.ring_states();
             self.ring_rates(
                 t,
+                &base.field,
                 &kin_p.inner_ring,
                 &yp[..m],
                 &changed.loads.inner_ring,
@@ -400,7 +404,6 @@ impl BearingSystem<'_> {
             );
             column.extend((0..m).map(|row| (row, (fp[row] - f0[row]) / h)));
         }
-        let field = self.body_field(t);
         for (r, _) in changed.touched.iter().enumerate().filter(|(_, t)| **t) {
             let s = self.layout.roller(r);
             let range = s..s + ROLLER_STATES;
@@ -412,7 +415,7 @@ impl BearingSystem<'_> {
                 &base.drags[r]
             };
             self.roller_rates_with(
-                &field,
+                &base.field,
                 &kin_p.rollers[r],
                 &yp[range.clone()],
                 &changed.loads.rollers[r],
