@@ -69,6 +69,12 @@ def test_a_larger_bearing_is_b1_scaled_and_solves(tmp_path):
     assert cfg.operating.axial_load == pytest.approx(radial / 5, rel=5e-4)
     ds = statics(cfg)
     assert float(ds.max_roller_load) > 0 and math.isfinite(float(ds.friction_torque))
+    # The file's comment on end_time quotes this bearing's end time, not B1's 1.288 s (the
+    # speed ramp's end plus two roller-set revolutions; written to 4 digits).
+    comment = next(line for line in out.read_text().splitlines() if "end_time is" in line)
+    quoted = float(comment.rsplit("about ", 1)[1].removesuffix(" s."))
+    assert quoted == pytest.approx(cfg.end_time, rel=5e-4)
+    assert quoted != pytest.approx(1.288, rel=1e-2)
 
 
 @given(

@@ -274,7 +274,21 @@ def starter_config(
         body = _set_after(
             body, "outer_ring_wall_thickness", f"{line}  # rollerdyn new --type {bearing_type}"
         )
-    return _header(geometry, name) + body
+    return _header(geometry, name) + _end_time_comment(body, geometry, speed)
+
+
+def _end_time_comment(body: str, geometry: StarterGeometry, speed: float) -> str:
+    """``body`` with the end time that B1's comment on ``end_time`` quotes (B1's 1.288 s)
+    replaced by this bearing's: the speed ramp's end plus two revolutions of the roller
+    set at ω_c = Ω (1 − D/d_m)/2 (paper sect. 4)."""
+    found = re.search(r"^# end_time is derived: .*about ([0-9.]+) s\.$", body, re.M)
+    ramp = re.search(r'^\[operating\.speed_ramp\]\nstart = .*\nend = "([0-9.]+) s"', body, re.M)
+    if found is None or ramp is None:
+        raise KeyError("B1's configuration has no end_time comment or speed ramp")
+    cage = speed * (1.0 - geometry.roller_diameter / geometry.pitch_diameter) / 2.0
+    end = float(ramp.group(1)) + 2.0 * 2.0 * math.pi / cage
+    a, b = found.span(1)
+    return body[:a] + f"{end:.4g}" + body[b:]
 
 
 def _set_after(text: str, key: str, line: str) -> str:
