@@ -192,3 +192,31 @@ def test_a_strong_carrier_field_is_noted_before_a_run():
     assert note in configuration_notes(cfg)
     for carrier, offset in (("3000 rpm", "0 mm"), ("100 rpm", "40 mm")):
         assert carrier_note(parse_config(_planet(carrier, offset))) is None
+
+
+def test_a_run_records_the_carriers_speed_at_every_output():
+    """The result records the carrier's speed (``carrier_speed``, rad/s, the frame every
+    other output is seen from) at every output, as the configuration gives it under the
+    speed ramp (0 -> 300 rpm over 0.5-2.5 ms here; the core evaluates the same history the
+    Python side does, so to round-off); a run without a carrier records 0."""
+    ramp = {"start": "0.5 ms", "end": "2.5 ms", "shape": "cosine"}
+    cfg = parse_config(
+        _planet(
+            "300 rpm",
+            "0 mm",
+            **{
+                "operating.speed_ramp": ramp,
+                "operating.end_time": "3 ms",
+                "solver.output_interval": "0.25 ms",
+            },
+        )
+    )
+    ds = simulate(cfg, threads=1)
+    assert ds.carrier_speed.attrs["units"] == "rad/s"
+    expected = [cfg.operating.carrier_speed_at(t) for t in ds.time.values]
+    assert ds.carrier_speed.values == pytest.approx(expected, rel=1e-12, abs=1e-12)
+    assert float(ds.carrier_speed[0]) == 0.0 and float(ds.carrier_speed[-1]) == pytest.approx(
+        300 * RPM, rel=1e-12
+    )
+    resting = simulate(parse_config(changed_b1({})), t_end="0.5 ms", threads=1)
+    assert not resting.carrier_speed.values.any()

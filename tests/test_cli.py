@@ -21,11 +21,11 @@ def test_check_prints_derived_quantities():
     result = RUNNER.invoke(app, ["check", str(B1)])
     assert result.exit_code == 0, result.output
     assert "roller diameter" in result.output and "0.004495" in result.output
-    # the result's size: 1 289 outputs of 1 614 numbers (rollerdyn.simulation's count,
-    # tests/test_report.py), and of 16 with only the bearing's own outputs
-    assert "1289" in result.output and "16.6436" in result.output
+    # the result's size: 1 289 outputs of 1 615 numbers (rollerdyn.simulation's count,
+    # tests/test_report.py), and of 17 with only the bearing's own outputs
+    assert "1289" in result.output and "16.6539" in result.output
     bare = RUNNER.invoke(app, ["check", str(B1), "--set", "solver.outputs=[]"])
-    assert bare.exit_code == 0 and "0.164992" in bare.output, bare.output
+    assert bare.exit_code == 0 and "0.175304" in bare.output, bare.output
 
 
 def test_bad_config_is_a_clean_error(tmp_path):

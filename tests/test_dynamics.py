@@ -695,7 +695,7 @@ def test_selected_outputs_keep_the_bearings_own_resume_exactly_and_are_named_whe
 ):
     """``solver.outputs``: a result holds the bearing's outputs and only the groups
     selected (none, here: the torque and power as in the full result, bit for bit, at
-    16 numbers per output instead of 1 614); resumed, it equals its uninterrupted run bit
+    17 numbers per output instead of 1 615); resumed, it equals its uninterrupted run bit
     for bit; continued with other groups it is refused, naming the field; reading it where
     the rollers are required names the groups it lacks and the setting that records them;
     the report, the plots and a comparison show what it has; a sweep's summary has NaN
@@ -717,8 +717,8 @@ def test_selected_outputs_keep_the_bearings_own_resume_exactly_and_are_named_whe
         assert np.array_equal(bare[name].values, base[name].values), name
     assert not [v for v in bare.data_vars if "roller" in bare[v].dims]
     held = sum(v.size for v in bare.variables.values() if "time" in v.dims)
-    assert held == bare.sizes["time"] * numbers_per_output(17, ()) == bare.sizes["time"] * 16
-    assert numbers_per_output(17) == 1614
+    assert held == bare.sizes["time"] * numbers_per_output(17, ()) == bare.sizes["time"] * 17
+    assert numbers_per_output(17) == 1615
     whole, reference = simulate(bare_cfg, resume=bare), resumed_reference()
     for name in whole.variables:
         a, b = whole[name].values, reference[name].values

@@ -209,19 +209,19 @@ def test_a_run_far_beyond_a_normal_one_is_refused_with_its_estimate(b1):
         simulate(fine, threads=1)
     # with any group selected the core records every group until the result is built, so
     # one group costs the run's memory of all four; with none (solver.outputs = []) it
-    # records the bearing's own outputs only: the memory is the file's, 16 of 1 614
-    # numbers per output (B1: 1 + 12 scalars + 3 + 2, against 17 rollers' records)
+    # records the bearing's own outputs only: the memory is the file's, 17 of 1 615
+    # numbers per output (B1: 1 + 13 scalars + 3 + 2, against 17 rollers' records)
     one = _changed(fine, "solver", outputs=("flanges",))
     assert estimated_cost(one, 1.288)["memory_bytes"] == cost["memory_bytes"]
     with pytest.raises(ValueError, match=r"solver.output_interval = 1e-08 s.*outputs = \[\]"):
         simulate(one, threads=1)
     bare = _changed(fine, "solver", outputs=())
     cost = estimated_cost(bare, 1.288)
-    assert cost["memory_bytes"] == cost["bytes"] == cost["outputs"] * 8 * 16
+    assert cost["memory_bytes"] == cost["bytes"] == cost["outputs"] * 8 * 17
     with pytest.raises(ValueError, match=r"solver.output_interval = 1e-08 s.*GB.*--force"):
-        simulate(bare, threads=1)  # 1.288e8 outputs of 120 bytes: 15 GB all the same
+        simulate(bare, threads=1)  # 1.288e8 outputs of 136 bytes: 17.5 GB all the same
     every_us = _changed(bare, "solver", output_interval=1e-6)
-    check_cost(every_us, 1.288)  # 1.3e6 outputs: 0.15 GB bare (16.6 GB with the rollers)
+    check_cost(every_us, 1.288)  # 1.3e6 outputs: 0.18 GB bare (16.6 GB with the rollers)
     assert (
         estimated_cost(_changed(every_us, "solver", outputs=("rollers",)), 1.288)["memory_bytes"]
         > MAX_RESULT_BYTES

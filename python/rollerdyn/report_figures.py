@@ -237,7 +237,7 @@ def pairing_figures(labels, sets) -> list:
 
 def inputs_figure(labels, sets):
     """Radial and axial load and the rings' speeds over time, one row each (the outer
-    ring's dashed where it turns)."""
+    ring's dashed where it turns, a planet carrier's dotted)."""
     import plotly.io as pio
     from plotly.subplots import make_subplots
 
@@ -256,16 +256,20 @@ def inputs_figure(labels, sets):
                 row=row,
                 col=1,
             )
-        if "outer_ring_speed" in ds and np.any(ds.outer_ring_speed.values != 0.0):
-            fig.add_scatter(
-                x=ds.time.values,
-                y=ds.outer_ring_speed.values,
-                name=f"{label}: outer ring",
-                legendgroup=label,
-                line=dict(color=colour, dash="dash"),
-                row=3,
-                col=1,
-            )
+        for var, name, dash in (
+            ("outer_ring_speed", "outer ring", "dash"),
+            ("carrier_speed", "planet carrier", "dot"),
+        ):
+            if var in ds and np.any(ds[var].values != 0.0):
+                fig.add_scatter(
+                    x=ds.time.values,
+                    y=ds[var].values,
+                    name=f"{label}: {name}",
+                    legendgroup=label,
+                    line=dict(color=colour, dash=dash),
+                    row=3,
+                    col=1,
+                )
     fig.update_yaxes(title_text="radial load [N]", row=1, col=1)
     fig.update_yaxes(title_text="axial load [N]", row=2, col=1)
     fig.update_yaxes(title_text="ring speed [rad/s]", row=3, col=1)

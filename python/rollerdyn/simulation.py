@@ -372,6 +372,11 @@ class Progress:
 _SCALARS = {
     "ring_speed": ("rad/s", "inner ring angular velocity about +x"),
     "outer_ring_speed": ("rad/s", "outer ring angular velocity about +x"),
+    "carrier_speed": (
+        "rad/s",
+        "planet carrier's angular velocity about +x (every other output is seen from the "
+        "carrier; 0 where it stands)",
+    ),
     "radial_load": ("N", "radial load on the inner ring (along -y)"),
     "axial_load": ("N", "axial load on the inner ring (along +x)"),
     "frictional_torque": (
@@ -1020,7 +1025,7 @@ def _join(previous: xr.Dataset, continued: xr.Dataset) -> xr.Dataset:
 
 
 #: Lossless compression of a result's numeric arrays: HDF5's byte shuffle and gzip at level
-#: 1. B1's whole run (1 289 outputs): 16.6 MB -> 9.4 MB, written in 0.47-0.64 s (2026-12-01,
+#: 1. B1's whole run (1 289 outputs): 16.7 MB -> 9.4 MB, written in 0.47-0.64 s (2026-12-01,
 #: with every group of solver.outputs; before the lubrication outputs 11.2 MB -> 7.0 MB in
 #: 0.35-0.53 s instead of 0.21 s uncompressed, read in 0.29 s instead of 0.25 s; level 4
 #: was 1 % smaller and 20 % slower when measured with fewer outputs).

@@ -378,6 +378,7 @@ fn to_dict<'py>(py: Python<'py>, o: &RunOutput, z: usize) -> PyResult<Bound<'py,
     )?;
     per_record!("ring_speed", |r| r.ring_speed);
     per_record!("outer_ring_speed", |r| r.outer_ring_speed);
+    per_record!("carrier_speed", |r| r.carrier_speed);
     per_record!("radial_load", |r| r.loads.0);
     per_record!("axial_load", |r| r.loads.1);
     per_record!("frictional_torque", |r| r.frictional_torque);

@@ -306,6 +306,9 @@ pub struct Record {
     pub ring_speed: f64,
     /// Outer ring speed [rad/s] about +x.
     pub outer_ring_speed: f64,
+    /// The planet carrier's speed Ω_c [rad/s] about +x ([`crate::bearing::params::Carrier`]):
+    /// every other output is seen from the carrier; 0 where it stands.
+    pub carrier_speed: f64,
     /// Radial and axial load applied [N].
     pub loads: (f64, f64),
     /// Bearing frictional torque: the moment of all contact forces on the inner ring about
@@ -589,6 +592,7 @@ pub fn record(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> Record {
         ring_tilt,
         ring_speed: system.params.inner_ring_speed.at(t).0,
         outer_ring_speed: kin.outer_ring.omega.x,
+        carrier_speed: system.params.carrier.speed.at(t).0,
         loads: (
             system.params.radial_load.at(t).0,
             system.params.axial_load.at(t).0,
