@@ -870,6 +870,27 @@ BAD = [
         'only the flanges "inner-x" and "outer+x" carry; geometry.flanges has no "inner-x"',
     ),
     (
+        "flanges taller together than the annulus (each below the roller)",
+        "geometry.flange.height",
+        "2.3 mm",
+        "geometry.flange.height",
+        "the inner and outer flanges together must be lower than the annulus",
+    ),
+    (
+        "an end time longer than the longest",
+        "operating.end_time",
+        "1e306 s",
+        "operating.end_time",
+        "must be <= 1e+05 s",
+    ),
+    (
+        "a speed so slow that two roller-set revolutions pass the longest end time",
+        "operating.inner_ring_speed",
+        "1e-300 rpm",
+        "operating.end_time",
+        "two revolutions take that long; give operating.end_time",
+    ),
+    (
         "roller border band at its old place",
         "surfaces.border_band_roller",
         "1.5e-4 rad",

@@ -96,8 +96,9 @@ def test_the_roller_count_is_the_most_that_fit(pitch, ratio):
 
 def test_bad_options_are_named(tmp_path):
     """Raceways that make no roller, too many rollers, a clearance larger than the gap, a
-    length in kilograms and an existing file each exit with status 2 and one line naming
-    the option and the rule; nothing is written."""
+    length in kilograms, a speed of 0 or one too slow for an end time, and an existing file
+    each exit with status 2 and one line naming the option and the rule; nothing is
+    written."""
     cases = [
         (["--inner-raceway", "30", "--outer-raceway", "29"], "--outer-raceway"),
         (
@@ -109,6 +110,17 @@ def test_bad_options_are_named(tmp_path):
         (
             ["--inner-raceway", "20", "--outer-raceway", "29", "--roller-length", "-1"],
             "--roller-length",
+        ),
+        # options not given are not named: raceways too far apart for three rollers, too
+        # close for the default clearance
+        (["--inner-raceway", "1", "--outer-raceway", "100"], "only 2 fit the pitch circle"),
+        (["--inner-raceway", "40", "--outer-raceway", "40.01"], "give --clearance"),
+        # a speed of 0 has no end time to derive (was a ZeroDivisionError)
+        (["--inner-raceway", "20", "--outer-raceway", "29", "--speed", "0"], "--speed 0 rpm"),
+        # so slow that two roller-set revolutions pass the longest end time
+        (
+            ["--inner-raceway", "20", "--outer-raceway", "29", "--speed", "1e-300"],
+            "operating.end_time",
         ),
     ]
     for args, named in cases:

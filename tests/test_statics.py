@@ -493,6 +493,35 @@ def test_a_sweep_stopped_by_ctrl_c_keeps_the_cases_it_solved(b1, tmp_path):
         statics_sweep(B1, grid, design=design, progress=stop)
 
 
+def test_sigterm_stops_a_sweep_and_keeps_the_cases_it_solved(tmp_path):
+    # SIGTERM (`kill`, `timeout`, a batch system) ended `rollerdyn statics` at once with no
+    # line and lost every case solved; now it stops as Ctrl-C does: the cases solved
+    # written to -o, one line, exit status 143
+    import signal
+    import subprocess
+    import sys
+    import time
+    from pathlib import Path
+
+    import xarray as xr
+
+    command = Path(sys.executable).parent / "rollerdyn"
+    out = tmp_path / "s.nc"
+    args = [str(command), "statics", str(B1), "--set", "operating.radial_load=1000:10000:20000"]
+    proc = subprocess.Popen(
+        [*args, "-o", str(out)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True
+    )
+    time.sleep(8.0)  # the start (about 2 s) and some chunks of 50 cases (about 15 ms each)
+    proc.send_signal(signal.SIGTERM)
+    text, _ = proc.communicate(timeout=120)
+    assert proc.returncode == 143, text
+    assert "Traceback" not in text, text
+    last = text.strip().splitlines()[-1]
+    assert "interrupted after" in last and f"wrote those to {out}" in last, text
+    with xr.open_dataset(out) as ds:
+        assert 0 < ds.sizes["case"] < 20000 and "interrupted" in ds.attrs
+
+
 def test_a_vertical_shafts_flanges_carry_the_weights_of_ring_and_rollers():
     """A type NJ arrangement (B1 without the inner ring's -x flange) on a vertical shaft,
     gravity along -x, no axial load: the inner ring's +x flange carries the ring's weight
@@ -584,8 +613,9 @@ def test_the_traction_table_does_not_enter_the_equilibrium(b1):
     model with the untabulated traction (at once, instead of the table's 1.3-1.5 s): the
     equilibria with the tabulated traction are the same bit for bit (B1 at its loads and
     500 rpm, and at twice the axial load and 3000 rpm). Only the friction power of steady
-    rolling and the rollers' slip there see the traction: the direct rule's differ from the
-    table's by the table's error (below 1e-4 of the traction, docs/model.md; at most 3e-4 of
+    rolling, the rollers' slip there and the roller train (through the free rollers'
+    friction on their races) see the traction: the direct rule's differ from the table's by
+    the table's error (below 1e-4 of the traction, docs/model.md; at most 3e-4 of
     a part measured)."""
     from rollerdyn import _core
     from rollerdyn.model import Model
@@ -611,6 +641,9 @@ def test_the_traction_table_does_not_enter_the_equilibrium(b1):
         # (measured: 1.0e-6 at 500 rpm, 4.6e-5 at 3000 rpm, on the unloaded rollers, whose
         # films' and drag's moments change slowly with their spin)
         np.testing.assert_allclose(exact.pop("roller_slip"), tab.pop("roller_slip"), atol=1e-4)
+        # the roller train takes the free rollers' friction on their races (measured: the
+        # forces move by 1e-6 of themselves)
+        np.testing.assert_allclose(exact.pop("pair_force"), tab.pop("pair_force"), rtol=1e-3)
     assert repr(fast) == repr(table)
 
 
@@ -725,7 +758,9 @@ def test_the_balanced_spin_is_the_dynamic_models_at_the_bottom_of_the_load_zone(
 def test_cli_prints_every_rollers_loads_flange_forces_and_slip():
     """``rollerdyn statics --per-roller``: one row per roller with the case's values (roller
     0 of B1 at the load zone's centre: 1311 N at either race, 141.1 N at the inner -x and
-    outer +x flanges, slip -0.225 %); with a sweep it is refused before any work."""
+    outer +x flanges, slip -0.225 %, the roller train's 0.0323 N on roller 1: gravity's
+    pushes, m g |sin psi| over the eight rollers from the bottom to the top, 32.4 mN);
+    with a sweep it is refused before any work."""
     runner = CliRunner()
     result = runner.invoke(app, ["statics", str(B1), "--per-roller"])
     assert result.exit_code == 0, result.output
@@ -735,7 +770,7 @@ def test_cli_prints_every_rollers_loads_flange_forces_and_slip():
     cells = [c.strip() for c in table[0].strip("│").split("│")]
     assert cells[:4] == ["0", "180.0", "1311", "1311"]
     assert cells[4] == cells[7] == "141.1" and cells[5] == cells[6] == "0"
-    assert cells[-1] == "-0.225"
+    assert cells[-2] == "-0.225" and cells[-1] == "0.0323"
     sweep = runner.invoke(
         app, ["statics", str(B1), "--per-roller", "--set", "operating.radial_load=1000,2000"]
     )

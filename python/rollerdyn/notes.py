@@ -126,7 +126,11 @@ def point_law_refusal(cfg: BearingConfig, t_end: float) -> str | None:
     if cfg.surfaces.flange_law != "point":
         return None
     try:
-        _core_model(cfg).check_point_law(t_end)
+        model = _core_model(cfg)
+    except ValueError:
+        return None  # no model to run at all: not this check's refusal (run names it)
+    try:
+        model.check_point_law(t_end)
     except ValueError as refusal:
         return str(refusal)
     return None

@@ -98,7 +98,9 @@ def estimated_cost(config: BearingConfig, t_end: float, t_start: float = 0.0) ->
     ``solver.outputs`` keeps, uncompressed), the memory its outputs take while it runs
     [bytes] (:func:`recorded_groups`) and steps (the span over dt_max, a lower bound)."""
     span = max(t_end - t_start, 0.0)
-    outputs = math.ceil(span / min(config.solver.output_interval, t_end)) + 1
+    intervals = span / min(config.solver.output_interval, t_end)
+    # exact while it is a count a run could make; a float (up to inf) past that
+    outputs = math.ceil(intervals) + 1 if intervals < 2.0**53 else intervals + 1.0
     z = config.geometry.roller_count
     return {
         "outputs": outputs,

@@ -110,9 +110,15 @@ def starter_geometry(
             f"({inner_raceway:g} m)"
         )
     pitch = (inner_raceway + outer_raceway) / 2.0
+    gap = (outer_raceway - inner_raceway) / 2.0
     if clearance is None:
         clearance = 10e-6 * pitch / B1_PITCH_DIAMETER
-    gap = (outer_raceway - inner_raceway) / 2.0
+        if clearance >= gap:
+            raise StarterError(
+                f"--outer-raceway {outer_raceway:g} m: the raceways' radial gap "
+                f"(D_o - D_i)/2 = {gap:g} m leaves no roller beside the default clearance "
+                f"{clearance:g} m (B1's 10 um scaled by the pitch diameter); give --clearance"
+            )
     if not (math.isfinite(clearance) and 0.0 <= clearance < gap):
         raise StarterError(
             f"--clearance {clearance:g} m: must be >= 0 and below the raceways' radial gap "
@@ -120,6 +126,12 @@ def starter_geometry(
         )
     geometry = StarterGeometry(inner_raceway, outer_raceway, clearance, 0)
     most = most_rollers(pitch, geometry.roller_diameter)
+    if most < 3:
+        raise StarterError(
+            f"--outer-raceway {outer_raceway:g} m: rollers of {geometry.roller_diameter * 1e3:.4g} "
+            f"mm between raceways of {inner_raceway * 1e3:.4g} and {outer_raceway * 1e3:.4g} mm: "
+            f"only {most} fit the pitch circle of {pitch * 1e3:.4g} mm (at least 3)"
+        )
     if rollers is None:
         rollers = most
     if not 3 <= rollers <= most:
@@ -184,6 +196,12 @@ def starter_config(
         axial_load = default_axial
     if speed is None:
         speed = 500.0 * math.pi / 30.0 / pitch_ratio
+    if not (math.isfinite(speed) and speed != 0.0):
+        raise StarterError(
+            f"--speed {speed * 30.0 / math.pi:g} rpm: must not be 0 (the run's end time counts "
+            "two revolutions of the roller set; for a bearing at rest write "
+            "operating.end_time into the file)"
+        )
     text = default_config_path().read_text(encoding="utf-8")
     body = text[text.index("\nname = ") + 1 :]
     mm, um = 1e3, 1e6
@@ -285,9 +303,11 @@ def _end_time_comment(body: str, geometry: StarterGeometry, speed: float) -> str
     ramp = re.search(r'^\[operating\.speed_ramp\]\nstart = .*\nend = "([0-9.]+) s"', body, re.M)
     if found is None or ramp is None:
         raise KeyError("B1's configuration has no end_time comment or speed ramp")
-    cage = speed * (1.0 - geometry.roller_diameter / geometry.pitch_diameter) / 2.0
-    end = float(ramp.group(1)) + 2.0 * 2.0 * math.pi / cage
+    cage = abs(speed) * (1.0 - geometry.roller_diameter / geometry.pitch_diameter) / 2.0
     a, b = found.span(1)
+    if not cage > 0.0:  # no orbit, no end time to derive: the check names end_time
+        return body[: found.start(1) - len("about ")].rstrip(", ") + "." + body[found.end(0) :]
+    end = float(ramp.group(1)) + 2.0 * 2.0 * math.pi / cage
     return body[:a] + f"{end:.4g}" + body[b:]
 
 

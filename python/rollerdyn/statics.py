@@ -533,7 +533,7 @@ def _combined_case(base: StaticCase, paths: Sequence[str], combo: Sequence[float
 
 #: The parts of the friction power of steady rolling (``friction_power``), as the core gives
 #: them.
-FRICTION_PARTS = ("flanges", "inner race", "outer race", "drag")
+FRICTION_PARTS = ("flanges", "inner race", "outer race", "roller pairs", "drag")
 
 #: Design paths a statics sweep cannot vary: they set the size of every case's arrays.
 _SHAPING_PATHS = ("geometry.roller_count", "geometry.roller.slices")
@@ -793,8 +793,17 @@ def _case_variables(
             "the power the contacts and the drag take in steady rolling at the equilibrium "
             "(the dynamic model's laws at its positions, the roller set orbiting at the "
             "epicyclic speed, each roller spinning where its friction moments balance "
-            "(roller_slip); the roller-roller contacts, which the equilibrium does not "
-            "hold, left out; docs/statics.md, 'Friction of steady rolling')",
+            "(roller_slip); the roller-roller contacts where the roller train presses them "
+            "(pair_force); docs/statics.md, 'Friction of steady rolling')",
+        ),
+        "pair_force": _var(
+            np.asarray(r["pair_force"]),
+            ("roller",),
+            "N",
+            "the roller train's force between each roller and the next (roller i and i + 1): "
+            "the field (gravity, a planet carrier's) and the drag pushing the rollers along "
+            "their orbit against their neighbours, the net push taken by the rollers' races "
+            "in proportion to their lighter race load; docs/statics.md, 'The roller train'",
         ),
         "roller_slip": _var(
             np.asarray(r["roller_slip"]),

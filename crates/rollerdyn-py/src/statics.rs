@@ -55,11 +55,13 @@ fn solution_dict<'py>(
                 friction.flanges,
                 friction.inner_race,
                 friction.outer_race,
+                friction.roller_pairs,
                 friction.drag,
             ],
         ),
     )?;
     d.set_item("roller_slip", array(py, friction.roller_slip.clone()))?;
+    d.set_item("pair_force", array(py, friction.pair_forces.clone()))?;
     let rollers = &s.rollers;
     let per_roller = |f: &dyn Fn(usize) -> f64| array(py, (0..rollers.len()).map(f).collect());
     d.set_item("ring", array(py, s.ring.to_vec()))?;

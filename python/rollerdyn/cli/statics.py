@@ -4,7 +4,9 @@ and drawn as curves."""
 
 from __future__ import annotations
 
+import contextlib
 import math
+import shutil
 from pathlib import Path
 from typing import Annotated
 
@@ -68,7 +70,8 @@ def statics_command(
             "--per-roller",
             help="With one case, also print a table of every roller: azimuth [deg], its "
             "loads at the inner and outer race [N], its ends' forces on the four flanges "
-            "[N], its tilt [mrad] and its slip in steady rolling [%].",
+            "[N], its tilt [mrad], its slip in steady rolling [%] and the roller train's "
+            "force on the next roller [N].",
         ),
     ] = False,
     overwrite: Annotated[
@@ -142,6 +145,45 @@ def statics_command(
             "--per-roller: prints the rollers of one case; a sweep's are in its --output "
             "file (variables over case and roller)"
         )
+    terminated: list[int] = []
+    with _sigterm_as_interrupt(terminated):
+        ds = _solve(config, cfg, (grid, design), per_roller, contamination, output, terminated)
+    _write(ds, output, plot)
+    if not single and ds.attrs["failed_cases"]:
+        raise typer.Exit(1)  # as a sweep with a failed run: written, and said by the status
+
+
+@contextlib.contextmanager
+def _sigterm_as_interrupt(received: list[int]):
+    """SIGTERM within the block stops a sweep as Ctrl-C does (the core sees it at its next
+    check), so that the cases solved are kept; ``received`` records it."""
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def stop(signum, _frame):
+        received.append(signum)
+        if len(received) == 1:
+            raise KeyboardInterrupt("terminated by SIGTERM")
+
+    previous = signal.signal(signal.SIGTERM, stop)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _solve(config, cfg, cases, per_roller, contamination, output, terminated):
+    """The case or the sweep (``cases``: the load-case grid and the design's values)
+    solved and printed; a sweep stopped by Ctrl-C or SIGTERM keeps its cases solved
+    (:func:`_keep_interrupted`)."""
+    from .. import statics as st
+
+    grid, design = cases
+    single = all(len(v) == 1 for v in [*grid.values(), *design.values()])
     try:
         if single:
             values = {st.STATIC_FIELDS[p][0]: v[0] for p, v in grid.items()}
@@ -163,7 +205,12 @@ def statics_command(
         error(f"rollerdyn statics: {err}")
         raise typer.Exit(1) from None
     except st.StaticsInterrupted as stop:
-        _keep_interrupted(stop, output)
+        _keep_interrupted(stop, output, 143 if terminated else 130)
+    return ds
+
+
+def _write(ds, output: Path | None, plot: Path | None) -> None:
+    """The result written to ``output`` and drawn to ``plot`` (either may be None)."""
     try:
         if output is not None:
             ds.to_netcdf(output, engine="h5netcdf")
@@ -176,8 +223,6 @@ def statics_command(
     except OSError as err:  # checked before the work; a disk that filled up since
         error(f"rollerdyn statics: could not write the result ({err.strerror or err})")
         raise typer.Exit(1) from None
-    if not single and ds.attrs["failed_cases"]:
-        raise typer.Exit(1)  # as a sweep with a failed run: written, and said by the status
 
 
 def _check_ranges(config: Path, changes: dict, grid: dict, cfg=None) -> bool:
@@ -244,11 +289,13 @@ def _check_image_format(path: Path) -> None:
     from matplotlib.figure import Figure
 
     formats = Figure().canvas.get_supported_filetypes()
+    if shutil.which("xelatex") is None:
+        formats.pop("pgf", None)  # matplotlib writes it through LaTeX
     suffix = path.suffix.lower().removeprefix(".")
     if suffix not in formats:
         what = "has no extension"
         if suffix:
-            what = f".{suffix} is not an image format matplotlib writes"
+            what = f".{suffix} is not an image format matplotlib writes here"
         names = ", ".join("." + f for f in sorted(formats))
         raise refuse(f"--plot {path}: {what}; use one of {names}")
 
@@ -265,7 +312,7 @@ def _thinnest_films(ds) -> str:
 
 def _print_rollers(ds) -> None:
     """The table of ``--per-roller``: each roller's azimuth, race loads, flange forces,
-    tilt and slip."""
+    tilt, slip and the roller train's force on the next roller."""
     flanges = [str(f) for f in ds.flange.values]
     table = Table(title="rollers")
     for column in (
@@ -276,6 +323,7 @@ def _print_rollers(ds) -> None:
         *(f"flange {f} [N]" for f in flanges),
         "tilt [mrad]",
         "slip [%]",
+        "on the next [N]",
     ):
         table.add_column(column, justify="right")
     for i in range(ds.sizes["roller"]):
@@ -288,6 +336,7 @@ def _print_rollers(ds) -> None:
             *(f"{f:.4g}" for f in force),
             f"{float(ds.roller_tilt[i]) * 1e3:.4g}",
             f"{float(ds.roller_slip[i]) * 100:.3g}",
+            f"{float(ds.pair_force[i]):.4g}",
         )
     console.print(table)
 
@@ -314,6 +363,7 @@ def _print_case(ds) -> None:
         ),
         ("friction of steady rolling", _friction_text(ds)),
         ("roller slip (1 - spin / spin of rolling)", _slip_text(ds)),
+        ("roller train (rollers pressed on their neighbours)", _train_text(ds)),
         ("radial stiffness k_yy", f"{k[1, 1]:.4g} N/m"),
         ("tilt stiffness k_zz", f"{k[4, 4]:.4g} N*m/rad"),
         (
@@ -428,6 +478,19 @@ def _slip_text(ds) -> str:
     return ", ".join(parts)
 
 
+def _train_text(ds) -> str:
+    """The roller train's largest force between neighbours, where, and its friction."""
+    force = np.asarray(ds.pair_force.values, dtype=float)
+    z = force.size
+    i = int(np.argmax(force))
+    psi = float(ds.roller_azimuth[i]) % 360
+    power = float(ds.friction_power.sel(friction_part="roller pairs"))
+    return (
+        f"largest {force[i]:.4g} N (rollers {i} and {(i + 1) % z}, from {psi:.1f} deg), "
+        f"friction {power:.4g} W"
+    )
+
+
 def _friction_text(ds) -> str:
     """The frictional torque of steady rolling and its power's largest parts."""
     power = ds.friction_power
@@ -442,18 +505,19 @@ def _friction_text(ds) -> str:
     return f"{float(ds.friction_torque):.4g} N*m ({total:.4g} W{': ' + parts if parts else ''})"
 
 
-def _keep_interrupted(stop, output: Path | None) -> None:
-    """A sweep stopped by Ctrl-C: the cases solved until then written to ``output`` (when
-    given), one line saying so, exit status 130."""
+def _keep_interrupted(stop, output: Path | None, status: int) -> None:
+    """A sweep stopped by Ctrl-C or SIGTERM: the cases solved until then written to
+    ``output`` (when given), one line saying so, exit ``status`` (130, or 143 after
+    SIGTERM)."""
     ds = stop.dataset
     if ds is not None and output is not None:
         try:
             ds.to_netcdf(output, engine="h5netcdf")
         except OSError as err:
             error(f"rollerdyn statics: {stop}; could not write them ({err.strerror or err})")
-            raise typer.Exit(130) from None
+            raise typer.Exit(status) from None
         error(f"rollerdyn statics: {stop}; wrote those to {output}")
     else:
         kept = "; -o FILE keeps the cases solved" if ds is not None else ""
         error(f"rollerdyn statics: {stop}{kept}")
-    raise typer.Exit(130)
+    raise typer.Exit(status)

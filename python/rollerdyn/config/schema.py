@@ -122,6 +122,11 @@ class FlangeConfig(_Section):
 
 _FLANGE_OVERRIDES = ("inner_ring_flange", "outer_ring_flange")
 
+#: The longest simulated time [s]: at B1's pace (25 s of wall time per simulated second)
+#: a day of it; and at the default dt_max the least step count a run is refused beyond
+#: (rollerdyn.simulation.MAX_MIN_STEPS) is reached at 1e5 s anyway.
+MAX_END_TIME = 1e5
+
 
 def axial_load_flange_rule(cfg: BearingConfig, axial_load: float) -> str | None:
     """Why ``axial_load`` on the inner ring [N] (with the ring's weight along the axis,
@@ -240,8 +245,27 @@ class GeometryConfig(GeometryDerived, _Section):
                     f"must be > root_radius + rim_radius = {_mm(fl.root_radius + fl.rim_radius)} "
                     "(room for the cone between the tori)",
                 )
+        self._check_flanges_face_each_other(cross)
         cross.raise_if_any()
         return self
+
+    def _check_flanges_face_each_other(self, cross: _Cross) -> None:
+        """The inner ring's and the outer ring's flanges stand on their raceways and face
+        each other across the annulus (D_o - D_i)/2: together they must be lower than it
+        (the core's ``BearingParams::check_fit``)."""
+        annulus = (self.outer_raceway_diameter - self.inner_raceway_diameter) / 2.0
+        inner, outer = self.inner_flange.height, self.outer_flange.height
+        if inner + outer >= annulus:
+            key = next(
+                (k for k in reversed(_FLANGE_OVERRIDES) if getattr(self, k) is not None),
+                "flange",
+            )
+            cross.add(
+                f"{key}.height",
+                f"{_mm(inner)} + {_mm(outer)}",
+                f"the inner and outer flanges together must be lower than the annulus "
+                f"between the raceways, (D_o - D_i)/2 = {_mm(annulus)}",
+            )
 
     def _check_flanges(self, cross: _Cross) -> None:
         """Each flange once, and one on each side of the rollers: nothing else holds them
@@ -707,6 +731,19 @@ class BearingConfig(BearingDerived, _Section):
                 "(missing)",
                 "required when the roller set does not orbit at the final ring speeds "
                 "(no roller-set revolutions to count)",
+            )
+        elif self.end_time > MAX_END_TIME:
+            derived = op.end_time is None
+            cross.add(
+                "operating.end_time",
+                f"(derived: {self.end_time:.3g} s)" if derived else f"{self.end_time:.3g} s",
+                f"must be <= {MAX_END_TIME:.0e} s"
+                + (
+                    ": the roller set orbits so slowly at the final ring speeds that two "
+                    "revolutions take that long; give operating.end_time"
+                    if derived
+                    else ""
+                ),
             )
         elif self.solver.output_interval >= self.end_time:
             cross.add(

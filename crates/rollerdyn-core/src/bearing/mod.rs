@@ -19,6 +19,7 @@ pub mod model;
 pub mod params;
 pub mod profile;
 pub mod quasi_static;
+pub mod roller_train;
 pub mod run;
 pub mod state;
 pub mod statics;

@@ -17,11 +17,12 @@
 //! that no roller starts pressed on its neighbour, the roller set is spread where the
 //! equilibrium's rollers overlap ([`spaced_azimuths`]).
 
-use super::contacts::Geometry;
+use super::contacts::{ElementResult, Geometry};
 use super::params::FlangeLaw;
 use super::quasi_static::{
     flange_loads, RollerPose, StaticCase, StaticSolution, FLANGE_PRESSURE_LIMIT,
 };
+use super::roller_train::TrainContact;
 use super::state::{
     ring_kinematics, roller_kinematics, BearingKinematics, Kinematics, ROLLER_STATES,
 };
@@ -205,6 +206,12 @@ pub struct RollingFriction {
     pub outer_race: f64,
     /// The oil–air mixture's drag on the rollers.
     pub drag: f64,
+    /// The roller–roller contacts that the roller train presses
+    /// ([`super::roller_train`]: sliding between counter-rotating neighbours).
+    pub roller_pairs: f64,
+    /// The roller train's force between roller i and roller i + 1 (mod z) [N]
+    /// ([`BearingSystem::train_forces`]).
+    pub pair_forces: Vec<f64>,
     /// Each roller's slip 1 − ω_s/ω_s,0 [-]: how much slower than in rolling without slip
     /// (ω_s,0) it spins once its friction moments balance ([`spin_balance`]); 0 at rest.
     pub roller_slip: Vec<f64>,
@@ -220,13 +227,13 @@ impl BearingSystem<'_> {
     /// friction drives the loaded rollers faster than rolling without slip, the races'
     /// traction holds them back; films and drag set the unloaded ones), summed as
     /// [`super::run::record`] sums a run's power loss (`ElementResult::power_loss`).
-    /// The roller–roller contacts are left out, which the equilibrium does not hold: where
-    /// it put neighbours on each other (the rollers at the top, fallen onto the inner
-    /// ring), the start stands them [`START_GAP`] apart, a gap of the start's choosing
-    /// whose oil film a run's first steps reset. What it leaves out is what settles in a
-    /// run: the rollers' skew and their positions under friction, the skid that the
-    /// neighbours' friction brings outside the load zone, the roller–roller forces
-    /// (docs/statics.md, "Friction of steady rolling").
+    /// The roller–roller contacts, which the equilibrium does not hold, are the roller
+    /// train's ([`super::roller_train`]): the field and the drag stack the rollers against
+    /// each other along the orbit, each pair is evaluated where it carries the train's
+    /// force, and where the train's friction is more than [`TRAIN_SPIN_SHARE`] of the rest
+    /// the spins are balanced again with it in ([`Self::spins_with_train`]). What it leaves
+    /// out is what settles in a run: the rollers' skew and their positions under friction
+    /// (docs/statics.md, "Friction of steady rolling", "The roller train").
     /// `warm`: the rollers' slips of a neighbouring case (a sweep's last), where the
     /// balance starts instead of at rolling without slip.
     pub fn steady_rolling_friction(
@@ -248,21 +255,47 @@ impl BearingSystem<'_> {
         };
         let (orbit, rolling_spin) = self.rolling_speeds(speed, solution.case.outer_speed);
         let spins = self.balanced_spins(&mut kin, orbit, rolling_spin, warm);
-        let results = self.evaluate_all(&kin);
-        let mut out = RollingFriction {
-            roller_slip: spins
-                .iter()
-                .map(|s| {
-                    if rolling_spin == 0.0 {
-                        0.0
-                    } else {
-                        1.0 - s / rolling_spin
-                    }
-                })
-                .collect(),
-            ..RollingFriction::default()
-        };
-        for (element, r) in self.elements().iter().zip(&results) {
+        let before = self.evaluate_all(&kin);
+        let pair_forces = self.train_forces(
+            &kin,
+            &solution.case.roller_field(&self.params),
+            &self.grips(&before),
+            &self.contact_pushes(&kin, &before),
+        );
+        let mut train = self.train_contacts(&kin, &pair_forces);
+        let mut out = self.friction_parts(&kin, &before);
+        out.roller_pairs = self.train_power(&kin, &mut train);
+        let total = out.flanges + out.inner_race + out.outer_race + out.drag;
+        let mut spins = spins;
+        if out.roller_pairs > TRAIN_SPIN_SHARE * total {
+            spins = self.spins_with_train(&mut kin, &mut train, orbit, rolling_spin, spins);
+            out = self.friction_parts(&kin, &self.evaluate_all(&kin));
+            out.roller_pairs = self.train_power(&kin, &mut train);
+        }
+        out.pair_forces = pair_forces;
+        out.roller_slip = spins
+            .iter()
+            .map(|s| {
+                if rolling_spin == 0.0 {
+                    0.0
+                } else {
+                    1.0 - s / rolling_spin
+                }
+            })
+            .collect();
+        out
+    }
+
+    /// The power of the races, flanges and drag at `kin` whose contacts' `results` (every
+    /// contact, in the order of the model's elements) are given, the roller pairs left out
+    /// (they are the roller train's, [`super::roller_train`]).
+    fn friction_parts(
+        &self,
+        kin: &BearingKinematics,
+        results: &[ElementResult],
+    ) -> RollingFriction {
+        let mut out = RollingFriction::default();
+        for (element, r) in self.elements().iter().zip(results) {
             let [a, b] = element.bodies(self.layout.rollers);
             let loss = r.power_loss(kin.of(a), kin.of(b));
             match element {
@@ -276,6 +309,111 @@ impl BearingSystem<'_> {
             out.drag -= self.roller_drag(k).power(k);
         }
         out
+    }
+
+    /// The spins [rad/s] at which every roller's moment about its axis vanishes with the
+    /// roller train's contacts `train` in, from `spins`, the balance without them; `kin`'s
+    /// rollers are left spinning at them. Neighbours in the train turn the same way, so
+    /// their surfaces slide against each other at the sum of their speeds and the pair's
+    /// friction brakes both. Only the rollers on which the train's moments are more than
+    /// [`TRAIN_COUPLING`] of their own moments are balanced again (B1 at 1 kN: none of the
+    /// loaded rollers, whose races and flanges hold them): [`spin_balance`] with each pair's
+    /// moment on a roller taken at its neighbour's spin of the sweep before, sweep after
+    /// sweep, until no spin moves by more than [`TRAIN_SPIN_TOLERANCE`] of rolling without
+    /// slip, the train's power by more than [`TRAIN_POWER_TOLERANCE`], or [`TRAIN_SWEEPS`]
+    /// have passed.
+    fn spins_with_train(
+        &self,
+        kin: &mut BearingKinematics,
+        train: &mut [TrainContact],
+        orbit: f64,
+        rolling_spin: f64,
+        mut spins: Vec<f64>,
+    ) -> Vec<f64> {
+        let z = self.layout.rollers;
+        if train.is_empty() || rolling_spin == 0.0 {
+            return spins;
+        }
+        let contacts = self.spin_contacts(kin);
+        set_spins(kin, orbit, &spins);
+        let own = self.spin_moments(kin, &contacts, &vec![true; z]);
+        let pairs = self.train_moments(train, orbit, &spins, &spins, &vec![true; z]);
+        let coupled: Vec<bool> = (0..z)
+            .map(|i| pairs[i].gross > TRAIN_COUPLING * own[i].gross)
+            .collect();
+        if !coupled.contains(&true) {
+            return spins;
+        }
+        let mut power = self.train_power(kin, train);
+        for _ in 0..TRAIN_SWEEPS {
+            let frozen = spins.clone();
+            spins = spin_balance(z, rolling_spin, Some(&frozen), |trial, active| {
+                let active: Vec<bool> = (0..z).map(|i| active[i] && coupled[i]).collect();
+                set_spins(kin, orbit, trial);
+                let mut moments = self.spin_moments(kin, &contacts, &active);
+                let pairs = self.train_moments(train, orbit, trial, &frozen, &active);
+                for i in 0..z {
+                    if active[i] {
+                        moments[i].add(pairs[i].net);
+                    } else {
+                        moments[i] = SpinMoment {
+                            net: 0.0,
+                            gross: 1.0,
+                        }; // left as it is
+                    }
+                }
+                set_spins(kin, orbit, trial);
+                moments
+            });
+            let moved = spins
+                .iter()
+                .zip(&frozen)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            set_spins(kin, orbit, &spins);
+            let now = self.train_power(kin, train);
+            let settled = (now - power).abs() <= TRAIN_POWER_TOLERANCE * now.abs();
+            power = now;
+            if moved <= TRAIN_SPIN_TOLERANCE * rolling_spin.abs() || settled {
+                break;
+            }
+        }
+        set_spins(kin, orbit, &spins);
+        spins
+    }
+
+    /// Each roller's contacts' force along its orbit (along t = x × e_r) [N] at
+    /// `results` (every contact, in the order of the model's elements; the pairs left out).
+    fn contact_pushes(&self, kin: &BearingKinematics, results: &[ElementResult]) -> Vec<f64> {
+        let z = self.layout.rollers;
+        let mut push = vec![0.0; z];
+        for (element, r) in self.elements().iter().zip(results) {
+            let i = match *element {
+                Element::Inner(i) | Element::Outer(i) | Element::End(i, _) => i,
+                Element::Pair(_) => continue,
+            };
+            let c = kin.rollers[i].center;
+            let t = Vec3::new(0.0, -c.z, c.y) / c.y.hypot(c.z);
+            push[i] += r.on_b.force.dot(&t);
+        }
+        push
+    }
+
+    /// Each roller's grip on its races [N]: the lighter of its two race loads at `results`
+    /// (every contact, in the order of the model's elements), which the roller train's net
+    /// push is shared by ([`Self::train_forces`]).
+    fn grips(&self, results: &[ElementResult]) -> Vec<f64> {
+        let z = self.layout.rollers;
+        let mut inner = vec![0.0; z];
+        let mut outer = vec![0.0; z];
+        for (element, r) in self.elements().iter().zip(results) {
+            match *element {
+                Element::Inner(i) => inner[i] = r.normal.max(0.0),
+                Element::Outer(i) => outer[i] = r.normal.max(0.0),
+                _ => {}
+            }
+        }
+        inner.iter().zip(&outer).map(|(a, b)| a.min(*b)).collect()
     }
 
     /// The contacts a roller's spin acts in (its races and flanges, not its neighbours),
@@ -367,6 +505,29 @@ fn set_spins(kin: &mut BearingKinematics, orbit: f64, spins: &[f64]) {
     }
 }
 
+/// The share of the friction power of the races, flanges and drag above which the roller
+/// train's power makes [`BearingSystem::steady_rolling_friction`] balance the spins again
+/// with the train's friction in ([`BearingSystem::spins_with_train`]). Balanced again,
+/// the spins change the train's power by at most its own size and the rollers' other
+/// contacts by about as much, so below it the estimate moves by less than 1 % (B1 at 1 kN
+/// axially: 0.4 %, not balanced again; a planet bearing at 400 g: 40 %).
+const TRAIN_SPIN_SHARE: f64 = 0.005;
+
+/// The most sweeps of [`BearingSystem::spins_with_train`].
+const TRAIN_SWEEPS: usize = 30;
+/// The share of a roller's own moments (the sum of their magnitudes) above which the roller
+/// train's moments on it make [`BearingSystem::spins_with_train`] balance it again.
+const TRAIN_COUPLING: f64 = 0.01;
+/// The largest change of a spin between two sweeps of [`BearingSystem::spins_with_train`],
+/// relative to the spin of rolling without slip, at which its sweeps stop.
+const TRAIN_SPIN_TOLERANCE: f64 = 1e-3;
+/// The relative change of the roller train's power between two sweeps of
+/// [`BearingSystem::spins_with_train`] at which they stop: where the train's friction is
+/// saturated, neighbours' spins can shift together without changing it (a roller between
+/// two that turn against it balances anywhere their frictions cancel), and the sweeps would
+/// follow that shift.
+const TRAIN_POWER_TOLERANCE: f64 = 1e-4;
+
 /// Relative width of the spin interval at which [`spin_balance`] stops (a slip known to
 /// 1e-7).
 const SPIN_TOLERANCE: f64 = 1e-7;
@@ -376,7 +537,7 @@ const SPIN_BALANCE: f64 = 1e-4;
 
 /// A roller's moment about its axis [N m] and the sum of its parts' magnitudes.
 #[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct SpinMoment {
+pub struct SpinMoment {
     /// The moment.
     pub net: f64,
     /// Σ |part|.
@@ -384,7 +545,7 @@ pub(crate) struct SpinMoment {
 }
 
 impl SpinMoment {
-    fn add(&mut self, part: f64) {
+    pub(crate) fn add(&mut self, part: f64) {
         self.net += part;
         self.gross += part.abs();
     }
