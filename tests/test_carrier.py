@@ -220,3 +220,24 @@ def test_a_run_records_the_carriers_speed_at_every_output():
     )
     resting = simulate(parse_config(changed_b1({})), t_end="0.5 ms", threads=1)
     assert not resting.carrier_speed.values.any()
+
+
+def test_the_statics_stack_a_planets_rollers_into_a_train():
+    """`rollerdyn statics` of B1 as a planet bearing (carrier at 3000 rpm, 40 mm): the
+    carrier's field pushes each roller along its orbit by m a sin(psi), both halves of the
+    ring towards the bottom, and the statics' roller train carries one half's pushes
+    between the rollers at the bottom (13.06 N, within 0.5 %: the drag adds to it); the
+    neighbours' sliding there is the roller pairs' part of the friction of steady rolling
+    (6.1 W of 20.8 W; the dynamic run: 4.8 W of 21.4 W, docs/statics.md). Under gravity
+    alone (below 10 g) the statics leave the train out: no force, no power."""
+    cfg = parse_config(_planet("3000 rpm", "40 mm"))
+    ds = statics(cfg)
+    a = (3000 * RPM) ** 2 * 0.04 + 9.81
+    psi = np.radians(ds.roller_azimuth.values)
+    half = cfg.roller_mass * a * np.abs(np.sin(psi[1:9])).sum()
+    assert float(ds.pair_force.max()) == pytest.approx(half, rel=5e-3)
+    pairs = float(ds.friction_power.sel(friction_part="roller pairs"))
+    assert 0.2 < pairs / float(ds.friction_power.sum()) < 0.4
+    resting = statics(parse_config(_planet("0 rpm", "40 mm")))
+    assert not resting.pair_force.values.any()
+    assert float(resting.friction_power.sel(friction_part="roller pairs")) == 0.0

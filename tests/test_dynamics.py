@@ -1217,3 +1217,14 @@ def test_the_contacts_conserve_angular_momentum_with_the_balanced_rolling_resist
     assert abs(created) > 4e-3 * inner, (created, inner)
     inner, created = _created_angular_momentum("balanced")
     assert abs(created) < 1e-9 * inner, (created, inner)
+
+
+def test_a_bearing_without_clearance_starts_at_rest():
+    """`geometry.diametral_clearance = "0 um"` is allowed (>= 0): its rollers on the pitch
+    circle touch both races, to the round-off of their positions, which the start at rest
+    refused as an overlap (0.000 um). It now starts and runs; its rollers then carry the
+    ring's weight at once (about 10 N over the bottom rollers: no clearance to fall
+    through)."""
+    ds = simulate(variant(**{"geometry.diametral_clearance": "0 um"}), t_end=0.002, threads=1)
+    assert ds.sizes["time"] == 3
+    assert float(ds.inner_normal_force.isel(time=-1).sum()) == pytest.approx(9.81, rel=0.5)

@@ -481,6 +481,8 @@ def _slip_text(ds) -> str:
 def _train_text(ds) -> str:
     """The roller train's largest force between neighbours, where, and its friction."""
     force = np.asarray(ds.pair_force.values, dtype=float)
+    if not force.any():
+        return "none: in a field below 10 g the rollers' films hold them apart (docs/statics.md)"
     z = force.size
     i = int(np.argmax(force))
     psi = float(ds.roller_azimuth[i]) % 360

@@ -167,6 +167,11 @@ impl BearingModel {
     }
 }
 
+/// The penetration [m] up to which bodies at the start at rest touch rather than overlap
+/// ([`BearingSystem::initial_state`]): the round-off of positions of a metre's scale, a
+/// thousand times over (a bearing without clearance puts its rollers on both races).
+const START_TOUCH: f64 = 1e-12;
+
 impl BearingSystem<'_> {
     /// The consistent start: rollers on the pitch circle, roller 0 at the bottom (−y, ψ = π, the
     /// centre of the load zone), axes along x, at rest; the inner ring centred. Nothing
@@ -182,8 +187,10 @@ impl BearingSystem<'_> {
         for element in self.elements() {
             let r = self.evaluate(element, &kin);
             // NaN counts as overlap: a start whose forces are not defined is refused. (The
-            // oil films act across gaps, so a force alone is no overlap.)
-            if r.penetration > 0.0 || r.penetration.is_nan() || r.normal.is_nan() {
+            // oil films act across gaps, so a force alone is no overlap.) Touching is not
+            // overlapping: with no clearance the rollers touch both races, to round-off.
+            let overlaps = r.penetration > START_TOUCH;
+            if overlaps || r.penetration.is_nan() || r.normal.is_nan() {
                 return Err(self.overlap_at_rest(element, r.penetration));
             }
         }

@@ -4,13 +4,12 @@
 //! The equilibrium ([`super::quasi_static`]) holds each roller at its azimuth and balances
 //! its forces across the orbit and along the axis, never along it. Along the orbit a
 //! roller is pushed by the field it stands in (gravity, a planet carrier's centrifugal
-//! field) and the drag, and a roller that touches one race only (outside the load zone) by
-//! that race's friction; without a cage only its neighbours and its grip on the races can
-//! take the push. A roller pinched between both races takes a push by slipping on both,
-//! in the linear part of the traction curve in proportion to its load, so in the steady
-//! state, when every roller orbits at one speed, the rollers' races take the pushes' sum in
-//! proportion to their loads, and the rest stacks the rollers against each other like
-//! beads on a ring: each roller is in equilibrium along its orbit,
+//! field) and the drag, and without a cage only its neighbours and its grip on the races
+//! can take the push. A roller pinched between both races takes a push by slipping on
+//! both, in the linear part of the traction curve in proportion to its load; when the
+//! field stacks the rollers into one train that orbits at one speed, the races take the
+//! pushes' sum in proportion to the rollers' loads, and the rest presses the rollers
+//! against each other like beads on a ring: each roller is in equilibrium along its orbit,
 //!
 //! > P_{j−1} − P_j + F_j − g_j·ΣF = 0,  P_j ≥ 0,
 //!
@@ -21,10 +20,10 @@
 //! ([`chain_forces`]), the least compressive forces that balance every roller, as for any
 //! chain of rigid bodies with unilateral contacts.
 //!
-//! That steady state takes time to reach: a roller's grip lets it creep along the orbit at
-//! its push over its traction's slope, so a field of 400 g (a planet carrier) closes the
-//! micrometre gaps between loaded rollers within milliseconds, gravity alone within
-//! seconds. docs/statics.md ("The roller train") measures it against the dynamic model.
+//! B1 in a planet carrier's field of 400 g stacks so in the dynamic model too, the loaded
+//! rollers included (docs/statics.md, "The roller train"); under gravity alone it does
+//! not, and the statics leave the train out there
+//! ([`super::statics`]' `TRAIN_FIELD`).
 
 use super::contacts::Geometry;
 use super::state::{BearingKinematics, Kinematics};
@@ -104,11 +103,6 @@ impl TrainContact {
     }
 }
 
-/// The share of the heaviest grip (a roller's lighter race load) up to which a roller is
-/// free: its contacts' own pushes along the orbit join the train's
-/// ([`BearingSystem::train_forces`]).
-const FREE_GRIP: f64 = 0.01;
-
 /// The relative tolerance of a train contact's normal force ([`BearingSystem::train_contacts`]).
 const TRAIN_FORCE_TOLERANCE: f64 = 1e-2;
 
@@ -117,9 +111,9 @@ impl BearingSystem<'_> {
     /// take ([`chain_forces`]): the field `field` [m/s²] on its mass (gravity and a planet
     /// carrier's centrifugal field at the bearing's axis; the field's part across the axis at
     /// the roller, its orbit's centrifugal and Coriolis forces, is radial) and the drag of the
-    /// oil–air mixture, each along t = x × e_r, the direction of increasing azimuth. A
-    /// gripping roller's contacts' own tangential forces are its races' to balance (its
-    /// orbital slip, which the quasi-static model does not resolve).
+    /// oil–air mixture, each along t = x × e_r, the direction of increasing azimuth. The
+    /// contacts' own tangential forces are each roller's races' to balance (its orbital
+    /// slip, which the quasi-static model does not resolve).
     pub fn train_pushes(&self, kin: &BearingKinematics, field: &Vec3) -> Vec<f64> {
         let m = self.roller_mass.mass;
         kin.rollers
@@ -133,27 +127,15 @@ impl BearingSystem<'_> {
     }
 
     /// The roller train's forces ([`chain_forces`]) of the steady rolling at `kin` in the
-    /// field `field` [m/s²]: the pushes of [`Self::train_pushes`], and on a roller whose
-    /// lighter race load (`race_loads` [N], its grip) is at most [`FREE_GRIP`] of the
-    /// heaviest also its contacts' own push along the orbit, `contact_pushes` [N] (a
-    /// roller on one race: that race's friction and film); the pushes' sum taken by the
-    /// races in proportion to the grips.
+    /// field `field` [m/s²]: the pushes of [`Self::train_pushes`], their sum taken by the
+    /// races in proportion to each roller's lighter race load `race_loads` [N], its grip.
     pub fn train_forces(
         &self,
         kin: &BearingKinematics,
         field: &Vec3,
         race_loads: &[f64],
-        contact_pushes: &[f64],
     ) -> Vec<f64> {
-        let most = race_loads.iter().copied().fold(0.0, f64::max);
-        let push: Vec<f64> = self
-            .train_pushes(kin, field)
-            .iter()
-            .zip(race_loads)
-            .zip(contact_pushes)
-            .map(|((p, w), c)| if *w <= FREE_GRIP * most { p + c } else { *p })
-            .collect();
-        chain_forces(&push, race_loads)
+        chain_forces(&self.train_pushes(kin, field), race_loads)
     }
 
     /// Each pair of `forces` ([`Self::train_forces`]) that carries a force, evaluated by the
@@ -359,7 +341,7 @@ impl BearingSystem<'_> {
                 self.evaluate_at(&element, &c.pressed, &c.geometry)
                     .power_loss(c.pressed.of(a), c.pressed.of(b))
             })
-            .sum()
+            .fold(0.0, |total, power| total + power) // 0 W, not −0 W, without a train
     }
 
     /// The moments about their axes [N m] that the roller train's contacts `train` put on

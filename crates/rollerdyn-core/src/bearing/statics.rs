@@ -228,10 +228,12 @@ impl BearingSystem<'_> {
     /// traction holds them back; films and drag set the unloaded ones), summed as
     /// [`super::run::record`] sums a run's power loss (`ElementResult::power_loss`).
     /// The roller–roller contacts, which the equilibrium does not hold, are the roller
-    /// train's ([`super::roller_train`]): the field and the drag stack the rollers against
-    /// each other along the orbit, each pair is evaluated where it carries the train's
-    /// force, and where the train's friction is more than [`TRAIN_SPIN_SHARE`] of the rest
-    /// the spins are balanced again with it in ([`Self::spins_with_train`]). What it leaves
+    /// train's ([`super::roller_train`]) in a field of more than [`TRAIN_FIELD`] (a planet
+    /// carrier's): the field and the drag stack the rollers against each other along the
+    /// orbit, each pair is evaluated where it carries the train's force, and where the
+    /// train's friction is more than [`TRAIN_SPIN_SHARE`] of the rest the spins are
+    /// balanced again with it in ([`Self::spins_with_train`]); in a weaker field they are
+    /// left out. What it leaves
     /// out is what settles in a run: the rollers' skew and their positions under friction
     /// (docs/statics.md, "Friction of steady rolling", "The roller train").
     /// `warm`: the rollers' slips of a neighbouring case (a sweep's last), where the
@@ -256,12 +258,12 @@ impl BearingSystem<'_> {
         let (orbit, rolling_spin) = self.rolling_speeds(speed, solution.case.outer_speed);
         let spins = self.balanced_spins(&mut kin, orbit, rolling_spin, warm);
         let before = self.evaluate_all(&kin);
-        let pair_forces = self.train_forces(
-            &kin,
-            &solution.case.roller_field(&self.params),
-            &self.grips(&before),
-            &self.contact_pushes(&kin, &before),
-        );
+        let field = solution.case.roller_field(&self.params);
+        let pair_forces = if field.norm() > TRAIN_FIELD {
+            self.train_forces(&kin, &field, &self.grips(&before))
+        } else {
+            vec![0.0; kin.rollers.len()]
+        };
         let mut train = self.train_contacts(&kin, &pair_forces);
         let mut out = self.friction_parts(&kin, &before);
         out.roller_pairs = self.train_power(&kin, &mut train);
@@ -382,23 +384,6 @@ impl BearingSystem<'_> {
         spins
     }
 
-    /// Each roller's contacts' force along its orbit (along t = x × e_r) [N] at
-    /// `results` (every contact, in the order of the model's elements; the pairs left out).
-    fn contact_pushes(&self, kin: &BearingKinematics, results: &[ElementResult]) -> Vec<f64> {
-        let z = self.layout.rollers;
-        let mut push = vec![0.0; z];
-        for (element, r) in self.elements().iter().zip(results) {
-            let i = match *element {
-                Element::Inner(i) | Element::Outer(i) | Element::End(i, _) => i,
-                Element::Pair(_) => continue,
-            };
-            let c = kin.rollers[i].center;
-            let t = Vec3::new(0.0, -c.z, c.y) / c.y.hypot(c.z);
-            push[i] += r.on_b.force.dot(&t);
-        }
-        push
-    }
-
     /// Each roller's grip on its races [N]: the lighter of its two race loads at `results`
     /// (every contact, in the order of the model's elements), which the roller train's net
     /// push is shared by ([`Self::train_forces`]).
@@ -504,6 +489,16 @@ fn set_spins(kin: &mut BearingKinematics, orbit: f64, spins: &[f64]) {
         k.omega = orbit + *s * k.axis;
     }
 }
+
+/// The field [m/s²] (gravity and a planet carrier's, [`StaticCase::roller_field`]) above
+/// which [`BearingSystem::steady_rolling_friction`] stacks the rollers into the roller
+/// train: ten times gravity, where `rollerdyn run` notes a carrier's field. Below it the
+/// dynamic model's rollers do not stack: the oil films between neighbours hold them apart
+/// with forces of the field's order and more (B1 at 3000 rpm without axial load: 8 mN
+/// between loaded neighbours, 36 mN between free ones, on every output of 0.6 s), and the
+/// neighbours' friction is their films' shear at gaps that no train sets (docs/statics.md,
+/// "The roller train").
+const TRAIN_FIELD: f64 = 98.1;
 
 /// The share of the friction power of the races, flanges and drag above which the roller
 /// train's power makes [`BearingSystem::steady_rolling_friction`] balance the spins again
