@@ -706,3 +706,26 @@ def test_set_none_removes_an_optional_value(tmp_path):
         refused = RUNNER.invoke(app, ["check", str(B1), "--set", bad])
         assert refused.exit_code == 2, (bad, refused.output)
         assert rule in refused.output and "Traceback" not in refused.output, bad
+
+
+def test_check_says_when_run_would_refuse_a_run_too_large(monkeypatch):
+    """`check` tells that `run` would refuse a run far beyond a normal one, with run's own
+    words: outputs every nanosecond to B1's end time would hold 1.66e4 GB (it printed
+    only the size in its table); and a model the core cannot build is no point-law
+    refusal (it claimed "--force runs it" for flanges too tall together, which --force
+    never ran; the configuration refuses those now)."""
+    from b1 import variant
+
+    from rollerdyn.notes import refusal_note
+
+    result = RUNNER.invoke(app, ["check", str(B1), "--set", "solver.output_interval=1e-9 s"])
+    assert result.exit_code == 0, result.output
+    flat = " ".join(result.output.split())
+    assert "run refuses this configuration: solver.output_interval = 1e-09 s" in flat
+    assert "GB of results" in flat
+
+    def no_model(cfg):
+        raise ValueError("inner_flange.height + outer_flange.height = 0.0046: must be < ...")
+
+    monkeypatch.setattr("rollerdyn.statics._core_model", no_model)
+    assert refusal_note(variant()) is None

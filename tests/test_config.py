@@ -870,6 +870,13 @@ BAD = [
         'only the flanges "inner-x" and "outer+x" carry; geometry.flanges has no "inner-x"',
     ),
     (
+        "an output group twice",
+        "solver.outputs",
+        ["rollers", "rollers"],
+        "solver.outputs",
+        'names each group at most once ("rollers" twice)',
+    ),
+    (
         "flanges taller together than the annulus (each below the roller)",
         "geometry.flange.height",
         "2.3 mm",

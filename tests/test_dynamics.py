@@ -749,6 +749,10 @@ def test_selected_outputs_keep_the_bearings_own_resume_exactly_and_are_named_whe
     assert row["mean_frictional_torque [N*m]"] == summarize(base)["mean_frictional_torque [N*m]"]
     for column in ("max_race_load [N]", "max_flange_normal_force [N]", "max_abs_srr_inner [1]"):
         assert math.isnan(row[column]), column
+    # modes: the rollers' azimuths and loads n/a with a line saying why (it printed nan)
+    moded = CliRunner().invoke(app, ["modes", str(tmp_path / "bare.nc"), "--count", "2"])
+    assert moded.exit_code == 0, moded.output
+    assert "nan" not in moded.output and "the result records no rollers" in moded.output
 
 
 def test_gradient_detector_runs_resume_bit_for_bit():

@@ -123,6 +123,11 @@ def modes_command(
             "; ".join(_roller_note(last, i) for i in mode.rollers[:2]),
         )
     console.print(table)
+    if last is not None and "azimuth" not in last:
+        say(
+            "the rollers' azimuths and loads: n/a, the result records no rollers "
+            '(solver.outputs lacks "rollers")'
+        )
     if by_force:
         _print_by_force(growth_by_force(changed_cfg, t, ds["final_state"].values))
     unstable = sum(1 for m in modes if m.growth_rate > 0)
@@ -175,6 +180,8 @@ def _shown(value: object) -> str:
 def _roller_note(last, i: int) -> str:
     """Roller i's azimuth and loads at the last output, in a few words."""
     if last is None or "roller" not in last.dims or i >= last.sizes["roller"]:
+        return f"roller {i}"
+    if "azimuth" not in last:
         return f"roller {i}"
     r = last.sel(roller=i)
 

@@ -67,7 +67,8 @@ def check(
     fitted to Tripp with their errors; the flanges the rings have (geometry.flanges), the
     bearing type they make and the axial loads they carry; then whether `rollerdyn run`
     would refuse the run
-    at its start (the point end-flange law's load check, which --force skips), and the
+    at its start (a run far beyond a normal one, or the point end-flange law's load check;
+    --force skips both), and the
     notes it would print: a configuration known to creep with the point end-flange law (a
     free or prescribed ring tilt), an equilibrium start before the loads, and loads at
     the end time whose quasi-static equilibrium presses a flange or a race past ISO 76's
@@ -116,6 +117,19 @@ def check(
     console.print(table)
     g = cfg.geometry
     say(f"flanges: {g.flange_arrangement}; axial load carried: {g.axial_load_carried}")
-    for note in [refusal_note(cfg), *configuration_notes(cfg)]:
+    for note in [_cost_note(cfg), refusal_note(cfg), *configuration_notes(cfg)]:
         if note is not None:
             say(note, "yellow")
+
+
+def _cost_note(cfg) -> str | None:
+    """The refusal `rollerdyn run` gives a run far beyond a normal one (its outputs' size,
+    its least step count, its checkpoints: :func:`rollerdyn.simulation.check_cost`), as a
+    note, or None."""
+    from ..simulation import check_cost
+
+    try:
+        check_cost(cfg, cfg.end_time)
+    except ValueError as refusal:
+        return f"note: rollerdyn run refuses this configuration: {refusal}"
+    return None

@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import Literal
 
 from pydantic import Field, StrictBool, field_validator, model_validator
+from pydantic_core import PydanticCustomError
 
 from ..names import DETECTORS, SEMI_ANALYTICAL
 from ..units import Integer, Number, Quantity, format_si
@@ -105,7 +106,12 @@ class SolverConfig(_Section):
     @field_validator("outputs")
     @classmethod
     def _in_order(cls, value: tuple[str, ...]) -> tuple[str, ...]:
-        """The groups once each, in the order of :data:`OUTPUT_GROUPS`."""
+        """The groups in the order of :data:`OUTPUT_GROUPS`; each at most once."""
+        if len(set(value)) != len(value):
+            twice = next(g for g in value if value.count(g) > 1)
+            raise PydanticCustomError(
+                "quantity", "{rule}", {"rule": f'names each group at most once ("{twice}" twice)'}
+            )
         return tuple(g for g in OUTPUT_GROUPS if g in value)
 
     @model_validator(mode="after")
