@@ -233,6 +233,10 @@ def test_bad_cases_are_refused_with_a_message(b1):
         parse_range("geometry.roller_count", "10:20:3")
     with pytest.raises(StaticsError, match="count"):
         parse_range("operating.radial_load", "0:10:x")
+    # one value from two different ends ran the first alone (the sweep refuses it too)
+    with pytest.raises(StaticsError, match=r"2 \.\.\. 100000 \(or 1 with START = STOP\)"):
+        parse_range("operating.radial_load", "1000 N:5000 N:1")
+    assert parse_range("operating.radial_load", "1000 N:1000 N:1") == [1000.0]
     # 1e8 cases filled 7 GB of memory before anything was printed
     many = {"operating.radial_load": [1e3] * 10_000, "operating.axial_load": [0.0] * 10_000}
     with pytest.raises(StaticsError, match=r"= 100000000 cases, more than 100000"):

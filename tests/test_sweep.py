@@ -102,6 +102,9 @@ def test_set_takes_ranges_a_b_n():
         ("operating.axial_load=0 N:1 kN:3", "same unit"),
         ("operating.axial_load=0 N:1000 N:0", "N must be 2"),
         ("operating.axial_load=0 N:1000 N:100000", "N must be 2"),
+        # a negative or fractional count is a count, not a unit (was "unknown unit")
+        ("operating.axial_load=0 N:1000 N:-1", "N must be 2"),
+        ("operating.axial_load=0 N:1000 N:2.5", "N must be 2"),
         ("operating.axial_load=0 N:1e999 N:2", "finite"),
     ):
         with pytest.raises(SweepError, match=rule):

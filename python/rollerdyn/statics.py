@@ -368,8 +368,11 @@ def parse_range(path: str, text: str) -> list[float]:
             raise StaticsError(
                 f"--set {path}={text}: the count after the second ':' must be an integer"
             ) from None
-        if not 1 <= n <= 100_000:
-            raise StaticsError(f"--set {path}={text}: the count must be 1 ... 100000, not {n}")
+        if not 1 <= n <= 100_000 or (n == 1 and a != b):
+            raise StaticsError(
+                f"--set {path}={text}: the count must be 2 ... 100000 (or 1 with START = STOP), "
+                f"not {n}"
+            )
         return list(np.linspace(a, b, n))
     if len(parts) != 1:
         raise StaticsError(f"--set {path}={text}: expected START:STOP:COUNT or a comma list")

@@ -166,7 +166,7 @@ def parse_set(option: str) -> tuple[str, list[Any]]:
 
 
 #: ``A:B:N``: N evenly spaced values from A to B, each a number with or without a unit.
-_RANGE = re.compile(r"^\s*([^:\[\]{}\"']+):([^:\[\]{}\"']+):\s*([0-9]+)\s*$")
+_RANGE = re.compile(r"^\s*([^:\[\]{}\"']+):([^:\[\]{}\"']+):\s*([-+]?[0-9.eE+-]+)\s*$")
 _NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
 
 #: Most values one A:B:N range of a sweep gives (each value is at least one run).
@@ -180,7 +180,10 @@ def range_values(path: str, text: str) -> list[Any]:
     m = _RANGE.match(text)
     assert m is not None
     first, last = (_NUMBER_UNIT.match(part) for part in m.groups()[:2])
-    n = int(m.group(3))
+    try:
+        n = int(m.group(3))
+    except ValueError:
+        n = 0  # not a whole count: refused below
     if first is None or last is None:
         raise SweepError(f"--set {path}={text}: A:B:N needs a number (with its unit) at both ends")
     (a, unit_a), (b, unit_b) = first.groups(), last.groups()

@@ -492,7 +492,10 @@ def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time):
         except ConfigError as err:
             for prob in err.problems or ():
                 option = OPTIONS.get(prob.path)
-                problems.append(f"point {i} ({label}): {prob}" + (f" ({option})" if option else ""))
+                # the point's label gives its values with their units (the configuration's
+                # value is the map's SI number)
+                said = f"point {i} ({label}): {prob.path} — {prob.rule}"
+                problems.append(said + (f" ({option})" if option else ""))
             if not err.problems:
                 problems.append(f"point {i} ({label}): {str(err).splitlines()[-1].strip()}")
             continue
