@@ -17,6 +17,20 @@ def test_validate_passes_and_prints_the_table():
     assert " 0 failed" in result.output
 
 
+def test_validate_another_bearing_leaves_b1s_own_cases_out(tmp_path):
+    """`rollerdyn validate -c` of another bearing (from `rollerdyn new`) failed B1's own
+    cases (its roller's mass, eq. 11 at B1's races), whose expected values are B1's: they
+    are left out with a line saying why, and every general case still passes."""
+    other = tmp_path / "other.toml"
+    made = RUNNER.invoke(app, ["new", str(other), "--inner-raceway", "40", "--outer-raceway", "52"])
+    assert made.exit_code == 0, made.output
+    result = RUNNER.invoke(app, ["validate", "-c", str(other)])
+    assert result.exit_code == 0, result.output
+    assert "0 failed" in result.output and "B1 roller mass" not in result.output
+    assert "B1's own cases" in result.output and "geometry differs" in result.output
+    assert "B1's own cases" not in RUNNER.invoke(app, ["validate", "-c", str(B1)]).output
+
+
 def test_check_prints_derived_quantities():
     result = RUNNER.invoke(app, ["check", str(B1)])
     assert result.exit_code == 0, result.output

@@ -21,7 +21,7 @@ def validate(config: ConfigOption = None) -> None:
     fit's at high ellipticity, has its measured size rounded up as its tolerance). Exits
     with status 1 if any case fails.
     """
-    from ..validation import run
+    from ..validation import differs_from_b1, run
 
     cfg = load(config if config is not None else default_config())
     table = Table(title="rollerdyn validation", show_lines=False)
@@ -47,6 +47,13 @@ def validate(config: ConfigOption = None) -> None:
     console.print(table)
     total = len(results)
     console.print(f"{total - failures} passed, {failures} failed")
+    other = differs_from_b1(cfg)
+    if other is not None:
+        say(
+            f"B1's own cases (eq. 11 at its races, its oil and traction, its roller) left out: "
+            f"{cfg.name} is another bearing ({other} differs from examples/b1.toml's), and "
+            "their expected values are B1's"
+        )
     if failures:
         raise typer.Exit(1)
 
