@@ -618,3 +618,37 @@ def test_bad_arguments_are_refused_before_an_earlier_sweep_is_touched(tmp_path, 
     a_file = tmp_path / "run_0000.nc"
     with pytest.raises(SweepError, match="is a file, not a folder"):
         rollerdyn.sweep(SHORT_DATA, {"operating.axial_load": ["0 N"]}, a_file)
+
+
+@pytest.mark.parametrize("delay", [1.0, 1.4])
+def test_sigterm_while_the_sweep_starts_is_one_true_line(tmp_path, delay):
+    # SIGTERM while the grid is built or the workers start claimed a summary that was never
+    # written, and Dask's exit then printed an assertion about a worker still starting (or
+    # an import it cut gave an ImportError); now one line that says what was kept (the
+    # summary when it exists, else nothing), no traceback, exit status 143. Which moment
+    # the signal meets depends on the machine; either line must be true.
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    command = Path(sys.executable).parent / "rollerdyn"
+    out = tmp_path / "sw"
+    args = [str(command), "sweep", str(B1), "--workers", "1", "--t-end", "0.005", "-o", str(out)]
+    proc = subprocess.Popen(
+        [*args, "--set", "operating.axial_load=0 N,500 N"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+    )
+    time.sleep(delay)
+    proc.send_signal(signal.SIGTERM)
+    text, _ = proc.communicate(timeout=120)
+    assert proc.returncode == 143, text
+    for noise in ("Traceback", "Exception ignored", "Error"):
+        assert noise not in text, text
+    lines = [line for line in text.splitlines() if line.startswith("rollerdyn sweep:")]
+    if lines:  # none if it came before Python's handler was installed
+        assert len(lines) == 1, text
+        claims = "summary.parquet lists" in lines[0]
+        assert claims == (out / "summary.parquet").is_file(), text

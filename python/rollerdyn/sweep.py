@@ -774,20 +774,30 @@ def connect(scheduler: Any, workers: int, timeout: float):
         # The workers ignore Ctrl-C (the command handles it): SIGINT ignored while they are
         # spawned (a spawned process inherits that), and again by their preload for
         # workers a nanny restarts later.
-        with _ctrl_c_ignored():
-            cluster = LocalCluster(
-                n_workers=workers,
-                threads_per_worker=1,
-                processes=True,
-                dashboard_address=None,
-                preload=["rollerdyn._dask_worker"],
-                # Dask's messages are not the user's: they are about its own shutdown
-                # ("Worker process still alive ... killing", a worker's "Failed to
-                # communicate with scheduler during heartbeat" after a Ctrl-C); a run's
-                # failure is in its row of the summary.
-                silence_logs=logging.CRITICAL,
-            )
-        return Client(cluster), cluster
+        # A SIGTERM while they start is taken once the cluster stands (a cluster stopped
+        # half-built left Dask's exit with an assertion about a worker still starting),
+        # and then closes it.
+        client = cluster = None
+        try:
+            with _ctrl_c_ignored(), _sigterm_deferred():
+                cluster = LocalCluster(
+                    n_workers=workers,
+                    threads_per_worker=1,
+                    processes=True,
+                    dashboard_address=None,
+                    preload=["rollerdyn._dask_worker"],
+                    # Dask's messages are not the user's: they are about its own shutdown
+                    # ("Worker process still alive ... killing", a worker's "Failed to
+                    # communicate with scheduler during heartbeat" after a Ctrl-C); a run's
+                    # failure is in its row of the summary.
+                    silence_logs=logging.CRITICAL,
+                )
+                client = Client(cluster)
+        except KeyboardInterrupt:
+            if cluster is not None:
+                disconnect(client, cluster, None)
+            raise
+        return client, cluster
     if isinstance(scheduler, Client):
         return scheduler, None
     check_reachable(str(scheduler), timeout)
@@ -805,7 +815,7 @@ def disconnect(client: Any, cluster: Any, scheduler: Any) -> None:
     4 s), and a Ctrl-C that interrupted the closing would leave it to the interpreter's
     exit, which waited 12 s (measured)."""
     with _ctrl_c_ignored():
-        if client is not scheduler:
+        if client is not None and client is not scheduler:
             client.close()
         if cluster is not None:
             cluster.close()

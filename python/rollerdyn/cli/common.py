@@ -9,7 +9,7 @@ options is never read as rich markup.
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -182,11 +182,12 @@ def refuse_overlap(option: str, path: str, others: Iterable[str]) -> None:
 
 
 @contextlib.contextmanager
-def terminated_as_interrupted(message: str):
+def terminated_as_interrupted(message: str | Callable[[], str]):
     """SIGTERM (a batch system's stop, `kill`, `timeout`) within the block is Ctrl-C: a
     KeyboardInterrupt, so that a sweep or a study closes its workers and keeps what they
-    computed as it does after Ctrl-C; the command then prints ``message`` and exits with
-    status 143 (a second SIGTERM meanwhile is only recorded). Ctrl-C itself passes on."""
+    computed as it does after Ctrl-C; the command then prints ``message`` (or what it
+    returns, asked then: what was kept) and exits with status 143 (a second SIGTERM
+    meanwhile is only recorded). Ctrl-C itself passes on."""
     import signal
     import threading
 
@@ -206,7 +207,7 @@ def terminated_as_interrupted(message: str):
     except KeyboardInterrupt:
         if not received:
             raise
-        error(message)
+        error(message() if callable(message) else message)
         raise typer.Exit(143) from None
     finally:
         signal.signal(signal.SIGTERM, previous)

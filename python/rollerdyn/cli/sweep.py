@@ -142,7 +142,7 @@ def sweep_command(
     finished and the others as interrupted (exit status 130 or 143). --overwrite first
     removes the earlier sweep's result files, summary and figure.
     """
-    from ..sweep import SUMMARY_FILE, SweepError, build_grid, sweep
+    from ..sweep import SUMMARY_FILE, SweepError, _sigterm_deferred, build_grid, sweep
     from ..sweep_figures import FIGURE_NAME
 
     parameters = _parameters(sets)
@@ -157,11 +157,20 @@ def sweep_command(
         overwrite=overwrite,
         hint="; pass --overwrite to replace them, or choose another folder",
     )
-    terminated = (
-        f"rollerdyn sweep: terminated (SIGTERM); {output / SUMMARY_FILE} lists the runs that "
-        "finished and the others as interrupted"
-    )
+
+    def terminated() -> str:
+        if (output / SUMMARY_FILE).is_file():
+            return (
+                f"rollerdyn sweep: terminated (SIGTERM); {output / SUMMARY_FILE} lists the runs "
+                "that finished and the others as interrupted"
+            )
+        return "rollerdyn sweep: terminated (SIGTERM) before any run started; nothing written"
+
     with refusing(SweepError, output), terminated_as_interrupted(terminated):
+        with _sigterm_deferred():  # a stop within an import would fail it (not stop)
+            import distributed  # noqa: F401
+            import pandas  # noqa: F401
+            import pyarrow.parquet  # noqa: F401
         build_grid(config, parameters, end)  # every grid point before the cluster starts
         with _sweep_progress(console, scheduler) as progress:
             frame = sweep(
