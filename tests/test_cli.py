@@ -743,3 +743,14 @@ def test_check_says_when_run_would_refuse_a_run_too_large(monkeypatch):
 
     monkeypatch.setattr("rollerdyn.statics._core_model", no_model)
     assert refusal_note(variant()) is None
+
+
+def test_a_run_with_the_mesh_detector_is_noted_as_slow():
+    """`rollerdyn run --detector mesh` (or solver.detector) notes at its start that the
+    mesh detector is the slow baseline (its first step on B1: 16 s on one thread, with no
+    progress line meanwhile); the other detectors get no note."""
+    from rollerdyn.notes import detector_note
+
+    note = detector_note("mesh")
+    assert note is not None and "9 ms a roller end" in note and "between its long steps" in note
+    assert detector_note("semi-analytical") is None and detector_note("gradient") is None

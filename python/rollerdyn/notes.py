@@ -32,6 +32,21 @@ def configuration_notes(
     return [note for note in notes if note is not None]
 
 
+def detector_note(detector: str) -> str | None:
+    """A one-line note for a run with the mesh detector, the detection study's slow
+    baseline (docs/contact.md: about 9 ms a roller end at its default resolution), or
+    None: its progress lines come between steps that take seconds (B1's first step with it
+    16 s on one thread)."""
+    if detector != "mesh":
+        return None
+    return (
+        "note: the mesh detector is the slow baseline of the detection study: about 9 ms a "
+        "roller end against the semi-analytical detector's microsecond (docs/contact.md), "
+        "so a run with it is for milliseconds of comparison, and its progress lines come "
+        "between its long steps"
+    )
+
+
 #: The planet carrier's field [m/s^2] from which :func:`carrier_note` speaks: ten times
 #: gravity, ten times the pushes on the unloaded rollers that B1's own run has.
 CARRIER_FIELD_NOTED = 98.1

@@ -140,7 +140,8 @@ def run(
 
     Progress: on a terminal a bar shows simulated time, solver steps, speed (simulated
     time per wall second) and the time left; otherwise (a log, a pipe) one line is
-    printed at every 10 % of the simulated time and at least every 10 s. A run whose steps
+    printed at every 10 % of the simulated time and at least every 10 s (between steps:
+    the mesh detector's can take longer). A run whose steps
     average less than 1 µs of simulated time over 10 s of wall time (from 30 s on) gets one
     note naming its likely cause (recorded as the result's crawl_note).
 
@@ -162,7 +163,7 @@ def run(
     cfg = load(config, changes)
     # after the input checks: a bad option or file is refused before xarray and the
     # simulation's other libraries load (about 0.6 s)
-    from ..notes import configuration_notes
+    from ..notes import configuration_notes, detector_note
     from ..simulation import CheckpointSaver, SimulationError, resume_state, simulate, write
 
     end = cfg.end_time if end is None else end
@@ -175,6 +176,9 @@ def run(
         cfg = load(config, changes)
     for note in configuration_notes(cfg, end):
         say(note, "yellow")
+    mesh = detector_note(detector or cfg.solver.detector)
+    if mesh is not None:
+        say(mesh, "yellow")
     for tmp, pid in remove_stale_temporaries(output):
         say(f"removed {tmp}: a temporary file of process {pid}, which no longer runs")
     t_start = 0.0 if previous is None else float(resume_state(previous)[0])

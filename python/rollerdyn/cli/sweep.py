@@ -171,7 +171,9 @@ def sweep_command(
             import distributed  # noqa: F401
             import pandas  # noqa: F401
             import pyarrow.parquet  # noqa: F401
-        build_grid(config, parameters, end)  # every grid point before the cluster starts
+        runs = math.prod(len(v) for v in parameters.values())
+        with console.status(f"checking the grid's {runs} configurations"):
+            build_grid(config, parameters, end)  # every grid point before the cluster starts
         with _sweep_progress(console, scheduler) as progress:
             frame = sweep(
                 config,
