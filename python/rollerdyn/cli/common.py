@@ -182,19 +182,17 @@ def refuse_overlap(option: str, path: str, others: Iterable[str]) -> None:
 
 
 @contextlib.contextmanager
-def terminated_as_interrupted(message: str | Callable[[], str]):
+def sigterm_as_interrupt(received: list[int]):
     """SIGTERM (a batch system's stop, `kill`, `timeout`) within the block is Ctrl-C: a
-    KeyboardInterrupt, so that a sweep or a study closes its workers and keeps what they
-    computed as it does after Ctrl-C; the command then prints ``message`` (or what it
-    returns, asked then: what was kept) and exits with status 143 (a second SIGTERM
-    meanwhile is only recorded). Ctrl-C itself passes on."""
+    KeyboardInterrupt, so that what the block computes stops as after Ctrl-C and keeps what
+    it has; ``received`` records it (a second SIGTERM meanwhile is only recorded). Nothing
+    changes outside the main thread, where Python takes no signals."""
     import signal
     import threading
 
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    received: list[int] = []
 
     def stop(signum, _frame):
         received.append(signum)
@@ -204,10 +202,22 @@ def terminated_as_interrupted(message: str | Callable[[], str]):
     previous = signal.signal(signal.SIGTERM, stop)
     try:
         yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+@contextlib.contextmanager
+def terminated_as_interrupted(message: str | Callable[[], str]):
+    """SIGTERM within the block is Ctrl-C (:func:`sigterm_as_interrupt`), so that a sweep or
+    a study closes its workers and keeps what they computed as it does after Ctrl-C; the
+    command then prints ``message`` (or what it returns, asked then: what was kept) and
+    exits with status 143. Ctrl-C itself passes on."""
+    received: list[int] = []
+    try:
+        with sigterm_as_interrupt(received):
+            yield
     except KeyboardInterrupt:
         if not received:
             raise
         error(message() if callable(message) else message)
         raise typer.Exit(143) from None
-    finally:
-        signal.signal(signal.SIGTERM, previous)

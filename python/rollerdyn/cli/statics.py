@@ -4,7 +4,6 @@ and drawn as curves."""
 
 from __future__ import annotations
 
-import contextlib
 import math
 import shutil
 from pathlib import Path
@@ -15,7 +14,16 @@ import typer
 from rich.table import Table
 
 from ..paths import check_output_file, same_file
-from .common import checked, console, error, load, refuse, refuse_overlap, say
+from .common import (
+    checked,
+    console,
+    error,
+    load,
+    refuse,
+    refuse_overlap,
+    say,
+    sigterm_as_interrupt,
+)
 
 
 def statics_command(
@@ -146,34 +154,11 @@ def statics_command(
             "file (variables over case and roller)"
         )
     terminated: list[int] = []
-    with _sigterm_as_interrupt(terminated):
+    with sigterm_as_interrupt(terminated):
         ds = _solve(config, cfg, (grid, design), per_roller, contamination, output, terminated)
     _write(ds, output, plot)
     if not single and ds.attrs["failed_cases"]:
         raise typer.Exit(1)  # as a sweep with a failed run: written, and said by the status
-
-
-@contextlib.contextmanager
-def _sigterm_as_interrupt(received: list[int]):
-    """SIGTERM within the block stops a sweep as Ctrl-C does (the core sees it at its next
-    check), so that the cases solved are kept; ``received`` records it."""
-    import signal
-    import threading
-
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-
-    def stop(signum, _frame):
-        received.append(signum)
-        if len(received) == 1:
-            raise KeyboardInterrupt("terminated by SIGTERM")
-
-    previous = signal.signal(signal.SIGTERM, stop)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)
 
 
 def _solve(config, cfg, cases, per_roller, contamination, output, terminated):

@@ -233,9 +233,9 @@ impl BearingSystem<'_> {
     /// orbit, each pair is evaluated where it carries the train's force, and where the
     /// train's friction is more than [`TRAIN_SPIN_SHARE`] of the rest the spins are
     /// balanced again with it in ([`Self::spins_with_train`]); in a weaker field they are
-    /// left out. What it leaves
-    /// out is what settles in a run: the rollers' skew and their positions under friction
-    /// (docs/statics.md, "Friction of steady rolling", "The roller train").
+    /// left out. What it leaves out is what settles in a run: the rollers' skew and their
+    /// positions under friction (docs/statics.md, "Friction of steady rolling", "The roller
+    /// train").
     /// `warm`: the rollers' slips of a neighbouring case (a sweep's last), where the
     /// balance starts instead of at rolling without slip.
     pub fn steady_rolling_friction(
@@ -318,8 +318,7 @@ impl BearingSystem<'_> {
     /// rollers are left spinning at them. Neighbours in the train turn the same way, so
     /// their surfaces slide against each other at the sum of their speeds and the pair's
     /// friction brakes both. Only the rollers on which the train's moments are more than
-    /// [`TRAIN_COUPLING`] of their own moments are balanced again (B1 at 1 kN: none of the
-    /// loaded rollers, whose races and flanges hold them): [`spin_balance`] with each pair's
+    /// [`TRAIN_COUPLING`] of their own moments are balanced again: [`spin_balance`] with each pair's
     /// moment on a roller taken at its neighbour's spin of the sweep before, sweep after
     /// sweep, until no spin moves by more than [`TRAIN_SPIN_TOLERANCE`] of rolling without
     /// slip, the train's power by more than [`TRAIN_POWER_TOLERANCE`], or [`TRAIN_SWEEPS`]
@@ -504,8 +503,8 @@ const TRAIN_FIELD: f64 = 98.1;
 /// train's power makes [`BearingSystem::steady_rolling_friction`] balance the spins again
 /// with the train's friction in ([`BearingSystem::spins_with_train`]). Balanced again,
 /// the spins change the train's power by at most its own size and the rollers' other
-/// contacts by about as much, so below it the estimate moves by less than 1 % (B1 at 1 kN
-/// axially: 0.4 %, not balanced again; a planet bearing at 400 g: 40 %).
+/// contacts by about as much, so below it the estimate moves by less than 1 % (B1 as a
+/// planet bearing at 400 g: 41 %, balanced again).
 const TRAIN_SPIN_SHARE: f64 = 0.005;
 
 /// The most sweeps of [`BearingSystem::spins_with_train`].
