@@ -1375,12 +1375,15 @@ def test_load_config_with_changes_records_the_changed_table(tmp_path: Path) -> N
 
 
 def test_output_groups_are_taken_once_each_in_their_order():
-    """``solver.outputs``: the groups as a set (order and repeats do not matter), kept in
-    the order of OUTPUT_GROUPS; the default records them all, and [] none."""
+    """``solver.outputs``: the groups in any order, each at most once (a repeat is refused
+    by name: docs/configuration.md's rule), kept in the order of OUTPUT_GROUPS; the default
+    records them all, and [] none."""
     from rollerdyn.config.solver import OUTPUT_GROUPS
 
     groups = ("rollers", "flanges", "power", "lubrication")
     assert load_b1().solver.outputs == OUTPUT_GROUPS == groups
-    changed = parse_config(changed_b1({"solver.outputs": ["power", "rollers", "power"]}))
+    changed = parse_config(changed_b1({"solver.outputs": ["power", "rollers"]}))
     assert changed.solver.outputs == ("rollers", "power")
+    with pytest.raises(ConfigError, match='"power" twice'):
+        parse_config(changed_b1({"solver.outputs": ["power", "rollers", "power"]}))
     assert parse_config(changed_b1({"solver.outputs": []})).solver.outputs == ()
