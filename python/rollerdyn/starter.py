@@ -292,23 +292,27 @@ def starter_config(
         body = _set_after(
             body, "outer_ring_wall_thickness", f"{line}  # rollerdyn new --type {bearing_type}"
         )
-    return _header(geometry, name) + _end_time_comment(body, geometry, speed)
+    return _header(geometry, name) + _end_time_comment(body)
 
 
-def _end_time_comment(body: str, geometry: StarterGeometry, speed: float) -> str:
+def _end_time_comment(body: str) -> str:
     """``body`` with the end time that B1's comment on ``end_time`` quotes (B1's 1.288 s)
-    replaced by this bearing's: the speed ramp's end plus two revolutions of the roller
-    set at ω_c = Ω (1 − D/d_m)/2 (paper sect. 4)."""
-    found = re.search(r"^# end_time is derived: .*about ([0-9.]+) s\.$", body, re.M)
-    ramp = re.search(r'^\[operating\.speed_ramp\]\nstart = .*\nend = "([0-9.]+) s"', body, re.M)
-    if found is None or ramp is None:
-        raise KeyError("B1's configuration has no end_time comment or speed ramp")
-    cage = abs(speed) * (1.0 - geometry.roller_diameter / geometry.pitch_diameter) / 2.0
+    replaced by this bearing's, as the configuration derives it
+    (``BearingDerived.end_time``: the speed ramp's end plus two roller-set revolutions);
+    without a number where ``body`` is no valid bearing (the check after names why)."""
+    import tomllib
+
+    from .config import ConfigError, parse_config
+
+    found = re.search(r"^# end_time is derived: .*(, about [0-9.]+ s)\.$", body, re.M)
+    if found is None:
+        raise KeyError("B1's configuration has no end_time comment")
+    try:
+        shown = f", about {parse_config(tomllib.loads(body)).end_time:.4g} s"
+    except ConfigError:
+        shown = ""
     a, b = found.span(1)
-    if not cage > 0.0:  # no orbit, no end time to derive: the check names end_time
-        return body[: found.start(1) - len("about ")].rstrip(", ") + "." + body[found.end(0) :]
-    end = float(ramp.group(1)) + 2.0 * 2.0 * math.pi / cage
-    return body[:a] + f"{end:.4g}" + body[b:]
+    return body[:a] + shown + body[b:]
 
 
 def _set_after(text: str, key: str, line: str) -> str:
