@@ -379,6 +379,18 @@ def test_only_an_earlier_report_is_replaced(page, result, tmp_path):
     shutil.copyfile(page, odd)
     res = RUNNER.invoke(app, ["report", str(result), "-o", str(odd), "--max-frames", "2"])
     assert res.exit_code == 0, res.output
+    # the Python function keeps the same rule: the notes and a configuration are refused
+    # by ReportError and left as they were, an earlier report is replaced
+    from rollerdyn.report import ReportError, report
+
+    config = tmp_path / "my.toml"
+    config.write_text('name = "mine"\n', encoding="utf-8")
+    for theirs in (notes, config):
+        before = theirs.read_bytes()
+        with pytest.raises(ReportError, match="only an earlier report of rollerdyn"):
+            report([result], theirs, max_frames=2)
+        assert theirs.read_bytes() == before
+    assert report([result], earlier, max_frames=2) == earlier
 
 
 def test_legends_name_the_load_case_and_tell_runs_of_the_same_name_apart():

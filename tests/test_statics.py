@@ -430,7 +430,10 @@ def _rib_sliding_speed(cfg, ds, j: int, k: int) -> float:
     outer ring), the roller's point at distance d from its axis at omega_s d, omega_s =
     (Omega - omega_c) R_i / r in rolling without slip, times 1 - the roller's slip
     (``roller_slip``); the roller's axis lies where the equilibrium put it (its approach to
-    the raceway included)."""
+    the raceway included). A skewed roller (``roller_skew``) meets the flange a distance
+    Delta off its meridian plane (``flange_contact_offset``), where its end's surface also
+    moves across the rib, radially, at omega_s Delta: the two parts add as a right angle's
+    sides."""
     g = cfg.geometry
     r, r_i, r_o = g.roller_diameter / 2, g.inner_raceway_diameter / 2, g.outer_raceway_diameter / 2
     omega = float(ds.speed_applied)
@@ -439,11 +442,12 @@ def _rib_sliding_speed(cfg, ds, j: int, k: int) -> float:
     omega_s = (omega - omega_c) * r_i / r * (1.0 - float(ds.roller_slip[j]))
     height = float(ds.flange_contact_height[j, k])
     axis = _roller_axis_radius(cfg, ds, j, k)
+    across = omega_s * float(ds.flange_contact_offset[j, k])
     if k < 2:
         rho = r_i + height
-        return abs((omega - omega_c) * rho - omega_s * (axis - rho))
+        return math.hypot((omega - omega_c) * rho - omega_s * (axis - rho), across)
     rho = r_o - height
-    return abs(omega_s * (rho - axis) - omega_c * rho)
+    return math.hypot(omega_s * (rho - axis) - omega_c * rho, across)
 
 
 def test_the_friction_of_steady_rolling_at_the_flanges_is_boundary_friction_times_sliding():
@@ -637,9 +641,19 @@ def test_the_traction_table_does_not_enter_the_equilibrium(b1):
     fast = _core.statics(_core_model(b1), part, chain=True, stiffness=True)
     table = _core.statics(tabulated, part, chain=True, stiffness=True)
     assert all(isinstance(r, dict) for r in fast), fast
-    for exact, tab in zip(fast, table, strict=True):
+    # the friction power at 2000 N and 3000 rpm passes the table's error on through the
+    # balance of the rollers' spins and skews, whose ends lie on their faces there
+    # (measured: 1.8e-3 of the flanges' part; 1.6e-3 with the balances converged to 1e-9;
+    # at B1's 1000 N and 500 rpm 4e-5)
+    for exact, tab, rtol in zip(fast, table, (1e-3, 3e-3), strict=True):
         np.testing.assert_allclose(
-            exact.pop("friction_power"), tab.pop("friction_power"), rtol=1e-3
+            exact.pop("friction_power"), tab.pop("friction_power"), rtol=rtol
+        )
+        # the skews (and where the skewed ends meet the flanges) move with it: within
+        # 2e-5 rad of skews up to 0.67 mrad (measured 1e-7 and 9e-6 rad, 3e-7 and 4e-6 m)
+        np.testing.assert_allclose(exact.pop("roller_skew"), tab.pop("roller_skew"), atol=2e-5)
+        np.testing.assert_allclose(
+            exact.pop("flange_offsets"), tab.pop("flange_offsets"), atol=2e-5
         )
         # the slip where the moments balance moves with the table's error in the traction
         # (measured: 1.0e-6 at 500 rpm, 4.6e-5 at 3000 rpm, on the unloaded rollers, whose
@@ -725,15 +739,17 @@ def test_a_sweeps_figure_draws_its_axis_in_the_units_engineers_give():
     assert unit == "N" and values == pytest.approx([5000.0])
 
 
-def test_the_balanced_spin_is_the_dynamic_models_at_the_bottom_of_the_load_zone():
-    """The statics' spin balance against the dynamic model: B1 started from equilibrium at
-    full load and speed (1000 N axially, 500 rpm), 5-30 ms, the rollers within 10 deg of
-    the load zone's centre: the run's spins about the rollers' axes, relative to the
-    roller set's frame, are 0.195 % faster than rolling without slip (measured), the
-    statics' balance 0.225 % for the roller there: within a quarter of it (13 % measured;
-    in the run the rollers skew and their ends press the flanges higher, which the
-    equilibrium leaves out). Rolling without slip, the estimate before the balance, is
-    the whole 0.195 % off."""
+def test_the_balanced_spin_and_skew_are_the_dynamic_models_in_the_load_zone():
+    """The statics' spin and skew balances against the dynamic model: B1 started from
+    equilibrium at full load and speed (1000 N axially, 500 rpm), 5-30 ms. The rollers
+    within 10 deg of the load zone's centre spin 0.195 % faster than rolling without slip
+    in the run (relative to the roller set's frame, measured), the statics' balance gives
+    0.209 % for the roller there: within 15 % (7 % measured; before the skew was balanced
+    0.225 %, 15 %; rolling without slip is the whole 0.195 % off). The remaining difference
+    is the run's ends pressing the flanges 10-20 um higher. The rollers skew by -0.131,
+    -0.128, -0.116 and -0.081 mrad at 0, 21, 42 and 64 deg from the centre in the run, the
+    statics' skew balance -0.123, -0.121, -0.111 and -0.079 mrad: each within 10 % (2-6 %
+    measured); the skew at zero, as the equilibrium has it, would be the whole of it off."""
     import rollerdyn
 
     cfg = variant(
@@ -754,15 +770,22 @@ def test_the_balanced_spin_is_the_dynamic_models_at_the_bottom_of_the_load_zone(
     azimuth = np.degrees(ds.azimuth.values[late]) % 360
     bottom = np.abs(azimuth - 180.0) < 10.0
     run_slip = 1.0 - np.mean(ds.spin_speed.values[late][bottom] - orbit) / rolling
-    balanced = float(statics(cfg).roller_slip[0])  # roller 0 stands at 180 deg
+    st = statics(cfg)
+    balanced = float(st.roller_slip[0])  # roller 0 stands at 180 deg
     assert run_slip < -1e-3  # spun up by the flanges
-    assert abs(balanced - run_slip) <= 0.25 * abs(run_slip), (balanced, run_slip)
+    assert abs(balanced - run_slip) <= 0.15 * abs(run_slip), (balanced, run_slip)
+    for i in range(4):  # rollers 0-3 at 180, 201, 222 and 244 deg
+        near = np.abs(azimuth - float(st.roller_azimuth[i]) % 360) < 10.0
+        run_skew = float(np.mean(ds.skew.values[late][near]))
+        assert run_skew < -5e-5
+        assert float(st.roller_skew[i]) == pytest.approx(run_skew, rel=0.1), i
 
 
 def test_cli_prints_every_rollers_loads_flange_forces_and_slip():
     """``rollerdyn statics --per-roller``: one row per roller with the case's values (roller
     0 of B1 at the load zone's centre: 1311 N at either race, 141.1 N at the inner -x and
-    outer +x flanges, slip -0.225 %, no roller train under gravity alone); with a sweep it
+    outer +x flanges, skew -0.123 mrad, slip -0.209 %, no roller train under gravity
+    alone); with a sweep it
     is refused before any work."""
     runner = CliRunner()
     result = runner.invoke(app, ["statics", str(B1), "--per-roller"])
@@ -773,7 +796,7 @@ def test_cli_prints_every_rollers_loads_flange_forces_and_slip():
     cells = [c.strip() for c in table[0].strip("│").split("│")]
     assert cells[:4] == ["0", "180.0", "1311", "1311"]
     assert cells[4] == cells[7] == "141.1" and cells[5] == cells[6] == "0"
-    assert cells[-2] == "-0.225" and cells[-1] == "0"
+    assert cells[-3:] == ["-0.123", "-0.209", "0"]
     sweep = runner.invoke(
         app, ["statics", str(B1), "--per-roller", "--set", "operating.radial_load=1000,2000"]
     )

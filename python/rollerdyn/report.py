@@ -745,10 +745,11 @@ def _ripple_section(labels: list[str], sets: list[xr.Dataset], embed) -> list[st
 def report(paths, out, max_frames: int = MAX_FRAMES) -> Path:
     """Writes one self-contained HTML report of the result files ``paths`` (netCDF written
     by ``rollerdyn run``) to ``out`` and returns its path. Raises :class:`ReportError` for
-    a missing file or one that is not a rollerdyn result, for ``out`` naming one of them
-    or a folder, and for arguments of the wrong kind (``paths`` of files, ``max_frames`` a
+    a missing file or one that is not a rollerdyn result, for ``out`` naming one of them,
+    a folder or an existing file other than an earlier report (which is replaced), and
+    for arguments of the wrong kind (``paths`` of files, ``max_frames`` a
     whole number of at least 1), before the work."""
-    from .paths import same_file
+    from .paths import OutputPathError, same_file
 
     if isinstance(paths, str | os.PathLike):
         paths = [paths]
@@ -767,6 +768,10 @@ def report(paths, out, max_frames: int = MAX_FRAMES) -> Path:
     for p in paths:
         if same_file(out, p):
             raise ReportError(f"-o {out}: is the result file {p}, an input; choose another")
+    try:
+        check_report_output(paths, out)
+    except OutputPathError as err:
+        raise ReportError(str(err)) from None
     page = build_html(paths, max_frames=max_frames)
     out.parent.mkdir(parents=True, exist_ok=True)
     out.write_text(page, encoding="utf-8")

@@ -761,6 +761,14 @@ def _case_variables(
             "the raceway, along the ring's radius (the flange's own height is "
             "geometry.flange.height; NaN where nothing is carried)",
         ),
+        "flange_contact_offset": _var(
+            np.asarray(r["flange_offsets"]).reshape(-1, 4),
+            ("roller", "flange"),
+            "m",
+            "where the roller end presses the flange in steady rolling along the orbit: the "
+            "contact point's distance from the roller's meridian plane (towards x cross "
+            "e_r), off it where the roller skews (roller_skew); NaN where nothing is carried",
+        ),
         "flange_pairing": _var(
             pairing.astype(str),
             ("roller", "flange"),
@@ -795,9 +803,10 @@ def _case_variables(
             "W",
             "the power the contacts and the drag take in steady rolling at the equilibrium "
             "(the dynamic model's laws at its positions, the roller set orbiting at the "
-            "epicyclic speed, each roller spinning where its friction moments balance "
-            "(roller_slip); the roller-roller contacts where the roller train presses them "
-            "(pair_force); docs/statics.md, 'Friction of steady rolling')",
+            "epicyclic speed, each roller spinning and skewed where its friction moments "
+            "balance (roller_slip, roller_skew); the roller-roller contacts where the "
+            "roller train presses them (pair_force); docs/statics.md, 'Friction of steady "
+            "rolling')",
         ),
         "pair_force": _var(
             np.asarray(r["pair_force"]),
@@ -815,6 +824,15 @@ def _case_variables(
             "each roller's slip in steady rolling, 1 - spin / spin of rolling without slip: "
             "negative where the flanges' friction drives it faster, near 1 where an "
             "unloaded roller's films and drag stop it (0 at rest)",
+        ),
+        "roller_skew": _var(
+            np.asarray(r["roller_skew"]),
+            ("roller",),
+            "rad",
+            "each roller's skew in steady rolling (its axis turned about its radial "
+            "direction, towards x cross e_r, as a run's skew) where its moments about that "
+            "direction balance: the flanges' friction skews the rollers they press "
+            "(0 at rest); docs/statics.md, 'The rollers' skew'",
         ),
         "friction_torque": _var(
             _friction_torque(r["friction_power"], case.relative_speed),

@@ -61,6 +61,8 @@ fn solution_dict<'py>(
         ),
     )?;
     d.set_item("roller_slip", array(py, friction.roller_slip.clone()))?;
+    d.set_item("roller_skew", array(py, friction.roller_skew.clone()))?;
+    d.set_item("flange_offsets", array(py, friction.flange_offsets.clone()))?;
     d.set_item("pair_force", array(py, friction.pair_forces.clone()))?;
     let rollers = &s.rollers;
     let per_roller = |f: &dyn Fn(usize) -> f64| array(py, (0..rollers.len()).map(f).collect());
@@ -137,11 +139,11 @@ pub(crate) fn statics<'py>(
 ) -> PyResult<Vec<Bound<'py, PyAny>>> {
     let model = model.system();
     let mut last: Option<StaticSolution> = None;
-    let mut last_slip: Option<Vec<f64>> = None;
+    let mut last_friction: Option<RollingFriction> = None;
     let mut out = Vec::with_capacity(cases.len());
     for c in &cases {
         let start = if chain { last.as_ref() } else { None };
-        let warm = if chain { last_slip.as_deref() } else { None };
+        let warm = if chain { last_friction.as_ref() } else { None };
         let found = py.detach(|| {
             model.statics(&case_of(c), start).map(|s| {
                 let k = stiffness.then(|| model.stiffness(&s));
@@ -153,7 +155,7 @@ pub(crate) fn statics<'py>(
             Ok((s, k, friction)) => {
                 out.push(solution_dict(py, &s, k, &friction)?.into_any());
                 last = Some(s);
-                last_slip = Some(friction.roller_slip);
+                last_friction = Some(friction);
             }
             Err(e) => out.push(core_err(e).value(py).str()?.into_any()),
         }

@@ -78,7 +78,8 @@ def statics_command(
             "--per-roller",
             help="With one case, also print a table of every roller: azimuth [deg], its "
             "loads at the inner and outer race [N], its ends' forces on the four flanges "
-            "[N], its tilt [mrad], its slip in steady rolling [%] and the roller train's "
+            "[N], its tilt [mrad], its skew and slip in steady rolling [mrad, %] and the "
+            "roller train's "
             "force on the next roller [N].",
         ),
     ] = False,
@@ -297,7 +298,7 @@ def _thinnest_films(ds) -> str:
 
 def _print_rollers(ds) -> None:
     """The table of ``--per-roller``: each roller's azimuth, race loads, flange forces,
-    tilt, slip and the roller train's force on the next roller."""
+    tilt, skew, slip and the roller train's force on the next roller."""
     flanges = [str(f) for f in ds.flange.values]
     table = Table(title="rollers")
     for column in (
@@ -307,6 +308,7 @@ def _print_rollers(ds) -> None:
         "outer race [N]",
         *(f"flange {f} [N]" for f in flanges),
         "tilt [mrad]",
+        "skew [mrad]",
         "slip [%]",
         "on the next [N]",
     ):
@@ -320,6 +322,7 @@ def _print_rollers(ds) -> None:
             f"{float(ds.outer_race_load[i]):.4g}",
             *(f"{f:.4g}" for f in force),
             f"{float(ds.roller_tilt[i]) * 1e3:.4g}",
+            f"{float(ds.roller_skew[i]) * 1e3:.3g}",
             f"{float(ds.roller_slip[i]) * 100:.3g}",
             f"{float(ds.pair_force[i]):.4g}",
         )
@@ -348,6 +351,7 @@ def _print_case(ds) -> None:
         ),
         ("friction of steady rolling", _friction_text(ds)),
         ("roller slip (1 - spin / spin of rolling)", _slip_text(ds)),
+        ("roller skew", _skew_text(ds)),
         ("roller train (rollers pressed on their neighbours)", _train_text(ds)),
         ("radial stiffness k_yy", f"{k[1, 1]:.4g} N/m"),
         ("tilt stiffness k_zz", f"{k[4, 4]:.4g} N*m/rad"),
@@ -448,18 +452,28 @@ def _speed_text(ds) -> str:
 
 
 def _slip_text(ds) -> str:
-    """The slip of the rollers in steady rolling: its range over the rollers that carry at
+    """The slip of the rollers in steady rolling, loaded and others (``_by_load``)."""
+    return _by_load(ds, ds.roller_slip, 100.0, "%")
+
+
+def _skew_text(ds) -> str:
+    """The skew of the rollers in steady rolling, loaded and others (``_by_load``)."""
+    return _by_load(ds, ds.roller_skew, 1e3, "mrad")
+
+
+def _by_load(ds, values, scale: float, unit: str) -> str:
+    """The range of a per-roller value of steady rolling over the rollers that carry at
     least a tenth of the heaviest roller's load at the inner race, and over the others."""
     if not math.isfinite(float(ds.friction_torque)):
         return "n/a without relative speed"
-    slip = np.asarray(ds.roller_slip.values, dtype=float)
+    value = np.asarray(values.values, dtype=float) * scale
     load = np.asarray(ds.inner_race_load.values, dtype=float)
     heavy = load >= 0.1 * load.max() if load.max() > 0.0 else np.zeros(load.shape, bool)
     parts = []
     for name, rows in (("loaded (>= 10 % of the heaviest)", heavy), ("others", ~heavy)):
         if rows.any():
-            low, high = slip[rows].min(), slip[rows].max()
-            parts.append(f"{name} {low * 100:.3g} ... {high * 100:.3g} %")
+            low, high = value[rows].min(), value[rows].max()
+            parts.append(f"{name} {low:.3g} ... {high:.3g} {unit}")
     return ", ".join(parts)
 
 

@@ -21,6 +21,7 @@ pub mod profile;
 pub mod quasi_static;
 pub mod roller_train;
 pub mod run;
+pub mod skew_balance;
 pub mod state;
 pub mod statics;
 pub mod topology;

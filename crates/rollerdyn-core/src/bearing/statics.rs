@@ -23,6 +23,7 @@ use super::quasi_static::{
     flange_loads, RollerPose, StaticCase, StaticSolution, FLANGE_PRESSURE_LIMIT,
 };
 use super::roller_train::TrainContact;
+use super::skew_balance::{skew_roller, SKEW_LIMIT};
 use super::state::{
     ring_kinematics, roller_kinematics, BearingKinematics, Kinematics, ROLLER_STATES,
 };
@@ -212,6 +213,16 @@ pub struct RollingFriction {
     /// The roller train's force between roller i and roller i + 1 (mod z) [N]
     /// ([`BearingSystem::train_forces`]).
     pub pair_forces: Vec<f64>,
+    /// Where each roller end meets each flange along the orbit [m]: the contact point's
+    /// distance from the roller's meridian plane (the plane of its centre and the bearing
+    /// axis) towards x × e_r, roller by roller, flanges in the order of
+    /// [`super::topology::FLANGE_NAMES`]; NaN where the end does not press the flange. A
+    /// skewed roller's end meets its flange off that plane, and the end's surface there
+    /// moves across the rib's as well as along it.
+    pub flange_offsets: Vec<f64>,
+    /// Each roller's skew [rad] about its radial direction (as a run's `skew`), where its
+    /// moments about that direction balance ([`super::skew_balance`]); 0 at rest.
+    pub roller_skew: Vec<f64>,
     /// Each roller's slip 1 − ω_s/ω_s,0 [-]: how much slower than in rolling without slip
     /// (ω_s,0) it spins once its friction moments balance ([`spin_balance`]); 0 at rest.
     pub roller_slip: Vec<f64>,
@@ -236,12 +247,13 @@ impl BearingSystem<'_> {
     /// left out. What it leaves out is what settles in a run: the rollers' skew and their
     /// positions under friction (docs/statics.md, "Friction of steady rolling", "The roller
     /// train").
-    /// `warm`: the rollers' slips of a neighbouring case (a sweep's last), where the
-    /// balance starts instead of at rolling without slip.
+    /// `warm`: the steady rolling of a neighbouring case (a sweep's last), whose rollers'
+    /// slips and skews the balances start from instead of rolling without slip and zero
+    /// skew.
     pub fn steady_rolling_friction(
         &self,
         solution: &StaticSolution,
-        warm: Option<&[f64]>,
+        warm: Option<&RollingFriction>,
     ) -> RollingFriction {
         let y = self.steady_state(solution);
         let axis = axis_from_angles(solution.ring[3], solution.ring[4]);
@@ -256,7 +268,7 @@ impl BearingSystem<'_> {
                 .collect(),
         };
         let (orbit, rolling_spin) = self.rolling_speeds(speed, solution.case.outer_speed);
-        let spins = self.balanced_spins(&mut kin, orbit, rolling_spin, warm);
+        let (spins, skews) = self.balanced_spins_and_skews(&mut kin, orbit, rolling_spin, warm);
         let before = self.evaluate_all(&kin);
         let field = solution.case.roller_field(&self.params);
         let pair_forces = if field.norm() > TRAIN_FIELD {
@@ -275,6 +287,7 @@ impl BearingSystem<'_> {
             out.roller_pairs = self.train_power(&kin, &mut train);
         }
         out.pair_forces = pair_forces;
+        out.roller_skew = skews;
         out.roller_slip = spins
             .iter()
             .map(|s| {
@@ -296,14 +309,25 @@ impl BearingSystem<'_> {
         kin: &BearingKinematics,
         results: &[ElementResult],
     ) -> RollingFriction {
-        let mut out = RollingFriction::default();
+        let mut out = RollingFriction {
+            flange_offsets: vec![f64::NAN; 4 * kin.rollers.len()],
+            ..RollingFriction::default()
+        };
         for (element, r) in self.elements().iter().zip(results) {
             let [a, b] = element.bodies(self.layout.rollers);
             let loss = r.power_loss(kin.of(a), kin.of(b));
-            match element {
+            match *element {
                 Element::Inner(_) => out.inner_race += loss,
                 Element::Outer(_) => out.outer_race += loss,
-                Element::End(..) => out.flanges += loss,
+                Element::End(i, k) => {
+                    out.flanges += loss;
+                    if r.normal > 0.0 {
+                        let center = kin.rollers[i].center;
+                        let along =
+                            Vec3::x().cross(&Vec3::new(0.0, center.y, center.z).normalize());
+                        out.flange_offsets[4 * i + k] = (r.location - center).dot(&along);
+                    }
+                }
                 Element::Pair(_) => {}
             }
         }
@@ -436,11 +460,66 @@ impl BearingSystem<'_> {
         moment
     }
 
+    /// The spins [rad/s] ([`Self::balanced_spins`]) and skews [rad]
+    /// ([`Self::balanced_skews`]) of steady rolling: each roller's spin and skew balanced
+    /// in turn, from zero skew, every third skew extrapolated to the rounds' limit
+    /// ([`accelerated`]), until the power of the races, flanges and drag changes by less
+    /// than [`SKEW_SWEEP_TOLERANCE`] of itself in a round (at most [`SKEW_SWEEPS`]
+    /// rounds; B1: 4 rounds at 1 kN and 500 rpm, 7 at 2 kN and 3000 rpm); `kin`'s rollers
+    /// are left at them. At rest nothing changes.
+    fn balanced_spins_and_skews(
+        &self,
+        kin: &mut BearingKinematics,
+        orbit: f64,
+        rolling_spin: f64,
+        warm: Option<&RollingFriction>,
+    ) -> (Vec<f64>, Vec<f64>) {
+        let z = self.layout.rollers;
+        if rolling_spin == 0.0 {
+            return (vec![0.0; z], vec![0.0; z]);
+        }
+        let unskewed = kin.clone();
+        let near = warm
+            .filter(|w| w.roller_skew.len() == z && w.roller_skew.iter().all(|b| b.is_finite()));
+        let mut skews = near.map_or(vec![0.0; z], |w| w.roller_skew.clone());
+        set_skews(kin, &unskewed, &skews, orbit, &vec![rolling_spin; z]);
+        let mut spins =
+            self.balanced_spins(kin, orbit, rolling_spin, warm.map(|w| &w.roller_slip[..]));
+        let mut power = self.contacts_power(kin);
+        let mut trail = vec![skews.clone()];
+        for round in 0..SKEW_SWEEPS {
+            *kin = unskewed.clone();
+            let warm_start = round > 0 || near.is_some();
+            skews = self.balanced_skews(kin, orbit, &spins, &skews, warm_start);
+            trail.push(skews.clone());
+            if trail.len() == 3 {
+                skews = accelerated(&trail);
+                set_skews(kin, &unskewed, &skews, orbit, &spins);
+                trail = vec![skews.clone()];
+            }
+            let slips: Vec<f64> = spins.iter().map(|s| 1.0 - s / rolling_spin).collect();
+            spins = self.balanced_spins(kin, orbit, rolling_spin, Some(&slips));
+            let next = self.contacts_power(kin);
+            let settled = (next - power).abs() <= SKEW_SWEEP_TOLERANCE * next.abs();
+            power = next;
+            if settled {
+                break;
+            }
+        }
+        (spins, skews)
+    }
+
+    /// The power [W] of the races, flanges and drag at `kin` (the roller pairs left out).
+    fn contacts_power(&self, kin: &BearingKinematics) -> f64 {
+        let p = self.friction_parts(kin, &self.evaluate_all(kin));
+        p.flanges + p.inner_race + p.outer_race + p.drag
+    }
+
     /// The spins [rad/s] about their axes at which every roller's moment about its axis
     /// vanishes ([`spin_balance`]), the rollers orbiting at `orbit` [rad/s], the search
     /// starting from the slips `warm` where given (one per roller); `kin`'s rollers are
     /// left spinning at them. At rest (`rolling_spin` = 0) nothing changes.
-    fn balanced_spins(
+    pub(super) fn balanced_spins(
         &self,
         kin: &mut BearingKinematics,
         orbit: f64,
@@ -480,6 +559,40 @@ impl BearingSystem<'_> {
     }
 }
 
+/// Aitken's Δ² extrapolation of each roller's skew from three rounds of
+/// [`BearingSystem::balanced_spins_and_skews`] (`trail`, oldest first): a roller's skew
+/// and spin each balance at the other's value, a fixed-point iteration that converges
+/// linearly (B1 at 2000 N and 3000 rpm: each round a third of the last change), whose
+/// limit the extrapolation takes where the changes shrink (their ratio within ±0.95);
+/// elsewhere the latest skew. Bounded by the skews searched.
+fn accelerated(trail: &[Vec<f64>]) -> Vec<f64> {
+    (0..trail[0].len())
+        .map(|i| {
+            let (a, b, c) = (trail[0][i], trail[1][i], trail[2][i]);
+            let (d1, d2) = (b - a, c - b);
+            let ratio = d2 / d1;
+            if d1 == 0.0 || ratio.is_nan() || ratio.abs() >= 0.95 {
+                return c;
+            }
+            (c - d2 * ratio / (ratio - 1.0)).clamp(-SKEW_LIMIT, SKEW_LIMIT)
+        })
+        .collect()
+}
+
+/// The rollers of `kin` at the axes of `from` skewed by `skews` [rad]
+/// ([`super::skew_balance`]), orbiting at `orbit` [rad/s] and spinning at `spins`.
+fn set_skews(
+    kin: &mut BearingKinematics,
+    from: &BearingKinematics,
+    skews: &[f64],
+    orbit: f64,
+    spins: &[f64],
+) {
+    for (i, beta) in skews.iter().enumerate() {
+        skew_roller(kin, from, i, *beta, orbit, spins[i]);
+    }
+}
+
 /// The rollers of `kin` orbiting at `orbit` [rad/s] about the bearing axis and spinning at
 /// `spins` [rad/s] about their own axes.
 fn set_spins(kin: &mut BearingKinematics, orbit: f64, spins: &[f64]) {
@@ -498,6 +611,12 @@ fn set_spins(kin: &mut BearingKinematics, orbit: f64, spins: &[f64]) {
 /// neighbours' friction is their films' shear at gaps that no train sets (docs/statics.md,
 /// "The roller train").
 const TRAIN_FIELD: f64 = 98.1;
+
+/// The most rounds of [`BearingSystem::balanced_spins_and_skews`].
+const SKEW_SWEEPS: usize = 10;
+/// The relative change of the power of the races, flanges and drag between two rounds of
+/// [`BearingSystem::balanced_spins_and_skews`] at which they stop.
+const SKEW_SWEEP_TOLERANCE: f64 = 1e-4;
 
 /// The share of the friction power of the races, flanges and drag above which the roller
 /// train's power makes [`BearingSystem::steady_rolling_friction`] balance the spins again
