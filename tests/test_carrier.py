@@ -228,7 +228,7 @@ def test_the_statics_stack_a_planets_rollers_into_a_train():
     ring towards the bottom, and the statics' roller train carries one half's pushes
     between the rollers at the bottom (13.06 N, within 0.5 %: the drag adds to it); the
     neighbours' sliding there is the roller pairs' part of the friction of steady rolling
-    (6.1 W of 20.8 W; the dynamic run: 4.8 W of 21.4 W, docs/statics.md). Under gravity
+    (5.4 W of 21.5 W; the dynamic run: 4.8 W of 21.4 W, docs/statics.md). Under gravity
     alone (below 10 g) the statics leave the train out: no force, no power."""
     cfg = parse_config(_planet("3000 rpm", "40 mm"))
     ds = statics(cfg)

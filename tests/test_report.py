@@ -444,10 +444,11 @@ def test_a_run_beside_its_quasi_static_estimate(tmp_path):
     from equilibrium at full load and speed, 20 ms (its last 20 %, 16-20 ms, steady): the
     heaviest roller's load within 3 % of the equilibrium's (measured 0.995; B1's whole
     run 1 293 against 1 311 N), the largest flange force within 5 % (1.018; the whole run
-    143.7 against 141.1 N), the torque above the estimate by what the dynamics add
-    (1.0 ... 1.3; measured 1.10, the whole run 1.10) and the loaded rollers' slip within a
-    quarter (0.88; the whole run 0.87); a result without a configuration says so instead;
-    the page holds the table."""
+    143.7 against 141.1 N), the torque within 3 % of the estimate, whose rollers' spins and
+    skews are balanced (measured 0.994, the whole run 0.995; at zero skew the estimate was
+    10 % low) and the loaded rollers' slip within 15 % (0.95; the whole run 0.95: the run's
+    ends press the flanges higher); a result without a configuration says so instead; the
+    page holds the table."""
     from rollerdyn.crosscheck import beside_statics
     from rollerdyn.report import build_html, last_outputs
 
@@ -465,9 +466,9 @@ def test_a_run_beside_its_quasi_static_estimate(tmp_path):
     ratio = {k: r.run / r.estimate for k, r in rows.items()}
     assert abs(ratio["heaviest roller's load at the inner race"] - 1.0) < 0.03, ratio
     assert abs(ratio["largest roller end / flange force"] - 1.0) < 0.05, ratio
-    assert 1.0 <= ratio["friction torque"] <= 1.3, ratio
+    assert abs(ratio["friction torque"] - 1.0) < 0.03, ratio
     slip = next(r for k, r in rows.items() if k.startswith("slip"))
-    assert slip.run < 0 and abs(slip.run / slip.estimate - 1.0) < 0.25, slip
+    assert slip.run < 0 and abs(slip.run / slip.estimate - 1.0) < 0.15, slip
     bare = ds.copy()
     bare.attrs = {k: v for k, v in ds.attrs.items() if not k.startswith("config")}
     assert str(beside_statics(bare, last_outputs(bare))).startswith("no estimate")

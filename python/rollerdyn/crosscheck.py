@@ -3,11 +3,12 @@ shows under "Beside the quasi-static estimate" (docs/report.md).
 
 The estimate is :func:`rollerdyn.statics.statics` of the run's own configuration at the
 loads and ring speeds of its final time (the equilibrium, its friction of steady rolling
-with each roller's spin balanced; docs/statics.md), in milliseconds. Side by side with the
-run's means over its last outputs they show what the dynamics add (the rollers' skew, the
-neighbours' friction, the unloaded rollers' skid) and catch a run that went wrong, e.g. one
-that is not yet steady. B1 at 1000 N: the torque 0.3025 against 0.2742 N·m, the loaded
-rollers' slip at the load zone's centre -0.199 against -0.225 % (docs/statics.md).
+with each roller's spin and skew balanced; docs/statics.md), in milliseconds. Side by side
+with the run's means over its last outputs they show what the dynamics add (the ends'
+positions under friction, the neighbours' friction, the unloaded rollers' skid) and catch a
+run that went wrong, e.g. one that is not yet steady. B1 at 1000 N: the torque 0.3025
+against 0.3039 N·m, the loaded rollers' slip at the load zone's centre -0.199 against
+-0.209 % (docs/statics.md).
 """
 
 from __future__ import annotations
