@@ -38,8 +38,8 @@ const WARM_SKEW_STEP: f64 = 1e-6;
 /// The skew step [rad] over which a roller's race contacts' moment is differenced for its
 /// line in [`BearingSystem::balanced_skews`].
 const RACE_SKEW_STEP: f64 = 1e-6;
-/// The widest skew [rad] [`skew_root`] searches (5 mrad: ten times the largest skew of
-/// B1's loaded rollers in its runs).
+/// The widest skew [rad] [`skew_root`] searches (5 mrad: five times the largest skew of
+/// B1's loaded rollers in its runs, −1.03 mrad with the distributed law).
 pub(crate) const SKEW_LIMIT: f64 = 5e-3;
 /// Width [rad] of the bracket at which [`skew_root`] stops (10 nrad: 1e-4 of B1's
 /// skews in the load zone).
