@@ -524,10 +524,22 @@ def test_sigterm_stops_the_sweep_as_ctrl_c_does(tmp_path):
 
 def test_a_sweep_removes_what_an_earlier_sweep_wrote(tmp_path):
     # An earlier, larger grid's run_0001.nc and run_0002.nc and its figure must not stay
-    # beside the new sweep's summary of one run (which draws no figure: one value).
-    for name in ("run_0000.nc", "run_0001.nc", "run_0002.nc", "summary.png", "summary.svg"):
-        (tmp_path / name).write_text("an earlier sweep's")
-    frame = rollerdyn.sweep(SHORT_DATA, {"operating.axial_load": ["500 N"]}, tmp_path, workers=1)
+    # beside the new sweep's summary of one run (which draws no figure: one value). They
+    # are removed with overwrite=True only, and only as a sweep writes them (a result's
+    # attributes, the summary's columns, a figure of matplotlib's beside that summary;
+    # tests/test_folders_refuse_foreign_files.py refuses the others).
+    import h5py
+
+    for name in ("run_0000.nc", "run_0001.nc", "run_0002.nc"):
+        with h5py.File(tmp_path / name, "w") as f:
+            f.attrs.update(final_time_s=0.001, rollerdyn_version=rollerdyn.__version__)
+    for name in ("summary.png", "summary.svg"):
+        (tmp_path / name).write_text("<!-- Created with matplotlib -->")
+    earlier = {"run": [0], "status": ["completed"], "error": [""], "file": ["run_0000.nc"]}
+    pd.DataFrame(earlier).to_parquet(tmp_path / "summary.parquet")
+    frame = rollerdyn.sweep(
+        SHORT_DATA, {"operating.axial_load": ["500 N"]}, tmp_path, workers=1, overwrite=True
+    )
     assert list(frame["status"]) == ["completed"]
     assert [p.name for p in tmp_path.glob("run_*.nc")] == ["run_0000.nc"]
     assert not (tmp_path / "summary.png").exists() and not (tmp_path / "summary.svg").exists()

@@ -120,19 +120,48 @@ Ring = Literal["inner", "outer"]
 def _array(name: str, value: ArrayLike) -> NDArray[np.float64]:
     """``value`` as a float array; ValueError naming ``name`` if it is not numeric or not
     finite."""
+
+    def refused() -> ValueError:
+        shown = repr(value) if len(repr(value)) <= 60 else repr(value)[:57] + "..."
+        return ValueError(f"{name}: must be a number or an array of numbers, got {shown}")
+
     if isinstance(value, str | bytes) or value is None:
-        raise ValueError(f"{name}: must be a number or an array of numbers, got {value!r}")
+        raise refused()
     try:
-        arr = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError):
-        raise ValueError(
-            f"{name}: must be a number or an array of numbers, got {value!r}"
-        ) from None
+        raw = np.asarray(value)
+    except (TypeError, ValueError, OverflowError):  # ragged nesting, an odd object
+        raise refused() from None
+    if raw.dtype.kind == "c":  # numpy would drop the imaginary part with a warning
+        raise ValueError(f"{name}: must be real, got a complex {_shape_of(raw)}")
+    if raw.dtype.kind not in "biufO":  # text
+        raise refused()
+    try:  # an object array: Python's integers beyond int64, Fractions, Decimals ...
+        arr = raw.astype(np.float64)
+    except (TypeError, ValueError, OverflowError):
+        raise refused() from None
     if not np.all(np.isfinite(arr)):
         bad = tuple(int(i) for i in np.argwhere(~np.isfinite(arr))[0]) if arr.ndim else ()
         where = f" at index {bad}" if bad else ""
         raise ValueError(f"{name}: must be finite (not NaN or infinite){where}")
     return arr
+
+
+def _shape_of(arr: np.ndarray) -> str:
+    """The words for ``arr``'s shape: a number (0-d) or an array of its shape."""
+    return "number" if arr.ndim == 0 else f"array of shape {arr.shape}"
+
+
+def _broadcast(**arrays: NDArray[np.float64]) -> tuple[NDArray[np.float64], ...]:
+    """The arrays broadcast together (numpy's rules); ValueError naming the arguments and
+    their shapes where they do not broadcast."""
+    try:
+        return tuple(np.broadcast_arrays(*arrays.values()))
+    except ValueError:
+        shapes = ", ".join(f"{name} {a.shape}" for name, a in arrays.items())
+        raise ValueError(
+            f"{', '.join(arrays)}: their shapes must broadcast together (numpy's rules), "
+            f"got {shapes}"
+        ) from None
 
 
 def _positive(name: str, value: ArrayLike) -> NDArray[np.float64]:
@@ -371,8 +400,7 @@ def basic_rating_life(c: ArrayLike, p: ArrayLike) -> float | NDArray[np.float64]
     """Basic rating life L_10 [10^6 revolutions] of a radial roller bearing,
     ISO 281:2007, 7.3: L_10 = (C_r / P_r)^(10/3). c: basic dynamic load rating C_r [N];
     p: dynamic equivalent radial load P_r [N]. Broadcasts like numpy."""
-    cr = _positive("c", c)
-    pr = _positive("p", p)
+    cr, pr = _broadcast(c=_positive("c", c), p=_positive("p", p))
     return _out((cr / pr) ** (10 / 3))
 
 
@@ -387,8 +415,10 @@ def reference_viscosity(
 
     with n in r/min, D_pw in mm and nu_1 in mm^2/s; pitch_diameter is given in m and the
     result returned in m^2/s (conversions inside). Broadcasts like numpy."""
-    n = _positive("speed_rpm", speed_rpm)
-    dpw = _positive("pitch_diameter", pitch_diameter) * MM
+    n, dpw = _broadcast(
+        speed_rpm=_positive("speed_rpm", speed_rpm),
+        pitch_diameter=_positive("pitch_diameter", pitch_diameter) * MM,
+    )
     nu1 = np.where(n < 1000.0, 45000.0 * n**-0.83, 4500.0 * n**-0.5) * dpw**-0.5
     return _out(np.asarray(nu1 * 1e-6))
 
@@ -399,8 +429,12 @@ def viscosity_ratio(
     """Viscosity ratio kappa = nu / nu_1 (ISO 281:2007, 9.3): nu is the lubricant's
     kinematic viscosity at the operating temperature [m^2/s], nu_1 from
     :func:`reference_viscosity`. Broadcasts like numpy."""
-    v = _positive("nu", nu)
-    return _out(np.asarray(v / reference_viscosity(speed_rpm, pitch_diameter)))
+    v, n, dpw = _broadcast(
+        nu=_positive("nu", nu),
+        speed_rpm=_positive("speed_rpm", speed_rpm),
+        pitch_diameter=_positive("pitch_diameter", pitch_diameter),
+    )
+    return _out(np.asarray(v / reference_viscosity(n, dpw)))
 
 
 def life_modification_factor(
@@ -421,7 +455,7 @@ def life_modification_factor(
     Broadcasts like numpy."""
     k = np.clip(_positive("kappa", kappa), 0.1, 4.0)
     x = _nonnegative("ec_cu_over_p", ec_cu_over_p)
-    k, x = np.broadcast_arrays(k, x)
+    k, x = _broadcast(kappa=k, ec_cu_over_p=x)
     d = np.select([k < 0.4, k < 1.0], [_AISO_RANGES[0][2], _AISO_RANGES[1][2]], _AISO_RANGES[2][2])
     e = np.select([k < 0.4, k < 1.0], [_AISO_RANGES[0][3], _AISO_RANGES[1][3]], _AISO_RANGES[2][3])
     base = 1.0 - (_AISO_C - d / k**e) * x**_AISO_POWER
@@ -563,9 +597,12 @@ def reference_equivalent_load(l10r: float, dynamic_rating: float) -> float:
     clause 7). l10r: L_10r [10^6 revolutions] (> 0, may be infinite: P_ref = 0);
     dynamic_rating: C_r [N]."""
     cr = _positive_scalar("dynamic_rating", dynamic_rating)
-    if isinstance(l10r, str | bytes) or l10r is None:
+    if isinstance(l10r, str | bytes) or l10r is None or np.iscomplexobj(l10r) or np.ndim(l10r):
         raise ValueError(f"l10r: must be a number, got {l10r!r}")
-    life = float(l10r)
+    try:
+        life = float(l10r)
+    except (TypeError, ValueError, OverflowError):
+        raise ValueError(f"l10r: must be a number, got {l10r!r}") from None
     if math.isnan(life) or life <= 0.0:
         raise ValueError(f"l10r: must be > 0 (infinite allowed), got {life!r}")
     return 0.0 if math.isinf(life) else cr / life**0.3

@@ -5,11 +5,12 @@ traction model). All values SI.
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 
 from . import _core
-from .config import BearingConfig
+from .config import BearingConfig, ConfigError, load_config
 
 
 @dataclass(frozen=True)
@@ -28,7 +29,17 @@ class LineContactLaw:
 class Model:
     """Derived parameters of a configuration (immutable; computed on first use)."""
 
-    def __init__(self, config: BearingConfig) -> None:
+    def __init__(self, config: BearingConfig | str | os.PathLike) -> None:
+        """``config``: a configuration, or the path of its TOML file (read with
+        :func:`~rollerdyn.config.load_config`); :class:`~rollerdyn.config.ConfigError`
+        naming ``config`` for anything else."""
+        if isinstance(config, str | os.PathLike):
+            config = load_config(config)
+        if not isinstance(config, BearingConfig):
+            raise ConfigError(
+                f"config = {_shown(config)}: expected a BearingConfig (rollerdyn.load_config) "
+                f"or the path of a TOML file, got {type(config).__name__}"
+            )
         self.config = config
 
     @property
@@ -173,3 +184,9 @@ def _array(x: float):
     import numpy as np
 
     return np.array([x], dtype=float)
+
+
+def _shown(value: object) -> str:
+    """``value``'s repr, shortened to 60 characters."""
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 
-from .config import BearingConfig, load_config
+from .config import BearingConfig
 from .config.base import TimeTable
 from .names import RACES
 
@@ -20,9 +20,14 @@ def configuration_notes(
     """The notes on ``config`` (a configuration or its TOML file) for a run to ``t_end``
     [s] (default: the configuration's end time), one line each, in the order ``rollerdyn
     run`` prints them: :func:`slow_configuration_note`, :func:`carrier_note`,
-    :func:`unloaded_start_note`, then :func:`capacity_note`."""
-    cfg = config if isinstance(config, BearingConfig) else load_config(config)
-    t = cfg.end_time if t_end is None else float(t_end)
+    :func:`unloaded_start_note`, then :func:`capacity_note`. The configuration is
+    validated and ``t_end`` read as :func:`rollerdyn.simulate` does (a time such as
+    ``"50 ms"`` or a number of seconds; ValueError naming it otherwise)."""
+    from .simulation import as_config
+    from .units import parse_time
+
+    cfg = as_config(config)
+    t = cfg.end_time if t_end is None else parse_time(t_end, "t_end")
     notes = (
         slow_configuration_note(cfg),
         carrier_note(cfg),

@@ -4,24 +4,40 @@ Every check raises :class:`OutputPathError`, whose message is one line naming th
 the path and the rule broken, e.g. ``-o out/r.nc: the folder out does not exist (create it
 first)``. The command line prints it and exits with status 2; nothing has been computed
 or written then. :func:`remove_stale_temporaries` clears what a killed writer left behind.
+
+:func:`write_atomically` writes a file through a temporary one beside it, renamed into
+place only once it is whole: a failed write (a full disk) leaves an earlier file as it
+was, and a file another program created meanwhile is not replaced unless asked.
 """
 
 from __future__ import annotations
 
+import errno
 import os
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 
 __all__ = [
+    "NAME_MAX",
     "OutputPathError",
+    "check_name",
     "check_output_dir",
     "check_output_file",
     "is_result_file",
+    "name_problem",
+    "place_file",
     "printable",
     "process_alive",
     "remove_stale_temporaries",
     "same_file",
+    "temporary_path",
+    "write_atomically",
 ]
+
+#: The longest name of one file or folder (one part of a path) in bytes that the common
+#: file systems take (ext4, xfs, btrfs, tmpfs; NAME_MAX); a part of a path longer than it
+#: cannot be created or even looked up ("File name too long").
+NAME_MAX = 255
 
 #: The first bytes of an HDF5 file (netCDF-4, what rollerdyn writes) and of classic netCDF.
 _SIGNATURES = (b"\x89HDF\r\n\x1a\n", b"CDF\x01", b"CDF\x02")
@@ -43,11 +59,56 @@ class OutputPathError(ValueError):
 
 
 def same_file(a: Path, b: Path) -> bool:
-    """True if ``a`` and ``b`` name the same file (existing or not)."""
+    """True if ``a`` and ``b`` name the same file (existing or not). Never raises: a name
+    that cannot be looked up (a symbolic link loop, a part over :data:`NAME_MAX` bytes) is
+    compared as it is spelled, made absolute."""
     try:
         return os.path.samefile(a, b)
-    except OSError:
-        return a.resolve() == b.resolve()
+    except (OSError, ValueError):
+        pass
+    try:
+        return Path(a).resolve() == Path(b).resolve()
+    except (OSError, RuntimeError, ValueError):  # RuntimeError: a symbolic link loop
+        return os.path.abspath(a) == os.path.abspath(b)
+
+
+def name_problem(path: Path) -> str | None:
+    """What makes ``path`` impossible to look up or use, in a few words, or None: a part of
+    its name longer than :data:`NAME_MAX` bytes, a symbolic link loop, a symbolic link to
+    nothing, or another error of the system (its text). A path that does not exist (yet)
+    is no problem."""
+    path = Path(path)
+    for part in path.parts:
+        size = len(os.fsencode(part))
+        if size > NAME_MAX:
+            return (
+                f"a part of the name is {size} bytes long; a file system takes at most "
+                f"{NAME_MAX} bytes per file or folder name"
+            )
+    try:
+        os.stat(path)
+    except (FileNotFoundError, NotADirectoryError):
+        if os.path.islink(path):
+            return "is a symbolic link to something that does not exist"
+        return None
+    except OSError as err:
+        if err.errno == errno.ELOOP:
+            return "is a symbolic link loop (its links lead back to themselves)"
+        if err.errno == errno.ENAMETOOLONG:
+            return "the name is too long for the file system (File name too long)"
+        return err.strerror or type(err).__name__
+    except ValueError as err:  # a NUL byte in the name
+        return str(err)
+    return None
+
+
+def check_name(path: Path, option: str = "-o") -> Path:
+    """Raises :class:`OutputPathError` naming ``option``, ``path`` and the rule if ``path``
+    cannot be looked up or used (:func:`name_problem`); returns it."""
+    problem = name_problem(path)
+    if problem is not None:
+        raise OutputPathError(f"{option} {path}: {problem}")
+    return Path(path)
 
 
 def is_result_file(path: Path) -> bool:
@@ -76,11 +137,13 @@ def _check_parent(path: Path, option: str) -> None:
 
 def _probe(parent: Path, path: Path, option: str) -> None:
     """Creates and removes a file in ``parent``: permissions alone do not tell (a read-only
-    mount, /proc, a full quota); a run would find out only when it writes its result."""
+    mount, /proc, a full quota); a run would find out only when it writes its result. The
+    probe's name is short and its own (``.rdXXXXXXXX.probe``): one made of ``path``'s name
+    would be refused for a long but valid name ("File name too long")."""
     import tempfile
 
     try:
-        handle, name = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".probe", dir=parent)
+        handle, name = tempfile.mkstemp(prefix=".rd", suffix=".probe", dir=parent)
     except OSError as err:
         reason = err.strerror or type(err).__name__
         raise OutputPathError(
@@ -97,14 +160,21 @@ def check_output_file(
     inputs: Iterable[tuple[str, Path]] = (),
     overwrite: bool = False,
     hint: str = "",
+    reserve: int | None = None,
 ) -> Path:
     """Checks that the file ``path`` may be written; returns it.
 
-    Refused: a folder, a missing or read-only parent folder, one of ``inputs`` (pairs of
-    what it is and its path, e.g. ``("the configuration file", cfg)``), something that is
-    not a regular file (a device, a pipe), a read-only file, and an existing file unless
-    ``overwrite`` (``hint`` then says how to replace it)."""
+    Refused: a name that cannot be used (:func:`check_name`: a part over :data:`NAME_MAX`
+    bytes, a symbolic link loop), a folder, a missing or read-only parent folder, one of
+    ``inputs`` (pairs of what it is and its path, e.g. ``("the configuration file",
+    cfg)``), something that is not a regular file (a device, a pipe), a read-only file, and
+    an existing file unless ``overwrite`` (``hint`` then says how to replace it).
+    ``reserve``: the bytes the writer adds to the file's name for its temporary file (by
+    default those of ``NAME.tmp<pid>``, what :func:`rollerdyn.simulation.write` writes
+    first; 0 for a writer that uses :func:`write_atomically`, which shortens it itself)."""
     path = Path(path)
+    check_name(path, option)
+    _check_room(path, option, len(f".tmp{os.getpid()}") if reserve is None else reserve)
     if path.is_dir():
         raise OutputPathError(f"{option} {path}: is a folder; give a file name")
     _check_parent(path, option)
@@ -135,8 +205,10 @@ def check_output_dir(
 ) -> Path:
     """Checks that the folder ``path`` may be created (its parent exists) or written to;
     returns it. ``results``: glob patterns of earlier results in it, refused unless
-    ``overwrite`` (``hint`` says how to replace them)."""
+    ``overwrite`` (``hint`` says how to replace them). A name that cannot be used
+    (:func:`check_name`) is refused."""
     path = Path(path)
+    check_name(path, option)
     if path.exists() and not path.is_dir():
         raise OutputPathError(f"{option} {path}: is a file, not a folder")
     if not path.exists():
@@ -150,6 +222,110 @@ def check_output_dir(
             shown = ", ".join(found[:3]) + (", ..." if len(found) > 3 else "")
             raise OutputPathError(f"{option} {path}: holds earlier results ({shown}){hint}")
     return path
+
+
+def _check_room(path: Path, option: str, reserve: int) -> None:
+    """Refuses a file name that leaves no room for the ``reserve`` bytes its writer adds
+    for the temporary file it writes first."""
+    size = len(os.fsencode(path.name))
+    if reserve > 0 and size <= NAME_MAX < size + reserve:
+        raise OutputPathError(
+            f"{option} {path}: the file name is {size} bytes long; it is written first "
+            f"under its name and {reserve} bytes more (a temporary file), so it may be at "
+            f"most {NAME_MAX - reserve} bytes (a file system takes {NAME_MAX})"
+        )
+
+
+def temporary_path(path: Path) -> Path:
+    """The temporary file beside ``path`` that :func:`write_atomically` writes first:
+    ``NAME.tmp<pid>`` (which :func:`remove_stale_temporaries` clears once its process is
+    gone), or ``.rollerdyn.tmp<pid>`` where that name would be longer than
+    :data:`NAME_MAX` bytes."""
+    path = Path(path)
+    name = f"{path.name}.tmp{os.getpid()}"
+    if len(os.fsencode(name)) > NAME_MAX:
+        name = f".rollerdyn.tmp{os.getpid()}"
+    return path.with_name(name)
+
+
+def _free_name(path: Path, number: int) -> Path:
+    """``path`` with ``-number`` before its extension: ``out/s-2.nc``."""
+    return path.with_name(f"{path.stem}-{number}{path.suffix}")
+
+
+def _link_new(source: Path, target: Path) -> bool:
+    """Makes ``target`` name the file ``source`` only if ``target`` does not exist (a hard
+    link, which fails if it does: no other program's file created meanwhile is replaced);
+    False if it exists. Where the file system has no hard links, checks and renames."""
+    try:
+        os.link(source, target)
+        return True
+    except FileExistsError:
+        return False
+    except OSError as err:
+        if err.errno not in (errno.EPERM, errno.EOPNOTSUPP, errno.ENOTSUP, errno.EMLINK):
+            raise
+    if os.path.lexists(target):
+        return False
+    os.replace(source, target)
+    return True
+
+
+def place_file(tmp: Path, path: Path, replace: bool | Callable[[Path], bool] = False) -> Path:
+    """Renames the whole file ``tmp`` to ``path`` (beside it, on the same file system);
+    returns where it went. ``replace``: whether a file at ``path`` may be replaced, True or
+    asked at the rename (a function of ``path``; e.g. "is it an earlier report"). A file
+    there that may not be replaced (one that another program or a second rollerdyn wrote
+    since the command checked its output) is kept, and ``tmp`` goes to the first free name
+    ``STEM-2.EXT``, ``STEM-3.EXT``, ...: the caller says so. ``tmp`` is gone afterwards."""
+    tmp, path = Path(tmp), Path(path)
+    try:
+        if replace is True:
+            os.replace(tmp, path)
+            return path
+        target = path
+        for number in range(2, 10_000):
+            if _link_new(tmp, target):
+                return target
+            if target == path and callable(replace) and replace(path):
+                os.replace(tmp, path)
+                return path
+            target = _free_name(path, number)
+        raise FileExistsError(errno.EEXIST, "no free name beside it", str(path))
+    finally:
+        _remove_quietly(tmp)
+
+
+def write_atomically(
+    path: Path, data: bytes | memoryview | str, replace: bool | Callable[[Path], bool] = False
+) -> Path:
+    """Writes ``data`` (text as UTF-8) to ``path`` atomically: to a temporary file beside it
+    (:func:`temporary_path`), flushed to the disk, then renamed into place
+    (:func:`place_file`, which also says what ``replace`` means); returns the file
+    written. Raises ``OSError`` if the write fails (a full disk, a folder gone); the
+    temporary file is removed then, and a file that was at ``path`` is left as it was."""
+    path = Path(path)
+    raw = data.encode("utf-8", "surrogateescape") if isinstance(data, str) else data
+    tmp = temporary_path(path)
+    flags = os.O_WRONLY | os.O_CREAT | os.O_TRUNC | getattr(os, "O_NOFOLLOW", 0)
+    try:
+        handle = os.open(tmp, flags, 0o666)
+        with os.fdopen(handle, "wb") as f:
+            f.write(raw)
+            f.flush()
+            os.fsync(f.fileno())
+        return place_file(tmp, path, replace)
+    finally:
+        _remove_quietly(tmp)
+
+
+def _remove_quietly(path: Path) -> None:
+    """Removes ``path`` if it is there; an error doing so is not the one to report."""
+    try:
+        if os.path.lexists(path):
+            os.remove(path)
+    except OSError:
+        pass
 
 
 def process_alive(pid: int) -> bool:

@@ -15,9 +15,11 @@ def _label(ds: xr.Dataset, name: str) -> str:
     """The legend entry of a run: its name (:func:`report.run_names`), the axial load of its
     load case and its tilt, and where a study stopped it (its attribute ``study_stopped``),
     how far it got."""
+    from .paths import printable
     from .report import configured_axial_load
 
-    label = f"{name} (F_a = {configured_axial_load(ds):.0f} N"
+    # printable: a file name's bytes that are not UTF-8 (\xe9) cannot be drawn as text
+    label = f"{printable(name)} (F_a = {configured_axial_load(ds):.0f} N"
     tilt = np.degrees(float(np.abs(ds.ring_tilt.isel(time=-1)).max()))
     if tilt > 0:
         label += f", IR tilt {tilt:.3g} deg"
@@ -29,15 +31,23 @@ def _label(ds: xr.Dataset, name: str) -> str:
 
 def save_figure(fig, out: Path, name: str) -> list[Path]:
     """Writes ``fig`` as ``out/name.png`` and ``out/name.svg`` and closes it; returns the
-    files."""
+    files. Each is drawn in memory and written through a temporary file renamed over the
+    earlier figure (:func:`rollerdyn.paths.write_atomically`): a failed write (a full disk)
+    leaves the earlier figure as it was, never a partial one."""
+    import io
+
     import matplotlib.pyplot as plt
 
+    from .paths import write_atomically
+
     written = []
-    for ext in ("png", "svg"):
-        f = Path(out) / f"{name}.{ext}"
-        fig.savefig(f, dpi=120, bbox_inches="tight")
-        written.append(f)
-    plt.close(fig)
+    try:
+        for ext in ("png", "svg"):
+            drawn = io.BytesIO()
+            fig.savefig(drawn, format=ext, dpi=120, bbox_inches="tight")
+            written.append(write_atomically(Path(out) / f"{name}.{ext}", drawn.getbuffer(), True))
+    finally:
+        plt.close(fig)
     return written
 
 

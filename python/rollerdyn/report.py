@@ -104,22 +104,10 @@ def open_result(
     ``recorded_only``: require only those of ``required`` that its run recorded (to
     continue the run, say)."""
     path = Path(path)
-    if path.is_dir():
-        raise ReportError(f"{path}: is a folder, not a result file")
-    if path.exists() and not path.is_file():
-        raise ReportError(f"{path}: not a regular file (a device or a pipe), not a result file")
-    if not path.is_file():
-        raise ReportError(f"{path}: result file not found")
-    if path.stat().st_size == 0:
-        raise ReportError(f"{path}: not a rollerdyn result (the file is empty)")
-    try:
-        with xr.open_dataset(path, engine="h5netcdf") as opened:
-            ds = opened.load()
-    except Exception as err:  # h5py/h5netcdf raise several kinds for non-HDF5 input
-        reason = " ".join(str(err).split()) or type(err).__name__
-        raise ReportError(
-            f"{path}: not a rollerdyn result (cannot be read as netCDF: {reason})"
-        ) from None
+    _check_result_path(path)
+    ds, reason = _read_netcdf(path)
+    if ds is None:
+        raise ReportError(f"{path}: not a rollerdyn result (cannot be read as netCDF: {reason})")
     if recorded_only and "outputs" in ds.attrs:
         from .simulation import output_group_of
 
@@ -143,7 +131,105 @@ def open_result(
         )
     if ds.sizes.get("time", 0) == 0:
         raise ReportError(f"{path}: the result holds no outputs (empty time axis)")
+    _check_numeric_attributes(path, ds.attrs)
     return ds
+
+
+def _check_result_path(path: Path) -> None:
+    """:class:`ReportError` unless ``path`` names a regular file that is not empty: one line
+    for a missing file, a folder, a device or a pipe, a symbolic link loop, a name too long
+    for the file system."""
+    import stat
+
+    from .paths import name_problem
+
+    try:
+        info = os.stat(path)
+    except (FileNotFoundError, NotADirectoryError):
+        info = None
+    except (OSError, ValueError):
+        info = None
+        problem = name_problem(path)
+        if problem is not None:
+            raise ReportError(f"{path}: cannot be read as a result file ({problem})") from None
+    if info is None:
+        raise ReportError(f"{path}: result file not found")
+    if stat.S_ISDIR(info.st_mode):
+        raise ReportError(f"{path}: is a folder, not a result file")
+    if not stat.S_ISREG(info.st_mode):
+        raise ReportError(f"{path}: not a regular file (a device or a pipe), not a result file")
+    if info.st_size == 0:
+        raise ReportError(f"{path}: not a rollerdyn result (the file is empty)")
+
+
+def _read_netcdf(path: Path) -> tuple[xr.Dataset | None, str]:
+    """The netCDF file ``path`` loaded into memory, or None and why it cannot be read.
+
+    A file that h5py opens but h5netcdf cannot (a damaged HDF5 object header) leaves a
+    half-made ``h5netcdf.File`` whose destructor fails ("Exception ignored in: File.close
+    ... AttributeError"): it is collected here, with that one error not printed, so the
+    refusal stays one line. xarray's warning about an HDF5 file without netCDF dimensions
+    ("phony_dims") is not printed either: the refusal says what is wrong."""
+    import gc
+    import sys
+    import warnings
+
+    previous = sys.unraisablehook
+
+    def hook(unraisable) -> None:
+        where = getattr(unraisable.object, "__module__", "") or ""
+        if isinstance(unraisable.exc_value, AttributeError) and where.startswith("h5netcdf"):
+            return
+        previous(unraisable)
+
+    ds, reason = None, ""
+    sys.unraisablehook = hook
+    try:
+        try:
+            with warnings.catch_warnings():
+                warnings.filterwarnings("ignore", message=".*phony_dims")
+                with xr.open_dataset(path, engine="h5netcdf") as opened:
+                    ds = opened.load()
+        except Exception as err:  # h5py/h5netcdf raise several kinds for non-HDF5 input
+            reason = " ".join(str(err).split()) or type(err).__name__
+        if ds is None:  # the failed objects, freed once the exception is gone
+            gc.collect()
+    finally:
+        sys.unraisablehook = previous
+    return ds, reason
+
+
+#: Attributes of a result that the commands read as numbers: name, whether it must be a
+#: finite number (a time, a count) or may be NaN (a wall time not measured).
+NUMERIC_ATTRIBUTES = (
+    ("final_time_s", True),
+    ("completed", True),
+    ("stats_steps", True),
+    ("stats_error_test_failures", True),
+    ("stats_total_seconds", False),
+)
+
+
+def _check_numeric_attributes(path: Path, attrs: dict) -> None:
+    """:class:`ReportError` naming the first of :data:`NUMERIC_ATTRIBUTES` in ``attrs``
+    that is no number (text, a list) or, where it must be, not a finite one."""
+    for name, finite in NUMERIC_ATTRIBUTES:
+        if name not in attrs:
+            continue
+        value = attrs[name]
+        if isinstance(value, np.ndarray | np.generic):
+            value = value.tolist()  # a number, or a list of them, as Python shows it
+        number = value[0] if isinstance(value, list) and len(value) == 1 else value
+        if not isinstance(number, int | float):
+            raise ReportError(
+                f"{path}: not a rollerdyn result (attribute {name} = {_short(value)} is not "
+                "a number)"
+            )
+        if finite and not math.isfinite(number):
+            raise ReportError(
+                f"{path}: not a rollerdyn result (attribute {name} = {_short(value)} is not "
+                "a finite number)"
+            )
 
 
 def _refuse_unrecorded(path: Path, ds: xr.Dataset, missing: list[str]) -> None:
@@ -178,9 +264,13 @@ def _listed(names: list[str], most: int = 4) -> str:
 
 def run_names(paths: list[Path]) -> list[str]:
     """The names that tell runs apart in legends: the files' names without extension, or
-    their paths where two of those are the same (``sweep/run_0000`` and ``sweep3/run_0000``)."""
-    stems = [Path(p).stem for p in paths]
-    return stems if len(set(stems)) == len(stems) else [str(p) for p in paths]
+    their paths where two of those are the same (``sweep/run_0000`` and ``sweep3/run_0000``);
+    bytes of a name that are not UTF-8 shown as ``\\xe9`` (:func:`rollerdyn.paths.printable`),
+    which every font and page can show."""
+    from .paths import printable
+
+    stems = [printable(Path(p).stem) for p in paths]
+    return stems if len(set(stems)) == len(stems) else [printable(p) for p in paths]
 
 
 def configured_axial_load(ds: xr.Dataset) -> float:
@@ -748,7 +838,10 @@ def report(paths, out, max_frames: int = MAX_FRAMES) -> Path:
     a missing file or one that is not a rollerdyn result, for ``out`` naming one of them,
     a folder or an existing file other than an earlier report (which is replaced), and
     for arguments of the wrong kind (``paths`` of files, ``max_frames`` a
-    whole number of at least 1), before the work."""
+    whole number of at least 1), before the work. The page is written through a
+    temporary file (a failed write leaves an earlier report as it was); if another
+    program created ``out`` meanwhile, the page goes to a free name beside it
+    (``report-2.html``): the path returned is where it went."""
     from .paths import OutputPathError, same_file
 
     if isinstance(paths, str | os.PathLike):
@@ -769,13 +862,27 @@ def report(paths, out, max_frames: int = MAX_FRAMES) -> Path:
         if same_file(out, p):
             raise ReportError(f"-o {out}: is the result file {p}, an input; choose another")
     try:
+        out.parent.mkdir(parents=True, exist_ok=True)  # the API makes the report's folder
+    except OSError as err:
+        raise ReportError(f"-o {out}: cannot make its folder ({err.strerror})") from None
+    try:
         check_report_output(paths, out)
     except OutputPathError as err:
         raise ReportError(str(err)) from None
     page = build_html(paths, max_frames=max_frames)
+    return _write_page(out, page)
+
+
+def _write_page(out: Path, page: str) -> Path:
+    """Writes ``page`` to ``out`` atomically (:func:`rollerdyn.paths.write_atomically`): a
+    failed write (a full disk) leaves an earlier report as it was and no partial page. A
+    file that appeared at ``out`` since the checks is replaced only if it is an earlier
+    report; else the page goes to a free name beside it (``report-2.html``), which is
+    returned. Bytes of file names that are not UTF-8 are shown as ``\\xe9``."""
+    from .paths import printable, write_atomically
+
     out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(page, encoding="utf-8")
-    return out
+    return write_atomically(out, printable(page), replace=is_report_page)
 
 
 #: The page's generator (``<meta name="generator">``): what marks an earlier report.
@@ -809,9 +916,9 @@ def check_report_output(results: list[Path], output: Path) -> Path:
     :mod:`rollerdyn.paths`): not an input, its folder there and writable, and if it
     exists an earlier report (a page rollerdyn wrote, whatever its name's extension), not a
     result, a page of someone else's or any other file."""
-    from .paths import check_output_file
+    from .paths import check_name, check_output_file
 
-    output = Path(output)
+    output = check_name(Path(output), "-o")
     replaceable = output.is_file() and is_report_page(output)
     return check_output_file(
         output,
@@ -819,4 +926,5 @@ def check_report_output(results: list[Path], output: Path) -> Path:
         inputs=[(f"the result file {r}", r) for r in results],
         overwrite=replaceable,
         hint="; only an earlier report of rollerdyn is replaced: choose another name",
+        reserve=0,  # written through paths.write_atomically, which keeps its name short
     )

@@ -947,6 +947,7 @@ def _resume_point(previous: xr.Dataset, config: BearingConfig, detector: str, en
         raise ValueError(
             f"resume: the earlier result's checkpoint time {t0} s must lie in [0, {t_final}] s"
         )
+    _check_outputs_reach(previous, t0, config.solver.output_interval)
     if step is None and "checkpoint_state" in previous and t0 != 0.0:
         raise ValueError(
             f"resume: the earlier result's checkpoint at t = {t0} s has no step (the mark of "
@@ -977,6 +978,33 @@ def _check_resume_record(previous: xr.Dataset) -> None:
             "resume: the earlier result's output times are not finite and increasing: the "
             "file was changed after its run"
         )
+
+
+def _check_outputs_reach(previous: xr.Dataset, t0: float, interval: float) -> None:
+    """Refuses (ValueError, naming the times) an earlier result that lacks an output of
+    the output grid k * ``interval`` up to its resume point ``t0``: its time axis was cut
+    after its run (``ds.isel(time=...)``), and the continued run, which computes the
+    outputs after ``t0`` only, would leave that gap in the joined result."""
+    if "time" not in previous.coords or not interval > 0.0:
+        return
+    times = np.atleast_1d(np.asarray(previous["time"].values, dtype=float))
+    slack = _core.time_slack(t0)
+    k = np.rint(times / interval)
+    on_grid = (np.abs(times - k * interval) <= slack) & (times <= t0 + slack)
+    present = np.unique(k[on_grid]).astype(np.int64)
+    wanted = int(math.floor((t0 + slack) / interval)) + 1  # k = 0 ... wanted - 1
+    gaps = np.flatnonzero(present[:wanted] != np.arange(min(len(present), wanted)))
+    first = int(gaps[0]) if len(gaps) else len(present)
+    if first >= wanted:
+        return
+    held = f"{times[0]:.6g} ... {times[-1]:.6g} s" if len(times) else "none"
+    raise ValueError(
+        f"resume: the earlier result has no output at t = {first * interval:.6g} s (solver."
+        f"output_interval {interval:g} s), before its checkpoint at t = {t0:.6g} s, where "
+        f"the run continues (its outputs: {len(times)}, {held}): its time axis was cut "
+        "after its run (e.g. with isel), so the joined result would have a gap; resume "
+        "from the whole result"
+    )
 
 
 def resume_state(previous: xr.Dataset) -> tuple[float, float | None, np.ndarray]:

@@ -16,11 +16,13 @@ from __future__ import annotations
 
 import json
 import math
+import numbers
 import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from .units import QuantityError, parse_quantity
 from .validation import default_config_path
 
 __all__ = [
@@ -101,7 +103,15 @@ def starter_geometry(
     """The new bearing's dimensions [m]: ``clearance`` by default B1's 10 µm scaled by the
     pitch diameter, ``rollers`` by default the most that fit (:func:`most_rollers`).
     :class:`StarterError` names the option where the raceways make no roller or the
-    rollers do not fit."""
+    rollers do not fit. Each length may also be a quantity with its unit (``"40 mm"``),
+    as ``rollerdyn new`` takes it."""
+    inner_raceway = _si("inner_raceway", inner_raceway, "length", required=True)
+    outer_raceway = _si("outer_raceway", outer_raceway, "length", required=True)
+    clearance = _si("clearance", clearance, "length")
+    if rollers is not None and (
+        isinstance(rollers, bool) or not isinstance(rollers, numbers.Integral)
+    ):
+        raise StarterError(f"rollers = {_shown(rollers)}: must be a whole number (or None)")
     if not (math.isfinite(inner_raceway) and inner_raceway > 0.0):
         raise StarterError(f"--inner-raceway {inner_raceway:g} m: must be a positive length")
     if not (math.isfinite(outer_raceway) and outer_raceway > inner_raceway):
@@ -177,11 +187,28 @@ def starter_config(
     count and projected area (Z D L, the term the load ratings grow with),
     ``axial_load`` [N] B1's fifth of it (0 for the non-locating types NU and N),
     ``speed`` [rad/s] B1's 500 rpm at B1's n d_m; ``bearing_type`` one of
-    :data:`BEARING_TYPES`, its flanges written to ``geometry.flanges``."""
-    if bearing_type not in BEARING_TYPES:
+    :data:`BEARING_TYPES`, its flanges written to ``geometry.flanges``. The lengths,
+    loads and speed may also be quantities with their units (``"5 kN"``, ``"3000 rpm"``),
+    as ``rollerdyn new`` takes them; ``name`` is one line of text (no control
+    characters)."""
+    from .config.base import control_character_rule
+
+    if not isinstance(name, str) or not name.strip():
+        raise StarterError(f"--name {_shown(name)}: must be the bearing's name, a non-empty text")
+    if (rule := control_character_rule(name)) is not None:
+        raise StarterError(f"--name {_shown(name)}: {rule}")
+    if not isinstance(bearing_type, str) or bearing_type not in BEARING_TYPES:
         raise StarterError(
             f"--type {bearing_type}: must be one of {', '.join(BEARING_TYPES)} (ISO 15)"
         )
+    if not isinstance(geometry, StarterGeometry):
+        raise StarterError(
+            f"geometry = {_shown(geometry)}: must be a StarterGeometry (starter_geometry)"
+        )
+    roller_length = _si("roller_length", roller_length, "length")
+    radial_load = _si("radial_load", radial_load, "force")
+    axial_load = _si("axial_load", axial_load, "force")
+    speed = _si("speed", speed, "angular velocity")
     k = geometry.size
     pitch_ratio = geometry.pitch_diameter / B1_PITCH_DIAMETER
     if roller_length is None:
@@ -336,10 +363,55 @@ def new_bearing(
     writes it: :func:`starter_geometry` of the raceways, ``clearance`` [m] and
     ``rollers``, then :func:`starter_config` with ``options`` (``roller_length`` [m],
     ``radial_load``, ``axial_load`` [N], ``speed`` [rad/s], ``bearing_type``; SI, None
-    their defaults). Load it with ``rollerdyn.parse_config(tomllib.loads(text))`` or write
-    it to a file."""
+    their defaults; or quantities with their units, ``"40 mm"``, ``"5 kN"``, ``"3000
+    rpm"``, as ``rollerdyn new`` takes them). Load it with
+    ``rollerdyn.parse_config(tomllib.loads(text))`` or write it to a file.
+    :class:`StarterError` names an argument that makes no bearing."""
+    unknown = [key for key in options if key not in _OPTIONS]
+    if unknown:
+        raise StarterError(
+            f"{unknown[0]}: not an option of new_bearing (its options: {', '.join(_OPTIONS)})"
+        )
     geometry = starter_geometry(inner_raceway, outer_raceway, clearance, rollers)
     return starter_config(geometry, name, **options)
+
+
+#: The keyword options of :func:`new_bearing` (:func:`starter_config`'s).
+_OPTIONS = ("roller_length", "radial_load", "axial_load", "speed", "bearing_type")
+
+#: The SI unit and an example of each unit family an argument takes.
+_UNITS = {
+    "length": ("m", "40 mm"),
+    "force": ("N", "5 kN"),
+    "angular velocity": ("rad/s", "3000 rpm"),
+}
+
+
+def _si(name: str, value: Any, family: str, required: bool = False) -> float | None:
+    """The argument ``name``'s ``value`` in SI: a real number as it is (SI), a quantity
+    with its unit (``"40 mm"``) converted, None as it is unless ``required``;
+    :class:`StarterError` naming the argument otherwise."""
+    unit, example = _UNITS[family]
+    expected = f"must be a number in {unit} or a quantity with its unit, e.g. {example!r}"
+    if value is None and not required:
+        return None
+    if isinstance(value, str):
+        try:
+            return parse_quantity(value, family)
+        except QuantityError as err:
+            raise StarterError(f"{name} = {_shown(value)}: {err}") from None
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise StarterError(f"{name} = {_shown(value)}: {expected}")
+    try:
+        return float(value)
+    except OverflowError:
+        raise StarterError(f"{name} = {_shown(value)}: must be finite") from None
+
+
+def _shown(value: Any) -> str:
+    """``value``'s repr, shortened to 60 characters."""
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 def _given(option: str, value: float, default: float, rule: str) -> str:
@@ -354,7 +426,8 @@ def _count_source(geometry: StarterGeometry) -> str:
 
 
 def _toml_string(text: str) -> str:
-    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    """A TOML basic string (JSON's escapes are TOML's; DEL must be escaped too)."""
+    return json.dumps(text, ensure_ascii=False).replace("\x7f", "\\u007f")
 
 
 def _header(geometry: StarterGeometry, name: str) -> str:

@@ -223,10 +223,63 @@ def statics(
             check_range(cfg, path, "", [getattr(case, field)], label=f"{field} = {given[field]!r}")
     (result,) = _solve(cfg, [case], stiffness=True)
     if isinstance(result, str):
-        raise StaticsError(result)
+        raise StaticsError(_no_equilibrium_hint(cfg, case, result))
     ds = _case_dataset(cfg, _ratings(cfg), case, result, contamination)
     ds.attrs.update(record_attrs(cfg))
     return ds
+
+
+#: The remedies the core appends to its "no quasi-static equilibrium" message, each from
+#: where it begins (``bearing/quasi_static/solver.rs``): the prescribed misalignment, the
+#: point end-flange law with the ring's tilt free, and with an axial load.
+_CORE_HINTS = {
+    "misalignment": "; the misalignment is applied whole at every load level",
+    "free tilt": "; with the ring's tilt free, the point law's flange contact jumps",
+    "axial load": "; where the axial load tips the rollers onto their end faces",
+}
+#: Loads up to this multiple of the solver's force tolerance are within its reach of 0 N:
+#: B1 without gravity finds no equilibrium at 1e-6 ... 1e-5 N of radial load (tolerance
+#: 1e-6 N), and finds one at 1e-4 N and above (and at 1e-7 N).
+_TINY_LOAD = 100.0
+
+
+def _no_equilibrium_hint(cfg: BearingConfig, case: StaticCase, message: str) -> str:
+    """The core's "no quasi-static equilibrium" ``message`` for ``case`` with the remedy
+    that fits it: with one slice per roller (``geometry.roller.slices = 1``) and something
+    that tilts the rollers (an axial load or the ring's weight along the axis, a
+    misalignment, a tilting moment), the slices, whatever the flange law; without an axial
+    load along the axis, not the point law's tipping on the flanges, and for a load within
+    :data:`_TINY_LOAD` times the solver's tolerance, that load."""
+    import re
+
+    if "no quasi-static equilibrium" not in message:
+        return message
+    weight = cfg.inner_ring.mass * np.asarray(cfg.operating.gravity)
+    along_axis = case.axial_load + weight[0]
+    tilted = case.misalignment not in (None, 0.0) or case.moment_y or case.moment_z
+
+    def without(*hints: str) -> str:
+        starts = [message.find(_CORE_HINTS[h]) for h in hints if _CORE_HINTS[h] in message]
+        return message[: min(starts)] if starts else message
+
+    if cfg.geometry.roller.slices == 1 and (along_axis != 0.0 or tilted):
+        return without(*_CORE_HINTS) + (
+            "; a roller of one slice (geometry.roller.slices = 1) has no tilting stiffness "
+            "at its races, so nothing holds it against the moment its flange contacts (or "
+            "a misalignment) put on it, with either flange law: give more slices (B1 has 20)"
+        )
+    if along_axis != 0.0 or tilted or _CORE_HINTS["axial load"] not in message:
+        return message
+    text = without("axial load")
+    tolerance = re.search(r"tolerance,? ([0-9.]+e[-+]?[0-9]+) N\b", message)
+    load = math.hypot(case.radial_load - weight[1], weight[2])
+    if tolerance is not None and load <= _TINY_LOAD * float(tolerance.group(1)):
+        text += (
+            f"; the load on the ring ({load:.3g} N with its weight) is within "
+            f"{_TINY_LOAD:g} times the solver's force tolerance ({tolerance.group(1)} N), "
+            "too small to resolve: give 0 N or a larger load"
+        )
+    return text
 
 
 def _number(name: str, value: Any) -> float:
@@ -421,6 +474,15 @@ def statics_sweep(
         )
     if not isinstance(stiffness, bool):
         raise StaticsError(f"stiffness = {stiffness!r}: must be True or False")
+    if progress is not None and not callable(progress):
+        raise StaticsError(
+            f"progress = {progress!r}: must be a function progress(done, total) (or None)"
+        )
+    if design is not None and not isinstance(design, Mapping):
+        raise StaticsError(
+            f"design = {design!r}: must be a mapping of configuration paths to lists of "
+            'values, e.g. {"geometry.diametral_clearance": ["10 um", "20 um"]} (or None)'
+        )
     design = dict(design or {})
     check_grid_size(
         {p: len(v) if hasattr(v, "__len__") else 1 for p, v in {**design, **grid}.items()}
@@ -459,7 +521,8 @@ def statics_sweep(
             ratings = _ratings(design_cfg)
             for case, result in zip(own, results, strict=False):
                 if isinstance(result, str):
-                    solved.append((values, case, None, result))
+                    message = _no_equilibrium_hint(design_cfg, case, result)
+                    solved.append((values, case, None, message))
                 else:
                     part = _case_variables(design_cfg, ratings, case, result, contamination)
                     solved.append((values, case, part, ""))
@@ -835,11 +898,13 @@ def _case_variables(
             "(0 at rest); docs/statics.md, 'The rollers' skew'",
         ),
         "friction_torque": _var(
-            _friction_torque(r["friction_power"], case.relative_speed),
+            _friction_torque(r["friction_power"], case),
             (),
             "N*m",
             "frictional torque of steady rolling: the friction power over the inner ring's "
-            "speed relative to the outer ring (NaN at rest)",
+            "speed relative to the outer ring (NaN at rest, and where the rings turn "
+            f"together: the relative speed below {100 * TORQUE_RELATIVE_SPEED:g} % of the faster "
+            "ring's speed, where the power is no torque between the rings)",
         ),
         "max_flange_force": _var(
             float(flange["flange_force"].max()), (), "N", "largest roller end / flange force"
@@ -941,10 +1006,28 @@ def _stacked(template: dict[str, _Var], parts: list[dict[str, _Var] | None]) -> 
     return out
 
 
-def _friction_torque(power: Sequence[float], speed: float) -> float:
+#: The least speed of the inner ring relative to the outer ring, as a share of the faster
+#: ring's speed, at which the friction power over that relative speed is reported as the
+#: frictional torque (NaN below). Where the rings turn together, the contacts and the
+#: drag of steady rolling still take power (B1 at its 5 kN / 1 kN: 0.55 W, 3.5 % of the
+#: 15.9 W with its outer ring fixed), which no relative speed makes, and the quotient
+#: grows as 1 / relative speed: B1 with its outer ring turning slower than the inner
+#: ring's 500 rpm by a share f of it gives 0.304 N*m at f = 1, 0.318 at 0.1, 0.347 at
+#: 0.05, 0.578 at 0.01, 1.02 at 0.005, 6.0 at 0.001 and 1.05e7 at 1e-9. Below 1 % the
+#: quotient is more than twice the torque of the relative motion, no torque between the
+#: rings.
+TORQUE_RELATIVE_SPEED = 0.01
+
+
+def _friction_torque(power: Sequence[float], case: StaticCase) -> float:
     """The torque of a friction power [W] at the inner ring's speed relative to the outer
-    ring [rad/s] (NaN at rest)."""
-    return float(np.sum(power)) / abs(speed) if speed != 0.0 else math.nan
+    ring [rad/s]: NaN at rest, and where the rings turn together (the relative speed below
+    :data:`TORQUE_RELATIVE_SPEED` of the faster ring's speed)."""
+    relative = abs(case.relative_speed)
+    faster = max(abs(case.speed), abs(case.outer_speed))
+    if relative == 0.0 or relative < TORQUE_RELATIVE_SPEED * faster:
+        return math.nan
+    return float(np.sum(power)) / relative
 
 
 def _flange_contact_height(cfg: BearingConfig, radius: np.ndarray) -> np.ndarray:

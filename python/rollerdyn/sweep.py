@@ -36,7 +36,7 @@ import numpy as np
 from .config import BearingConfig, ConfigError, _field_at, parse_config
 from .names import DETECTORS
 from .paths import printable
-from .units import SHORTEST_TIME, IntegerSpec, NumberSpec, QuantitySpec
+from .units import IntegerSpec, NumberSpec, QuantitySpec, parse_time
 
 __all__ = [
     "SUMMARY_COLUMNS",
@@ -297,6 +297,11 @@ def _source(config: Any) -> tuple[dict, bool, str | None]:
         return config.model_dump(), True, None
     if isinstance(config, Mapping):
         return dict(config), False, None
+    if not isinstance(config, str | os.PathLike):
+        raise SweepError(
+            f"config = {config!r}: expected a TOML file's path, its data as a mapping or a "
+            "BearingConfig"
+        )
     from .config import load_config
 
     path = Path(config)
@@ -518,6 +523,7 @@ def sweep(
     retries: int = 2,
     connect_timeout: float = 10.0,
     force: bool = False,
+    overwrite: bool = False,
 ):
     """Run the grid of ``parameters`` over ``config`` on Dask; return the summary.
 
@@ -529,7 +535,8 @@ def sweep(
     (:class:`SweepError` otherwise). ``scheduler``: None starts a ``LocalCluster`` of
     ``workers`` processes with one thread each; an address (``"tcp://host:8786"``) or a
     ``distributed.Client`` uses that cluster instead (its workers must see ``outdir``).
-    ``t_end`` (s), ``detector`` and ``force`` as in :func:`rollerdyn.simulate`. ``progress(done,
+    ``t_end`` (s, or a time such as ``"50 ms"``), ``detector`` and ``force`` as in
+    :func:`rollerdyn.simulate`. ``progress(done,
     total, row)`` is called once with ``row=None`` when the runs are submitted and then
     after each run. ``retries``: how many more times Dask runs a task whose attempt did not
     return (its worker died mid-run, or the task raised); each grid point keeps one row,
@@ -538,22 +545,27 @@ def sweep(
     fields, its SI value in ``"<path> [<unit>]"``), also written to
     ``outdir/summary.parquet``, and a figure of the summary over the swept quantity with
     the most values (``outdir/summary.png``, ``.svg``; :mod:`rollerdyn.sweep_figures`;
-    none when no numeric value is swept). What an earlier sweep wrote into ``outdir``
-    (``run_XXXX.nc``, the summary and its figure) is removed first. A scheduler that cannot
-    be reached (within ``connect_timeout`` seconds) raises :class:`SweepError` before
-    ``outdir`` is touched.
+    none when no numeric value is swept). A folder that holds an earlier sweep's files
+    (``run_XXXX.nc``, the summary and its figure) is refused unless ``overwrite``, which
+    removes them first, once the cluster is up; even then a file of those names that is not
+    a sweep's (:func:`earlier_results`) is refused, and nothing is removed. A scheduler
+    that cannot be reached (within ``connect_timeout`` seconds) raises :class:`SweepError`
+    before ``outdir`` is touched.
     """
     from distributed import as_completed
 
     from .simulation import failure_note
 
-    _check_sweep_arguments(detector, t_end, scheduler, workers, retries, progress, force)
+    t_end = _check_sweep_arguments(
+        detector, t_end, scheduler, workers, retries, progress, force, overwrite
+    )
     points = build_grid(config, parameters, t_end)
     if not isinstance(outdir, str | os.PathLike):
         raise SweepError(f"outdir = {outdir!r}: must be a folder's path")
     out = Path(outdir).resolve()
     if out.exists() and not out.is_dir():
         raise SweepError(f"outdir = {outdir}: is a file, not a folder")
+    earlier = earlier_results(out, overwrite, f"outdir = {outdir}", "overwrite=True")
     # What writes the summary, loaded before the runs: a Ctrl-C must not land in its
     # imports (a second of them) while the summary of an interrupted sweep is written.
     import pandas  # noqa: F401
@@ -563,7 +575,8 @@ def sweep(
     rows: dict[int, dict] = {}
     try:
         out.mkdir(parents=True, exist_ok=True)
-        _remove_earlier_results(out)
+        for f in earlier:  # so that none of it can pass for this sweep's (earlier_results)
+            f.unlink(missing_ok=True)
         futures, by_key = [], {}
         for p in points:
             fut = client.submit(
@@ -625,18 +638,24 @@ def sweep(
     return frame
 
 
-def _check_sweep_arguments(detector, t_end, scheduler, workers, retries, progress, force):
+def _check_sweep_arguments(
+    detector, t_end, scheduler, workers, retries, progress, force, overwrite
+) -> float | None:
     """Refuses (:class:`SweepError`, naming the argument) what :func:`sweep` cannot take,
-    before anything starts or an earlier sweep's files are removed."""
+    before anything starts or an earlier sweep's files are removed; returns ``t_end`` in s
+    (read as :func:`rollerdyn.simulate` reads it: ``"50 ms"`` too)."""
     if detector is not None and detector not in DETECTORS:
         raise SweepError(f"detector = {detector!r}: must be {', '.join(DETECTORS)}")
-    number = (int, float)
-    if t_end is not None and (
-        isinstance(t_end, bool)
-        or not isinstance(t_end, number)
-        or not (t_end >= SHORTEST_TIME and math.isfinite(t_end))
-    ):
-        raise SweepError(f"t_end = {t_end!r}: must be a time of at least 1 ns, in seconds")
+    if t_end is not None:
+        try:
+            t_end = parse_time(t_end, "t_end")
+        except ValueError as err:
+            clauses = str(err).split(": ", 1)[-1].split("; ")  # [what is wrong;] the rule
+            shown = repr(t_end) if len(repr(t_end)) <= 40 else repr(t_end)[:37] + "..."
+            raise SweepError(
+                f"t_end = {shown}: must be a time of at least 1 ns, in seconds or with its "
+                "unit (e.g. 0.05 or '50 ms')" + (f"; {clauses[0]}" if len(clauses) > 1 else "")
+            ) from None
     whole = isinstance(workers, int) and not isinstance(workers, bool)
     if scheduler is None and not (whole and workers >= 1):
         raise SweepError(f"workers = {workers!r}: must be a whole number, at least 1")
@@ -644,20 +663,95 @@ def _check_sweep_arguments(detector, t_end, scheduler, workers, retries, progres
         raise SweepError(f"retries = {retries!r}: must be a whole number, 0 or more")
     if progress is not None and not callable(progress):
         raise SweepError(f"progress = {progress!r}: must be a function (or None)")
-    if not isinstance(force, bool):
-        raise SweepError(f"force = {force!r}: must be True or False")
+    for name, value in (("force", force), ("overwrite", overwrite)):
+        if not isinstance(value, bool):
+            raise SweepError(f"{name} = {value!r}: must be True or False")
+    return t_end
 
 
-def _remove_earlier_results(out: Path) -> None:
-    """Removes what an earlier sweep into ``out`` wrote (its result files, summary and
-    figure), so that none of it can pass for this sweep's: a larger earlier grid's
-    ``run_0002.nc`` beside a summary of two runs, or a figure this sweep does not draw."""
+#: The names of an earlier sweep's result files in its folder.
+RUN_FILES = "run_[0-9][0-9][0-9][0-9].nc"
+
+
+def earlier_results(out: Path, overwrite: bool, where: str, flag: str) -> list[Path]:
+    """The files an earlier sweep wrote into the folder ``out`` (``run_XXXX.nc``, the
+    summary and its figure), which ``overwrite`` lets a new sweep remove; raises
+    :class:`SweepError` (starting with ``where``, e.g. ``"-o DIR"``; ``flag`` is the
+    option that allows it) if there are any and not ``overwrite``, or if one of them
+    cannot be told to be a sweep's: a run file that is not a rollerdyn result, a summary
+    without the summary's columns, or a figure that matplotlib did not draw or that has no
+    sweep's summary beside it (the figure is drawn from it). Nothing is removed here."""
     from .sweep_figures import FIGURE_NAME
 
-    for earlier in out.glob("run_[0-9][0-9][0-9][0-9].nc"):
-        earlier.unlink(missing_ok=True)
-    for name in (SUMMARY_FILE, f"{FIGURE_NAME}.png", f"{FIGURE_NAME}.svg"):
-        (out / name).unlink(missing_ok=True)
+    if not out.is_dir():
+        return []
+    names = (SUMMARY_FILE, f"{FIGURE_NAME}.png", f"{FIGURE_NAME}.svg")
+    found = sorted({*out.glob(RUN_FILES), *(out / n for n in names if _exists(out / n))})
+    if not found:
+        return []
+    if not overwrite:
+        shown = ", ".join(f.name for f in found[:3]) + (", ..." if len(found) > 3 else "")
+        raise SweepError(
+            f"{where}: holds earlier results ({shown}); pass {flag} to replace them, or "
+            "choose another folder"
+        )
+    summary = _not_a_summary(out / SUMMARY_FILE)
+    for f in found:
+        if f.name == SUMMARY_FILE:
+            why = summary
+        elif f.name.startswith(f"{FIGURE_NAME}."):
+            why = summary and f"no summary of a sweep beside it: {summary}"
+            why = why or _not_drawn(f)
+        else:
+            why = _not_a_run(f)
+        if why:
+            raise SweepError(
+                f"{where}: {f.name} is not a file an earlier sweep wrote ({why}); {flag} "
+                "replaces only a sweep's own files: move it or choose another folder"
+            )
+    return found
+
+
+def _exists(path: Path) -> bool:
+    return path.exists() or path.is_symlink()
+
+
+def _not_a_run(path: Path) -> str:
+    """Why ``path`` is not a rollerdyn result ("" if it is one): read without its data."""
+    import h5py
+
+    try:
+        with h5py.File(path, "r") as f:
+            keys = set(f.attrs)
+    except Exception as err:  # h5py raises several kinds for files that are not HDF5
+        return f"not a rollerdyn result: {' '.join(str(err).split()) or type(err).__name__}"
+    missing = {"final_time_s", "rollerdyn_version"} - keys
+    return f"not a rollerdyn result: no {', '.join(sorted(missing))}" if missing else ""
+
+
+def _not_drawn(path: Path) -> str:
+    """Why ``path`` is not a figure of matplotlib ("" if it is one): the name it writes
+    into the head of its PNG and SVG files."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(8192)
+    except OSError as err:
+        return f"cannot be read: {err.strerror or err}"
+    return "" if b"matplotlib" in head.lower() else "not a figure drawn by matplotlib"
+
+
+def _not_a_summary(path: Path) -> str:
+    """Why ``path`` is not a sweep's summary ("" if it is one): its columns."""
+    import pyarrow.parquet as pq
+
+    if not _exists(path):
+        return f"{path.name} is missing"
+    try:
+        columns = set(pq.read_schema(path).names)
+    except Exception as err:  # pyarrow raises several kinds for files that are not parquet
+        return f"{path.name} is not parquet: {' '.join(str(err).split()) or type(err).__name__}"
+    missing = {"run", "status", "error", "file"} - columns
+    return f"{path.name} has no column {', '.join(sorted(missing))}" if missing else ""
 
 
 def _remove_partial_files(out: Path, points) -> None:

@@ -1,8 +1,10 @@
 """The force laws of the reference paper (sect. 3.1.2 - 3.3) on numpy arrays.
 
 Thin wrappers over ``rollerdyn._core``: every array argument is broadcast with numpy, the
-core evaluates elementwise, and the result has the broadcast shape. All quantities are SI
-(m, N, Pa, Pa*s, K, m/s, rad). Equation numbers refer to the reference paper.
+core evaluates elementwise, and the result has the broadcast shape; the arguments after
+the arrays (a law's constants) are single numbers. All quantities are SI numbers (m, N, Pa,
+Pa*s, K, m/s, rad; text such as ``"1 GPa"`` is not read). A bad argument raises ValueError
+naming it, its value and the rule. Equation numbers refer to the reference paper.
 """
 
 from __future__ import annotations
@@ -76,20 +78,64 @@ _RULES: dict[str, tuple[str, Callable[[np.ndarray], np.ndarray]]] = {
 }  # fmt: skip
 
 
-def _check(name: str, value: Any) -> None:
-    """Raises ValueError naming ``name`` if a numeric ``value`` breaks its rule."""
-    if isinstance(value, str):
-        return
-    if value is None:
-        if name in _RULES:
-            raise ValueError(f"{name} = None: must be a number or an array of numbers")
-        return
-    try:
-        x = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} = {value!r}: must be a number or an array of numbers") from None
+#: The arguments that name a variant of a law (strings), with what they may be.
+_CHOICES = {
+    "method_name": '"brewe_hamrock" or "exact"',
+    "counterface": '"convex" or "outer_ring"',
+}
+
+
+def _shown(value: Any) -> str:
+    """``value``'s repr, shortened to 60 characters."""
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _check(name: str, value: Any, scalar: bool = False) -> np.ndarray | None:
+    """``value`` as a float array (None for a variant's name, a string of
+    :data:`_CHOICES`); ValueError naming ``name`` if it is not what the argument takes: a
+    real number in SI units (an array of them unless ``scalar``, an argument that does not
+    broadcast) that keeps its rule (:data:`_RULES`; finite for the others)."""
+    if name in _CHOICES:
+        if not isinstance(value, str):
+            raise ValueError(f"{name} = {_shown(value)}: must be {_CHOICES[name]} (a string)")
+        return None
+    x = _numbers(name, value, scalar)
     rule, ok = _RULES.get(name, _FINITE)
     _refuse_where(name, x, ~ok(x), rule)
+    return x
+
+
+def _numbers(name: str, value: Any, scalar: bool = False) -> np.ndarray:
+    """``value`` as a float array, or ValueError naming ``name``: None, text (a quantity
+    with a unit, ``"1 GPa"``: these laws take SI numbers), booleans, complex numbers and
+    (for a ``scalar`` argument) arrays are refused."""
+    what = "a real number in SI units" + ("" if scalar else " or an array of them")
+    if value is None or isinstance(value, str | bytes):
+        unit = " (text is not read: these laws take SI numbers)" if isinstance(value, str) else ""
+        raise ValueError(f"{name} = {_shown(value)}: must be {what}{unit}")
+
+    def refused() -> ValueError:
+        return ValueError(f"{name} = {_shown(value)}: must be {what}")
+
+    try:
+        raw = np.asarray(value)
+    except (TypeError, ValueError, OverflowError):  # ragged nesting, an odd object
+        raise refused() from None
+    if raw.dtype.kind == "c":
+        raise ValueError(f"{name} = {_shown(value)}: must be {what}, not complex")
+    if raw.dtype.kind not in "iufO":  # booleans, text
+        raise refused()
+    try:  # an object array: Python's integers beyond int64, Fractions, Decimals ...
+        x = raw.astype(float)
+    except (TypeError, ValueError, OverflowError):
+        raise refused() from None
+    if scalar and x.ndim != 0:
+        raise ValueError(
+            f"{name} = {_shown(value)}: must be a single number (this argument does not "
+            f"broadcast), got an array of shape {x.shape}"
+        )
+    return x
 
 
 def _refuse_where(name: str, x: np.ndarray, bad: np.ndarray, rule: str) -> None:
@@ -123,21 +169,32 @@ def _vectorize(
             bound = signature.bind(*args, **kwargs)
         except TypeError as err:
             raise TypeError(f"{core.__name__}{signature}: {err}") from None
-        for name, value in bound.arguments.items():
-            _check(name, value)
-        numeric = {
-            n: np.asarray(v, dtype=float)
-            for n, v in bound.arguments.items()
-            if v is not None and not isinstance(v, str)
-        }
+        numeric: dict[str, np.ndarray] = {}
+        for i, name in enumerate(names):
+            if name not in bound.arguments:
+                continue
+            x = _check(name, bound.arguments[name], scalar=i >= n_arrays)
+            if x is not None:
+                numeric[name] = x
         for name, rule, broken in before:
             with np.errstate(invalid="ignore"):
                 _refuse_where(name, numeric[name], broken(**numeric), rule)
-        values = [bound.arguments[n] for n in names if n in bound.arguments]
-        arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in values[:n_arrays]))
+        broadcast = [n for n in names[:n_arrays] if n in numeric]
+        try:
+            arrays = np.broadcast_arrays(*(numeric[n] for n in broadcast))
+        except ValueError:
+            shapes = ", ".join(f"{n} {numeric[n].shape}" for n in broadcast)
+            raise ValueError(
+                f"{core.__name__}: the array arguments' shapes do not broadcast together ({shapes})"
+            ) from None
         shape = arrays[0].shape
         flat = [np.ascontiguousarray(a.ravel()) for a in arrays]
-        result = core(*flat, *values[n_arrays:])
+        rest = [
+            bound.arguments[n] if n in _CHOICES else float(numeric[n])
+            for n in names[n_arrays:]
+            if n in bound.arguments
+        ]
+        result = core(*flat, *rest)
 
         def reshape(x: Any) -> Any:
             if isinstance(x, np.ndarray):
@@ -160,8 +217,8 @@ def _vectorize(
 def effective_modulus(e1: float, nu1: float, e2: float, nu2: float) -> float:
     """E' = 2/((1 - nu1^2)/E1 + (1 - nu2^2)/E2) (paper, nomenclature), Pa."""
     for name, value in (("e1", e1), ("nu1", nu1), ("e2", e2), ("nu2", nu2)):
-        _check(name, value)
-    return _core.effective_modulus(e1, nu1, e2, nu2)
+        _check(name, value, scalar=True)
+    return _core.effective_modulus(float(e1), float(nu1), float(e2), float(nu2))
 
 
 elliptic_integrals = _vectorize(_core.elliptic_integrals)

@@ -71,12 +71,12 @@ def bench(
         ),
     ] = None,
     output: Annotated[
-        Path,
+        str,
         output_option(
             help="mbs --sweep-dt-max: directory for table and plot; mbs --cases: directory "
             "for bench_cases.csv.",
         ),
-    ] = Path("runtime-study"),
+    ] = "runtime-study",
     cases: Annotated[
         str | None,
         typer.Option(
@@ -186,7 +186,9 @@ def bench(
             "--sweep-dt-max"
         )
     if target == "mbs" and (cases is not None or dt_max_values is not None):
-        checked(check_output_dir, output, "-o")
+        if not output.strip():  # an unset variable: the files would go to the current folder
+            raise refuse(f"-o {output!r}: empty; give the folder for the files (. for this one)")
+        checked(check_output_dir, Path(output), "-o")
     changes = set_options(settings)
     if changes and state is not None and config is None:
         raise refuse(
@@ -203,9 +205,9 @@ def bench(
     if target == "statics":
         bench_statics(cfg, statics_cases)
     if target == "mbs" and cases is not None:
-        bench_cases(cfg, cases, thread_counts, max_wall, output)
+        bench_cases(cfg, cases, thread_counts, max_wall, Path(output))
     elif target == "mbs" and dt_max_values is not None:
-        runtime_study(cfg, end, dt_max_values, output)
+        runtime_study(cfg, end, dt_max_values, Path(output))
     elif target == "mbs":
         bench_mbs(cfg, end)
 

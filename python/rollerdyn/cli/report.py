@@ -58,7 +58,9 @@ def report_command(
     slider through time, at most --max-frames frames (default 200).
 
     Exits with status 2 if a file is missing or is not a rollerdyn result, or if -o
-    cannot take the report (checked before any work).
+    cannot take the report (checked before any work). The page is written through a
+    temporary file renamed into place: a failed write (status 1) leaves an earlier report
+    as it was.
     """
     from ..report import ReportError, check_report_output, report
 
@@ -67,8 +69,16 @@ def report_command(
         written = report(results, output, max_frames=max_frames)
     except ReportError as err:
         raise refuse(err) from None
-    except OSError as err:
-        error(f"-o {output}: could not write the report ({err})")
+    except OSError as err:  # written through a temporary file: an earlier report is intact
+        kept = "an earlier report there is unchanged" if output.exists() else "nothing written"
+        error(f"-o {output}: could not write the report ({err.strerror or err}); {kept}")
         raise typer.Exit(1) from None
     size = written.stat().st_size / 1e6
+    if written != output:
+        say(
+            f"wrote {written} ({size:.1f} MB): {output} was created by another program "
+            "meanwhile and is no report of rollerdyn; it is kept as it is",
+            "yellow",
+        )
+        return
     say(f"wrote {written} ({size:.1f} MB)")

@@ -121,6 +121,7 @@ def statics_command(
                 inputs=[("the configuration file", config)],
                 overwrite=overwrite,
                 hint="; pass --overwrite to replace it",
+                reserve=0,  # written through a short temporary name (_save, _write)
             )
     grid, design = _split_sets(sets or [])
     for path, (text, _) in list(grid.items()):
@@ -156,13 +157,15 @@ def statics_command(
         )
     terminated: list[int] = []
     with sigterm_as_interrupt(terminated):
-        ds = _solve(config, cfg, (grid, design), per_roller, contamination, output, terminated)
-    _write(ds, output, plot)
+        ds = _solve(
+            config, cfg, (grid, design), per_roller, contamination, output, terminated, overwrite
+        )
+    _write(ds, output, plot, overwrite)
     if not single and ds.attrs["failed_cases"]:
         raise typer.Exit(1)  # as a sweep with a failed run: written, and said by the status
 
 
-def _solve(config, cfg, cases, per_roller, contamination, output, terminated):
+def _solve(config, cfg, cases, per_roller, contamination, output, terminated, overwrite=False):
     """The case or the sweep (``cases``: the load-case grid and the design's values)
     solved and printed; a sweep stopped by Ctrl-C or SIGTERM keeps its cases solved
     (:func:`_keep_interrupted`)."""
@@ -191,24 +194,103 @@ def _solve(config, cfg, cases, per_roller, contamination, output, terminated):
         error(f"rollerdyn statics: {err}")
         raise typer.Exit(1) from None
     except st.StaticsInterrupted as stop:
-        _keep_interrupted(stop, output, 143 if terminated else 130)
+        _keep_interrupted(stop, output, 143 if terminated else 130, overwrite)
     return ds
 
 
-def _write(ds, output: Path | None, plot: Path | None) -> None:
-    """The result written to ``output`` and drawn to ``plot`` (either may be None)."""
-    try:
-        if output is not None:
-            ds.to_netcdf(output, engine="h5netcdf")
-            say(f"wrote {output}")
-        if plot is not None:
-            from ..statics_plots import draw
+def _write(ds, output: Path | None, plot: Path | None, overwrite: bool = False) -> None:
+    """The result written to ``output`` and drawn to ``plot`` (either may be None), each
+    through a temporary file renamed into place once whole (:func:`_save`): a failed write
+    (a full disk, a reader's lock) leaves an earlier file as it was and exits with status 1
+    after one line saying where the result was kept."""
+    failed = False
+    if output is not None:
+        written, problem = _save(ds, output, overwrite)
+        if written is None:
+            error(f"-o {output}: could not write the result ({problem})")
+            failed = True
+        else:
+            say(_wrote(output, written))
+    if plot is not None:
+        written, problem = _draw(ds, plot, overwrite)
+        if written is None:
+            error(f"--plot {plot}: could not draw the result ({problem})")
+            failed = True
+        else:
+            say(_wrote(plot, written))
+    if failed:
+        raise typer.Exit(1)
 
-            draw(ds, plot)
-            say(f"wrote {plot}")
-    except OSError as err:  # checked before the work; a disk that filled up since
-        error(f"rollerdyn statics: could not write the result ({err.strerror or err})")
-        raise typer.Exit(1) from None
+
+def _wrote(path: Path, written: Path) -> str:
+    """The line saying that ``path`` was written (to ``written``, a free name beside it, if
+    another program created ``path`` while the cases were solved)."""
+    if written == path:
+        return f"wrote {path}"
+    return (
+        f"wrote {written}: {path} was created by another program while the cases were "
+        "solved; it is kept as it is"
+    )
+
+
+def _save(ds, output: Path, overwrite: bool) -> tuple[Path | None, str]:
+    """Writes ``ds`` to ``output`` as netCDF: encoded in memory first (HDF5 that runs out
+    of disk while writing a file prints tracebacks and can crash the process), then written
+    to a temporary file and renamed into place (:func:`rollerdyn.paths.write_atomically`;
+    an existing file is replaced only with ``overwrite``, otherwise the result goes to a
+    free name beside it). Returns the file written and "", or None and what went wrong,
+    which names the file the result was kept in instead, or says that it was lost."""
+    from ..paths import write_atomically
+
+    try:
+        data = ds.to_netcdf(engine="h5netcdf")
+    except Exception as err:  # h5py raises RuntimeError, ValueError, OSError
+        reason = " ".join(str(err).split()) or type(err).__name__
+        return None, f"it cannot be encoded as netCDF: {reason}; the result is lost"
+    existed = output.exists()
+    try:
+        return write_atomically(output, data, replace=overwrite), ""
+    except OSError as err:
+        left = "the earlier file is unchanged" if existed else "nothing was written there"
+        return None, f"{err.strerror or err}; {left}; {_keep_elsewhere(data)}"
+
+
+def _keep_elsewhere(data) -> str:
+    """Writes the encoded result ``data`` to a new file in the system's temporary folder
+    (another disk than the output's, often); says where, or that the result is lost."""
+    import os
+    import tempfile
+
+    try:
+        handle, name = tempfile.mkstemp(prefix="rollerdyn-statics-", suffix=".nc")
+    except OSError as err:
+        return f"the result could not be kept elsewhere either ({err.strerror or err}): it is lost"
+    try:
+        with os.fdopen(handle, "wb") as f:
+            f.write(data)
+    except OSError as err:
+        Path(name).unlink(missing_ok=True)
+        return f"the result could not be kept elsewhere either ({err.strerror or err}): it is lost"
+    return f"the result was kept in {name}"
+
+
+def _draw(ds, plot: Path, overwrite: bool) -> tuple[Path | None, str]:
+    """Draws ``ds`` to ``plot`` through a temporary file of the same extension beside it,
+    renamed into place once whole (:func:`rollerdyn.paths.place_file`); returns the file
+    written and "", or None and what went wrong."""
+    import os
+
+    from ..paths import place_file
+    from ..statics_plots import draw
+
+    tmp = plot.with_name(f".rollerdyn.tmp{os.getpid()}{plot.suffix}")
+    try:
+        draw(ds, tmp)
+        return place_file(tmp, plot, replace=overwrite), ""
+    except (OSError, RuntimeError, ValueError) as err:
+        return None, (err.strerror if isinstance(err, OSError) else None) or str(err)
+    finally:
+        tmp.unlink(missing_ok=True)
 
 
 def _check_ranges(config: Path, changes: dict, grid: dict, cfg=None) -> bool:
@@ -493,11 +575,20 @@ def _train_text(ds) -> str:
 
 
 def _friction_text(ds) -> str:
-    """The frictional torque of steady rolling and its power's largest parts."""
+    """The frictional torque of steady rolling and its power's largest parts; n/a at rest
+    and where the rings turn together (``rollerdyn.statics.TORQUE_RELATIVE_SPEED``)."""
+    from ..statics import TORQUE_RELATIVE_SPEED
+
     power = ds.friction_power
     total = float(power.sum())
-    if float(ds.speed_applied) == float(ds.get("outer_speed_applied", 0.0)):
-        return "n/a without relative speed"
+    inner, outer = float(ds.speed_applied), float(ds.get("outer_speed_applied", 0.0))
+    if inner == outer == 0.0:
+        return "n/a at rest"
+    if not math.isfinite(float(ds.friction_torque)):
+        return (
+            f"n/a: the rings turn together (relative speed {abs(inner - outer):.3g} rad/s, "
+            f"under {100 * TORQUE_RELATIVE_SPEED:g} % of their speed; {total:.4g} W)"
+        )
     parts = ", ".join(
         f"{name} {100 * float(v) / total:.0f} %"
         for name, v in zip(power.friction_part.values, power.values, strict=True)
@@ -506,18 +597,18 @@ def _friction_text(ds) -> str:
     return f"{float(ds.friction_torque):.4g} N*m ({total:.4g} W{': ' + parts if parts else ''})"
 
 
-def _keep_interrupted(stop, output: Path | None, status: int) -> None:
+def _keep_interrupted(stop, output: Path | None, status: int, overwrite: bool = False) -> None:
     """A sweep stopped by Ctrl-C or SIGTERM: the cases solved until then written to
-    ``output`` (when given), one line saying so, exit ``status`` (130, or 143 after
-    SIGTERM)."""
+    ``output`` (when given; :func:`_save`), one line saying so, exit ``status`` (130, or
+    143 after SIGTERM)."""
     ds = stop.dataset
     if ds is not None and output is not None:
-        try:
-            ds.to_netcdf(output, engine="h5netcdf")
-        except OSError as err:
-            error(f"rollerdyn statics: {stop}; could not write them ({err.strerror or err})")
+        written, problem = _save(ds, output, overwrite)
+        if written is None:
+            error(f"rollerdyn statics: {stop}; could not write them to {output} ({problem})")
             raise typer.Exit(status) from None
-        error(f"rollerdyn statics: {stop}; wrote those to {output}")
+        other = "" if written == output else f" ({output} was created meanwhile by another program)"
+        error(f"rollerdyn statics: {stop}; wrote those to {written}{other}")
     else:
         kept = "; -o FILE keeps the cases solved" if ds is not None else ""
         error(f"rollerdyn statics: {stop}{kept}")

@@ -76,8 +76,9 @@ OverwriteOption = Annotated[
     bool,
     typer.Option(
         "--overwrite",
-        help="Start afresh: remove what an earlier study wrote in the folder (its run "
-        "files, tables, figures and report; nothing else).",
+        help="Start afresh: remove what an earlier study wrote in the folder (the run "
+        "files, tables, figures and report its study.json lists; nothing else). A folder "
+        "without study.json that holds files a study writes is refused either way.",
     ),
 ]
 

@@ -72,7 +72,9 @@ def sweep_command(
         bool,
         typer.Option(
             "--overwrite",
-            help="Replace the results of an earlier sweep in the output folder.",
+            help="Replace the results of an earlier sweep in the output folder (its "
+            "run_XXXX.nc, summary and figure; a file of those names that is not a sweep's "
+            "is refused, and nothing else is touched).",
         ),
     ] = False,
     scheduler: Annotated[
@@ -140,9 +142,18 @@ def sweep_command(
     error in the summary (a cross in the figure), and the sweep goes on; the command then
     exits with status 1. Ctrl-C or SIGTERM stops the sweep: the summary lists the runs that
     finished and the others as interrupted (exit status 130 or 143). --overwrite first
-    removes the earlier sweep's result files, summary and figure.
+    removes the earlier sweep's result files, summary and figure (files of those names that
+    are not a sweep's are refused: exit status 2, nothing removed).
     """
-    from ..sweep import SUMMARY_FILE, SweepError, _sigterm_deferred, build_grid, sweep
+    from ..sweep import (
+        RUN_FILES,
+        SUMMARY_FILE,
+        SweepError,
+        _sigterm_deferred,
+        build_grid,
+        earlier_results,
+        sweep,
+    )
     from ..sweep_figures import FIGURE_NAME
 
     parameters = _parameters(sets)
@@ -153,10 +164,12 @@ def sweep_command(
         check_output_dir,
         output,
         "-o",
-        results=("run_[0-9][0-9][0-9][0-9].nc", SUMMARY_FILE),
+        results=(RUN_FILES, SUMMARY_FILE),
         overwrite=overwrite,
         hint="; pass --overwrite to replace them, or choose another folder",
     )
+    with refusing(SweepError, output):  # --overwrite replaces a sweep's own files only
+        earlier_results(output, overwrite, f"-o {output}", "--overwrite")
 
     def terminated() -> str:
         if (output / SUMMARY_FILE).is_file():
@@ -185,6 +198,7 @@ def sweep_command(
                 detector=detector,
                 progress=progress,
                 force=force,
+                overwrite=overwrite,
             )
     failed = _print_summary(frame, config, output, list(parameters))
     figure = output / f"{FIGURE_NAME}.png"

@@ -8,11 +8,21 @@ collects.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Annotated, Any, Union
 
-from pydantic import BaseModel, ConfigDict, Discriminator, Tag, create_model, model_validator
+from pydantic import (
+    AfterValidator,
+    BaseModel,
+    ConfigDict,
+    Discriminator,
+    Field,
+    Tag,
+    create_model,
+    model_validator,
+)
 from pydantic_core import PydanticCustomError
 
 from ..units import Quantity
@@ -146,6 +156,40 @@ def QuantityOrTable(fam: str, label: str, **bounds: Any) -> Any:  # noqa: N802
 ForceHistory = QuantityOrTable("force", "Force")
 RadialHistory = QuantityOrTable("force", "RadialForce", ge=0.0)
 SpeedHistory = QuantityOrTable("angular velocity", "AngularVelocity")
+
+
+#: The control characters (C0 and DEL) a one-line text field refuses, and those a
+#: free text refuses (it keeps tabs and line breaks).
+_ONE_LINE_CONTROLS = re.compile(r"[\x00-\x1f\x7f]")
+_FREE_TEXT_CONTROLS = re.compile(r"[\x00-\x08\x0b\x0c\x0e-\x1f\x7f]")
+
+
+def control_character_rule(text: str, *, multiline: bool = False) -> str | None:
+    """Why ``text`` cannot be a text field's value: the first control character it holds
+    (a one-line text: any; a ``multiline`` one: any but tab, line feed and carriage
+    return), or None. A result file stores the text (netCDF refuses a NUL), and names are
+    printed in tables and comments."""
+    found = (_FREE_TEXT_CONTROLS if multiline else _ONE_LINE_CONTROLS).search(text)
+    if found is None:
+        return None
+    allowed = " (tabs and line breaks are allowed)" if multiline else ""
+    return (
+        f"must not hold control characters{allowed}: U+{ord(found.group()):04X} at "
+        f"character {found.start() + 1}"
+    )
+
+
+def Text(*, multiline: bool = False, min_length: int = 0) -> Any:  # noqa: N802
+    """A pydantic field type: a string without control characters
+    (:func:`control_character_rule`), at least ``min_length`` characters long."""
+
+    def check(value: str) -> str:
+        rule = control_character_rule(value, multiline=multiline)
+        if rule is not None:
+            raise PydanticCustomError("quantity", "{rule}", {"rule": rule})
+        return value
+
+    return Annotated[str, Field(min_length=min_length), AfterValidator(check)]
 
 
 @dataclass(frozen=True)

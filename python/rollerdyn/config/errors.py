@@ -6,6 +6,7 @@
 from __future__ import annotations
 
 import difflib
+import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Literal, get_args, get_origin
@@ -53,7 +54,9 @@ def _show(value: Any) -> str:
     if value is _MISSING:
         return "(missing)"
     if isinstance(value, str):
-        s = '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+        s = '"' + _escaped(value.replace("\\", "\\\\").replace('"', '\\"')) + '"'
+    elif isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 200:
+        s = f"(an integer of about {int(value.bit_length() * 0.30103) + 1} digits)"
     elif isinstance(value, bool):
         s = "true" if value else "false"
     elif isinstance(value, Mapping):
@@ -63,6 +66,17 @@ def _show(value: Any) -> str:
     else:
         s = repr(value)
     return s if len(s) <= 80 else s[:77] + "..."
+
+
+_ESCAPES = {"\n": "\\n", "\t": "\\t", "\r": "\\r"}
+
+
+def _escaped(text: str) -> str:
+    """``text`` with its control characters escaped as TOML writes them (``\\n``,
+    ``\\u0000``), so that a message shows them and holds none."""
+    return re.sub(
+        r"[\x00-\x1f\x7f]", lambda m: _ESCAPES.get(m.group(), f"\\u{ord(m.group()):04x}"), text
+    )
 
 
 def _raw(data: Any, loc: Sequence[str | int]) -> Any:

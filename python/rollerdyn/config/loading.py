@@ -9,6 +9,7 @@ import json
 import math
 import os
 import re
+import sys
 import tomllib
 from collections.abc import Mapping
 from pathlib import Path
@@ -17,7 +18,7 @@ from typing import Any
 from pydantic import ValidationError
 
 from ..units import SI_NUMBERS
-from .errors import ConfigError, problems_from
+from .errors import ConfigError, Problem, _show, problems_from
 from .schema import BearingConfig
 
 
@@ -57,6 +58,15 @@ def load_config(path: str | Path, changes: Mapping[str, Any] | None = None) -> B
         where = f"{p}:{m.group(1)}:{m.group(2)}" if m else f"{p}"
         reason = re.sub(r"\s*\(at (line \d+, column \d+|end of document)\)", "", msg)
         raise ConfigError(f"{where}: malformed TOML — {reason}", source=str(p)) from None
+    except RecursionError:  # tomllib reads nested arrays and tables recursively
+        raise ConfigError(
+            f"{p}: malformed TOML — arrays or tables nested too deeply", source=str(p)
+        ) from None
+    except ValueError as exc:  # Python's limit on the digits of an integer it reads
+        reason = str(exc)
+        if "integer string conversion" in reason:
+            reason = f"an integer of more than {sys.get_int_max_str_digits()} digits"
+        raise ConfigError(f"{p}: malformed TOML — {reason}", source=str(p)) from None
     if not changes:
         config = parse_config(data, source=str(p))
         config._toml = text
@@ -64,11 +74,15 @@ def load_config(path: str | Path, changes: Mapping[str, Any] | None = None) -> B
     from ..paths import printable
     from ..sweep import SweepError, changed
 
-    plain_changes = _plain_changes(changes, str(p))
     try:
+        plain_changes = _plain_changes(changes, str(p))
         data = changed(data, plain_changes)
     except SweepError as exc:
         raise ConfigError(f"invalid configuration {p}: {exc}", source=str(p)) from None
+    except RecursionError:
+        raise ConfigError(
+            f"invalid configuration {p}: changes: a value nested too deeply", source=str(p)
+        ) from None
     config = parse_config(data, source=f"{p} with --set {', '.join(plain_changes)}")
     shown = ", ".join(f"{k} = {_shown(v)}" for k, v in plain_changes.items())
     # the file's name as UTF-8 (a result file holds nothing else)
@@ -77,9 +91,9 @@ def load_config(path: str | Path, changes: Mapping[str, Any] | None = None) -> B
 
 
 def _plain_changes(changes: Mapping[str, Any], source: str) -> dict[str, Any]:
-    """``changes`` with numpy's scalars as Python's numbers and tuples as lists (what
-    tomllib reads), so that their TOML text reads back as they are; ConfigError unless a
-    mapping of dotted paths."""
+    """``changes`` with numpy's scalars as Python's numbers, numpy's arrays and tuples as
+    lists (what tomllib reads), so that their TOML text reads back as they are;
+    ConfigError unless a mapping of dotted paths."""
     if not isinstance(changes, Mapping) or not all(
         isinstance(k, str) and k.strip() for k in changes
     ):
@@ -94,8 +108,10 @@ def _plain_changes(changes: Mapping[str, Any], source: str) -> dict[str, Any]:
             return {k: plain(v) for k, v in value.items()}
         if isinstance(value, list | tuple):
             return [plain(v) for v in value]
-        if not isinstance(value, str | bytes) and hasattr(value, "item"):
-            return value.item()  # a numpy scalar
+        if not isinstance(value, str | bytes) and hasattr(value, "tolist"):
+            # a numpy scalar or array: its Python values (an array as nested lists, which
+            # the field's rules then judge: a vector has three components)
+            return plain(value.tolist())
         return value
 
     return {k.strip(): plain(v) for k, v in changes.items()}
@@ -190,11 +206,71 @@ def parse_config(
             f"{source or 'configuration'}: expected a table of sections, got {type(data).__name__}",
             source=source,
         )
+    head = f"invalid configuration{f' {source}' if source else ''}"
     try:
-        return BearingConfig.model_validate(dict(data), context={SI_NUMBERS: si_numbers})
-    except ValidationError as exc:
-        problems = problems_from(exc, data)
-        head = f"invalid configuration{f' {source}' if source else ''}"
+        huge = _huge_integers(data)
+        if huge:
+            # validated with each such integer as inf (refused by every field, but without
+            # its OverflowError), its own problem in place of what the field says of inf
+            data = _replaced(data, {loc for loc, _ in huge}, math.inf)
+        try:
+            config = BearingConfig.model_validate(dict(data), context={SI_NUMBERS: si_numbers})
+        except ValidationError as exc:
+            problems = problems_from(exc, data)
+        else:
+            problems = []
+    except RecursionError:
+        raise ConfigError(f"{head}: values nested too deeply", source=source) from None
+    if huge:
+        own = [Problem(".".join(map(str, loc)), _show(value), INTEGER_RULE) for loc, value in huge]
+        problems = own + [
+            pr for pr in problems if not any(_related(pr.path, mine.path) for mine in own)
+        ]
+    if problems:
         n = len(problems)
         lines = [f"{head} ({n} problem{'s' if n != 1 else ''}):", *map(str, problems)]
-        raise ConfigError("\n".join(lines), problems, source) from None
+        raise ConfigError("\n".join(lines), problems, source)
+    return config
+
+
+#: The largest of TOML's integers (the TOML specification: 64-bit signed, -2^63 ... 2^63
+#: - 1, read losslessly or refused; Python's tomllib reads any): far beyond them a number
+#: field would overflow a float.
+INTEGER_LIMIT = 2**63 - 1
+INTEGER_RULE = (
+    "an integer beyond TOML's 64-bit range (-2^63 ... 2^63 - 1); write a large value as "
+    "a float (1e20) or with a unit"
+)
+
+
+def _huge_integers(data: Any) -> list[tuple[tuple[str | int, ...], int]]:
+    """The places (key paths) and values of the integers in ``data`` (tables and arrays)
+    beyond TOML's range (:data:`INTEGER_LIMIT`), found without recursion (a table may nest
+    deeply)."""
+    found = []
+    stack: list[tuple[tuple[str | int, ...], Any]] = [((), data)]
+    while stack:
+        loc, value = stack.pop()
+        if isinstance(value, Mapping):
+            stack.extend(((*loc, k), v) for k, v in value.items())
+        elif isinstance(value, list | tuple):
+            stack.extend(((*loc, i), v) for i, v in enumerate(value))
+        elif isinstance(value, int) and not -INTEGER_LIMIT - 1 <= value <= INTEGER_LIMIT:
+            found.append((loc, value))
+    return sorted(found, key=lambda item: [str(part) for part in item[0]])
+
+
+def _replaced(data: Any, locs: set[tuple[str | int, ...]], by: Any, at: tuple = ()) -> Any:
+    """``data`` with the values at ``locs`` replaced ``by`` (the rest shared)."""
+    if at in locs:
+        return by
+    if not any(loc[: len(at)] == at for loc in locs):
+        return data
+    if isinstance(data, Mapping):
+        return {k: _replaced(v, locs, by, (*at, k)) for k, v in data.items()}
+    return [_replaced(v, locs, by, (*at, i)) for i, v in enumerate(data)]
+
+
+def _related(a: str, b: str) -> bool:
+    """Whether the dotted paths ``a`` and ``b`` are the same, or one lies inside the other."""
+    return a == b or a.startswith(b + ".") or b.startswith(a + ".")

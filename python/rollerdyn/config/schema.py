@@ -9,6 +9,7 @@ at the boundary). The values derived from the fields are the sections' mixins in
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Mapping
 from typing import Annotated, Any, Literal
@@ -27,6 +28,7 @@ from .base import (
     Hint,
     RadialHistory,
     SpeedHistory,
+    Text,
     TimeTable,
     _Cross,
     _mm,
@@ -453,7 +455,7 @@ class LubricantDensityConfig(LubricantDensityDerived, _Section):
 class LubricantConfig(LubricantDerived, _Section):
     """``[lubricant]``: rheology and thermal data of the oil."""
 
-    name: Annotated[str, Field(min_length=1)]
+    name: Text(min_length=1)
     vogel: VogelConfig
     reference_viscosity: ReferenceViscosityConfig | None = None
     roelands: RoelandsConfig
@@ -657,8 +659,8 @@ MOVED_FIELDS: dict[str, tuple[str, str]] = {
 class BearingConfig(BearingDerived, _Section):
     """A complete bearing simulation: geometry, materials, lubricant, operation, solver."""
 
-    name: Annotated[str, Field(min_length=1)]
-    description: str | None = None
+    name: Text(min_length=1)
+    description: Text(multiline=True) | None = None
     geometry: GeometryConfig
     materials: MaterialsConfig
     inner_ring: InnerRingConfig
@@ -679,6 +681,16 @@ class BearingConfig(BearingDerived, _Section):
         return all(self.__dict__.get(k) == other.__dict__.get(k) for k in fields)
 
     __hash__ = None  # type: ignore[assignment]  # mutable values, as pydantic's own
+
+    def model_copy(self, *, update: Mapping[str, Any] | None = None, deep: bool = False):
+        """A copy (pydantic's ``model_copy``) without the derived values this one has
+        computed and cached (:attr:`roller_mass_properties`): a copy with ``update`` has
+        other fields, and computes its own on first use. (Like pydantic's, the copy is not
+        validated; ``rollerdyn.simulate`` and ``statics`` validate what they are given.)"""
+        copy = super().model_copy(update=update, deep=deep)
+        for name in _cached_properties(type(self)):
+            copy.__dict__.pop(name, None)
+        return copy
 
     @property
     def toml_text(self) -> str | None:
@@ -819,3 +831,14 @@ class BearingConfig(BearingDerived, _Section):
                     f"must give a pitch-circle speed of at most {MAX_PITCH_SPEED:g} m/s "
                     f"(here {pitch_speed:.3g} m/s), beyond the fastest rolling bearings",
                 )
+
+
+def _cached_properties(cls: type) -> list[str]:
+    """The names of ``cls``'s cached derived values (its ``functools.cached_property``
+    attributes, which keep their value in the instance's ``__dict__``)."""
+    return [
+        name
+        for klass in cls.__mro__
+        for name, attr in vars(klass).items()
+        if isinstance(attr, functools.cached_property)
+    ]

@@ -24,6 +24,8 @@ libraries load.
 from __future__ import annotations
 
 import importlib
+import sys
+import types
 from typing import Any
 
 #: Public name -> module that defines it.
@@ -48,5 +50,19 @@ def __getattr__(name: str) -> Any:
         return value
     raise AttributeError(f"module 'rollerdyn.study' has no attribute {name!r}")
 
+
+class _Study(types.ModuleType):
+    """``rollerdyn.study.paper`` stays the function, though the module ``paper`` exists:
+    the import system's binding of a submodule over a public name of :data:`_LAZY` (by
+    ``from .paper import ...`` in another module, or ``import rollerdyn.study.paper``) is
+    ignored; the submodule stays in ``sys.modules``, where imports find it."""
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if name in _LAZY and isinstance(value, types.ModuleType):
+            return
+        super().__setattr__(name, value)
+
+
+sys.modules[__name__].__class__ = _Study
 
 __all__ = sorted(_LAZY)

@@ -19,7 +19,7 @@ from __future__ import annotations
 import itertools
 import math
 import os
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -112,6 +112,8 @@ def parse_range(
         texts: list[Any] = [text]
     elif isinstance(text, str):
         texts = []
+    elif isinstance(text, bytes | bool) or not isinstance(text, Iterable):
+        raise StudyError(f"{option} {text!r}: give a:b:n, a list v1,v2,... or a value")
     else:
         texts = list(text)
 
@@ -343,11 +345,12 @@ def operating_map(
     run that could not be run, and a later invocation with ``force`` runs it. Other
     arguments as in :func:`rollerdyn.study.paper`."""
     from ..simulation import as_config
-    from .paper import _source_name, default_workers
+    from .paper import _source_name, check_arguments, default_workers
     from .schedule import Clock, check_scheduler
     from .thermal import dissipation_from_options
 
     clock = Clock()
+    check_arguments(progress, overwrite=overwrite, force=force)
     cfg = as_config(config)
     _check_map_settings(start, ramp, window, tol, max_time, max_wall)
     turning_ring(cfg)
@@ -376,7 +379,7 @@ def operating_map(
         "max_wall": float(max_wall),
         "scheduler": scheduler,
         "workers": workers,
-        "force": bool(force),
+        "force": force,
     }
     return _run_map(
         cfg,
@@ -567,14 +570,17 @@ def _run_map(
     balance: thermal.csv, thermal_speed.csv and their figures), and returns the study."""
     import pandas as pd
 
-    from .folder import prepare_folder
+    from .folder import prepare_folder, record_files
     from .map_figures import write_maps
     from .map_page import build_map_page
     from .report_page import write_page
     from .schedule import run_all, timing
     from .thermal import write_thermal
 
-    out = prepare_folder(out, "map", cfg, overwrite=overwrite, source=source, settings=settings)
+    files = [f"points/{spec.file}" for spec in specs]
+    out = prepare_folder(
+        out, "map", cfg, overwrite=overwrite, source=source, settings=settings, files=files
+    )
     points_dir = out / "points"
     points_dir.mkdir(exist_ok=True)
     lock = lock_folder(out)
@@ -593,6 +599,7 @@ def _run_map(
         frame.to_parquet(out / "map.parquet", engine="pyarrow", index=False)
         figures = write_maps(frame, out / "figures", cfg.name)
         thermal, permissible = write_thermal(frame, dissipation, out, cfg.name, figures)
+        record_files(out, figures)  # what --overwrite may remove
         workers = run["workers"] if run["scheduler"] is None else 0
         study_timing = timing(records, clock(), workers)
         page = build_map_page(

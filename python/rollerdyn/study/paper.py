@@ -22,7 +22,7 @@ from typing import Any
 
 from ..limits import DEFAULT_MAX_WALL
 from .findings import Finding, check_findings
-from .folder import prepare_folder
+from .folder import prepare_folder, record_files
 from .plan import DEFAULT_LOADS, Plan, build_plan
 from .runs import StudyError, lock_folder, open_run, record
 from .schedule import Clock, check_scheduler, run_all, timing
@@ -60,6 +60,17 @@ def _source_name(config) -> str | None:
     return None if not isinstance(config, str | os.PathLike) else str(config)
 
 
+def check_arguments(progress: Any, **flags: Any) -> None:
+    """Refuses (:class:`StudyError`, naming the argument) a ``progress`` that is not a
+    function (or None) and ``flags`` (overwrite, force, ...) that are not True or False,
+    before any work: ``overwrite="no"`` would be true and remove the earlier study."""
+    if progress is not None and not callable(progress):
+        raise StudyError(f"progress = {progress!r}: must be a function (or None)")
+    for name, value in flags.items():
+        if not isinstance(value, bool):
+            raise StudyError(f"{name} = {value!r}: must be True or False")
+
+
 def paper(
     config: Any = DEFAULT_CONFIG,
     outdir: str | os.PathLike = DEFAULT_OUTDIR,
@@ -95,7 +106,9 @@ def paper(
     ``max_wall``: wall-time cap of each run in this invocation [s]; a run stopped by it is
     reported as not finished and continued at the next invocation. ``scheduler``:
     None (a ``LocalCluster`` of ``workers`` processes, default all cores), an address or a
-    ``distributed.Client``. ``overwrite``: start afresh (removes the study's own files).
+    ``distributed.Client``. ``overwrite``: start afresh (removes the files the earlier
+    study's ``study.json`` lists, nothing else; a folder without one that holds files a
+    study writes is refused either way).
     ``run=False``: run nothing, analyse what the folder holds. ``report``/``figures``:
     write the HTML report and the PNG/SVG figures. ``progress(event)``: see
     :func:`rollerdyn.study.schedule.run_all`.
@@ -107,6 +120,17 @@ def paper(
     from ..units import parse_time
 
     clock = Clock()
+    check_arguments(
+        progress,
+        free_tilt=free_tilt,
+        gradient=gradient,
+        distributed=distributed,
+        tight=tight,
+        overwrite=overwrite,
+        run=run,
+        report=report,
+        figures=figures,
+    )
     cfg = as_config(config)
     if t_end is not None:
         try:
@@ -131,7 +155,12 @@ def paper(
     if run:
         check_scheduler(scheduler)
     out = prepare_folder(
-        Path(outdir), "paper", cfg, overwrite=overwrite, source=_source_name(config)
+        Path(outdir),
+        "paper",
+        cfg,
+        overwrite=overwrite,
+        source=_source_name(config),
+        files=[f"runs/{spec.file}" for spec in plan.specs],
     )
     runs_dir = out / "runs"
     runs_dir.mkdir(exist_ok=True)
@@ -162,6 +191,7 @@ def paper(
         written, page = _write_outputs(
             out, plan, sets, records, findings, study_timing, report, figures
         )
+        record_files(out, written)  # what --overwrite may remove
     finally:
         lock.unlink(missing_ok=True)
     import pandas as pd

@@ -35,8 +35,10 @@ a run is its name.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+import numbers
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 from ..config import BearingConfig, parse_config
 from ..config.solver import OUTPUT_GROUPS
@@ -117,6 +119,18 @@ def _variant(cfg: BearingConfig, changes: dict) -> BearingConfig:
         raise StudyError(f"{option}: {' '.join(str(problem).split())}") from None
 
 
+def _numbers(values: Any, option: str, what: str) -> list[float]:
+    """``values`` (numbers) as floats; :class:`StudyError` naming ``option`` for anything
+    else (None, a text, a list holding a text)."""
+    if isinstance(values, str | bytes) or not isinstance(values, Iterable):
+        raise StudyError(f"{option} = {values!r}: expected a list of {what} (empty: none)")
+    values = list(values)
+    for v in values:
+        if isinstance(v, bool) or not isinstance(v, numbers.Real):
+            raise StudyError(f"{option} = {values!r}: {v!r} is not a number; expected {what}")
+    return [float(v) for v in values]
+
+
 def _fmt(value: float) -> str:
     return f"{value:g}"
 
@@ -146,12 +160,13 @@ def build_plan(
     end = float(cfg.end_time if t_end is None else t_end)
     if not (end >= SHORTEST_TIME and math.isfinite(end)):
         raise StudyError(f"--t-end = {t_end!r}: must be a time of at least 1 ns")
-    loads = [float(v) for v in loads]
+    loads = _numbers(loads, "--loads", "axial loads in N")
     if any(not (math.isfinite(v) and v >= 0.0) for v in loads):
         raise StudyError(f"--loads = {loads}: every axial load must be >= 0 N")
     if dt_max is None:
         dt_max = [cfg.solver.dt_max * f for f in DEFAULT_DT_MAX_FACTORS]
-    dt_max = sorted({float(v) for v in dt_max}) if gradient else []
+    dt_max = _numbers(dt_max, "--dt-max", "times in s")  # checked without gradient runs too
+    dt_max = sorted(set(dt_max)) if gradient else []
     if any(not (math.isfinite(v) and v > 0.0) for v in dt_max):
         raise StudyError(f"--dt-max = {dt_max}: must be positive times in s")
     detector = cfg.solver.detector

@@ -32,8 +32,8 @@ use nalgebra::{Rotation3, Unit};
 /// The first step [rad] of [`skew_root`]'s search outwards from zero skew, each next one
 /// twice the last.
 const FIRST_SKEW_STEP: f64 = 1e-5;
-/// The first step [rad] from a skew of the round before or a neighbouring case's (the
-/// rounds of [`super::statics`]' spin and skew balance move B1's skews by 1e-6 … 1e-8).
+/// The first step [rad] from a skew of the round before (the rounds of
+/// [`super::statics`]' spin and skew balance move B1's skews by 1e-6 … 1e-8).
 const WARM_SKEW_STEP: f64 = 1e-6;
 /// The skew step [rad] over which a roller's race contacts' moment is differenced for its
 /// line in [`BearingSystem::balanced_skews`].
@@ -47,13 +47,15 @@ const SKEW_TOLERANCE: f64 = 1e-8;
 /// The share of the moments that meet on a roller about its radial direction (the sum of
 /// their magnitudes) below which [`skew_root`] takes their sum for balanced.
 const SKEW_BALANCE: f64 = 1e-4;
-/// The share of the largest roller's moments about its radial direction (the sum of their
-/// magnitudes) at or below which a roller keeps its skew ([`BearingSystem::balanced_skews`]):
-/// such a roller is held by nothing but its films and the drag, whose moments hardly change
-/// until its end meets a flange, so its skew is free within its play between the flanges
-/// and no balance sets it (B1 at 1 kN, 500 rpm: a roller near the top 9e-9 N·m, flat within
-/// −1.5 … +1 mrad, against the flanges' 0.035 N·m each at the bottom of the load zone).
-const SKEW_FLOOR: f64 = 1e-6;
+/// The share of the heaviest roller's race load that a roller's largest flange force must
+/// reach for its skew to be balanced ([`BearingSystem::pressed_by_flanges`]): the flanges'
+/// friction is what skews a roller; one that they touch with less (an unloaded roller on
+/// its films, every roller without axial load: B1's at 0 N carry millinewtons at the
+/// flanges against 1 288 N at the races) is held by nothing but its films and the drag,
+/// whose moments hardly change until its end meets a flange, so its skew is free within its
+/// play between the flanges and no balance sets it: it keeps zero skew (B1 at 1 kN: the
+/// loaded rollers' flanges 26–141 N, the threshold 1.3 N, the free rollers' millinewtons).
+const SKEW_FLANGE_SHARE: f64 = 1e-3;
 /// The most evaluations of [`skew_root`]'s narrowing.
 const SKEW_NARROWING: usize = 40;
 
@@ -169,6 +171,27 @@ impl BearingSystem<'_> {
             .partition(|e| matches!(e, Element::Inner(_) | Element::Outer(_)))
     }
 
+    /// Which rollers the flanges press hard enough to skew them: a roller's largest flange
+    /// force at least [`SKEW_FLANGE_SHARE`] of the heaviest roller's race load, both from
+    /// `results` (every contact at the equilibrium's positions, in the order of the model's
+    /// elements).
+    pub(super) fn pressed_by_flanges(&self, results: &[ElementResult]) -> Vec<bool> {
+        let z = self.layout.rollers;
+        let mut flange = vec![0.0f64; z];
+        let mut heaviest = 0.0f64;
+        for (e, r) in self.elements().iter().zip(results) {
+            match *e {
+                Element::End(i, _) => flange[i] = flange[i].max(r.normal),
+                Element::Inner(_) | Element::Outer(_) => heaviest = heaviest.max(r.normal),
+                Element::Pair(_) => {}
+            }
+        }
+        flange
+            .iter()
+            .map(|f| *f > 0.0 && *f >= SKEW_FLANGE_SHARE * heaviest)
+            .collect()
+    }
+
     /// Roller i's moment [N m] about its radial direction `radial` from its `elements` and,
     /// with `drag`, the drag at `kin`, beside the sum of those parts' magnitudes.
     fn skew_moment(
@@ -194,9 +217,9 @@ impl BearingSystem<'_> {
     /// first step of a cold or a `warm` start; module doc), the rollers orbiting at `orbit`
     /// [rad/s] and spinning at `spins` [rad/s] about their axes at `kin`'s unskewed axes;
     /// `kin`'s rollers are left skewed by them (each axis turned about its radial
-    /// direction), spinning about their new axes. A roller on which the moments about that
-    /// direction (the sum of their magnitudes at its start) are at most [`SKEW_FLOOR`] of the
-    /// largest roller's keeps its start. In the search the
+    /// direction), spinning about their new axes. Only the rollers marked in `pressed`
+    /// ([`Self::pressed_by_flanges`]) are balanced; the others keep zero skew, the
+    /// equilibrium's. In the search the
     /// roller's race contacts, whose moment hardly changes with skew (module doc), are
     /// taken on their line through the start (differenced over [`RACE_SKEW_STEP`]), its
     /// flanges and drag evaluated at every skew: the roots are exact where the skews have
@@ -210,6 +233,7 @@ impl BearingSystem<'_> {
         spins: &[f64],
         start: &[f64],
         warm: bool,
+        pressed: &[bool],
     ) -> Vec<f64> {
         let frozen: &BearingKinematics = kin;
         let z = frozen.rollers.len();
@@ -219,33 +243,21 @@ impl BearingSystem<'_> {
             let radial = radial_direction(&frozen.rollers[i].center);
             self.skew_moment(trial, i, parts, &radial, drag)
         };
-        // each roller's race contacts' line through its start, and the sum of its moments'
-        // magnitudes there
-        let lines: Vec<(f64, f64, f64)> = self.map(z, |i| {
-            let (races, rest) = self.skew_parts(i);
-            let mut trial = frozen.clone();
-            let race = moment_at(&mut trial, i, start[i], &races, false).net;
-            let shifted = moment_at(&mut trial, i, start[i] + RACE_SKEW_STEP, &races, false).net;
-            let rest = moment_at(&mut trial, i, start[i], &rest, true);
-            (
-                race,
-                (shifted - race) / RACE_SKEW_STEP,
-                race.abs() + rest.gross,
-            )
-        });
-        let floor = SKEW_FLOOR * lines.iter().map(|l| l.2).fold(0.0, f64::max);
         let step = if warm {
             WARM_SKEW_STEP
         } else {
             FIRST_SKEW_STEP
         };
         let skews = self.map(z, |i| {
-            let (race, slope, magnitude) = lines[i];
-            if magnitude <= floor {
-                return start[i];
+            if !pressed[i] {
+                return 0.0;
             }
-            let (_, rest) = self.skew_parts(i);
+            let (races, rest) = self.skew_parts(i);
             let mut trial = frozen.clone();
+            // the races on their line through the start
+            let race = moment_at(&mut trial, i, start[i], &races, false).net;
+            let shifted = moment_at(&mut trial, i, start[i] + RACE_SKEW_STEP, &races, false).net;
+            let slope = (shifted - race) / RACE_SKEW_STEP;
             skew_root(start[i], step, |beta| {
                 let mut m = moment_at(&mut trial, i, beta, &rest, true);
                 m.add(race + slope * (beta - start[i]));
@@ -370,7 +382,15 @@ mod tests {
                 "{:?}",
                 moment_at(0, 0.0)
             );
-            let skews = s.balanced_skews(&mut kin, orbit, &spins, &vec![0.0; spins.len()], false);
+            let pressed = s.pressed_by_flanges(&s.evaluate_all(&kin));
+            let skews = s.balanced_skews(
+                &mut kin,
+                orbit,
+                &spins,
+                &vec![0.0; spins.len()],
+                false,
+                &pressed,
+            );
             for &i in &loaded {
                 let beta = skews[i];
                 assert!((-2e-4..-5e-5).contains(&beta), "roller {i}: {beta}");
@@ -388,7 +408,15 @@ mod tests {
                 );
             }
             let (mut kin, orbit, spins, _) = at(0.0);
-            let skews = s.balanced_skews(&mut kin, orbit, &spins, &vec![0.0; spins.len()], false);
+            let pressed = s.pressed_by_flanges(&s.evaluate_all(&kin));
+            let skews = s.balanced_skews(
+                &mut kin,
+                orbit,
+                &spins,
+                &vec![0.0; spins.len()],
+                false,
+                &pressed,
+            );
             assert!(skews.iter().all(|b| b.abs() < 1e-8), "{skews:?}");
         });
     }
