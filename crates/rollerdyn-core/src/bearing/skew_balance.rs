@@ -339,58 +339,36 @@ mod tests {
     /// (measured on roller 0); the loaded rollers skew by −0.05 … −0.2 mrad, the dynamic
     /// model's range in B1's load zone (−0.08 … −0.13 mrad, docs/statics.md, "The rollers'
     /// skew"; the run itself is compared in the Python tests). Without axial load no
-    /// flange presses a roller and the races' moments are symmetric: no skew (1e-8 rad).
+    /// flange presses a roller: no skew.
     #[test]
     fn the_flanges_friction_skews_the_loaded_rollers_and_the_moments_balance() {
-        use crate::bearing::quasi_static::StaticCase;
-        use crate::bearing::test_b1::{in_workspace, params, B1};
+        use crate::bearing::test_b1::{in_workspace, loaded_equilibrium, params, B1};
         use crate::bearing::BearingModel;
         let model = BearingModel::new(params(&B1)).unwrap();
         in_workspace(&model, |s| {
-            let at = |axial: f64| {
-                let case = StaticCase {
-                    axial_load: axial,
-                    ..StaticCase::at_time(&s.params, 1.288)
-                };
-                let solution = s.statics(&case, None).expect("an equilibrium");
-                let load: Vec<f64> = solution
-                    .forces
-                    .iter()
-                    .map(|f| f.inner_slices.iter().sum::<f64>())
-                    .collect();
-                let heaviest = load.iter().copied().fold(0.0, f64::max);
-                let loaded: Vec<usize> = (0..load.len())
-                    .filter(|&i| load[i] >= 0.1 * heaviest)
-                    .collect();
-                let y = s.steady_state(&solution);
-                let mut kin = s.kinematics(1.288, &y);
+            // the state of steady rolling at the equilibrium with `axial` [N], spins
+            // balanced, and its skews
+            let steady = |axial: f64| {
+                let (solution, loaded) = loaded_equilibrium(&s, axial);
+                let mut kin = s.kinematics(1.288, &s.steady_state(&solution));
                 let (orbit, rolling) = s.rolling_speeds(solution.case.speed, 0.0);
                 let spins = s.balanced_spins(&mut kin, orbit, rolling, None);
-                (kin, orbit, spins, loaded)
+                let unskewed = kin.clone();
+                let pressed = s.pressed_by_flanges(&s.evaluate_all(&kin));
+                let zero = vec![0.0; spins.len()];
+                let skews = s.balanced_skews(&mut kin, orbit, &spins, &zero, false, &pressed);
+                (unskewed, kin, orbit, spins, skews, loaded)
             };
-            let (mut kin, orbit, spins, loaded) = at(1000.0);
+            let (unskewed, kin, orbit, spins, skews, loaded) = steady(1000.0);
             assert!(loaded.len() >= 5, "{loaded:?}");
-            let unskewed = kin.clone();
             let moment_at = |i: usize, beta: f64| {
                 let mut k = unskewed.clone();
                 skew_roller(&mut k, &unskewed, i, beta, orbit, spins[i]);
                 let radial = radial_direction(&k.rollers[i].center);
                 s.skew_moment(&k, i, &s.skew_elements(i), &radial, true)
             };
-            assert!(
-                moment_at(0, 0.0).net.abs() > 0.03,
-                "{:?}",
-                moment_at(0, 0.0)
-            );
-            let pressed = s.pressed_by_flanges(&s.evaluate_all(&kin));
-            let skews = s.balanced_skews(
-                &mut kin,
-                orbit,
-                &spins,
-                &vec![0.0; spins.len()],
-                false,
-                &pressed,
-            );
+            let at_zero = moment_at(0, 0.0);
+            assert!(at_zero.net.abs() > 0.03, "{at_zero:?}");
             for &i in &loaded {
                 let beta = skews[i];
                 assert!((-2e-4..-5e-5).contains(&beta), "roller {i}: {beta}");
@@ -407,17 +385,8 @@ mod tests {
                     "roller {i}: {m:?}, slope {slope}"
                 );
             }
-            let (mut kin, orbit, spins, _) = at(0.0);
-            let pressed = s.pressed_by_flanges(&s.evaluate_all(&kin));
-            let skews = s.balanced_skews(
-                &mut kin,
-                orbit,
-                &spins,
-                &vec![0.0; spins.len()],
-                false,
-                &pressed,
-            );
-            assert!(skews.iter().all(|b| b.abs() < 1e-8), "{skews:?}");
+            let skews = steady(0.0).4;
+            assert!(skews.iter().all(|b| *b == 0.0), "{skews:?}");
         });
     }
 }

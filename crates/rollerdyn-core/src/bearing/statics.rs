@@ -943,7 +943,7 @@ fn shown(x: f64) -> String {
 mod tests {
     use super::{SPIN_BALANCE, SPIN_TOLERANCE};
     use crate::bearing::params::History;
-    use crate::bearing::test_b1::{in_workspace, params, B1};
+    use crate::bearing::test_b1::{in_workspace, loaded_equilibrium, params, B1};
     use crate::bearing::BearingModel;
 
     /// The point law's check at B1's loads (radial 5 kN, constant axial loads; measured
@@ -998,27 +998,9 @@ mod tests {
     /// take nothing.
     #[test]
     fn the_flanges_friction_spins_the_loaded_rollers_up_and_the_races_hold_them() {
-        use crate::bearing::quasi_static::StaticCase;
         let model = BearingModel::new(params(&B1)).unwrap();
         in_workspace(&model, |s| {
-            let at = |axial: f64| {
-                let case = StaticCase {
-                    axial_load: axial,
-                    ..StaticCase::at_time(&s.params, 1.288)
-                };
-                let solution = s.statics(&case, None).expect("an equilibrium");
-                let heaviest = solution
-                    .forces
-                    .iter()
-                    .map(|f| f.inner_slices.iter().sum::<f64>())
-                    .fold(0.0, f64::max);
-                let loaded: Vec<usize> = (0..solution.forces.len())
-                    .filter(|&i| {
-                        solution.forces[i].inner_slices.iter().sum::<f64>() >= 0.1 * heaviest
-                    })
-                    .collect();
-                (solution, loaded)
-            };
+            let at = |axial: f64| loaded_equilibrium(&s, axial);
             let (solution, loaded) = at(1000.0);
             let friction = s.steady_rolling_friction(&solution, None);
             assert!(loaded.len() >= 5, "{loaded:?}");

@@ -171,3 +171,27 @@ pub(crate) fn in_workspace<R>(model: &BearingModel, f: impl FnOnce(BearingSystem
     let workspace = Workspace::single(model);
     f(model.system(&workspace))
 }
+
+/// B1's quasi-static equilibrium with `axial` [N] axially and the other loads and speed of
+/// t = 1.288 s, beside the rollers that carry at least a tenth of the heaviest roller's
+/// load at the inner race.
+pub(crate) fn loaded_equilibrium(
+    s: &BearingSystem<'_>,
+    axial: f64,
+) -> (crate::bearing::quasi_static::StaticSolution, Vec<usize>) {
+    let case = crate::bearing::quasi_static::StaticCase {
+        axial_load: axial,
+        ..crate::bearing::quasi_static::StaticCase::at_time(&s.params, 1.288)
+    };
+    let solution = s.statics(&case, None).expect("an equilibrium");
+    let load: Vec<f64> = solution
+        .forces
+        .iter()
+        .map(|f| f.inner_slices.iter().sum::<f64>())
+        .collect();
+    let heaviest = load.iter().copied().fold(0.0, f64::max);
+    let loaded = (0..load.len())
+        .filter(|&i| load[i] >= 0.1 * heaviest)
+        .collect();
+    (solution, loaded)
+}
