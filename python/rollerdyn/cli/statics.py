@@ -204,20 +204,18 @@ def _write(ds, output: Path | None, plot: Path | None, overwrite: bool = False) 
     (a full disk, a reader's lock) leaves an earlier file as it was and exits with status 1
     after one line saying where the result was kept."""
     failed = False
-    if output is not None:
-        written, problem = _save(ds, output, overwrite)
+    for path, option, verb, store in (
+        (output, "-o", "write", _save),
+        (plot, "--plot", "draw", _draw),
+    ):
+        if path is None:
+            continue
+        written, problem = store(ds, path, overwrite)
         if written is None:
-            error(f"-o {output}: could not write the result ({problem})")
+            error(f"{option} {path}: could not {verb} the result ({problem})")
             failed = True
         else:
-            say(_wrote(output, written))
-    if plot is not None:
-        written, problem = _draw(ds, plot, overwrite)
-        if written is None:
-            error(f"--plot {plot}: could not draw the result ({problem})")
-            failed = True
-        else:
-            say(_wrote(plot, written))
+            say(_wrote(path, written))
     if failed:
         raise typer.Exit(1)
 
