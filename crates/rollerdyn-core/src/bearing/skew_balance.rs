@@ -219,13 +219,13 @@ impl BearingSystem<'_> {
     /// `kin`'s rollers are left skewed by them (each axis turned about its radial
     /// direction), spinning about their new axes. Only the rollers marked in `pressed`
     /// ([`Self::pressed_by_flanges`]) are balanced; the others keep zero skew, the
-    /// equilibrium's. In the search the
-    /// roller's race contacts, whose moment hardly changes with skew (module doc), are
-    /// taken on their line through the start (differenced over [`RACE_SKEW_STEP`]), its
-    /// flanges and drag evaluated at every skew: the roots are exact where the skews have
-    /// settled, as the rounds of [`super::statics`]' balance start each from the last. The
-    /// rollers are searched apart (on the workspace's threads), each with the others at
-    /// `kin`'s positions: a skew moves none of the other rollers' contacts.
+    /// equilibrium's. In the search the roller's race contacts, whose moment hardly changes
+    /// with skew (module doc), are taken on their line through the start (differenced over
+    /// [`RACE_SKEW_STEP`]), its flanges and drag evaluated at every skew: the roots are
+    /// exact where the skews have settled, as the rounds of [`super::statics`]' balance
+    /// start each from the last. The rollers are searched apart (on the workspace's
+    /// threads), each with the others at `kin`'s positions: a skew moves none of the other
+    /// rollers' contacts.
     pub(super) fn balanced_skews(
         &self,
         kin: &mut BearingKinematics,
@@ -265,15 +265,27 @@ impl BearingSystem<'_> {
             })
         });
         let unskewed = kin.clone();
-        for (i, beta) in skews.iter().enumerate() {
-            skew_roller(kin, &unskewed, i, *beta, orbit, spins[i]);
-        }
+        set_skews(kin, &unskewed, &skews, orbit, spins);
         skews
     }
 }
 
+/// The rollers of `kin` at the axes of `from` skewed by `skews` [rad] ([`skew_roller`]),
+/// orbiting at `orbit` [rad/s] and spinning at `spins` [rad/s].
+pub(super) fn set_skews(
+    kin: &mut BearingKinematics,
+    from: &BearingKinematics,
+    skews: &[f64],
+    orbit: f64,
+    spins: &[f64],
+) {
+    for (i, beta) in skews.iter().enumerate() {
+        skew_roller(kin, from, i, *beta, orbit, spins[i]);
+    }
+}
+
 /// The unit vector from the bearing axis (x) towards `center`, across the axis.
-fn radial_direction(center: &Vec3) -> Vec3 {
+pub(super) fn radial_direction(center: &Vec3) -> Vec3 {
     Vec3::new(0.0, center.y, center.z).normalize()
 }
 

@@ -23,7 +23,7 @@ use super::quasi_static::{
     flange_loads, RollerPose, StaticCase, StaticSolution, FLANGE_PRESSURE_LIMIT,
 };
 use super::roller_train::TrainContact;
-use super::skew_balance::{skew_roller, SKEW_LIMIT};
+use super::skew_balance::{radial_direction, set_skews, SKEW_LIMIT};
 use super::state::{
     ring_kinematics, roller_kinematics, BearingKinematics, Kinematics, ROLLER_STATES,
 };
@@ -323,8 +323,7 @@ impl BearingSystem<'_> {
                     out.flanges += loss;
                     if r.normal > 0.0 {
                         let center = kin.rollers[i].center;
-                        let along =
-                            Vec3::x().cross(&Vec3::new(0.0, center.y, center.z).normalize());
+                        let along = Vec3::x().cross(&radial_direction(&center));
                         out.flange_offsets[4 * i + k] = (r.location - center).dot(&along);
                     }
                 }
@@ -586,20 +585,6 @@ fn accelerated(trail: &[Vec<f64>]) -> Vec<f64> {
             (c - d2 * ratio / (ratio - 1.0)).clamp(-SKEW_LIMIT, SKEW_LIMIT)
         })
         .collect()
-}
-
-/// The rollers of `kin` at the axes of `from` skewed by `skews` [rad]
-/// ([`super::skew_balance`]), orbiting at `orbit` [rad/s] and spinning at `spins`.
-fn set_skews(
-    kin: &mut BearingKinematics,
-    from: &BearingKinematics,
-    skews: &[f64],
-    orbit: f64,
-    spins: &[f64],
-) {
-    for (i, beta) in skews.iter().enumerate() {
-        skew_roller(kin, from, i, *beta, orbit, spins[i]);
-    }
 }
 
 /// The rollers of `kin` orbiting at `orbit` [rad/s] about the bearing axis and spinning at
