@@ -90,9 +90,12 @@ def test_statics_of_a_turning_outer_ring():
     the faster orbit, 7 mN against 1.3 kN, moves them by 1e-6; tolerance 1e-5); L_10r
     takes the outer ring as the ring that turns relative to the load (ISO/TS 16281), which
     shortens it (B1: 42.4 against 48.0); the torque of steady rolling is the friction
-    power over the relative speed, within 3 % of the inner ring's (measured 2.2 %: the
+    power over the relative speed, within 1 % of the inner ring's (measured 0.3 %: the
     closed-form rolling speeds ignore the ring's 53 um eccentricity, which leaves the races
-    sliding by a slide-to-roll ratio of about 1e-3 in either frame, differently)."""
+    sliding by a slide-to-roll ratio of about 1e-3 in either frame, differently). The
+    power is taken relative to the outer ring: with the bodies' absolute motion the
+    paper's rolling resistance, couples without reaction, made it 0.7 % higher here and
+    gave the outer race a negative power at half the inner ring's speed (below)."""
     inner = statics(B1)
     outer = statics(B1, speed=0.0, outer_speed=W)
     assert float(outer.max_roller_load) == pytest.approx(float(inner.max_roller_load), rel=1e-5)
@@ -110,7 +113,12 @@ def test_statics_of_a_turning_outer_ring():
     assert float(outer.friction_torque) == pytest.approx(
         float(outer.friction_power.sum()) / W, rel=1e-12
     )
-    assert float(outer.friction_torque) == pytest.approx(float(inner.friction_torque), rel=0.03)
+    assert float(outer.friction_torque) == pytest.approx(float(inner.friction_torque), rel=0.01)
+    # every contact takes power, the outer race too, with the outer ring at half the inner
+    # ring's speed and no axial load (measured: 0.017 W inner race, 0.014 W outer race;
+    # with the absolute motion the outer race gave -0.025 W)
+    half = statics(B1, radial_load=1000.0, axial_load=0.0, speed=W, outer_speed=W / 2)
+    assert (half.friction_power.sel(friction_part=["inner race", "outer race"]).values > 0.0).all()
     # the films follow the relative speed: the same rolling speeds at the races
     assert float(outer.min_specific_film_thickness) == pytest.approx(
         float(inner.min_specific_film_thickness), rel=1e-4

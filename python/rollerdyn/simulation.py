@@ -389,9 +389,10 @@ _SCALARS = {
     "outer_ring_torque": ("N*m", "moment of the contact forces on the outer ring about +x"),
     "power_loss": (
         "W",
-        "power taken from the bodies' motion by every contact and the oil-air drag; its mean "
-        "in steady running is the friction power, frictional_torque times the inner ring's "
-        "speed relative to the outer ring (ring_speed - outer_ring_speed)",
+        "power taken from the bodies' motion by every contact (their motion relative to the "
+        "outer ring) and the oil-air drag; its mean in steady running is the friction power, "
+        "frictional_torque times the inner ring's speed relative to the outer ring "
+        "(ring_speed - outer_ring_speed)",
     ),
     "sliding_power_loss": (
         "W",

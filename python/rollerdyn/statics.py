@@ -1009,11 +1009,11 @@ def _stacked(template: dict[str, _Var], parts: list[dict[str, _Var] | None]) -> 
 #: The least speed of the inner ring relative to the outer ring, as a share of the faster
 #: ring's speed, at which the friction power over that relative speed is reported as the
 #: frictional torque (NaN below). Where the rings turn together, the contacts and the
-#: drag of steady rolling still take power (B1 at its 5 kN / 1 kN: 0.55 W, 3.5 % of the
+#: drag of steady rolling still take power (B1 at its 5 kN / 1 kN: 0.58 W, 3.6 % of the
 #: 15.9 W with its outer ring fixed), which no relative speed makes, and the quotient
 #: grows as 1 / relative speed: B1 with its outer ring turning slower than the inner
-#: ring's 500 rpm by a share f of it gives 0.304 N*m at f = 1, 0.318 at 0.1, 0.347 at
-#: 0.05, 0.578 at 0.01, 1.02 at 0.005, 6.0 at 0.001 and 1.05e7 at 1e-9. Below 1 % the
+#: ring's 500 rpm by a share f of it gives 0.304 N*m at f = 1, 0.330 at 0.1, 0.372 at
+#: 0.05, 0.715 at 0.01, 1.29 at 0.005, 6.4 at 0.001 and 1.1e7 at 1e-9. Below 1 % the
 #: quotient is more than twice the torque of the relative motion, no torque between the
 #: rings.
 TORQUE_RELATIVE_SPEED = 0.01

@@ -289,7 +289,7 @@ fn a_contacts_power_loss_splits_into_sliding_normal_and_rolling_resistance() {
         for element in system.elements() {
             let r = system.evaluate(element, &kin);
             let [a, b] = element.bodies(system.layout.rollers);
-            let loss = r.power_loss(kin.of(a), kin.of(b));
+            let loss = r.power_loss(kin.of(a), kin.of(b), &kin.outer_ring);
             let rest = loss - r.sliding_power - r.normal_power;
             let scale = r.sliding_power.abs() + r.normal_power.abs() + loss.abs();
             assert!(r.sliding_power >= 0.0, "{element:?}: {}", r.sliding_power);

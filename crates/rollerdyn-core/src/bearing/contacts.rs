@@ -115,8 +115,17 @@ impl ElementResult {
     /// running, so the time mean is the contact's power loss. Since every force acts on
     /// both bodies at one point, only the relative motion there does work: F·(v_B − v_A)
     /// at the contact, plus the couples' work on each body.
-    pub fn power_loss(&self, a: &Kinematics, b: &Kinematics) -> f64 {
-        -(self.on_a.power(a) + self.on_b.power(b))
+    ///
+    /// The motion is taken relative to the outer ring `outer` (fixed in B1, turning in a
+    /// planet gear). Where the contact's wrenches balance (every law but the paper's
+    /// rolling resistance) the frame does not matter; the paper's law puts a couple against
+    /// each body's rolling without a reaction, whose work would otherwise depend on the
+    /// frame: relative to the outer ring a turning-ring bearing's contacts take what a fixed
+    /// ring's at the same relative speeds take, and the power over that relative speed is
+    /// the frictional torque on the inner ring, as with a fixed outer ring
+    /// (docs/dynamics.md, "A turning outer ring").
+    pub fn power_loss(&self, a: &Kinematics, b: &Kinematics, outer: &Kinematics) -> f64 {
+        -(self.on_a.power(&a.seen_from(outer)) + self.on_b.power(&b.seen_from(outer)))
     }
 
     /// Adds the forces `f` of one section (normal `n` from A to B, location `p`) between

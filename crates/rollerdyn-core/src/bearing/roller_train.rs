@@ -339,7 +339,7 @@ impl BearingSystem<'_> {
                 let element = Element::Pair(c.pair);
                 let [a, b] = element.bodies(z);
                 self.evaluate_at(&element, &c.pressed, &c.geometry)
-                    .power_loss(c.pressed.of(a), c.pressed.of(b))
+                    .power_loss(c.pressed.of(a), c.pressed.of(b), &c.pressed.outer_ring)
             })
             .fold(0.0, |total, power| total + power) // 0 W, not −0 W, without a train
     }

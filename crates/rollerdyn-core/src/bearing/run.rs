@@ -233,9 +233,10 @@ pub struct ContactPower {
 }
 
 impl ContactPower {
-    /// The power the contact with result `r` takes from bodies `a` and `b`, split.
-    fn of(r: &ElementResult, a: &Kinematics, b: &Kinematics) -> Self {
-        let loss = r.power_loss(a, b);
+    /// The power the contact with result `r` takes from bodies `a` and `b`, relative to the
+    /// outer ring `outer`, split.
+    fn of(r: &ElementResult, a: &Kinematics, b: &Kinematics, outer: &Kinematics) -> Self {
+        let loss = r.power_loss(a, b, outer);
         Self {
             loss,
             sliding: r.sliding_power,
@@ -562,7 +563,7 @@ pub fn record(system: &BearingSystem<'_>, t: f64, y: &[f64]) -> Record {
     let mut by_mechanism = PowerByMechanism::default();
     for (element, r) in system.elements().iter().zip(&results) {
         let [a, b] = element.bodies(layout.rollers);
-        let power = ContactPower::of(r, kin.of(a), kin.of(b));
+        let power = ContactPower::of(r, kin.of(a), kin.of(b), &kin.outer_ring);
         power_loss += power.loss;
         by_mechanism.sliding += power.sliding;
         by_mechanism.normal += r.normal_power;

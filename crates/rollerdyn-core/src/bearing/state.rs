@@ -106,6 +106,17 @@ impl Kinematics {
     pub fn point_velocity(&self, p: &Vec3) -> Vec3 {
         self.velocity + self.omega.cross(&(p - self.center))
     }
+
+    /// This body's motion seen from the rigid body `frame` (the outer ring, for the power
+    /// losses): the velocity less that of the frame's material point at the centre, and the
+    /// angular velocity less the frame's. Positions stay.
+    pub fn seen_from(&self, frame: &Kinematics) -> Self {
+        Self {
+            velocity: self.velocity - frame.point_velocity(&self.center),
+            omega: self.omega - frame.omega,
+            ..*self
+        }
+    }
 }
 
 /// Reads roller `i` from the state.

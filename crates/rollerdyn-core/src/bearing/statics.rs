@@ -315,7 +315,7 @@ impl BearingSystem<'_> {
         };
         for (element, r) in self.elements().iter().zip(results) {
             let [a, b] = element.bodies(self.layout.rollers);
-            let loss = r.power_loss(kin.of(a), kin.of(b));
+            let loss = r.power_loss(kin.of(a), kin.of(b), &kin.outer_ring);
             match *element {
                 Element::Inner(_) => out.inner_race += loss,
                 Element::Outer(_) => out.outer_race += loss,
