@@ -478,10 +478,10 @@ def test_ctrl_c_while_the_result_is_written_loses_nothing(tmp_path, monkeypatch)
 
     real_write = rollerdyn.simulation.write
 
-    def interrupted_write(ds, path, compress=True):
+    def interrupted_write(ds, path, compress=True, replace=True):
         if compress:  # the final result, not a checkpoint
             os.kill(os.getpid(), signal.SIGINT)
-        real_write(ds, path, compress)
+        return real_write(ds, path, compress, replace)
 
     monkeypatch.setattr(rollerdyn.simulation, "write", interrupted_write)
     out = tmp_path / "late.nc"
@@ -541,9 +541,9 @@ def test_run_checkpoint_interval_option(tmp_path):
     for every, expected in (("0", 4), ("1 h", 1)):
         writes: list[bool] = []
 
-        def counting_write(ds, path, compress=True, writes=writes):
+        def counting_write(ds, path, compress=True, replace=True, writes=writes):
             writes.append(compress)
-            real_write(ds, path, compress)
+            return real_write(ds, path, compress, replace)
 
         simulation.write = counting_write
         try:

@@ -646,9 +646,9 @@ def test_checkpoint_saver_writes_the_first_then_one_per_save_interval(tmp_path, 
     now = [0.0]
     real_write = simulation.write
 
-    def slow_write(ds, path, compress=True):
-        real_write(ds, path, compress)
+    def slow_write(ds, path, compress=True, replace=True):
         now[0] += 5.0
+        return real_write(ds, path, compress, replace)
 
     monkeypatch.setattr(simulation, "write", slow_write)
     path = tmp_path / "saved.nc"

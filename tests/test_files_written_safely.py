@@ -191,6 +191,61 @@ def test_statics_keeps_a_file_another_program_created_meanwhile(tmp_path, monkey
     assert "inner_race_load" in xr.open_dataset(tmp_path / "st-2.nc", engine="h5netcdf")
 
 
+@pytest.mark.parametrize("when", ["before the first checkpoint", "after a checkpoint"])
+def test_run_keeps_a_file_another_program_wrote_during_the_run(tmp_path, monkeypatch, when):
+    """``rollerdyn run -o``: the output did not exist when the command checked it, and
+    another program wrote it during the run, before the run's first checkpoint or over
+    one of them: its file is kept, the run's checkpoints and result go to ``r-2.nc``
+    (said in one line), which holds the whole run."""
+    from rollerdyn import simulation
+
+    out = tmp_path / "r.nc"
+    original = simulation.simulate
+
+    def meanwhile(*args, checkpoint=None, **kwargs):
+        if when == "before the first checkpoint":
+            out.write_text("another program's")
+            return original(*args, checkpoint=checkpoint, **kwargs)
+
+        def foreign_after_first(partial):
+            checkpoint(partial)
+            if not out.read_bytes().startswith(b"another"):
+                out.write_text("another program's")
+
+        return original(*args, checkpoint=foreign_after_first, **kwargs)
+
+    monkeypatch.setattr(simulation, "simulate", meanwhile)
+    res = invoke("run", B1, "-o", out, "--t-end", "0.002", "--checkpoint-interval", "0.5 ms")
+    assert res.exit_code == 0, res.output
+    moved = tmp_path / "r-2.nc"
+    said = (
+        f"-o {out}: another program wrote that file during the run; it is kept, and the "
+        f"result went to {moved}"
+    )
+    assert said in " ".join(res.output.split()), res.output
+    assert out.read_text() == "another program's"
+    with xr.open_dataset(moved, engine="h5netcdf") as ds:
+        assert float(ds.attrs["final_time_s"]) == pytest.approx(0.002)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["r-2.nc", "r.nc"]
+
+
+def test_run_replaces_its_own_checkpoints_and_an_allowed_file(tmp_path):
+    """The run's checkpoints (every 0.5 ms, each written: --save-interval 0) replace each
+    other, and --overwrite replaces a file that was there at the start: one file, the
+    whole run, nothing beside it."""
+    out = tmp_path / "r.nc"
+    out.write_text("an earlier file")
+    res = invoke(
+        "run", B1, "-o", out, "--t-end", "0.002", "--checkpoint-interval", "0.5 ms",
+        "--save-interval", "0", "--overwrite",
+    )  # fmt: skip
+    assert res.exit_code == 0, res.output
+    assert "another program" not in res.output
+    assert [p.name for p in tmp_path.iterdir()] == ["r.nc"]
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        assert float(ds.attrs["final_time_s"]) == pytest.approx(0.002)
+
+
 # --------------------------------------------------------------------------- report, plot
 
 
@@ -336,6 +391,10 @@ def test_name_parts_over_255_bytes_and_valid_long_names(result, tmp_path):
     res = invoke("statics", B1, "-o", statics)
     assert res.exit_code == 0, res.output
     assert statics.is_file()
+    run = tmp_path / ("e" * 250 + ".nc")  # no room for NAME.tmp<pid>: a short one is taken
+    res = invoke("run", B1, "-o", run, "--t-end", "0.0005")
+    assert res.exit_code == 0, res.output
+    assert run.is_file() and not list(tmp_path.glob(".rollerdyn.tmp*"))
 
 
 @pytest.mark.parametrize(

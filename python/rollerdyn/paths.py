@@ -343,17 +343,19 @@ def process_alive(pid: int) -> bool:
 
 
 def remove_stale_temporaries(path: Path) -> list[tuple[Path, int]]:
-    """Removes the files ``PATH.tmp<pid>`` beside ``path`` (what
-    :func:`rollerdyn.simulation.write` leaves when its process is killed while writing)
-    whose process is no longer running; returns (file, pid) of each removed."""
+    """Removes the files ``PATH.tmp<pid>`` beside ``path``, and ``.rollerdyn.tmp<pid>``
+    there (:func:`temporary_path`: what :func:`rollerdyn.simulation.write` and
+    :func:`write_atomically` leave when their process is killed while writing), whose
+    process is no longer running; returns (file, pid) of each removed."""
     path = Path(path)
-    prefix = f"{path.name}.tmp"
     removed = []
-    try:
-        candidates = list(path.parent.glob(f"{_glob_escape(prefix)}*"))
-    except OSError:
-        return removed
-    for tmp in candidates:
+    candidates = []
+    for prefix in (f"{path.name}.tmp", ".rollerdyn.tmp"):
+        try:
+            candidates += [(prefix, p) for p in path.parent.glob(f"{_glob_escape(prefix)}*")]
+        except OSError:
+            pass
+    for prefix, tmp in candidates:
         digits = tmp.name[len(prefix) :]
         if not digits.isdigit() or int(digits) <= 0 or not tmp.is_file():
             continue

@@ -28,6 +28,7 @@ import threading
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import xarray as xr
@@ -1071,7 +1072,7 @@ COMPRESS_FROM = 64 * 1024
 _WRITE_LOCK = threading.Lock()
 
 
-def _check_free_space(ds: xr.Dataset, path: str) -> None:
+def _check_free_space(ds: xr.Dataset, path: str | Path) -> None:
     """Raises OSError (ENOSPC) if the disk of ``path`` has less room than the dataset's
     uncompressed size and 256 KiB: HDF5 that runs out of space while writing prints
     tracebacks it cannot raise and can crash the process (seen with a full tmpfs)."""
@@ -1093,46 +1094,104 @@ def _check_free_space(ds: xr.Dataset, path: str) -> None:
 SAVE_INTERVAL = 10.0
 
 
-class CheckpointSaver:
-    """Writes a run's checkpoints to ``path`` (uncompressed, atomically: :func:`write`):
-    the first at once, a later one only once ``every`` seconds of wall time (``clock``)
-    have passed since the end of the last write; ``every`` = 0 writes each. A write costs
-    about the same whatever the data, h5netcdf's creation of the result's variables
-    (0.3–0.5 s for B1's on this machine): at every one of B1's 13 checkpoints, about a
-    tenth of the run. After kill -9 the file holds the run up to the last checkpoint
-    written, so at most ``every`` plus one checkpoint interval of work is lost; an
-    interruption or error that Python sees writes everything anyway. ``writes`` counts
-    the writes."""
+class ResultFile:
+    """The file a run writes again and again (its checkpoints, then the whole result):
+    each write goes through a temporary file and replaces only the file this object wrote
+    last, as it left it, or at first an existing file at ``path`` if ``replace_existing``
+    (``rollerdyn run --overwrite``, or ``--resume`` in place). A file that another program
+    (or a second rollerdyn) put there or changed meanwhile is kept, and the result goes to
+    the first free name
+    beside it, ``NAME-2.nc``, ``NAME-3.nc``, ... (:func:`rollerdyn.paths.place_file`);
+    ``path`` then names it, and later writes go there."""
 
-    def __init__(self, path, every: float = SAVE_INTERVAL, clock=time.monotonic):
+    def __init__(self, path, replace_existing: bool = True):
+        self.path = Path(path)
+        self._own = _file_identity(self.path) if replace_existing else None
+
+    def _is_own(self, path: Path) -> bool:
+        return self._own is not None and _file_identity(path) == self._own
+
+    def write(self, ds: xr.Dataset, compress: bool = True) -> Path:
+        """Writes ``ds`` (:func:`write`); returns the file written."""
+        self.path = write(ds, self.path, compress, replace=self._is_own)
+        self._own = _file_identity(self.path)
+        return self.path
+
+
+def _file_identity(path: Path) -> tuple[int, ...] | None:
+    """What tells the file ``path`` names from any other and from itself rewritten: its
+    device, inode, size and time of last change, not following a symbolic link; None if
+    there is none."""
+    try:
+        st = os.lstat(path)
+    except (OSError, ValueError):
+        return None
+    return (st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns)
+
+
+class CheckpointSaver:
+    """Writes a run's checkpoints to ``path`` (uncompressed, atomically, each replacing
+    only the checkpoint before it: :class:`ResultFile`, which ``file`` is; an existing file
+    at ``path`` is replaced if ``replace_existing``): the first at once, a later one only
+    once ``every`` seconds of wall time (``clock``) have passed since the end of the last
+    write; ``every`` = 0 writes each. A write costs about the same whatever the data,
+    h5netcdf's creation of the result's variables (0.3–0.5 s for B1's on this machine): at
+    every one of B1's 13 checkpoints, about a tenth of the run. After kill -9 the file
+    holds the run up to the last checkpoint written, so at most ``every`` plus one
+    checkpoint interval of work is lost; an interruption or error that Python sees writes
+    everything anyway. ``writes`` counts the writes."""
+
+    def __init__(
+        self,
+        path,
+        every: float = SAVE_INTERVAL,
+        clock=time.monotonic,
+        replace_existing: bool = True,
+    ):
         if not (math.isfinite(every) and every >= 0.0):
             raise ValueError(f"save interval = {every!r}: must be a time of at least 0 s")
-        self.path, self.every, self.clock = path, every, clock
+        self.file = ResultFile(path, replace_existing)
+        self.every, self.clock = every, clock
         self.last: float | None = None
         self.writes = 0
+
+    @property
+    def path(self) -> Path:
+        """The file the checkpoints go to (another name if a foreign file took ``path``)."""
+        return self.file.path
 
     def __call__(self, ds: xr.Dataset) -> bool:
         """Writes ``ds`` if it is due; True if it was written."""
         if self.last is not None and self.clock() - self.last < self.every:
             return False
-        write(ds, self.path, compress=False)  # the final write compresses
+        self.file.write(ds, compress=False)  # the final write compresses
         self.last = self.clock()
         self.writes += 1
         return True
 
 
-def write(ds: xr.Dataset, path, compress: bool = True) -> None:
+def write(
+    ds: xr.Dataset,
+    path,
+    compress: bool = True,
+    replace: bool | Callable[[Path], bool] = True,
+) -> Path:
     """Writes a result to netCDF (h5netcdf engine) atomically: to a temporary file beside
-    ``path``, then renamed over it, so that ``path`` always holds a complete file (the
-    previous checkpoint's, if the process is killed while writing). Numeric arrays of at
-    least :data:`COMPRESS_FROM` bytes are compressed without loss (:data:`COMPRESSION`);
-    values read back are bit for bit the ones written. ``compress=False`` for the
-    checkpoints a run writes as it goes (B1 writes 13: compressing each would add about
-    1.5 s to a 40 s run); the final file is compressed."""
+    ``path`` (:func:`rollerdyn.paths.temporary_path`), then renamed over it, so that
+    ``path`` always holds a complete file (the previous checkpoint's, if the process is
+    killed while writing). ``replace``: whether a file at ``path`` may be replaced, or a
+    function of the path that says so at the rename; a file that may not is kept and the
+    result goes to ``NAME-2.nc`` (:func:`rollerdyn.paths.place_file`). Returns the file
+    written. Numeric arrays of at least :data:`COMPRESS_FROM` bytes are compressed without
+    loss (:data:`COMPRESSION`); values read back are bit for bit the ones written.
+    ``compress=False`` for the checkpoints a run writes as it goes (B1 writes 13:
+    compressing each would add about 1.5 s to a 40 s run); the final file is compressed."""
     import dask
 
-    path = os.fspath(path)
-    tmp = f"{path}.tmp{os.getpid()}"
+    from .paths import place_file, temporary_path
+
+    path = Path(os.fspath(path))
+    tmp = temporary_path(path)
     _check_free_space(ds, path)
     # Every variable's encoding set here: one read back from a file would keep that file's
     # (its compression, chunks) otherwise.
@@ -1151,7 +1210,7 @@ def write(ds: xr.Dataset, path, compress: bool = True) -> None:
         # threads) from restoring each other's setting out of order.
         with _WRITE_LOCK, dask.config.set(scheduler="synchronous"):
             ds.to_netcdf(tmp, engine="h5netcdf", encoding=encoding)
-        os.replace(tmp, path)
+        return place_file(tmp, path, replace)
     finally:
         if os.path.exists(tmp):
             os.remove(tmp)

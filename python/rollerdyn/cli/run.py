@@ -152,8 +152,9 @@ def run(
     The result file is also written at checkpoints (every --checkpoint-interval of
     simulated time, by default solver.checkpoint_interval, 100 ms; atomically; at most one
     every --save-interval of wall time, 10 s), so after kill -9 or a crash it holds the run
-    up to the last checkpoint written, and --resume finishes the run. Bad input exits with
-    status 2 before any work.
+    up to the last checkpoint written, and --resume finishes the run. A file that another
+    program writes under that name during the run is kept: the run's file then goes to
+    NAME-2.nc, and the command says so. Bad input exits with status 2 before any work.
     """
     check_detector(detector)
     interval = time_option("--checkpoint-interval", checkpoint_interval)
@@ -164,10 +165,10 @@ def run(
     # after the input checks: a bad option or file is refused before xarray and the
     # simulation's other libraries load (about 0.6 s)
     from ..notes import configuration_notes, detector_note
-    from ..simulation import CheckpointSaver, SimulationError, resume_state, simulate, write
+    from ..simulation import CheckpointSaver, SimulationError, resume_state, simulate
 
     end = cfg.end_time if end is None else end
-    _check_run_output(output, config, resume, overwrite)
+    replace_existing = _check_run_output(output, config, resume, overwrite)
     previous = None if resume is None else _open_resume(resume, end)
     if interval is None and previous is not None:
         interval = _earlier_interval(previous, resume)
@@ -183,7 +184,10 @@ def run(
         say(f"removed {tmp}: a temporary file of process {pid}, which no longer runs")
     t_start = 0.0 if previous is None else float(resume_state(previous)[0])
     unsaved: list[OSError] = []  # a checkpoint that could not be written stops the run
-    saver = CheckpointSaver(output, save_every)
+    # the checkpoints and the result replace only the file this run wrote last (or the
+    # one --overwrite / --resume allowed at the start): never one that another program
+    # wrote meanwhile
+    saver = CheckpointSaver(output, save_every, replace_existing=replace_existing)
 
     def checkpoint(partial) -> None:
         try:
@@ -195,7 +199,7 @@ def run(
     terminated: list[int] = []
 
     def crawl_notice(note: str) -> None:
-        modes = f"rollerdyn modes {output} (also after Ctrl-C, which keeps the result)"
+        modes = f"rollerdyn modes {saver.path} (also after Ctrl-C, which keeps the result)"
         say(f"note: {note}. For this run: {modes}", "yellow")
 
     with _run_progress(cfg.name, t_start, end) as show:
@@ -232,13 +236,18 @@ def run(
     late: list[int] = []
     try:
         with _signals_deferred(late):
-            write(ds, output)
+            written = saver.file.write(ds)
     except OSError as err:
         raise refuse(f"-o {output}: could not write the result ({err})", 1) from None
-    say(_run_line(output, ds))
+    if written != output:
+        error(
+            f"-o {output}: another program wrote that file during the run; it is kept, "
+            f"and the result went to {written}"
+        )
+    say(_run_line(written, ds))
     if status and ds.sizes.get("time", 0) > 0:
         say(
-            f"if its steps were small: rollerdyn modes {output} names the modes "
+            f"if its steps were small: rollerdyn modes {written} names the modes "
             "that grow at its last state"
         )
     if late and not status:
@@ -271,9 +280,10 @@ def _stop_status(message: str) -> int:
     return 130 if "KeyboardInterrupt" in message else 1
 
 
-def _check_run_output(output: Path, config: Path, resume: Path | None, overwrite: bool) -> None:
+def _check_run_output(output: Path, config: Path, resume: Path | None, overwrite: bool) -> bool:
     """Exits with status 2 unless ``run`` may write ``output`` (see :mod:`rollerdyn.paths`):
-    an existing file only with --overwrite or as the --resume file."""
+    an existing file only with --overwrite or as the --resume file. Returns whether a file
+    there may be replaced."""
     from ..paths import same_file
 
     in_place = resume is not None and same_file(output, resume)
@@ -284,7 +294,9 @@ def _check_run_output(output: Path, config: Path, resume: Path | None, overwrite
         inputs=[("the configuration file", config)],
         overwrite=overwrite or in_place,
         hint="; pass --overwrite to replace it, or --resume with the same file to continue its run",
+        reserve=0,  # simulation.write's temporary file keeps its name short
     )
+    return overwrite or in_place
 
 
 def _earlier_interval(previous, resume: Path) -> float | None:
