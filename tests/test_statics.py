@@ -839,3 +839,35 @@ def test_cli_validates_the_bearing_with_the_load_case_it_solves():
         )
         assert swept.exit_code == 0, swept.output
         assert "quasi-static sweep: 4 cases" in swept.output or "3 cases" in swept.output
+
+
+def test_the_point_law_gives_no_friction_where_its_ends_lie_on_their_faces():
+    """Past the tilt at which B1's nearly flat roller end lies on the flange, the point
+    law's contact jumps across the face and rim (the dynamic run is refused there, core
+    ``check_point_law``), and its friction of steady rolling was no estimate: B1 at 5 kN
+    gave 0.46, 0.17 and 0.14 N*m at 1.9, 1.95 and 2 kN axially against the distributed
+    law's 0.59 at 2 kN. Where the most loaded end touches with its end sphere (SP-*) the
+    friction outputs are NaN and ``friction_note`` says why and names the remedy; the
+    equilibrium's loads stay. At 1 kN (TO-CO) and with the distributed law at 2 kN there
+    is an estimate and no note. In a sweep the note is per case."""
+    on_face = statics(B1, axial_load=2000.0)
+    assert str(on_face.max_flange_force_pairing.values).startswith("SP")
+    note = str(on_face.friction_note.values)
+    assert "lies on its end face (SP-TO(rim))" in note and "flange_law" in note
+    for name in ("friction_torque", "friction_power", "roller_slip", "roller_skew"):
+        assert np.isnan(on_face[name].values).all(), name
+    assert np.isnan(on_face.flange_contact_offset.values).all()
+    assert float(on_face.max_roller_load) > 1000.0
+    distributed = statics(variant(**{"surfaces.flange_law": "distributed"}), axial_load=2000.0)
+    at_1kn = statics(B1, axial_load=1000.0)
+    for ds in (distributed, at_1kn):
+        assert str(ds.friction_note.values) == ""
+        assert math.isfinite(float(ds.friction_torque))
+    sweep = statics_sweep(B1, {"operating.axial_load": [1000.0, 2000.0]}, stiffness=False)
+    assert [bool(v) for v in sweep.friction_note.values] == [False, True]
+    assert np.isfinite(sweep.friction_torque.values).tolist() == [True, False]
+    res = CliRunner().invoke(app, ["statics", str(B1), "--set", "operating.axial_load=2000 N"])
+    assert res.exit_code == 0, res.output
+    assert "n/a: the point law's most loaded roller end lies on its end face" in " ".join(
+        res.output.split()
+    )

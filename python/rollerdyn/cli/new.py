@@ -199,5 +199,9 @@ def _print_statics(cfg) -> None:
         f"{float(ds.max_roller_load):.4g} N, C_r {float(ds.dynamic_load_rating):.4g} N, "
         f"C_0r {float(ds.static_load_rating):.4g} N, L_10r {float(ds.l10r):.4g} 1e6 rev, "
         "friction torque "
-        + (f"{torque:.4g} N*m" if math.isfinite(torque) else "n/a (no relative speed)")
+        + (
+            f"{torque:.4g} N*m"
+            if math.isfinite(torque)
+            else f"n/a ({str(ds.friction_note.values) or 'no relative speed'})"
+        )
     )

@@ -497,6 +497,10 @@ def _print_sweep(ds) -> None:
     if ds.attrs["failed_cases"]:
         first = next(e for e in ds.error.values if e)
         say(f"{ds.attrs['failed_cases']} cases without equilibrium (NaN); the first: {first}")
+    notes = [str(v) for v in ds["friction_note"].values if v] if "friction_note" in ds else []
+    if notes:
+        cases = f"{len(notes)} case" + ("s" if len(notes) != 1 else "")
+        say(f"{cases} without friction estimate (NaN): {notes[0]}", "yellow")
 
 
 def _cell(value) -> str:
@@ -544,6 +548,8 @@ def _skew_text(ds) -> str:
 def _by_load(ds, values, scale: float, unit: str) -> str:
     """The range of a per-roller value of steady rolling over the rollers that carry at
     least a tenth of the heaviest roller's load at the inner race, and over the others."""
+    if _friction_note(ds):
+        return "n/a (friction of steady rolling, above)"
     if not math.isfinite(float(ds.friction_torque)):
         return "n/a without relative speed"
     value = np.asarray(values.values, dtype=float) * scale
@@ -555,6 +561,11 @@ def _by_load(ds, values, scale: float, unit: str) -> str:
             low, high = value[rows].min(), value[rows].max()
             parts.append(f"{name} {low:.3g} ... {high:.3g} {unit}")
     return ", ".join(parts)
+
+
+def _friction_note(ds) -> str:
+    """Why the dataset has no friction of steady rolling (``friction_note``), or ""."""
+    return str(ds["friction_note"].values) if "friction_note" in ds else ""
 
 
 def _train_text(ds) -> str:
@@ -582,6 +593,8 @@ def _friction_text(ds) -> str:
     inner, outer = float(ds.speed_applied), float(ds.get("outer_speed_applied", 0.0))
     if inner == outer == 0.0:
         return "n/a at rest"
+    if _friction_note(ds):
+        return f"n/a: {_friction_note(ds)}"
     if not math.isfinite(float(ds.friction_torque)):
         return (
             f"n/a: the rings turn together (relative speed {abs(inner - outer):.3g} rad/s, "

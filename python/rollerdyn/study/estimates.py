@@ -23,7 +23,8 @@ def steady_rolling_torques(cfg: Any, axes: Sequence[Sequence[float]]) -> list[fl
     """The friction torque of steady rolling [N*m] at every point of the map's grid
     ``axes`` (speeds [rad/s] of the turning ring, radial and axial loads [N], oil
     temperatures [K]; the points in the map's order, the temperature fastest), NaN where
-    the statics find no equilibrium. ``cfg``: the map's configuration (its flange law,
+    the statics find no equilibrium or give no friction estimate (their ``friction_note``:
+    the point law's roller ends on their faces). ``cfg``: the map's configuration (its flange law,
     tilt and the rest as the points have them)."""
     from ..statics import StaticsError, statics_sweep
     from .maps import turning_ring
