@@ -863,6 +863,11 @@ def test_the_point_law_gives_no_friction_where_its_ends_lie_on_their_faces():
     for ds in (distributed, at_1kn):
         assert str(ds.friction_note.values) == ""
         assert math.isfinite(float(ds.friction_torque))
+    # at rest and with the rings turning together there is no torque with any law: no
+    # note, and no advice to change the law
+    for kwargs in ({"speed": 0.0}, {"outer_speed": 500 * math.pi / 30}):
+        still = statics(B1, axial_load=2000.0, **kwargs)
+        assert str(still.friction_note.values) == "" and math.isnan(float(still.friction_torque))
     sweep = statics_sweep(B1, {"operating.axial_load": [1000.0, 2000.0]}, stiffness=False)
     assert [bool(v) for v in sweep.friction_note.values] == [False, True]
     assert np.isfinite(sweep.friction_torque.values).tolist() == [True, False]

@@ -748,7 +748,7 @@ def _case_variables(
         "",
     )
     friction_note = _point_law_friction_note(
-        cfg, str(pairing.flat[heaviest]) if heaviest is not None else ""
+        cfg, case, str(pairing.flat[heaviest]) if heaviest is not None else ""
     )
     if friction_note:  # no estimate: the steady rolling's outputs are NaN
         r = {
@@ -1064,10 +1064,14 @@ POINT_LAW_ON_THE_FACE = (
 )
 
 
-def _point_law_friction_note(cfg: BearingConfig, pairing: str) -> str:
+def _point_law_friction_note(cfg: BearingConfig, case: StaticCase, pairing: str) -> str:
     """Why the friction of steady rolling is not estimated (:data:`POINT_LAW_ON_THE_FACE`),
-    or "": with the point law, the largest flange force's ``pairing`` on the end sphere."""
+    or "": with the point law, the largest flange force's ``pairing`` on the end sphere,
+    where the rings turn relative to each other (at rest and where they turn together
+    there is no torque to estimate with any law: :func:`_friction_torque`)."""
     if cfg.surfaces.flange_law != "point" or not pairing.startswith("SP"):
+        return ""
+    if math.isnan(_friction_torque([1.0], case)):
         return ""
     return POINT_LAW_ON_THE_FACE.format(pairing=pairing)
 

@@ -4,6 +4,7 @@ friction of steady rolling over a sweep."""
 
 from __future__ import annotations
 
+import textwrap
 from pathlib import Path
 
 import numpy as np
@@ -39,7 +40,8 @@ def draw(ds: xr.Dataset, path: Path) -> None:
             title=f"heaviest roller ({heaviest}): contact pressure by slice",
         )
         b.legend()
-        _draw_slip(c, azimuth[order], ds.roller_slip.values[order])
+        note = str(ds["friction_note"].values) if "friction_note" in ds else ""
+        _draw_slip(c, azimuth[order], ds.roller_slip.values[order], note)
     else:
         fig = _draw_sweep(plt, ds)
     fig.tight_layout()
@@ -47,10 +49,16 @@ def draw(ds: xr.Dataset, path: Path) -> None:
     plt.close(fig)
 
 
-def _draw_slip(ax, azimuth: np.ndarray, slip: np.ndarray) -> None:
+def _draw_slip(ax, azimuth: np.ndarray, slip: np.ndarray, note: str = "") -> None:
     """The rollers' slip in steady rolling [%] over their azimuth from the radial load,
     on a symmetric log scale (the loaded rollers' fractions of a per cent beside the
-    unloaded ones' tens)."""
+    unloaded ones' tens); where there is none, why (``note``, or no relative speed)."""
+    if not np.isfinite(slip).any():
+        why = note.split(":")[0] if note else "no relative speed between the rings"
+        text = "\n".join(textwrap.wrap(f"n/a: {why}", 40))
+        ax.text(0.5, 0.5, text, ha="center", va="center", transform=ax.transAxes)
+        ax.set(title="steady rolling: where the rollers slip", xticks=[], yticks=[])
+        return
     ax.plot(azimuth, slip * 100.0, "o-")
     ax.axhline(0.0, color="0.6", lw=0.8)
     ax.set_yscale("symlog", linthresh=0.1)

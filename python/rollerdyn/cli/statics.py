@@ -496,7 +496,9 @@ def _print_sweep(ds) -> None:
         say(f"(5 of the {n} cases shown; -o writes them all)")
     if ds.attrs["failed_cases"]:
         first = next(e for e in ds.error.values if e)
-        say(f"{ds.attrs['failed_cases']} cases without equilibrium (NaN); the first: {first}")
+        failed = int(ds.attrs["failed_cases"])
+        cases = f"{failed} case" + ("s" if failed != 1 else "")
+        say(f"{cases} without equilibrium (NaN); the first: {first}")
     notes = [str(v) for v in ds["friction_note"].values if v] if "friction_note" in ds else []
     if notes:
         cases = f"{len(notes)} case" + ("s" if len(notes) != 1 else "")
@@ -577,9 +579,10 @@ def _train_text(ds) -> str:
     i = int(np.argmax(force))
     psi = float(ds.roller_azimuth[i]) % 360
     power = float(ds.friction_power.sel(friction_part="roller pairs"))
+    friction = f"{power:.4g} W" if math.isfinite(power) else "n/a (above)"
     return (
         f"largest {force[i]:.4g} N (rollers {i} and {(i + 1) % z}, from {psi:.1f} deg), "
-        f"friction {power:.4g} W"
+        f"friction {friction}"
     )
 
 
