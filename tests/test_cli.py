@@ -492,6 +492,67 @@ def test_ctrl_c_while_the_result_is_written_loses_nothing(tmp_path, monkeypatch)
         assert float(ds.time[-1]) == pytest.approx(4e-4, abs=1e-15)
 
 
+@pytest.mark.parametrize(("signame", "status"), [("SIGINT", 130), ("SIGTERM", 143)])
+def test_a_signal_after_the_last_progress_report_loses_nothing(
+    tmp_path, monkeypatch, signame, status
+):
+    """Ctrl-C or SIGTERM that comes after the run's last progress report, before its
+    result is written (the adversarial review: Ctrl-C there lost the whole run, SIGTERM
+    was ignored and the command exited 0): the result is written whole, one line says
+    what happened, and the exit status is the signal's."""
+    import os
+    import signal
+
+    import xarray as xr
+
+    import rollerdyn.simulation
+
+    real_simulate = rollerdyn.simulation.simulate
+
+    def signalled_at_the_end(*args, **kwargs):
+        ds = real_simulate(*args, **kwargs)
+        os.kill(os.getpid(), getattr(signal, signame))
+        return ds
+
+    monkeypatch.setattr(rollerdyn.simulation, "simulate", signalled_at_the_end)
+    out = tmp_path / "end.nc"
+    result = RUNNER.invoke(app, ["run", str(B1), "-o", str(out), "--t-end", "0.0004"])
+    assert result.exit_code == status, result.output
+    assert "run ended, then interrupted; the result is whole" in result.output
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        assert float(ds.time[-1]) == pytest.approx(4e-4, abs=1e-15)
+
+
+def test_a_result_that_cannot_be_written_is_kept_elsewhere(tmp_path, monkeypatch):
+    """The final write fails (a full disk, a folder gone): the result is kept in the
+    system's temporary folder, one line names both files, exit status 1."""
+    import os
+    import re
+
+    import xarray as xr
+
+    import rollerdyn.paths
+
+    real = rollerdyn.paths.write_atomically
+
+    def failing(path, data, replace=False):
+        if os.path.basename(path) == "full.nc":  # B1's 10 ms checkpoints: none in 0.4 ms
+            raise OSError(28, "No space left on device")
+        return real(path, data, replace)
+
+    monkeypatch.setattr(rollerdyn.paths, "write_atomically", failing)
+    out = tmp_path / "full.nc"
+    result = RUNNER.invoke(app, ["run", str(B1), "-o", str(out), "--t-end", "0.0004"])
+    assert result.exit_code == 1, result.output
+    text = " ".join(result.output.split())
+    assert f"-o {out}: could not write the result (No space left on device)" in text, text
+    kept = re.search(r"the result was kept in (\S+\.nc)", text)
+    assert kept, text
+    with xr.open_dataset(kept.group(1), engine="h5netcdf") as ds:
+        assert float(ds.time[-1]) == pytest.approx(4e-4, abs=1e-15)
+    os.remove(kept.group(1))
+
+
 def test_run_checkpoint_interval_option(tmp_path):
     """`run --checkpoint-interval SECONDS` overrides solver.checkpoint_interval (10 ms in
     B1, so a 0.4 ms run would have no checkpoint); --resume keeps the earlier run's

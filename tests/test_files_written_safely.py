@@ -191,15 +191,23 @@ def test_statics_keeps_a_file_another_program_created_meanwhile(tmp_path, monkey
     assert "inner_race_load" in xr.open_dataset(tmp_path / "st-2.nc", engine="h5netcdf")
 
 
-@pytest.mark.parametrize("when", ["before the first checkpoint", "after a checkpoint"])
-def test_run_keeps_a_file_another_program_wrote_during_the_run(tmp_path, monkeypatch, when):
+@pytest.mark.parametrize(
+    ("when", "name"),
+    [
+        ("before the first checkpoint", "r"),
+        ("after a checkpoint", "r"),
+        ("after a checkpoint", "e" * 251),  # 254 bytes: NAME-2.nc shortens the stem
+    ],
+)
+def test_run_keeps_a_file_another_program_wrote_during_the_run(tmp_path, monkeypatch, when, name):
     """``rollerdyn run -o``: the output did not exist when the command checked it, and
     another program wrote it during the run, before the run's first checkpoint or over
-    one of them: its file is kept, the run's checkpoints and result go to ``r-2.nc``
-    (said in one line), which holds the whole run."""
+    one of them: its file is kept, the run's checkpoints and result go to ``NAME-2.nc``
+    (said in one line as it happens), which holds the whole run; for a name of 254 bytes
+    the stem is shortened so that the new name fits in 255."""
     from rollerdyn import simulation
 
-    out = tmp_path / "r.nc"
+    out = tmp_path / f"{name}.nc"
     original = simulation.simulate
 
     def meanwhile(*args, checkpoint=None, **kwargs):
@@ -217,16 +225,16 @@ def test_run_keeps_a_file_another_program_wrote_during_the_run(tmp_path, monkeyp
     monkeypatch.setattr(simulation, "simulate", meanwhile)
     res = invoke("run", B1, "-o", out, "--t-end", "0.002", "--checkpoint-interval", "0.5 ms")
     assert res.exit_code == 0, res.output
-    moved = tmp_path / "r-2.nc"
+    moved = tmp_path / f"{name[: 255 - len('-2.nc')]}-2.nc"
     said = (
-        f"-o {out}: another program wrote that file during the run; it is kept, and the "
-        f"result went to {moved}"
+        f"-o {out}: another program put a file there during the run; it is kept, and this "
+        f"run's checkpoints and result go to {moved}"
     )
     assert said in " ".join(res.output.split()), res.output
     assert out.read_text() == "another program's"
     with xr.open_dataset(moved, engine="h5netcdf") as ds:
         assert float(ds.attrs["final_time_s"]) == pytest.approx(0.002)
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["r-2.nc", "r.nc"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted([moved.name, out.name])
 
 
 def test_run_replaces_its_own_checkpoints_and_an_allowed_file(tmp_path):

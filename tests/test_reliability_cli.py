@@ -431,15 +431,18 @@ def test_force_reaches_simulate_and_a_failed_write_is_one_line(tmp_path, result,
     invoke("run", B1, "-o", tmp_path / "a.nc", "--force", code=0, says=("wrote",))
     assert seen == [False, True]
 
-    def failing(ds, path, **options):
+    def failing(ds, path, compress=True, replace=True):
         raise OSError(28, "No space left on device")
 
     monkeypatch.setattr(simulation, "write", failing)
     res = invoke("run", B1, "-o", tmp_path / "b.nc", "--force", code=1)
-    assert one_line_saying(res.output, "-o", "could not write", "No space").strip() == (
-        res.output.strip()
-    )
+    line = one_line_saying(res.output, "-o", "could not write", "No space", "kept in")
+    assert line.strip() == res.output.strip()
     assert not (tmp_path / "b.nc").exists()
+    kept = Path(line.split("the result was kept in ")[1].strip())
+    with xr.open_dataset(kept, engine="h5netcdf") as back:  # nothing computed is lost
+        assert back.sizes == ds.sizes
+    kept.unlink()
 
 
 def test_no_markup_left_in_the_commands():

@@ -613,7 +613,7 @@ def test_cli_prints_the_equilibrium_and_refuses_bad_options(tmp_path):
     sweep = ["statics", str(B1), "--set", "operating.radial_load=5000,0,3000", "-o", str(swept)]
     partly = runner.invoke(app, sweep)
     assert partly.exit_code == 1, partly.output
-    assert "1 cases without equilibrium" in partly.output and swept.is_file()
+    assert "1 case without equilibrium" in partly.output and swept.is_file()
 
 
 def test_the_traction_table_does_not_enter_the_equilibrium(b1):

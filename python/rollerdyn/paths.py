@@ -249,8 +249,31 @@ def temporary_path(path: Path) -> Path:
 
 
 def _free_name(path: Path, number: int) -> Path:
-    """``path`` with ``-number`` before its extension: ``out/s-2.nc``."""
-    return path.with_name(f"{path.stem}-{number}{path.suffix}")
+    """``path`` with ``-number`` before its extension: ``out/s-2.nc``; the stem shortened
+    (by whole characters) where the name would be longer than :data:`NAME_MAX` bytes."""
+    stem, tail = path.stem, f"-{number}{path.suffix}"
+    while stem and len(os.fsencode(stem + tail)) > NAME_MAX:
+        stem = stem[:-1]
+    return path.with_name(stem + tail)
+
+
+def keep_elsewhere(data: bytes | memoryview, prefix: str, suffix: str = ".nc") -> str:
+    """Writes ``data`` (a result that could not be written where asked) to a new file in
+    the system's temporary folder (another disk than the output's, often); says where, or
+    that it is lost."""
+    import tempfile
+
+    try:
+        handle, name = tempfile.mkstemp(prefix=prefix, suffix=suffix)
+    except OSError as err:
+        return f"the result could not be kept elsewhere either ({err.strerror or err}): it is lost"
+    try:
+        with os.fdopen(handle, "wb") as f:
+            f.write(data)
+    except OSError as err:
+        Path(name).unlink(missing_ok=True)
+        return f"the result could not be kept elsewhere either ({err.strerror or err}): it is lost"
+    return f"the result was kept in {name}"
 
 
 def _link_new(source: Path, target: Path) -> bool:

@@ -788,10 +788,11 @@ def simulate(
     _stamp_forced(ds, forced)
     _stamp_crawl(ds, crawl.note, resume)
     if "interruption" in raw:
-        # "KeyboardInterrupt: " (Ctrl-C carries no message) reads as an unfinished sentence
+        # the interruption's own words ("terminated by SIGTERM", "Ctrl-C" from the CLI),
+        # or Ctrl-C for Python's bare KeyboardInterrupt
         cause = raw["interruption"].strip().removesuffix(":")
-        if cause == "KeyboardInterrupt":
-            cause = "KeyboardInterrupt (Ctrl-C)"
+        if cause.startswith("KeyboardInterrupt"):
+            cause = cause.removeprefix("KeyboardInterrupt").lstrip(": ") or "Ctrl-C"
         ds.attrs["error"] = f"interrupted at t = {raw['final_time']:.6g} s: {cause}"
         if raw["interruption"].startswith("KeyboardInterrupt"):
             raise SimulationInterrupted(ds.attrs["error"], ds)
@@ -1102,20 +1103,29 @@ class ResultFile:
     (or a second rollerdyn) put there or changed meanwhile is kept, and the result goes to
     the first free name
     beside it, ``NAME-2.nc``, ``NAME-3.nc``, ... (:func:`rollerdyn.paths.place_file`);
-    ``path`` then names it, and later writes go there."""
+    ``path`` then names it, later writes go there, and ``moved`` (if given) is told the
+    old and the new file at once."""
 
-    def __init__(self, path, replace_existing: bool = True):
+    def __init__(
+        self,
+        path,
+        replace_existing: bool = True,
+        moved: Callable[[Path, Path], None] | None = None,
+    ):
         self.path = Path(path)
         self._own = _file_identity(self.path) if replace_existing else None
+        self._moved = moved
 
     def _is_own(self, path: Path) -> bool:
         return self._own is not None and _file_identity(path) == self._own
 
     def write(self, ds: xr.Dataset, compress: bool = True) -> Path:
         """Writes ``ds`` (:func:`write`); returns the file written."""
-        self.path = write(ds, self.path, compress, replace=self._is_own)
-        self._own = _file_identity(self.path)
-        return self.path
+        written = write(ds, self.path, compress, replace=self._is_own)
+        if written != self.path and self._moved is not None:
+            self._moved(self.path, written)
+        self.path, self._own = written, _file_identity(written)
+        return written
 
 
 def _file_identity(path: Path) -> tuple[int, ...] | None:
@@ -1130,14 +1140,14 @@ def _file_identity(path: Path) -> tuple[int, ...] | None:
 
 
 class CheckpointSaver:
-    """Writes a run's checkpoints to ``path`` (uncompressed, atomically, each replacing
-    only the checkpoint before it: :class:`ResultFile`, which ``file`` is; an existing file
-    at ``path`` is replaced if ``replace_existing``): the first at once, a later one only
-    once ``every`` seconds of wall time (``clock``) have passed since the end of the last
-    write; ``every`` = 0 writes each. A write costs about the same whatever the data,
-    h5netcdf's creation of the result's variables (0.3–0.5 s for B1's on this machine): at
-    every one of B1's 13 checkpoints, about a tenth of the run. After kill -9 the file
-    holds the run up to the last checkpoint written, so at most ``every`` plus one
+    """Writes a run's checkpoints to ``path`` (uncompressed, atomically, each replacing only
+    the checkpoint before it: :class:`ResultFile`, which ``file`` is; an existing file at
+    ``path`` is replaced if ``replace_existing``; ``moved`` as there): the first at once, a
+    later one only once ``every`` seconds of wall time (``clock``) have passed since the end
+    of the last write; ``every`` = 0 writes each. A write costs about the same whatever the
+    data, h5netcdf's creation of the result's variables (0.3–0.5 s for B1's on this
+    machine): at every one of B1's 13 checkpoints, about a tenth of the run. After kill -9
+    the file holds the run up to the last checkpoint written, so at most ``every`` plus one
     checkpoint interval of work is lost; an interruption or error that Python sees writes
     everything anyway. ``writes`` counts the writes."""
 
@@ -1147,10 +1157,11 @@ class CheckpointSaver:
         every: float = SAVE_INTERVAL,
         clock=time.monotonic,
         replace_existing: bool = True,
+        moved: Callable[[Path, Path], None] | None = None,
     ):
         if not (math.isfinite(every) and every >= 0.0):
             raise ValueError(f"save interval = {every!r}: must be a time of at least 0 s")
-        self.file = ResultFile(path, replace_existing)
+        self.file = ResultFile(path, replace_existing, moved)
         self.every, self.clock = every, clock
         self.last: float | None = None
         self.writes = 0
@@ -1176,23 +1187,35 @@ def write(
     compress: bool = True,
     replace: bool | Callable[[Path], bool] = True,
 ) -> Path:
-    """Writes a result to netCDF (h5netcdf engine) atomically: to a temporary file beside
-    ``path`` (:func:`rollerdyn.paths.temporary_path`), then renamed over it, so that
-    ``path`` always holds a complete file (the previous checkpoint's, if the process is
-    killed while writing). ``replace``: whether a file at ``path`` may be replaced, or a
-    function of the path that says so at the rename; a file that may not is kept and the
-    result goes to ``NAME-2.nc`` (:func:`rollerdyn.paths.place_file`). Returns the file
-    written. Numeric arrays of at least :data:`COMPRESS_FROM` bytes are compressed without
-    loss (:data:`COMPRESSION`); values read back are bit for bit the ones written.
-    ``compress=False`` for the checkpoints a run writes as it goes (B1 writes 13:
-    compressing each would add about 1.5 s to a 40 s run); the final file is compressed."""
-    import dask
-
-    from .paths import place_file, temporary_path
+    """Writes a result to netCDF (h5netcdf engine) atomically: encoded in memory
+    (:func:`encode`), written to a temporary file beside ``path``
+    (:func:`rollerdyn.paths.temporary_path`) and flushed to the disk, then renamed over it
+    (:func:`rollerdyn.paths.write_atomically`), so that ``path`` always holds a complete
+    file (the previous checkpoint's, if the process is killed while writing), and a disk
+    that fills meanwhile raises ``OSError`` (HDF5 writing a file itself then printed
+    tracebacks and could crash the process). ``replace``: whether a file at ``path`` may be
+    replaced, or a function of the path that says so at the rename; a file that may not is
+    kept and the result goes to ``NAME-2.nc`` (:func:`rollerdyn.paths.place_file`). Returns
+    the file written. ``compress=False`` for the checkpoints a run writes as it goes (B1
+    writes 13: compressing each would add about 1.5 s to a 40 s run); the final file is
+    compressed."""
+    from .paths import write_atomically
 
     path = Path(os.fspath(path))
-    tmp = temporary_path(path)
     _check_free_space(ds, path)
+    return write_atomically(path, encode(ds, compress), replace)
+
+
+def encode(ds: xr.Dataset, compress: bool = True) -> memoryview:
+    """A result as the bytes of a netCDF file (h5netcdf engine), encoded in memory. Numeric
+    arrays of at least :data:`COMPRESS_FROM` bytes are compressed without loss
+    (:data:`COMPRESSION`) if ``compress``; values read back are bit for bit the ones
+    written. Raises what h5py raises for data it cannot encode (``RuntimeError``,
+    ``ValueError``, ``TypeError``)."""
+    import io
+
+    import dask
+
     # Every variable's encoding set here: one read back from a file would keep that file's
     # (its compression, chunks) otherwise.
     encoding = {
@@ -1201,16 +1224,13 @@ def write(
         else {}
         for name, var in ds.data_vars.items()
     }
-    try:
-        # The synchronous scheduler: in a Dask worker (a sweep's or a study's run), xarray
-        # would otherwise ask for the worker's client and open one to the scheduler, a
-        # connection that outlives the cluster ("Exception ignored in Client.__del__"
-        # once the cluster is closed). A result is numpy data: nothing to schedule. The
-        # setting is global: the lock keeps two threads' writes (a worker of several
-        # threads) from restoring each other's setting out of order.
-        with _WRITE_LOCK, dask.config.set(scheduler="synchronous"):
-            ds.to_netcdf(tmp, engine="h5netcdf", encoding=encoding)
-        return place_file(tmp, path, replace)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+    buffer = io.BytesIO()
+    # The synchronous scheduler: in a Dask worker (a sweep's or a study's run), xarray
+    # would otherwise ask for the worker's client and open one to the scheduler, a
+    # connection that outlives the cluster ("Exception ignored in Client.__del__" once the
+    # cluster is closed). A result is numpy data: nothing to schedule. The setting is
+    # global: the lock keeps two threads' writes (a worker of several threads) from
+    # restoring each other's setting out of order.
+    with _WRITE_LOCK, dask.config.set(scheduler="synchronous"):
+        ds.to_netcdf(buffer, engine="h5netcdf", encoding=encoding)
+    return buffer.getbuffer()

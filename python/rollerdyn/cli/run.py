@@ -184,10 +184,25 @@ def run(
         say(f"removed {tmp}: a temporary file of process {pid}, which no longer runs")
     t_start = 0.0 if previous is None else float(resume_state(previous)[0])
     unsaved: list[OSError] = []  # a checkpoint that could not be written stops the run
+    # Ctrl-C and SIGTERM (a batch system or `kill`) recorded from here until the result is
+    # written: the run stops at its next progress report (every output time and 0.2 s of
+    # wall time) and writes everything computed so far (exit status 130 or 143), and one
+    # that comes after the last report or during the final write lets that write finish.
+    # Raised where it lands, the exception could be swallowed by library code (pydantic's
+    # serializer, during a checkpoint's write, warns and goes on) or cut the write. A
+    # second Ctrl-C interrupts at once.
+    received: list[int] = []
+
+    def moved(old: Path, new: Path) -> None:
+        error(
+            f"-o {old}: another program put a file there during the run; it is kept, and "
+            f"this run's checkpoints and result go to {new}"
+        )
+
     # the checkpoints and the result replace only the file this run wrote last (or the
     # one --overwrite / --resume allowed at the start): never one that another program
     # wrote meanwhile
-    saver = CheckpointSaver(output, save_every, replace_existing=replace_existing)
+    saver = CheckpointSaver(output, save_every, replace_existing=replace_existing, moved=moved)
 
     def checkpoint(partial) -> None:
         try:
@@ -196,76 +211,90 @@ def run(
             unsaved.append(err)
 
     status = 0
-    terminated: list[int] = []
 
     def crawl_notice(note: str) -> None:
         modes = f"rollerdyn modes {saver.path} (also after Ctrl-C, which keeps the result)"
         say(f"note: {note}. For this run: {modes}", "yellow")
 
-    with _run_progress(cfg.name, t_start, end) as show:
-        # SIGTERM (a batch system or `kill`) stops the run like Ctrl-C: at the next progress
-        # report (every output time and 0.2 s of wall time), with everything computed so
-        # far written (exit status 143). The handler only records the signal: raised where
-        # the signal lands, the exception could be swallowed by library code (pydantic's
-        # serializer, during a checkpoint's write, warns and goes on).
-        previous_handler = signal.signal(
-            signal.SIGTERM, lambda signum, _: terminated.append(signum)
-        )
-        try:
-            ds = simulate(
-                cfg,
-                t_end=end,
-                detector=detector,
-                progress=lambda p: _stop_if(terminated) or show(p) or bool(unsaved),
-                resume=previous,
-                checkpoint=checkpoint,
-                threads=threads,
-                notice=crawl_notice,
-                **({"force": True} if force else {}),
-            )
-        except ValueError as err:
-            raise refuse(err) from None
-        except SimulationError as err:
-            ds = err.dataset
-            status = _stop_status(str(err))
-            error(f"run stopped: {err}")
-        finally:
-            signal.signal(signal.SIGTERM, previous_handler)
+    with _signals_recorded(received):
+        with _run_progress(cfg.name, t_start, end) as show:
+            try:
+                ds = simulate(
+                    cfg,
+                    t_end=end,
+                    detector=detector,
+                    progress=lambda p: _stop_if(received) or show(p) or bool(unsaved),
+                    resume=previous,
+                    checkpoint=checkpoint,
+                    threads=threads,
+                    notice=crawl_notice,
+                    **({"force": True} if force else {}),
+                )
+            except ValueError as err:
+                raise refuse(err) from None
+            except SimulationError as err:
+                ds = err.dataset
+                status = _stop_status(err)
+                error(f"run stopped: {err}")
+        before_the_write = bool(received)
+        written = _write_result(saver, ds, output, unsaved)
     if unsaved:
-        raise refuse(f"-o {output}: could not write the checkpoint ({unsaved[0]}); run stopped", 1)
-    late: list[int] = []
-    try:
-        with _signals_deferred(late):
-            written = saver.file.write(ds)
-    except OSError as err:
-        raise refuse(f"-o {output}: could not write the result ({err})", 1) from None
-    if written != output:
-        error(
-            f"-o {output}: another program wrote that file during the run; it is kept, "
-            f"and the result went to {written}"
-        )
+        status = status or 1
     say(_run_line(written, ds))
     if status and ds.sizes.get("time", 0) > 0:
         say(
             f"if its steps were small: rollerdyn modes {written} names the modes "
             "that grow at its last state"
         )
-    if late and not status:
-        error("run ended, then interrupted while its result was written; the result is whole")
-        status = 143 if late[0] == signal.SIGTERM else 130
+    if received and not status:  # after the last progress report
+        when = "" if before_the_write else " while its result was written"
+        error(f"run ended, then interrupted{when}; the result is whole")
+        status = 143 if received[0] == signal.SIGTERM else 130
     if status:
         raise typer.Exit(status)
 
 
+def _write_result(saver, ds, output: Path, unsaved: list[OSError]) -> Path:
+    """Writes the run's result ``ds`` through ``saver``'s file; returns where it went. If
+    it cannot be written there, keeps it in the system's temporary folder and exits with
+    status 1 naming both (and the checkpoint that could not be written, if one stopped the
+    run)."""
+    from ..paths import keep_elsewhere
+    from ..simulation import encode
+
+    stop = f"could not write the checkpoint ({unsaved[0]}); run stopped; " if unsaved else ""
+    try:
+        return saver.file.write(ds)
+    except OSError as err:
+        why = f"could not write the result ({err.strerror or err})"
+    except Exception as err:  # h5py: data it cannot encode
+        why = f"could not encode the result ({' '.join(str(err).split())})"
+    try:
+        kept = keep_elsewhere(encode(ds), "rollerdyn-run-")
+    except Exception as err:
+        kept = f"it could not be encoded to keep it elsewhere ({err}): it is lost"
+    raise refuse(f"-o {saver.path}: {stop}{why}; {kept}", 1) from None
+
+
 @contextlib.contextmanager
-def _signals_deferred(received: list[int]):
-    """Ctrl-C and SIGTERM only recorded in ``received`` while the block runs: the result's
-    write (about 1.5 s for B1, compressing) is not cut short, so nothing computed is lost
-    (the file left would be the last checkpoint's)."""
-    handlers = {
-        signum: signal.signal(signum, lambda got, _: received.append(got))
-        for signum in (signal.SIGINT, signal.SIGTERM)
-    }
+def _signals_recorded(received: list[int]):
+    """Ctrl-C and SIGTERM only recorded in ``received`` while the block runs (the run
+    stops at its next progress report, :func:`_stop_if`; the result's write, about 1.5 s
+    for B1, compressing, is not cut short, so nothing computed is lost); a second Ctrl-C
+    raises KeyboardInterrupt at once. Nothing changes outside the main thread, where
+    Python takes no signals."""
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def record(signum, _frame) -> None:
+        received.append(signum)
+        if signum == signal.SIGINT and received.count(signal.SIGINT) > 1:
+            raise KeyboardInterrupt
+
+    handlers = {signum: signal.signal(signum, record) for signum in (signal.SIGINT, signal.SIGTERM)}
     try:
         yield
     finally:
@@ -273,11 +302,13 @@ def _signals_deferred(received: list[int]):
             signal.signal(signum, handler)
 
 
-def _stop_status(message: str) -> int:
-    """Exit status of a run stopped by ``message``: 143 SIGTERM, 130 Ctrl-C, else 1."""
-    if "SIGTERM" in message:
-        return 143
-    return 130 if "KeyboardInterrupt" in message else 1
+def _stop_status(err: Exception) -> int:
+    """Exit status of a run stopped by ``err``: 143 SIGTERM, 130 Ctrl-C, else 1."""
+    from ..simulation import SimulationInterrupted
+
+    if not isinstance(err, SimulationInterrupted):
+        return 1
+    return 143 if "SIGTERM" in str(err) else 130
 
 
 def _check_run_output(output: Path, config: Path, resume: Path | None, overwrite: bool) -> bool:
@@ -418,7 +449,10 @@ def _run_progress(name: str, t_start: float, t_end: float):
         yield show
 
 
-def _stop_if(terminated: list[int]) -> None:
-    """Stops the run from its progress report once SIGTERM has come (``terminated``)."""
-    if terminated:
-        raise KeyboardInterrupt("terminated by SIGTERM")
+def _stop_if(received: list[int]) -> None:
+    """Stops the run from its progress report once Ctrl-C or SIGTERM has come
+    (``received``)."""
+    if received:
+        raise KeyboardInterrupt(
+            "terminated by SIGTERM" if received[0] == signal.SIGTERM else "Ctrl-C"
+        )

@@ -254,22 +254,11 @@ def _save(ds, output: Path, overwrite: bool) -> tuple[Path | None, str]:
 
 
 def _keep_elsewhere(data) -> str:
-    """Writes the encoded result ``data`` to a new file in the system's temporary folder
-    (another disk than the output's, often); says where, or that the result is lost."""
-    import os
-    import tempfile
+    """Keeps the encoded result ``data`` in the system's temporary folder
+    (:func:`rollerdyn.paths.keep_elsewhere`)."""
+    from ..paths import keep_elsewhere
 
-    try:
-        handle, name = tempfile.mkstemp(prefix="rollerdyn-statics-", suffix=".nc")
-    except OSError as err:
-        return f"the result could not be kept elsewhere either ({err.strerror or err}): it is lost"
-    try:
-        with os.fdopen(handle, "wb") as f:
-            f.write(data)
-    except OSError as err:
-        Path(name).unlink(missing_ok=True)
-        return f"the result could not be kept elsewhere either ({err.strerror or err}): it is lost"
-    return f"the result was kept in {name}"
+    return keep_elsewhere(data, "rollerdyn-statics-")
 
 
 def _draw(ds, plot: Path, overwrite: bool) -> tuple[Path | None, str]:

@@ -504,9 +504,10 @@ def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time):
             continue
         win = window_length(window, w, g.roller_count, cage_factor)
         if settle + 3 * win > max_time:
+            longer = " (two roller passes, longer than --window)" if win > window else ""
             raise StudyError(
                 f"--max-time = {max_time:g} s: too short for point {i} ({label}): the ramps "
-                f"end at {settle:g} s and three windows of {win:.4g} s must follow"
+                f"end at {settle:g} s and three windows of {win:.4g} s{longer} must follow"
             )
         variant = windowed(variant, win)
         size = result_size_refusal(variant, max_time, win)
