@@ -553,6 +553,32 @@ def test_a_result_that_cannot_be_written_is_kept_elsewhere(tmp_path, monkeypatch
     os.remove(kept.group(1))
 
 
+def test_a_checkpoint_that_cannot_be_written_stops_the_run_and_keeps_it(tmp_path, monkeypatch):
+    """A checkpoint's write fails (here: every uncompressed write): the run stops there,
+    its result is written whole all the same, one line says what happened, status 1."""
+    import xarray as xr
+
+    import rollerdyn.simulation
+
+    real_write = rollerdyn.simulation.write
+
+    def checkpoints_fail(ds, path, compress=True, replace=True):
+        if not compress:
+            raise OSError(5, "Input/output error")
+        return real_write(ds, path, compress, replace)
+
+    monkeypatch.setattr(rollerdyn.simulation, "write", checkpoints_fail)
+    out = tmp_path / "cp.nc"
+    args = ["run", str(B1), "-o", str(out), "--t-end", "0.002", "--checkpoint-interval", "1e-4"]
+    result = RUNNER.invoke(app, args)
+    assert result.exit_code == 1, result.output
+    said = f"-o {out}: could not write the checkpoint ([Errno 5] Input/output error); run stopped"
+    assert said in " ".join(result.output.split()), result.output
+    assert "the result is written whole" in result.output
+    with xr.open_dataset(out, engine="h5netcdf") as ds:
+        assert 0.0 < float(ds.time[-1]) < 0.002
+
+
 def test_run_checkpoint_interval_option(tmp_path):
     """`run --checkpoint-interval SECONDS` overrides solver.checkpoint_interval (10 ms in
     B1, so a 0.4 ms run would have no checkpoint); --resume keeps the earlier run's

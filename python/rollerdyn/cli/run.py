@@ -237,15 +237,15 @@ def run(
                 status = _stop_status(err)
                 error(f"run stopped: {err}")
         before_the_write = bool(received)
-        written = _write_result(saver, ds, output, unsaved)
-    if unsaved:
-        status = status or 1
+        written = _write_result(saver, ds, unsaved)
     say(_run_line(written, ds))
-    if status and ds.sizes.get("time", 0) > 0:
+    if status and not unsaved and ds.sizes.get("time", 0) > 0:
         say(
             f"if its steps were small: rollerdyn modes {written} names the modes "
             "that grow at its last state"
         )
+    if unsaved:
+        status = status or 1
     if received and not status:  # after the last progress report
         when = "" if before_the_write else " while its result was written"
         error(f"run ended, then interrupted{when}; the result is whole")
@@ -254,7 +254,7 @@ def run(
         raise typer.Exit(status)
 
 
-def _write_result(saver, ds, output: Path, unsaved: list[OSError]) -> Path:
+def _write_result(saver, ds, unsaved: list[OSError]) -> Path:
     """Writes the run's result ``ds`` through ``saver``'s file; returns where it went. If
     it cannot be written there, keeps it in the system's temporary folder and exits with
     status 1 naming both (and the checkpoint that could not be written, if one stopped the
@@ -264,7 +264,10 @@ def _write_result(saver, ds, output: Path, unsaved: list[OSError]) -> Path:
 
     stop = f"could not write the checkpoint ({unsaved[0]}); run stopped; " if unsaved else ""
     try:
-        return saver.file.write(ds)
+        written = saver.file.write(ds)
+        if unsaved:
+            error(f"-o {written}: {stop}the result is written whole")
+        return written
     except OSError as err:
         why = f"could not write the result ({err.strerror or err})"
     except Exception as err:  # h5py: data it cannot encode
