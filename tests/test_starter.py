@@ -111,9 +111,12 @@ def test_bad_options_are_named(tmp_path):
             ["--inner-raceway", "20", "--outer-raceway", "29", "--roller-length", "-1"],
             "--roller-length",
         ),
-        # options not given are not named: raceways too far apart for three rollers, too
-        # close for the default clearance
-        (["--inner-raceway", "1", "--outer-raceway", "100"], "only 2 fit the pitch circle"),
+        # options not given are not named: raceways too far apart (rollers of 98 % of the
+        # pitch diameter) or too close (0.13 %) for ISO 281's D/d_m of 0.01 ... 0.3, whose
+        # ratings the statics need (1000/1003 mm wrote a file that crashed the statics),
+        # too close for the default clearance
+        (["--inner-raceway", "1", "--outer-raceway", "100"], "D/d_m = 0.98, outside 0.01"),
+        (["--inner-raceway", "1000", "--outer-raceway", "1003"], "D/d_m = 0.00129, outside"),
         (["--inner-raceway", "40", "--outer-raceway", "40.01"], "give --clearance"),
         # a speed of 0 has no end time to derive (was a ZeroDivisionError)
         (["--inner-raceway", "20", "--outer-raceway", "29", "--speed", "0"], "--speed 0 rpm"),

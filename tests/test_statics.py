@@ -876,3 +876,25 @@ def test_the_point_law_gives_no_friction_where_its_ends_lie_on_their_faces():
     assert "n/a: the point law's most loaded roller end lies on its end face" in " ".join(
         res.output.split()
     )
+
+
+def test_a_bearing_outside_iso_281s_range_is_refused_in_one_line(monkeypatch):
+    """A bearing whose D/d_m lies outside ISO 281's Table 7 has no load rating: the statics
+    refuse it with one line naming the geometry and the rule (it was a ValueError's
+    traceback from ``rollerdyn statics`` on a 1000/1003 mm bearing of ``rollerdyn new``,
+    which now refuses such raceways itself). The rating's own check is ISO 281's, raised
+    here for B1 as it is for such a bearing."""
+    import rollerdyn.statics as st
+
+    def out_of_range(*args, **kwargs):
+        raise ValueError(
+            "roller_diameter, pitch_diameter: D_we cos(alpha) / D_pw = 0.00129 must lie in "
+            "[0.01, 0.3], the range of ISO 281:2007 Table 7"
+        )
+
+    monkeypatch.setattr(st.life, "dynamic_load_rating", out_of_range)
+    with pytest.raises(StaticsError, match=r"^geometry: .* the range of ISO 281:2007 Table 7"):
+        statics(B1)
+    res = CliRunner().invoke(app, ["statics", str(B1)])
+    assert res.exit_code == 1 and "Traceback" not in res.output
+    assert len(res.output.strip().splitlines()) == 1, res.output

@@ -525,14 +525,17 @@ def test_sigterm_stops_the_sweep_as_ctrl_c_does(tmp_path):
 def test_a_sweep_removes_what_an_earlier_sweep_wrote(tmp_path):
     # An earlier, larger grid's run_0001.nc and run_0002.nc and its figure must not stay
     # beside the new sweep's summary of one run (which draws no figure: one value). They
-    # are removed with overwrite=True only, and only as a sweep writes them (a result's
-    # attributes, the summary's columns, a figure of matplotlib's beside that summary;
-    # tests/test_folders_refuse_foreign_files.py refuses the others).
+    # are removed with overwrite=True only, and only as a sweep writes them (a result the
+    # summary lists or that a sweep wrote under its name, the summary's columns, a figure
+    # of matplotlib's beside that summary; tests/test_folders_refuse_foreign_files.py
+    # refuses the others).
     import h5py
 
     for name in ("run_0000.nc", "run_0001.nc", "run_0002.nc"):
         with h5py.File(tmp_path / name, "w") as f:
             f.attrs.update(final_time_s=0.001, rollerdyn_version=rollerdyn.__version__)
+            if name != "run_0000.nc":  # not in the summary: stamped as a sweep stamps them
+                f.attrs["sweep_file"] = name
     for name in ("summary.png", "summary.svg"):
         (tmp_path / name).write_text("<!-- Created with matplotlib -->")
     earlier = {"run": [0], "status": ["completed"], "error": [""], "file": ["run_0000.nc"]}
@@ -543,6 +546,27 @@ def test_a_sweep_removes_what_an_earlier_sweep_wrote(tmp_path):
     assert list(frame["status"]) == ["completed"]
     assert [p.name for p in tmp_path.glob("run_*.nc")] == ["run_0000.nc"]
     assert not (tmp_path / "summary.png").exists() and not (tmp_path / "summary.svg").exists()
+
+
+def test_overwrite_refuses_a_result_no_sweep_wrote_under_its_name(tmp_path):
+    # the adversarial review: a result of `rollerdyn run` copied in as run_0009.nc was
+    # deleted by the next sweep's --overwrite (only "is a rollerdyn result" was asked);
+    # now a run file must be listed by the summary or stamped by a sweep with its name
+    import shutil
+
+    rollerdyn.sweep(SHORT_DATA, {"operating.axial_load": ["0 N", "5 N"]}, tmp_path, workers=1)
+    shutil.copy(tmp_path / "run_0000.nc", tmp_path / "run_0009.nc")  # renamed: not its own
+    before = sorted(p.name for p in tmp_path.iterdir())
+    with pytest.raises(SweepError, match="run_0009.nc is not a file an earlier sweep wrote"):
+        rollerdyn.sweep(
+            SHORT_DATA, {"operating.axial_load": ["0 N"]}, tmp_path, workers=1, overwrite=True
+        )
+    assert sorted(p.name for p in tmp_path.iterdir()) == before
+    (tmp_path / "run_0009.nc").unlink()  # the sweep's own files, listed and stamped, go
+    rollerdyn.sweep(
+        SHORT_DATA, {"operating.axial_load": ["0 N"]}, tmp_path, workers=1, overwrite=True
+    )
+    assert [p.name for p in tmp_path.glob("run_*.nc")] == ["run_0000.nc"]
 
 
 def test_a_sweep_runs_from_a_thread_other_than_the_main_one(tmp_path):
@@ -616,9 +640,12 @@ def test_sigterm_while_the_summary_is_written_is_taken_after_it():
         ({"workers": 1.5}, "workers = 1.5: must be a whole number"),
         ({"t_end": "abc"}, "t_end = 'abc': must be a time"),
         ({"retries": "x"}, "retries = 'x': must be a whole number"),
+        ({"workers": 100_000}, "workers = 100000: at most [0-9]+ on this machine"),
     ],
 )
 def test_bad_arguments_are_refused_before_an_earlier_sweep_is_touched(tmp_path, kwargs, match):
+    """Also a worker count past 4 per core (100 000 filled the memory for minutes, deaf to
+    Ctrl-C) and a grid of more than 10 000 points (10^8 was built silently)."""
     # a progress of 5 started the cluster, removed the earlier sweep's files and then
     # failed with "TypeError: 'int' object is not callable"
     earlier = ["run_0000.nc", "run_0001.nc", "summary.parquet"]
@@ -630,6 +657,10 @@ def test_bad_arguments_are_refused_before_an_earlier_sweep_is_touched(tmp_path, 
     a_file = tmp_path / "run_0000.nc"
     with pytest.raises(SweepError, match="is a file, not a folder"):
         rollerdyn.sweep(SHORT_DATA, {"operating.axial_load": ["0 N"]}, a_file)
+    huge = {"operating.axial_load": ["0 N"] * 200, "operating.radial_load": ["1 kN"] * 200}
+    with pytest.raises(SweepError, match="200 x 200 = 40000 grid points; a sweep has at most"):
+        rollerdyn.sweep(SHORT_DATA, huge, tmp_path)
+    assert sorted(p.name for p in tmp_path.iterdir()) == earlier
 
 
 @pytest.mark.parametrize("delay", [1.0, 1.4])

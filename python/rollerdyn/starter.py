@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from .life import FC_GAMMA
 from .units import QuantityError, parse_quantity
 from .validation import default_config_path
 
@@ -135,6 +136,14 @@ def starter_geometry(
             f"(D_o - D_i)/2 = {gap:g} m"
         )
     geometry = StarterGeometry(inner_raceway, outer_raceway, clearance, 0)
+    gamma = geometry.roller_diameter / pitch
+    if not FC_GAMMA[0] <= gamma <= FC_GAMMA[-1]:
+        raise StarterError(
+            f"--outer-raceway {outer_raceway:g} m: rollers of {geometry.roller_diameter * 1e3:.4g} "
+            f"mm on a pitch circle of {pitch * 1e3:.4g} mm give D/d_m = {gamma:.3g}, outside "
+            f"{FC_GAMMA[0]} ... {FC_GAMMA[-1]} (ISO 281:2007 Table 7, the range of rolling "
+            f"bearings, which their ratings need; B1: {B1_ROLLER_DIAMETER / B1_PITCH_DIAMETER:.3g})"
+        )
     most = most_rollers(pitch, geometry.roller_diameter)
     if most < 3:
         raise StarterError(

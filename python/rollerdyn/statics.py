@@ -1112,11 +1112,19 @@ class _Ratings:
 
 
 def _ratings(cfg: BearingConfig) -> _Ratings:
+    """The bearing's load ratings and what its lives need; :class:`StaticsError` where
+    ISO 281 has no factor f_c for its D/d_m (Table 7: 0.01 ... 0.3)."""
     g = cfg.geometry
     d, dpw, length = g.roller_diameter, g.pitch_diameter, g.roller.effective_length
     c_0 = life.static_load_rating(g.roller_count, d, length, dpw)
+    try:
+        dynamic = life.dynamic_load_rating(g.roller_count, d, length, dpw)
+    except ValueError as err:  # D/d_m outside ISO 281's Table 7
+        raise StaticsError(
+            f"geometry: {err}; the statics rate the bearing by ISO 281 and ISO/TS 16281"
+        ) from None
     return _Ratings(
-        dynamic=life.dynamic_load_rating(g.roller_count, d, length, dpw),
+        dynamic=dynamic,
         static=c_0,
         fatigue_limit=life.fatigue_load_limit(c_0, dpw),
         viscosity=Model(cfg).eta0 / cfg.lubricant.density_at(cfg.operating.temperature),

@@ -172,6 +172,27 @@ _NUMBER_UNIT = re.compile(r"^\s*([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(.
 #: Most values one A:B:N range of a sweep gives (each value is at least one run).
 MAX_RANGE_VALUES = 10_000
 
+#: The most points of a sweep's grid (the product of its --set lists; a map has the same).
+MAX_GRID_POINTS = 10_000
+
+#: The most worker processes per core of a local cluster: a worker runs one run on one
+#: core, so more than a few per core only add processes of about 150 MB each.
+WORKERS_PER_CORE = 4
+
+
+def check_workers(workers: Any, option: str = "workers") -> None:
+    """Refuses (:class:`SweepError`, naming ``option``) a worker count that is no whole
+    number of at least 1, or more than :data:`WORKERS_PER_CORE` per core of this machine."""
+    whole = isinstance(workers, int) and not isinstance(workers, bool)
+    if not (whole and workers >= 1):
+        raise SweepError(f"{option} = {workers!r}: must be a whole number, at least 1")
+    most = WORKERS_PER_CORE * (os.cpu_count() or 1)
+    if workers > most:
+        raise SweepError(
+            f"{option} = {workers}: at most {most} on this machine ({WORKERS_PER_CORE} per "
+            "core; each worker is a process that runs one run on one core)"
+        )
+
 
 def range_values(path: str, text: str) -> list[Any]:
     """The values of ``A:B:N`` in ``--set PATH=A:B:N``: N evenly spaced from A to B, in A's
@@ -347,6 +368,12 @@ def parsed_grid(
         values = parameters[path]
         if isinstance(values, str | bytes) or not isinstance(values, Sequence) or not values:
             raise SweepError(f"--set {path}: expected a non-empty list of values")
+    total = math.prod(len(parameters[p]) for p in paths)
+    if total > MAX_GRID_POINTS:
+        counts = " x ".join(str(len(parameters[p])) for p in paths)
+        raise SweepError(
+            f"--set: {counts} = {total} grid points; a sweep has at most {MAX_GRID_POINTS}"
+        )
     points, failures = [], []
     for run, combo in enumerate(itertools.product(*(parameters[p] for p in paths))):
         values = dict(zip(paths, combo, strict=True))
@@ -478,6 +505,8 @@ def run_one(
         numbers = summarize(ds)
         final = Path(outdir) / file
         partial = final.with_name(f".{file}.{os.getpid()}.partial")
+        # what --overwrite of a later sweep tells the sweep's own files by (earlier_results)
+        ds.attrs["sweep_file"] = file
         try:
             write(ds, partial)
             os.replace(partial, final)
@@ -571,7 +600,10 @@ def sweep(
     import pandas  # noqa: F401
     import pyarrow.parquet  # noqa: F401
 
-    client, cluster = connect(scheduler, workers, connect_timeout)
+    # no more workers than runs: each costs a process
+    client, cluster = connect(
+        scheduler, min(workers, len(points)) if scheduler is None else workers, connect_timeout
+    )
     rows: dict[int, dict] = {}
     try:
         out.mkdir(parents=True, exist_ok=True)
@@ -611,20 +643,20 @@ def sweep(
             rows[p.run] = _row(p, result)
             if progress is not None:
                 progress(len(rows), total, rows[p.run])
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as err:
         # Ctrl-C (a further one is ignored meanwhile): the workers, which ignore it, are
         # stopped first; then the summary lists the runs that finished, those that finished
         # while the workers stopped among them (from their files), and the others as
         # interrupted. A summary that cannot be written must not hide the interrupt.
+        # SIGTERM comes as a KeyboardInterrupt that says so (cli.common).
+        cause = "SIGTERM" if "SIGTERM" in str(err) else "KeyboardInterrupt (Ctrl-C)"
         with _ctrl_c_ignored(), _sigterm_deferred():
             disconnect(client, cluster, scheduler)
             if out.is_dir():
                 _remove_partial_files(out, points)
                 _rows_from_files(out, points, rows)
                 with contextlib.suppress(OSError):
-                    _summarize(
-                        out, points, rows, "interrupted", "KeyboardInterrupt (Ctrl-C): not finished"
-                    )
+                    _summarize(out, points, rows, "interrupted", f"{cause}: not finished")
         raise
     finally:
         disconnect(client, cluster, scheduler)  # a no-op once closed (Ctrl-C above)
@@ -656,9 +688,8 @@ def _check_sweep_arguments(
                 f"t_end = {shown}: must be a time of at least 1 ns, in seconds or with its "
                 "unit (e.g. 0.05 or '50 ms')" + (f"; {clauses[0]}" if len(clauses) > 1 else "")
             ) from None
-    whole = isinstance(workers, int) and not isinstance(workers, bool)
-    if scheduler is None and not (whole and workers >= 1):
-        raise SweepError(f"workers = {workers!r}: must be a whole number, at least 1")
+    if scheduler is None:
+        check_workers(workers)
     if isinstance(retries, bool) or not isinstance(retries, int) or retries < 0:
         raise SweepError(f"retries = {retries!r}: must be a whole number, 0 or more")
     if progress is not None and not callable(progress):
@@ -696,6 +727,7 @@ def earlier_results(out: Path, overwrite: bool, where: str, flag: str) -> list[P
             "choose another folder"
         )
     summary = _not_a_summary(out / SUMMARY_FILE)
+    listed = set() if summary else _listed_files(out / SUMMARY_FILE)
     for f in found:
         if f.name == SUMMARY_FILE:
             why = summary
@@ -703,7 +735,7 @@ def earlier_results(out: Path, overwrite: bool, where: str, flag: str) -> list[P
             why = summary and f"no summary of a sweep beside it: {summary}"
             why = why or _not_drawn(f)
         else:
-            why = _not_a_run(f)
+            why = "" if f.name in listed else _not_a_run(f)
         if why:
             raise SweepError(
                 f"{where}: {f.name} is not a file an earlier sweep wrote ({why}); {flag} "
@@ -717,16 +749,35 @@ def _exists(path: Path) -> bool:
 
 
 def _not_a_run(path: Path) -> str:
-    """Why ``path`` is not a rollerdyn result ("" if it is one): read without its data."""
+    """Why ``path`` is not a sweep's run file of its name ("" if it is one): a rollerdyn
+    result whose ``sweep_file`` (:func:`run_one`) is its name; read without its data. (A
+    result of ``rollerdyn run``, or a sweep's file copied to another name, is not.)"""
     import h5py
 
     try:
         with h5py.File(path, "r") as f:
-            keys = set(f.attrs)
+            attrs = dict(f.attrs)
     except Exception as err:  # h5py raises several kinds for files that are not HDF5
         return f"not a rollerdyn result: {' '.join(str(err).split()) or type(err).__name__}"
-    missing = {"final_time_s", "rollerdyn_version"} - keys
-    return f"not a rollerdyn result: no {', '.join(sorted(missing))}" if missing else ""
+    missing = {"final_time_s", "rollerdyn_version"} - set(attrs)
+    if missing:
+        return f"not a rollerdyn result: no {', '.join(sorted(missing))}"
+    stamp = attrs.get("sweep_file")
+    stamp = stamp.decode("utf-8", "replace") if isinstance(stamp, bytes) else stamp
+    if stamp != path.name:
+        return "a rollerdyn result that no sweep wrote under this name, nor its summary lists"
+    return ""
+
+
+def _listed_files(summary: Path) -> set[str]:
+    """The run files the sweep's summary ``summary`` lists (its ``file`` column)."""
+    import pyarrow.parquet as pq
+
+    try:
+        files = pq.read_table(summary, columns=["file"]).column("file").to_pylist()
+    except Exception:  # read once already (_not_a_summary): a file changed meanwhile
+        return set()
+    return {f for f in files if isinstance(f, str) and f}
 
 
 def _not_drawn(path: Path) -> str:
@@ -878,7 +929,8 @@ def connect(scheduler: Any, workers: int, timeout: float):
                     n_workers=workers,
                     threads_per_worker=1,
                     processes=True,
-                    dashboard_address=None,
+                    # a free port: the default 8787 taken (another cluster) made Dask warn
+                    dashboard_address=":0",
                     preload=["rollerdyn._dask_worker"],
                     # Dask's messages are not the user's: they are about its own shutdown
                     # ("Worker process still alive ... killing", a worker's "Failed to

@@ -346,7 +346,7 @@ def operating_map(
     arguments as in :func:`rollerdyn.study.paper`."""
     from ..simulation import as_config
     from .paper import _source_name, check_arguments, default_workers
-    from .schedule import Clock, check_scheduler
+    from .schedule import Clock, check_scheduler, check_workers
     from .thermal import dissipation_from_options
 
     clock = Clock()
@@ -367,8 +367,7 @@ def operating_map(
         },
     )
     workers = default_workers() if workers is None else workers
-    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
-        raise StudyError(f"--workers = {workers!r}: must be a whole number >= 1")
+    check_workers(workers)
     specs, rules = _map_points(cfg, axes, start, ramp, window, tol, max_time)
     check_scheduler(scheduler)
     settings = {"start": start, "ramp": ramp, "window": window, "tol": tol, "max_time": max_time}

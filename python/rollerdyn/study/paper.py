@@ -25,7 +25,7 @@ from .findings import Finding, check_findings
 from .folder import prepare_folder, record_files
 from .plan import DEFAULT_LOADS, Plan, build_plan
 from .runs import StudyError, lock_folder, open_run, record
-from .schedule import Clock, check_scheduler, run_all, timing
+from .schedule import Clock, check_scheduler, check_workers, run_all, timing
 
 DEFAULT_CONFIG = "examples/b1.toml"
 DEFAULT_OUTDIR = "results/study"
@@ -140,8 +140,7 @@ def paper(
     if not (isinstance(max_wall, int | float) and max_wall > 0 and math.isfinite(max_wall)):
         raise StudyError(f"--max-wall = {max_wall!r}: must be a positive number of seconds")
     workers = default_workers() if workers is None else workers
-    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
-        raise StudyError(f"--workers = {workers!r}: must be a whole number >= 1")
+    check_workers(workers)
     plan = build_plan(
         cfg,
         t_end,

@@ -74,6 +74,17 @@ def pending_runs(specs: Sequence[RunSpec], outdir: Path) -> tuple[list[RunSpec],
     return pending, found
 
 
+def check_workers(workers: Any) -> None:
+    """:func:`rollerdyn.sweep.check_workers` for ``--workers``, as a :class:`StudyError`."""
+    from ..sweep import SweepError
+    from ..sweep import check_workers as check
+
+    try:
+        check(workers, "--workers")
+    except SweepError as err:
+        raise StudyError(str(err)) from None
+
+
 def _connect(scheduler: Any, workers: int, timeout: float):
     """:func:`rollerdyn.sweep.connect`, its refusal naming --scheduler."""
     from ..sweep import connect
@@ -159,7 +170,10 @@ def run_all(
     )
     if not pending:
         return {s.name: records[s.name] for s in specs}
-    client, cluster = _connect(scheduler, workers, connect_timeout)
+    # no more workers than runs to make: each costs a process
+    client, cluster = _connect(
+        scheduler, min(workers, len(pending)) if scheduler is None else workers, connect_timeout
+    )
     topic = f"rollerdyn-study-{uuid.uuid4().hex}"
     try:
         client.subscribe_topic(topic, lambda event: emit({"kind": "update", **event[1]}))
