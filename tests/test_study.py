@@ -1309,3 +1309,19 @@ def test_sigterm_stops_a_study_as_ctrl_c_does(tmp_path):
         assert noise not in out, out
     assert list((tmp_path / "st" / "runs").glob("*.nc")), out
     assert not (tmp_path / "st" / ".study.lock").exists()
+
+
+def test_the_papers_loads_and_steps_take_units_as_the_map_does():
+    """``study paper --loads`` and ``--dt-max`` take bare numbers in N and s, or values
+    with their own unit ("0.5 kN", "1 ms"), as ``study map`` takes its loads (the
+    adversarial review: "500 N" was refused there); a wrong kind of unit is refused naming
+    the option."""
+    import typer
+
+    from rollerdyn.cli.study import _numbers
+
+    assert _numbers("0, 0.5 kN,1000 N", "--loads", "N") == [0.0, 500.0, 1000.0]
+    assert _numbers("1 ms,2e-3", "--dt-max", "s") == [1e-3, 2e-3]
+    assert _numbers("none", "--loads", "N") == []
+    with pytest.raises(typer.Exit):
+        _numbers("5 kg", "--loads", "N")

@@ -83,17 +83,32 @@ OverwriteOption = Annotated[
 ]
 
 
+#: The quantity each unit of :func:`_numbers` stands for (:mod:`rollerdyn.units`).
+_FAMILIES = {"N": "force", "s": "time"}
+
+
 def _numbers(text: str | None, option: str, unit: str) -> list[float] | None:
-    """A comma list of numbers in ``unit`` (None stays None; 'none' is empty)."""
+    """A comma list of numbers in ``unit``, each also with its own unit ("5 kN", "1 ms"),
+    as ``study map`` takes them (None stays None; 'none' is empty)."""
+    from ..units import QuantityError, parse_quantity
+
     if text is None:
         return None
     if text.strip().lower() == "none":
         return []
+
+    def value(item: str) -> float:
+        try:
+            return float(item)
+        except ValueError:
+            return parse_quantity(item.strip(), _FAMILIES[unit])
+
     try:
-        values = [float(v) for v in text.split(",")]
-    except ValueError:
+        values = [value(v) for v in text.split(",")]
+    except QuantityError:
         raise refuse(
-            f"{option} = {text!r}: must be comma-separated numbers in {unit} (or none)"
+            f"{option} = {text!r}: must be comma-separated numbers in {unit}, or values with "
+            "their unit (or none)"
         ) from None
     if not values or not all(math.isfinite(v) for v in values):
         raise refuse(f"{option} = {text!r}: must be comma-separated finite numbers in {unit}")
@@ -134,8 +149,9 @@ def paper_command(
         str,
         typer.Option(
             "--loads",
-            help="Axial loads of figs. 10-13 in N, comma-separated, or 'none'; the "
-            "configuration's own axial load is always one of them.",
+            help="Axial loads of figs. 10-13 in N, comma-separated (each also with its "
+            "unit: 0.5 kN), or 'none'; the configuration's own axial load is always one of "
+            "them.",
             metavar="N,N,...",
         ),
     ] = "0,500,1000,2000",
@@ -143,9 +159,9 @@ def paper_command(
         str | None,
         typer.Option(
             "--dt-max",
-            help="Δt_max of fig. 14 in s, comma-separated (each run with both detectors), "
-            "or 'none'. Default: 0.2, 0.5 and 1 times solver.dt_max (2e-4, 5e-4, 1e-3 s for "
-            "B1).",
+            help="Δt_max of fig. 14 in s, comma-separated (each also with its unit: "
+            "0.5 ms; each run with both detectors), or 'none'. Default: 0.2, 0.5 and 1 "
+            "times solver.dt_max (2e-4, 5e-4, 1e-3 s for B1).",
             metavar="S,S,...",
         ),
     ] = None,
