@@ -728,7 +728,8 @@ def earlier_results(out: Path, overwrite: bool, where: str, flag: str) -> list[P
         )
     summary = _not_a_summary(out / SUMMARY_FILE)
     listed = set() if summary else _listed_files(out / SUMMARY_FILE)
-    for f in found:
+    # the summary first: a foreign one is the reason its run files are not this sweep's
+    for f in sorted(found, key=lambda f: (f.name != SUMMARY_FILE, f.name)):
         if f.name == SUMMARY_FILE:
             why = summary
         elif f.name.startswith(f"{FIGURE_NAME}."):
