@@ -1101,10 +1101,9 @@ class ResultFile:
     last, as it left it, or at first an existing file at ``path`` if ``replace_existing``
     (``rollerdyn run --overwrite``, or ``--resume`` in place). A file that another program
     (or a second rollerdyn) put there or changed meanwhile is kept, and the result goes to
-    the first free name
-    beside it, ``NAME-2.nc``, ``NAME-3.nc``, ... (:func:`rollerdyn.paths.place_file`);
-    ``path`` then names it, later writes go there, and ``moved`` (if given) is told the
-    old and the new file at once."""
+    the first free name beside it, ``NAME-2.nc``, ``NAME-3.nc``, ...
+    (:func:`rollerdyn.paths.place_file`); ``path`` then names it, later writes go there,
+    and ``moved`` (if given) is told the old and the new file at once."""
 
     def __init__(
         self,
