@@ -576,7 +576,10 @@ def test_a_checkpoint_that_cannot_be_written_stops_the_run_and_keeps_it(tmp_path
     assert said in " ".join(result.output.split()), result.output
     assert "the result is written whole" in result.output
     with xr.open_dataset(out, engine="h5netcdf") as ds:
-        assert 0.0 < float(ds.time[-1]) < 0.002
+        # stopped before its end, at its last output before the next progress report: the
+        # output at 1 ms, or t = 0 where a report between outputs (every 0.2 s of wall time,
+        # a machine under load) came first
+        assert ds.sizes["time"] >= 1 and float(ds.time[-1]) < 0.002
 
 
 def test_run_checkpoint_interval_option(tmp_path):
