@@ -1039,15 +1039,22 @@ def _stacked(template: dict[str, _Var], parts: list[dict[str, _Var] | None]) -> 
 TORQUE_RELATIVE_SPEED = 0.01
 
 
-def _friction_torque(power: Sequence[float], case: StaticCase) -> float:
-    """The torque of a friction power [W] at the inner ring's speed relative to the outer
-    ring [rad/s]: NaN at rest, and where the rings turn together (the relative speed below
-    :data:`TORQUE_RELATIVE_SPEED` of the faster ring's speed)."""
+def _turns_relatively(case: StaticCase) -> bool:
+    """Whether the rings of ``case`` turn relative to each other: not at rest, and not
+    together (the relative speed at least :data:`TORQUE_RELATIVE_SPEED` of the faster
+    ring's speed)."""
     relative = abs(case.relative_speed)
     faster = max(abs(case.speed), abs(case.outer_speed))
-    if relative == 0.0 or relative < TORQUE_RELATIVE_SPEED * faster:
+    return relative > 0.0 and relative >= TORQUE_RELATIVE_SPEED * faster
+
+
+def _friction_torque(power: Sequence[float], case: StaticCase) -> float:
+    """The torque of a friction power [W] at the inner ring's speed relative to the outer
+    ring [rad/s]: NaN where the rings do not turn relative to each other
+    (:func:`_turns_relatively`)."""
+    if not _turns_relatively(case):
         return math.nan
-    return float(np.sum(power)) / relative
+    return float(np.sum(power)) / abs(case.relative_speed)
 
 
 #: Why the point law gives no friction of steady rolling where its most loaded roller end
@@ -1068,10 +1075,10 @@ def _point_law_friction_note(cfg: BearingConfig, case: StaticCase, pairing: str)
     """Why the friction of steady rolling is not estimated (:data:`POINT_LAW_ON_THE_FACE`),
     or "": with the point law, the largest flange force's ``pairing`` on the end sphere,
     where the rings turn relative to each other (at rest and where they turn together
-    there is no torque to estimate with any law: :func:`_friction_torque`)."""
+    there is no torque to estimate with any law: :func:`_turns_relatively`)."""
     if cfg.surfaces.flange_law != "point" or not pairing.startswith("SP"):
         return ""
-    if math.isnan(_friction_torque([1.0], case)):
+    if not _turns_relatively(case):
         return ""
     return POINT_LAW_ON_THE_FACE.format(pairing=pairing)
 

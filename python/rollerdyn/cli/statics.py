@@ -238,7 +238,7 @@ def _save(ds, output: Path, overwrite: bool) -> tuple[Path | None, str]:
     an existing file is replaced only with ``overwrite``, otherwise the result goes to a
     free name beside it). Returns the file written and "", or None and what went wrong,
     which names the file the result was kept in instead, or says that it was lost."""
-    from ..paths import write_atomically
+    from ..paths import keep_elsewhere, write_atomically
 
     try:
         data = ds.to_netcdf(engine="h5netcdf")
@@ -250,15 +250,8 @@ def _save(ds, output: Path, overwrite: bool) -> tuple[Path | None, str]:
         return write_atomically(output, data, replace=overwrite), ""
     except OSError as err:
         left = "the earlier file is unchanged" if existed else "nothing was written there"
-        return None, f"{err.strerror or err}; {left}; {_keep_elsewhere(data)}"
-
-
-def _keep_elsewhere(data) -> str:
-    """Keeps the encoded result ``data`` in the system's temporary folder
-    (:func:`rollerdyn.paths.keep_elsewhere`)."""
-    from ..paths import keep_elsewhere
-
-    return keep_elsewhere(data, "rollerdyn-statics-")
+        kept = keep_elsewhere(data, "rollerdyn-statics-")
+        return None, f"{err.strerror or err}; {left}; {kept}"
 
 
 def _draw(ds, plot: Path, overwrite: bool) -> tuple[Path | None, str]:
