@@ -490,7 +490,8 @@ def test_ctrl_c_in_the_terminal_stops_the_sweep_with_one_line(tmp_path, presses)
     assert proc.returncode == 130, out
     for noise in ("Traceback", "WARNING", "Exception ignored"):
         assert noise not in out, out
-    assert out.rstrip().endswith("rollerdyn: interrupted"), out
+    last = out.strip().splitlines()[-1]  # naming what was kept and how to go on
+    assert last.startswith("rollerdyn sweep: interrupted; ") and "--resume" in last, out
     folder = tmp_path / "sw"
     frame = pd.read_parquet(folder / "summary.parquet")
     assert set(frame["status"]) <= {"interrupted", "completed"}, frame

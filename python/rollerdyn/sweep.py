@@ -553,6 +553,7 @@ def sweep(
     connect_timeout: float = 10.0,
     force: bool = False,
     overwrite: bool = False,
+    resume: bool = False,
 ):
     """Run the grid of ``parameters`` over ``config`` on Dask; return the summary.
 
@@ -579,14 +580,18 @@ def sweep(
     removes them first, once the cluster is up; even then a file of those names that is not
     a sweep's (:func:`earlier_results`) is refused, and nothing is removed. A scheduler
     that cannot be reached (within ``connect_timeout`` seconds) raises :class:`SweepError`
-    before ``outdir`` is touched.
+    before ``outdir`` is touched. ``resume``: continue the earlier sweep in ``outdir`` (one
+    that was interrupted): the points whose run files are there, of the same configuration,
+    detector and end time, are kept (their rows read from the files; a failed run stays
+    failed) and the others run; a run file that is not this grid's is refused
+    (:func:`rollerdyn.sweep_resume.kept_runs`). Without an earlier sweep it runs them all.
     """
     from distributed import as_completed
 
     from .simulation import failure_note
 
     t_end = _check_sweep_arguments(
-        detector, t_end, scheduler, workers, retries, progress, force, overwrite
+        detector, t_end, scheduler, workers, retries, progress, force, overwrite, resume
     )
     points = build_grid(config, parameters, t_end)
     if not isinstance(outdir, str | os.PathLike):
@@ -594,23 +599,33 @@ def sweep(
     out = Path(outdir).resolve()
     if out.exists() and not out.is_dir():
         raise SweepError(f"outdir = {outdir}: is a file, not a folder")
-    earlier = earlier_results(out, overwrite, f"outdir = {outdir}", "overwrite=True")
+    flag = "resume=True" if resume else "overwrite=True"
+    earlier = earlier_results(out, overwrite or resume, f"outdir = {outdir}", flag)
+    rows: dict[int, dict] = {}
+    if resume:
+        from .sweep_resume import kept_runs
+
+        rows, earlier = kept_runs(out, points, t_end, detector), []
+    todo = [p for p in points if p.run not in rows]
     # What writes the summary, loaded before the runs: a Ctrl-C must not land in its
     # imports (a second of them) while the summary of an interrupted sweep is written.
     import pandas  # noqa: F401
     import pyarrow.parquet  # noqa: F401
 
     # no more workers than runs: each costs a process
-    client, cluster = connect(
-        scheduler, min(workers, len(points)) if scheduler is None else workers, connect_timeout
+    client, cluster = (
+        (None, None)
+        if not todo
+        else connect(
+            scheduler, min(workers, len(todo)) if scheduler is None else workers, connect_timeout
+        )
     )
-    rows: dict[int, dict] = {}
     try:
         out.mkdir(parents=True, exist_ok=True)
         for f in earlier:  # so that none of it can pass for this sweep's (earlier_results)
             f.unlink(missing_ok=True)
         futures, by_key = [], {}
-        for p in points:
+        for p in todo:
             fut = client.submit(
                 run_one,
                 p.data,
@@ -627,8 +642,8 @@ def sweep(
             by_key[fut.key] = p
         total = len(points)
         if progress is not None:
-            progress(0, total, None)
-        for fut in as_completed(futures):
+            progress(len(rows), total, None)
+        for fut in as_completed(futures) if futures else ():
             p = by_key[fut.key]
             try:
                 result = fut.result()
@@ -671,7 +686,7 @@ def sweep(
 
 
 def _check_sweep_arguments(
-    detector, t_end, scheduler, workers, retries, progress, force, overwrite
+    detector, t_end, scheduler, workers, retries, progress, force, overwrite, resume
 ) -> float | None:
     """Refuses (:class:`SweepError`, naming the argument) what :func:`sweep` cannot take,
     before anything starts or an earlier sweep's files are removed; returns ``t_end`` in s
@@ -694,9 +709,14 @@ def _check_sweep_arguments(
         raise SweepError(f"retries = {retries!r}: must be a whole number, 0 or more")
     if progress is not None and not callable(progress):
         raise SweepError(f"progress = {progress!r}: must be a function (or None)")
-    for name, value in (("force", force), ("overwrite", overwrite)):
+    for name, value in (("force", force), ("overwrite", overwrite), ("resume", resume)):
         if not isinstance(value, bool):
             raise SweepError(f"{name} = {value!r}: must be True or False")
+    if overwrite and resume:
+        raise SweepError(
+            "overwrite = True and resume = True: choose one (resume keeps the earlier "
+            "sweep's finished runs, overwrite removes them)"
+        )
     return t_end
 
 
@@ -753,6 +773,14 @@ def _not_a_run(path: Path) -> str:
     """Why ``path`` is not a sweep's run file of its name ("" if it is one): a rollerdyn
     result whose ``sweep_file`` (:func:`run_one`) is its name; read without its data. (A
     result of ``rollerdyn run``, or a sweep's file copied to another name, is not.)"""
+    attrs = run_attributes(path)
+    return attrs if isinstance(attrs, str) else ""
+
+
+def run_attributes(path: Path) -> dict | str:
+    """The attributes of the sweep's run file ``path``, read without its data (text
+    decoded), or why it is not one: not a rollerdyn result, or a result whose
+    ``sweep_file`` (:func:`run_one`) is not its name."""
     import h5py
 
     try:
@@ -763,11 +791,13 @@ def _not_a_run(path: Path) -> str:
     missing = {"final_time_s", "rollerdyn_version"} - set(attrs)
     if missing:
         return f"not a rollerdyn result: no {', '.join(sorted(missing))}"
-    stamp = attrs.get("sweep_file")
-    stamp = stamp.decode("utf-8", "replace") if isinstance(stamp, bytes) else stamp
-    if stamp != path.name:
+    for key, value in attrs.items():
+        if isinstance(value, np.ndarray) and value.size == 1:
+            value = value.reshape(()).item()
+        attrs[key] = bytes(value).decode("utf-8", "replace") if isinstance(value, bytes) else value
+    if attrs.get("sweep_file") != path.name:
         return "a rollerdyn result that no sweep wrote under this name, nor its summary lists"
-    return ""
+    return attrs
 
 
 def _listed_files(summary: Path) -> set[str]:
@@ -818,25 +848,33 @@ def _rows_from_files(out: Path, points, rows: dict[int, dict]) -> None:
     """Rows for the points whose run wrote its file but returned no row (it finished while
     an interrupted sweep stopped its workers), from that file; a file that cannot be read
     is left to the interrupted rows."""
-    from .report import open_result
-
     for p in points:
         if p.run in rows or not (out / p.file).is_file():
             continue
-        try:
-            ds = open_result(out / p.file)  # in memory, the file closed
-            numbers, attrs = summarize(ds), ds.attrs
-        except Exception:  # a damaged file: the point stays interrupted
-            continue
-        completed = int(attrs.get("completed", 0)) == 1
-        result = {
-            "status": "completed" if completed else "failed",
-            "error": "" if completed else str(attrs.get("error", "")),
-            **numbers,
-            "wall [s]": math.nan,
-            "file": p.file,
-        }
-        rows[p.run] = _row(p, result)
+        row = row_from_file(out / p.file, p)
+        if row is not None:
+            rows[p.run] = row
+
+
+def row_from_file(path: Path, point: GridPoint) -> dict | None:
+    """The summary row of ``point`` from its result file ``path``, without a wall time
+    (None if the file cannot be read as a result)."""
+    from .report import open_result
+
+    try:
+        ds = open_result(path)  # in memory, the file closed
+        numbers, attrs = summarize(ds), ds.attrs
+    except Exception:  # a damaged file
+        return None
+    completed = int(attrs.get("completed", 0)) == 1
+    result = {
+        "status": "completed" if completed else "failed",
+        "error": "" if completed else str(attrs.get("error", "")),
+        **numbers,
+        "wall [s]": math.nan,
+        "file": point.file,
+    }
+    return _row(point, result)
 
 
 def _summarize(out: Path, points, rows: dict[int, dict], status: str = "", error: str = ""):

@@ -77,6 +77,18 @@ def sweep_command(
             "is refused, and nothing else is touched).",
         ),
     ] = False,
+    resume: Annotated[
+        bool,
+        typer.Option(
+            "--resume",
+            help="Continue the sweep in the output folder that was interrupted (Ctrl-C, "
+            "SIGTERM, a lost machine): the runs whose result files are there, of the same "
+            "configuration, detector and end time, are kept and not run again (a failed "
+            "run stays failed: it would fail again, bit for bit), the others run. Give the "
+            "same CONFIG, --set values, --t-end and --detector; a run file of another "
+            "sweep is refused (exit status 2). Without an earlier sweep it runs them all.",
+        ),
+    ] = False,
     scheduler: Annotated[
         str | None,
         typer.Option(
@@ -141,7 +153,8 @@ def sweep_command(
     numeric value takes two or more values). A failed run keeps its partial result and its
     error in the summary (a cross in the figure), and the sweep goes on; the command then
     exits with status 1. Ctrl-C or SIGTERM stops the sweep: the summary lists the runs that
-    finished and the others as interrupted (exit status 130 or 143). --overwrite first
+    finished and the others as interrupted (exit status 130 or 143), and the same command
+    with --resume runs the others, keeping the finished ones' files. --overwrite first
     removes the earlier sweep's result files, summary and figure (files of those names that
     are not a sweep's are refused: exit status 2, nothing removed).
     """
@@ -155,9 +168,15 @@ def sweep_command(
         sweep,
     )
     from ..sweep_figures import FIGURE_NAME
+    from ..sweep_resume import finished_runs
 
     parameters = _parameters(sets)
     end = time_option("--t-end", t_end)
+    if overwrite and resume:
+        raise refuse(
+            "--overwrite and --resume: choose one (--resume keeps the earlier sweep's "
+            "finished runs, --overwrite removes them)"
+        )
     load(config)  # a bad file: the same message and exit status as rollerdyn run
     check_detector(detector)
     checked(
@@ -165,29 +184,39 @@ def sweep_command(
         output,
         "-o",
         results=(RUN_FILES, SUMMARY_FILE),
-        overwrite=overwrite,
-        hint="; pass --overwrite to replace them, or choose another folder",
+        overwrite=overwrite or resume,
+        hint="; pass --resume to continue that sweep or --overwrite to replace it, or "
+        "choose another folder",
     )
+    flag = "--resume" if resume else "--overwrite"
     with refusing(SweepError, output):  # --overwrite replaces a sweep's own files only
-        earlier_results(output, overwrite, f"-o {output}", "--overwrite")
+        earlier_results(output, overwrite or resume, f"-o {output}", flag)
 
-    def terminated() -> str:
+    def stopped(cause: str) -> str:
         if (output / SUMMARY_FILE).is_file():
             return (
-                f"rollerdyn sweep: terminated (SIGTERM); {output / SUMMARY_FILE} lists the runs "
-                "that finished and the others as interrupted"
+                f"rollerdyn sweep: {cause}; {output / SUMMARY_FILE} lists the runs that "
+                "finished and the others as interrupted; the same command with --resume "
+                "runs the others"
             )
-        return "rollerdyn sweep: terminated (SIGTERM) before any run started; nothing written"
+        return f"rollerdyn sweep: {cause} before any run started; nothing written"
 
-    with refusing(SweepError, output), terminated_as_interrupted(terminated):
+    with (
+        refusing(SweepError, output),
+        _said_when_interrupted(lambda: stopped("interrupted")),
+        terminated_as_interrupted(lambda: stopped("terminated (SIGTERM)")),
+    ):
         with _sigterm_deferred():  # a stop within an import would fail it (not stop)
             import distributed  # noqa: F401
             import pandas  # noqa: F401
             import pyarrow.parquet  # noqa: F401
         runs = math.prod(len(v) for v in parameters.values())
         with console.status(f"checking the grid's {runs} configurations"):
-            build_grid(config, parameters, end)  # every grid point before the cluster starts
-        with _sweep_progress(console, scheduler) as progress:
+            points = build_grid(config, parameters, end)  # all before the cluster starts
+            kept = len(finished_runs(output, points, end, detector)) if resume else 0
+        if resume:
+            say(f"sweep: {kept} of {runs} runs finished earlier in {output}, kept")
+        with _sweep_progress(console, scheduler, kept < runs) as progress:
             frame = sweep(
                 config,
                 parameters,
@@ -199,6 +228,7 @@ def sweep_command(
                 progress=progress,
                 force=force,
                 overwrite=overwrite,
+                resume=resume,
             )
     failed = _print_summary(frame, config, output, list(parameters))
     figure = output / f"{FIGURE_NAME}.png"
@@ -209,6 +239,17 @@ def sweep_command(
     )
     if failed:
         raise typer.Exit(1)
+
+
+@contextlib.contextmanager
+def _said_when_interrupted(message: Callable[[], str]):
+    """Ctrl-C within the block ends the command with the one line ``message()`` (what the
+    interrupted sweep kept, asked then) and exit status 130."""
+    try:
+        yield
+    except KeyboardInterrupt:
+        error(message())
+        raise typer.Exit(130) from None
 
 
 def _parameters(sets: list[str]) -> dict[str, list[Any]]:
@@ -235,17 +276,22 @@ class _Lines:
 
     def __call__(self, done: int, total: int, row: dict | None) -> None:
         wall = time.perf_counter() - self.started
+        if row is None and done == total:
+            return  # every run kept from the earlier sweep: said before
         if row is None:
-            self.say(f"sweep: {total} runs submitted ({wall:.1f} s)")
+            kept = f", {done} kept from the earlier sweep" if done else ""
+            self.say(f"sweep: {total - done} runs submitted{kept} ({wall:.1f} s)")
         else:
             status = row["status"]
             self.say(f"sweep: run {row['run']} {status}; {done} of {total} done ({wall:.1f} s)")
 
 
 @contextlib.contextmanager
-def _sweep_progress(console, scheduler: str | None):
-    """The progress callback of :func:`sweep`: a live bar on a terminal, else lines."""
+def _sweep_progress(console, scheduler: str | None, runs: bool = True):
+    """The progress callback of :func:`sweep`: a live bar on a terminal, else lines;
+    ``runs``: whether any run is left to start (else no cluster is started)."""
     start = "starting Dask workers" if scheduler is None else f"connecting to {scheduler}"
+    start = start if runs else "no run left: writing the summary"
     if not console.is_terminal:
         say(f"sweep: {start}")
         yield _Lines(say)
