@@ -77,6 +77,24 @@ def test_a_larger_bearing_is_b1_scaled_and_solves(tmp_path):
     assert quoted != pytest.approx(1.288, rel=1e-2)
 
 
+@pytest.mark.parametrize(("inner", "outer"), [("65 mm", "90 mm"), ("100 mm", "136 mm")])
+def test_larger_bearings_solve_from_the_cold_start_at_their_loads(tmp_path, inner, outer):
+    """Bearings of B1's proportions on larger raceways, at the loads `new` writes (B1's
+    scaled by Z D L, a fifth axially): each case alone, from the cold start, finds the
+    equilibrium that a sweep stepping up the load finds (before, none: the ring's axial
+    step over the stiffness floor, scaled with its radial step, shrank that to nothing;
+    found by a review, 2026-12-02). Checked against Stribeck's Z Q_max / F_r = 4.08 for
+    line contact at zero clearance (Harris & Kotzalas, sect. 7.3), which a small clearance
+    and the axial load raise: between 4 and 5."""
+    result, out = _new(tmp_path, "--inner-raceway", inner, "--outer-raceway", outer)
+    assert result.exit_code == 0, result.output
+    assert "quasi-static equilibrium: none" not in result.output, result.output
+    cfg = load_config(out)
+    ds = statics(cfg)
+    stribeck = cfg.geometry.roller_count * float(ds.max_roller_load) / cfg.operating.radial_load
+    assert 4.0 < stribeck < 5.0, stribeck
+
+
 @given(
     pitch=st.floats(5e-3, 2.0),
     ratio=st.floats(0.01, 0.5),

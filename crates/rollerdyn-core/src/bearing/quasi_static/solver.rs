@@ -31,9 +31,15 @@ const MAX_BISECTIONS: usize = 4;
 /// on through ever smaller load steps for seconds.
 const MAX_TOTAL_ITERATIONS: usize = 60;
 /// The largest move of a position (or arc: angle times the roller radius) in one
-/// iteration [m]: a fifth of B1's axial play, well inside the region where the contacts'
-/// linearisation holds.
-pub(super) const MAX_MOVE: f64 = 4e-6;
+/// iteration [m] at B1's size: a fifth of B1's axial play, well inside the region where
+/// the contacts' linearisation holds ([`Problem::max_move`] scales it with the roller).
+const MAX_MOVE: f64 = 4e-6;
+/// [`MAX_MOVE`] over B1's roller radius (2.2475 mm; B1 keeps [`MAX_MOVE`]): a larger
+/// bearing's contacts deflect in proportion to its size at the same stress (a bearing of
+/// B1's proportions on a 80/110 mm raceway, `rollerdyn new`, moves its ring 74 µm
+/// radially under its loads against B1's 21 µm, which steps of 4 µm took more than a load
+/// level's iterations to reach).
+const MAX_MOVE_PER_ROLLER_RADIUS: f64 = 1.77e-3;
 /// The rollers' own equilibrium is sought to this share of the ring's unbalanced force
 /// while the ring is far from its own (inexact Newton).
 const FORCING: f64 = 0.01;
@@ -295,6 +301,12 @@ impl<'a> Problem<'a> {
     /// at most about a micrometre per step and a balanced one not at all.
     pub(super) fn floor(&self) -> f64 {
         1e-6 * self.reference_stiffness
+    }
+
+    /// The largest move of a position (or arc) in one iteration [m]: [`MAX_MOVE`], or in
+    /// proportion to the roller where it is larger than B1's.
+    pub(super) fn max_move(&self) -> f64 {
+        MAX_MOVE.max(MAX_MOVE_PER_ROLLER_RADIUS * self.scale)
     }
 
     /// The difference step of unknown k.
