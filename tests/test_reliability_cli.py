@@ -508,6 +508,53 @@ def test_bench_cases_refuse_t_end(tmp_path):
     one_line_saying(res.output, "--t-end", "--cases", "own end")
 
 
+@pytest.mark.parametrize(
+    ("args", "says"),
+    [
+        # a billion steps asked the core for 144 GB and aborted it with a Rust backtrace
+        (["contact", "--steps", "1000000000"], ("--steps", "62830")),
+        (["traction", "--repetitions", "2000000000"], ("--repetitions", "100000000")),
+        # options of another target were ignored without a word
+        (["traction", "--t-end", "5"], ("--t-end", "mbs", "traction")),
+        (["statics", "--state", "x.nc"], ("--state", "model", "statics")),
+        (["mbs", "--threads", "2"], ("--threads", "mbs --cases")),
+        # a dt_max the configuration refuses passed the option's own check and failed
+        # after the first run with a 66-line traceback
+        (["mbs", "--t-end", "2 ms", "--sweep-dt-max", "5e-10"], ("solver.dt_max", "1 ns")),
+    ],
+)
+def test_bench_options_out_of_range_or_of_another_target_are_refused(tmp_path, args, says):
+    res = invoke("bench", *args, "-o", tmp_path / "rs", code=2) if "mbs" in args else None
+    res = res or invoke("bench", *args, code=2)
+    assert "Traceback" not in res.output
+    for text in says:
+        assert text in res.output, res.output
+    assert not (tmp_path / "rs").exists()
+
+
+@pytest.mark.parametrize(
+    "args", [["contact", "--steps", "60000"], ["traction", "--repetitions", "100000000"]]
+)
+def test_ctrl_c_stops_a_core_benchmark_at_once(args):
+    """The core's timing loops ask for no signals: Ctrl-C waited until they ended (a
+    million contact steps: 292 s after the Ctrl-C). They now run in a helper thread while
+    the command waits: these take 15–20 s (contact) and about 7 s (traction); the command
+    must end within 5 s of the Ctrl-C with the one line and status 130."""
+    import signal
+
+    command = Path(sys.executable).parent / "rollerdyn"
+    proc = subprocess.Popen(
+        [str(command), "bench", *args], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True
+    )
+    time.sleep(3.0)  # the core call has started (Python's start takes about 1 s)
+    proc.send_signal(signal.SIGINT)
+    sent = time.monotonic()
+    out, _ = proc.communicate(timeout=60)
+    assert time.monotonic() - sent < 5.0, out
+    assert proc.returncode == 130, out
+    assert out.strip().splitlines()[-1] == "rollerdyn: interrupted", out
+
+
 def test_cost_checks_cover_checkpoints_and_every_sweep_point(tmp_path):
     """A checkpoint interval of 1 ns crawled for 100 s before it stalled; a sweep point's
     result size was refused only inside the cluster, advising a --force sweep lacks."""

@@ -12,6 +12,10 @@ use rollerdyn_core::geometry::end_flange::{Flange, FlangePlacement, FlangeShape}
 use rollerdyn_core::geometry::primitives::Vec3;
 use rollerdyn_core::geometry::roller::RollerShape;
 
+/// Most trajectory steps of the benchmark: it keeps 144 bytes of results per step (a
+/// billion, which the repetition bound let through, asked for 144 GB and aborted).
+const MAX_TRAJECTORY_STEPS: usize = 1_000_000;
+
 /// Most segments of a mesh along either direction: (4096, 4096) already meshes each figure
 /// with 16.8 million vertices (the benchmark's finest is (128, 32)).
 const MAX_MESH_SEGMENTS: usize = 4096;
@@ -42,7 +46,7 @@ fn contact_benchmark<'py>(
     mesh_every: i64,
     mesh_resolutions: Vec<(i64, i64)>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let steps = count("steps", steps, 1..=MAX_REPETITIONS)?;
+    let steps = count("steps", steps, 1..=MAX_TRAJECTORY_STEPS)?;
     let reference_every = count("reference_every", reference_every, 0..=MAX_REPETITIONS)?;
     let mesh_every = count("mesh_every", mesh_every, 0..=MAX_REPETITIONS)?;
     let shape = RollerShape::new(

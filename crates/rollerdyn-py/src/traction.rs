@@ -116,15 +116,20 @@ elementwise! {
 
         /// Nanoseconds per line-slice and per ellipse traction evaluation, timed over
         /// `repetitions` evaluations on B1-like contacts (for `rollerdyn bench`).
-        fn time_per_evaluation(&self, repetitions: i64) -> PyResult<(f64, f64)> {
+        /// Runs without the interpreter's lock, so that the caller may wait for it in
+        /// another thread and still take Ctrl-C.
+        fn time_per_evaluation(&self, py: Python<'_>, repetitions: i64) -> PyResult<(f64, f64)> {
             let reps = count("repetitions", repetitions, 1..=MAX_REPETITIONS)?;
-            let line = nanoseconds_per_call(reps, |p0, du| {
-                self.inner.line_force(p0, 1.2e-4, 2.5e-4, 0.01 + du, 2e-7)
-            });
-            let ellipse = nanoseconds_per_call(reps, |p0, du| {
-                self.inner.ellipse_force(p0, 3e-4, 1e-4, 0.05 + du, 2e-7)
-            });
-            Ok((line, ellipse))
+            let inner = &self.inner;
+            Ok(py.detach(|| {
+                let line = nanoseconds_per_call(reps, |p0, du| {
+                    inner.line_force(p0, 1.2e-4, 2.5e-4, 0.01 + du, 2e-7)
+                });
+                let ellipse = nanoseconds_per_call(reps, |p0, du| {
+                    inner.ellipse_force(p0, 3e-4, 1e-4, 0.05 + du, 2e-7)
+                });
+                (line, ellipse)
+            }))
         }
     }
 

@@ -12,6 +12,8 @@ import typer
 from ..names import GRADIENT, SEMI_ANALYTICAL
 from ..paths import check_output_dir
 from .bench_targets import (
+    MAX_REPETITIONS,
+    MAX_STEPS,
     bench_cases,
     bench_contact,
     bench_mbs,
@@ -45,10 +47,24 @@ def bench(
         ),
     ] = "all",
     repetitions: Annotated[
-        int, typer.Option(min=1000, help="Traction evaluations timed per contact type.")
+        int,
+        typer.Option(
+            min=1000,
+            max=MAX_REPETITIONS,
+            help="traction: evaluations timed per contact type (about 40 ns each with "
+            "B1's tabulated traction: the default takes a few hundredths of a second, the "
+            "most about 8 s).",
+        ),
     ] = 200_000,
     steps: Annotated[
-        int, typer.Option(min=10, help="Trajectory steps of the contact benchmark.")
+        int,
+        typer.Option(
+            min=10,
+            max=MAX_STEPS,
+            help="contact: trajectory steps of 1e-3 rad of roller-set azimuth (the default "
+            "6283 is one revolution, about 2 s with the reference and mesh checks; the "
+            "most, ten revolutions, about 20 s).",
+        ),
     ] = 6283,
     t_end: Annotated[
         str | None,
@@ -176,6 +192,21 @@ def bench(
     """
     if target not in ("traction", "contact", "model", "mbs", "statics", "all"):
         raise refuse(f"target = {target!r}: must be traction, contact, model, mbs, statics or all")
+    _refuse_options_of_other_targets(
+        target,
+        {
+            "--repetitions": repetitions != 200_000,
+            "--steps": steps != 6283,
+            "--t-end": t_end is not None,
+            "--sweep-dt-max": sweep_dt_max is not None,
+            "--cases": cases is not None,
+            "--threads": threads != "1",
+            "--max-wall": max_wall != 300.0,
+            "--state": state is not None,
+            "--statics-cases": statics_cases != 1000,
+            "-o": output != "runtime-study",
+        },
+    )
     end = time_option("--t-end", t_end)
     dt_max_values = None if sweep_dt_max is None else _dt_max_values(sweep_dt_max)
     thread_counts = _thread_counts(threads)
@@ -207,9 +238,45 @@ def bench(
     if target == "mbs" and cases is not None:
         bench_cases(cfg, cases, thread_counts, max_wall, Path(output))
     elif target == "mbs" and dt_max_values is not None:
-        runtime_study(cfg, end, dt_max_values, Path(output))
+        path = config if config is not None else default_config()
+        # each Δt_max checked by the configuration's rules (≥ 1 ns, above min_mean_step)
+        variants = [
+            (v, load(path, {**changes, "solver.dt_max": f"{v!r} s"})) for v in dt_max_values
+        ]
+        runtime_study(variants, end, Path(output))
     elif target == "mbs":
         bench_mbs(cfg, end)
+
+
+#: Where each option of ``bench`` applies (its target, or targets).
+_APPLIES = {
+    "--repetitions": ("traction", "all"),
+    "--steps": ("contact", "all"),
+    "--t-end": ("mbs",),
+    "--sweep-dt-max": ("mbs",),
+    "--cases": ("mbs",),
+    "--threads": ("mbs",),
+    "--max-wall": ("mbs",),
+    "--state": ("model",),
+    "--statics-cases": ("statics",),
+    "-o": ("mbs",),
+}
+
+
+def _refuse_options_of_other_targets(target: str, given: dict[str, bool]) -> None:
+    """Exits with status 2 naming an option given for a target it does not apply to (it
+    was ignored without a word); also --threads, --max-wall and -o of mbs without
+    --cases or --sweep-dt-max, which alone use them."""
+    for option, was_given in given.items():
+        if was_given and target not in _APPLIES[option]:
+            where = " or ".join(t for t in _APPLIES[option] if t != "all")
+            raise refuse(f"{option} applies to the target {where}, not to {target}")
+    if target == "mbs" and given["--sweep-dt-max"] and given["--cases"]:
+        raise refuse("--sweep-dt-max with --cases: give one (fig. 14's study, or the cases)")
+    if target == "mbs" and not given["--cases"]:
+        for option in ("--threads", "--max-wall"):
+            if given[option]:
+                raise refuse(f"{option} applies to mbs --cases only")
 
 
 def _dt_max_values(text: str) -> list[float]:

@@ -13,6 +13,37 @@ from rich.text import Text
 from ..names import GRADIENT, SEMI_ANALYTICAL
 from .common import console, refuse, say
 
+#: Most traction evaluations per contact type (about 40 ns each with B1's tabulated
+#: traction: some 8 s for both types).
+MAX_REPETITIONS = 100_000_000
+#: Most trajectory steps of the contact benchmark (ten revolutions; about 0.35 ms a step
+#: with its reference and mesh checks: some 20 s).
+MAX_STEPS = 62_830
+
+
+def _interruptible(call, *args, **kwargs):
+    """``call(*args, **kwargs)`` (a core function that holds no Python lock while it runs)
+    in a helper thread, the main thread waiting in short slices: Ctrl-C stops the command
+    at once instead of when the call returns (the benchmark's timing loops have no point
+    at which the core asks for signals); the abandoned call ends with the process."""
+    import threading
+
+    done: dict = {}
+
+    def target() -> None:
+        try:
+            done["value"] = call(*args, **kwargs)
+        except BaseException as err:  # handed to the main thread
+            done["error"] = err
+
+    worker = threading.Thread(target=target, daemon=True)
+    worker.start()
+    while worker.is_alive():
+        worker.join(0.1)
+    if "error" in done:
+        raise done["error"]
+    return done["value"]
+
 
 def bench_traction(cfg, repetitions: int) -> None:
     """One line slice and one ellipse of the configuration's traction model, timed."""
@@ -20,7 +51,7 @@ def bench_traction(cfg, repetitions: int) -> None:
 
     traction = Model(cfg).traction
     traction.time_per_evaluation(10_000)  # warm-up
-    line, ellipse = traction.time_per_evaluation(repetitions)
+    line, ellipse = _interruptible(traction.time_per_evaluation, repetitions)
     table = Table(title="EHL traction evaluation (one core)")
     for col in ("contact", "time per evaluation [ns]", "scheme"):
         table.add_column(col)
@@ -101,16 +132,15 @@ def _mbs_runs(cfg, t_end: float | None, label: str = "") -> list:
     return rows
 
 
-def runtime_study(cfg, t_end: float | None, dt_max_values: list, out: Path) -> None:
-    """The paper's fig. 14: wall time of whole runs over Δt_max, both detectors."""
+def runtime_study(variants: list, t_end: float | None, out: Path) -> None:
+    """The paper's fig. 14: wall time of whole runs over Δt_max, both detectors;
+    ``variants``: (Δt_max [s], the configuration with it) in order."""
     import pandas as pd
 
     from ..plots import plot_runtime_study
 
     records = []
-    for dt_max in dt_max_values:
-        solver = cfg.solver.model_copy(update={"dt_max": dt_max})
-        variant = cfg.model_copy(update={"solver": solver})
+    for dt_max, variant in variants:
         for detector, ds in _mbs_runs(variant, t_end, f" (dt_max = {dt_max:g} s)"):
             a = ds.attrs
             records.append(
@@ -131,8 +161,9 @@ def runtime_study(cfg, t_end: float | None, dt_max_values: list, out: Path) -> N
     frame = pd.DataFrame.from_records(records)
     out.mkdir(parents=True, exist_ok=True)
     frame.to_csv(out / "runtime_study.csv", index=False)
-    paths = plot_runtime_study(frame, out, title=f"{cfg.name}: runtime over Δt_max")
-    table = Table(title=f"{cfg.name}: runtime study (paper fig. 14), one core")
+    name = variants[0][1].name
+    paths = plot_runtime_study(frame, out, title=f"{name}: runtime over Δt_max")
+    table = Table(title=f"{name}: runtime study (paper fig. 14), one core")
     cols = ("Δt_max [s]", "detector", "wall [s]", "t reached [s]", "steps", "rejected", "fallbacks")
     for col in cols:
         table.add_column(col)
@@ -326,7 +357,8 @@ def bench_contact(cfg, steps: int) -> None:
     g = cfg.geometry
     fl = g.inner_flange
     with console.status(Text("timing roller end / flange detection...")):
-        r = _core.contact_benchmark(
+        r = _interruptible(
+            _core.contact_benchmark,
             roller_diameter=g.roller_diameter,
             roller_length=g.roller.length,
             edge_radius=g.roller.edge_radius,
