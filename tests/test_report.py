@@ -225,6 +225,8 @@ def test_summary_matches_the_data(result):
     assert s["final_time"] == pytest.approx(0.01)
     assert s["steps"][0] == ds.attrs["stats_steps"] > 0
     assert s["status"] == "completed"
+    # the wall time's threads (the page said "on one core" for a run on two)
+    assert s["threads"] == ds.attrs["threads"] >= 1
     for ring in ("inner", "outer"):
         shares = pairing_shares(ds, ring)
         assert sum(shares.values()) == pytest.approx(1.0)
@@ -437,6 +439,23 @@ def test_the_report_function_checks_its_arguments_before_the_work(result, tmp_pa
         with pytest.raises(ReportError, match=match):
             report([result], **kwargs)
     assert not (tmp_path / "r.html").exists()
+    # None raised a bare TypeError; a generator's files were used up by the check, and the
+    # page said "no result files given"
+    with pytest.raises(ReportError, match="paths = None: must be result files' paths"):
+        report(None, tmp_path / "r.html")
+    assert report((p for p in [result]), tmp_path / "g.html") == tmp_path / "g.html"
+
+
+def test_a_result_given_twice_is_refused_by_report_and_plot(result, tmp_path):
+    """The same file twice (here once by a relative name through a link) gave two
+    identical columns and legend entries under one label."""
+    link = tmp_path / "again.nc"
+    link.symlink_to(result)
+    for command in (["report", "-o", str(tmp_path / "r.html")], ["plot", "-o", str(tmp_path)]):
+        out = RUNNER.invoke(app, [*command, str(result), str(link)])
+        assert out.exit_code == 2, out.output
+        assert f"given twice (also as {link}); give each result once" in out.output
+    assert not (tmp_path / "r.html").exists() and not list(tmp_path.glob("*.png"))
 
 
 def test_a_run_beside_its_quasi_static_estimate(tmp_path):

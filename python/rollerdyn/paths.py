@@ -72,6 +72,17 @@ def same_file(a: Path, b: Path) -> bool:
         return os.path.abspath(a) == os.path.abspath(b)
 
 
+def repeated_file(paths) -> tuple[Path, Path] | None:
+    """The first two of ``paths`` that name the same file (:func:`same_file`: ``b.nc`` and
+    ``./b.nc``, a link and its target), or None."""
+    paths = [Path(p) for p in paths]
+    for i, a in enumerate(paths):
+        for b in paths[i + 1 :]:
+            if same_file(a, b):
+                return a, b
+    return None
+
+
 def name_problem(path: Path) -> str | None:
     """What makes ``path`` impossible to look up or use, in a few words, or None: a part of
     its name longer than :data:`NAME_MAX` bytes, a symbolic link loop, a symbolic link to

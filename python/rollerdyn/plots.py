@@ -69,12 +69,13 @@ def plot_results(paths: list[Path], out: Path) -> list[Path]:
     is wrong) for one that is missing or not a rollerdyn result, before any figure."""
     import matplotlib
 
-    from .report import REQUIRED, open_result, run_names
+    from .report import REQUIRED, open_result, refuse_repeats, run_names
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     paths = [Path(p) for p in paths]
+    refuse_repeats(paths)
     sets = [
         (n, open_result(p, required=(*REQUIRED, "ring_tilt"), recorded_only=True))
         for n, p in zip(run_names(paths), paths, strict=True)

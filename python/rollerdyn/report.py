@@ -16,6 +16,7 @@ import html
 import json
 import math
 import os
+from collections.abc import Iterable
 from pathlib import Path
 
 import numpy as np
@@ -337,6 +338,7 @@ SUMMARY_ROWS = (
     ("final_time", "final time", "s"),
     ("steps", "solver steps (rejected)", "-"),
     ("wall", "wall time", "s"),
+    ("threads", "threads of the run", "-"),
     ("status", "status", ""),
 )
 
@@ -386,6 +388,8 @@ def summary(ds: xr.Dataset) -> dict:
         "final_time": float(a["final_time_s"]),
         "steps": (int(a.get("stats_steps", -1)), int(a.get("stats_error_test_failures", 0))),
         "wall": float(a.get("stats_total_seconds", float("nan"))),
+        # a result written before the attribute: not known
+        "threads": float(a.get("threads", float("nan"))),
         "status": status,
     }
 
@@ -616,7 +620,7 @@ def build_html(paths: list[Path], max_frames: int = MAX_FRAMES) -> str:
         "time; maxima over every output, roller and contact. Slide-to-roll ratio: eq. 49 of "
         "the paper, over the outputs at which the inner ring turns ('n/a' if it never "
         "does: the ratio has no meaning before). Steps: accepted solver steps (rejected "
-        "in brackets); wall time: the run's, on one core.</p>"
+        "in brackets); wall time: the run's, on the threads it used (the row below).</p>"
     )
 
     body += _power_section(labels, sets)
@@ -846,7 +850,9 @@ def report(paths, out, max_frames: int = MAX_FRAMES) -> Path:
 
     if isinstance(paths, str | os.PathLike):
         paths = [paths]
-    if isinstance(paths, xr.Dataset) or not all(isinstance(p, str | os.PathLike) for p in paths):
+    elif not isinstance(paths, xr.Dataset | bytes) and isinstance(paths, Iterable):
+        paths = list(paths)  # a generator's items, read once (its check used them up)
+    if not isinstance(paths, list) or not all(isinstance(p, str | os.PathLike) for p in paths):
         raise ReportError(
             f"paths = {_short(paths)}: must be result files' paths (a path or a list of them)"
         )
@@ -856,6 +862,7 @@ def report(paths, out, max_frames: int = MAX_FRAMES) -> Path:
     if not (whole and max_frames >= 1):
         raise ReportError(f"max_frames = {max_frames!r}: must be a whole number, at least 1")
     paths, out = [Path(p) for p in paths], Path(out)
+    refuse_repeats(paths)
     if out.is_dir():
         raise ReportError(f"-o {out}: is a folder; name the report's file in it")
     for p in paths:
@@ -871,6 +878,18 @@ def report(paths, out, max_frames: int = MAX_FRAMES) -> Path:
         raise ReportError(str(err)) from None
     page = build_html(paths, max_frames=max_frames)
     return _write_page(out, page)
+
+
+def refuse_repeats(paths: list[Path]) -> None:
+    """:class:`ReportError` for a result given twice (it gave two identical columns under
+    one label)."""
+    from .paths import repeated_file
+
+    repeat = repeated_file(paths)
+    if repeat is not None:
+        a, b = repeat
+        also = "" if str(a) == str(b) else f" (also as {b})"
+        raise ReportError(f"{a}: given twice{also}; give each result once")
 
 
 def _write_page(out: Path, page: str) -> Path:
