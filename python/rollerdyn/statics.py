@@ -272,7 +272,7 @@ def _no_equilibrium_hint(cfg: BearingConfig, case: StaticCase, message: str) -> 
         return message
     text = without("axial load")
     tolerance = re.search(r"tolerance,? ([0-9.]+e[-+]?[0-9]+) N\b", message)
-    load = math.hypot(case.radial_load - weight[1], weight[2])
+    load = carried_radial_load(cfg, case)
     if tolerance is not None and load <= _TINY_LOAD * float(tolerance.group(1)):
         text += (
             f"; the load on the ring ({load:.3g} N with its weight) is within "
@@ -750,12 +750,19 @@ def _case_variables(
     friction_note = _point_law_friction_note(
         cfg, case, str(pairing.flat[heaviest]) if heaviest is not None else ""
     )
+    friction_caveat = "" if friction_note else _slow_sliding_caveat(cfg, case, forces, r)
     if friction_note:  # no estimate: the steady rolling's outputs are NaN
         r = {
             **r,
             **{
                 k: np.full(np.shape(r[k]), np.nan)
-                for k in ("friction_power", "roller_slip", "roller_skew", "flange_offsets")
+                for k in (
+                    "friction_power",
+                    "roller_slip",
+                    "roller_skew",
+                    "flange_offsets",
+                    "flange_sliding_speeds",
+                )
             },
         }
     data = {
@@ -843,6 +850,13 @@ def _case_variables(
             "contact point's distance from the roller's meridian plane (towards x cross "
             "e_r), off it where the roller skews (roller_skew); NaN where nothing is carried",
         ),
+        "flange_sliding_speed": _var(
+            np.asarray(r["flange_sliding_speeds"]).reshape(-1, 4),
+            ("roller", "flange"),
+            "m/s",
+            "how fast the roller end slides on the flange in steady rolling, at the point of "
+            "its force; NaN where nothing is carried",
+        ),
         "flange_pairing": _var(
             pairing.astype(str),
             ("roller", "flange"),
@@ -926,6 +940,14 @@ def _case_variables(
             "roller_skew, flange_contact_offset) is NaN: the point law's most loaded roller "
             "end lying on its end face; empty where it is estimated",
         ),
+        "friction_caveat": _var(
+            friction_caveat,
+            (),
+            "",
+            "why the friction of steady rolling may be underestimated, where it is: the "
+            "roller ends sliding on the flanges slower than the boundary friction's "
+            "smoothing speed (a slowly turning bearing); empty otherwise",
+        ),
         "max_flange_force": _var(
             float(flange["flange_force"].max()), (), "N", "largest roller end / flange force"
         ),
@@ -959,10 +981,12 @@ def _case_variables(
             "limit; inf unloaded)",
         ),
         "loaded_rollers": _var(
-            float((inner_load > 1e-6 * max(inner_load.max(), 1e-30)).sum()),
+            _rollers_in_the_load_zone(inner_load, outer_load),
             (),
             "1",
-            "rollers loaded at the inner race",
+            "rollers in the load zone: pressed between the races, each race's load on them "
+            "at least 1 % of the heaviest roller's (not those that rest on the inner ring "
+            "by their weight, or press the outer ring only by their centrifugal force)",
         ),
         "load_zone_angle": _var(
             _load_zone_angle(cfg, ring),
@@ -1039,6 +1063,37 @@ def _stacked(template: dict[str, _Var], parts: list[dict[str, _Var] | None]) -> 
 TORQUE_RELATIVE_SPEED = 0.01
 
 
+#: The share of the largest flange force from which a flange contact's sliding speed is
+#: judged by :func:`_slow_sliding_caveat`.
+_PRESSED_SHARE = 0.01
+
+
+def _slow_sliding_caveat(cfg: BearingConfig, case: StaticCase, forces, r: dict) -> str:
+    """Why the friction of steady rolling is underestimated, or "": the roller ends pressed
+    on the flanges (at least :data:`_PRESSED_SHARE` of the largest flange force) slide
+    slower than ``surfaces.boundary_friction.smoothing_speed`` v_s, below which the
+    boundary friction and the EHL traction are smoothed towards zero (docs/dynamics.md,
+    "Creep zone of the EHL traction"). The smoothing keeps the integrator's Jacobian
+    finite where a sliding speed changes sign; at steady sliding below v_s it is not the
+    Coulomb friction of the contact. B1's flanges slide at about 0.12 mm/s per rpm: its
+    friction torque is 0.3038 N*m at 30 rpm (slowest contact 1.9 mm/s), 3 % less at 10 rpm
+    (0.9 mm/s), 64 % less at 3 rpm."""
+    if not _turns_relatively(case) or not forces.max() > 0.0:
+        return ""
+    sliding = np.asarray(r["flange_sliding_speeds"], dtype=float).reshape(forces.shape)
+    pressed = forces >= _PRESSED_SHARE * forces.max()
+    slowest = float(np.nanmin(np.where(pressed, sliding, np.inf)))
+    v_s = cfg.surfaces.boundary_friction.smoothing_speed
+    if not slowest < v_s:
+        return ""
+    return (
+        f"the roller ends slide on the flanges at {1e3 * slowest:.2g} mm/s and up, below "
+        f"surfaces.boundary_friction.smoothing_speed ({1e3 * v_s:g} mm/s), where the model "
+        "smooths the friction towards zero: the friction torque is "
+        'underestimated at this speed (docs/statics.md, "Friction of steady rolling")'
+    )
+
+
 def _turns_relatively(case: StaticCase) -> bool:
     """Whether the rings of ``case`` turn relative to each other: not at rest, and not
     together (the relative speed at least :data:`TORQUE_RELATIVE_SPEED` of the faster
@@ -1081,6 +1136,16 @@ def _point_law_friction_note(cfg: BearingConfig, case: StaticCase, pairing: str)
     if not _turns_relatively(case):
         return ""
     return POINT_LAW_ON_THE_FACE.format(pairing=pairing)
+
+
+def _rollers_in_the_load_zone(inner: np.ndarray, outer: np.ndarray) -> float:
+    """How many rollers carry load between the races: the lesser of their two race loads
+    at least 1 % of the heaviest roller's (B1 at 5 kN: 9; the rollers above the ring rest
+    on it with 2 mN by their weight, which 1e-6 of the heaviest counted: 13)."""
+    heaviest = max(float(inner.max()), float(outer.max()))
+    if heaviest <= 0.0:
+        return 0.0
+    return float((np.minimum(inner, outer) >= 0.01 * heaviest).sum())
 
 
 def _flange_contact_height(cfg: BearingConfig, radius: np.ndarray) -> np.ndarray:
@@ -1184,6 +1249,17 @@ def _film_variables(cfg: BearingConfig, ratings: _Ratings, case: StaticCase, sli
     return out
 
 
+def carried_radial_load(cfg: BearingConfig, case: StaticCase) -> float:
+    """The radial load the bearing carries [N]: the applied radial load (along -y on the
+    inner ring) and the weight of the inner ring with its shaft section across the axis,
+    added as vectors. ISO 281's P and ISO 76's P_0r are the load on the bearing; the ring's
+    weight is part of it (a 22 kg ring and shaft of a 50 mm bore under 1 N gave L_10 =
+    1.5e16 against L_10r = 6.2e8, which its slice loads, carrying the weight, give)."""
+    gravity = np.asarray(cfg.operating.gravity, dtype=float)
+    weight = cfg.inner_ring.mass * gravity
+    return float(math.hypot(weight[1] - case.radial_load, weight[2]))
+
+
 def _life_variables(
     cfg: BearingConfig,
     ratings: _Ratings,
@@ -1192,8 +1268,9 @@ def _life_variables(
     outer: np.ndarray,
     contamination: float,
 ) -> dict:
-    """Rating lives of the case (:mod:`rollerdyn.life`): ISO 281's L_10 with P = F_r (a
-    cylindrical roller bearing's equivalent load ignores the axial load), ISO/TS 16281's
+    """Rating lives of the case (:mod:`rollerdyn.life`): ISO 281's L_10 with P the radial
+    load the bearing carries (a cylindrical roller bearing's equivalent load ignores the
+    axial load: :func:`carried_radial_load`), ISO/TS 16281's
     L_10r from the slice loads and its modified L_nmr with a_ISO from the lubricant's
     viscosity ratio kappa at the operating temperature and speed and the contamination
     factor e_C. Lives in 10^6 revolutions of one ring relative to the other (ISO 281:2007,
@@ -1203,7 +1280,8 @@ def _life_variables(
     c_r, c_u, nu = ratings.dynamic, ratings.fatigue_limit, ratings.viscosity
     d, dpw = cfg.geometry.roller_diameter, cfg.geometry.pitch_diameter
     rotating = _rotating_ring(case)
-    l10 = life.basic_rating_life(c_r, case.radial_load) if case.radial_load > 0 else math.inf
+    radial = carried_radial_load(cfg, case)
+    l10 = life.basic_rating_life(c_r, radial) if radial > 0 else math.inf
     l10r = life.reference_rating_life(inner, outer, c_r, d, dpw, rotating=rotating)
     rpm = abs(case.relative_speed) * 60.0 / (2.0 * math.pi)
     kappa = life.viscosity_ratio(nu, rpm, dpw) if rpm > 0 else math.nan
@@ -1229,12 +1307,28 @@ def _life_variables(
             ratings.static, (), "N", "basic static radial load rating C_0r (ISO 76:2006)"
         ),
         "s0": _var(
-            life.static_safety_factor(ratings.static, case.radial_load),
+            life.static_safety_factor(ratings.static, radial),
             (),
             "1",
-            "static safety factor s_0 = C_0r / P_0r, P_0r = F_r (ISO 76:2006; inf at F_r = 0)",
+            "static safety factor s_0 = C_0r / P_0r, P_0r the radial load carried "
+            "(carried_radial_load: F_r and the inner ring's weight; ISO 76:2006; inf "
+            "without radial load)",
         ),
-        "l10": _var(l10, (), "1e6 rev", "basic rating life L_10 with P = F_r (ISO 281:2007, 7.3)"),
+        "l10": _var(
+            l10,
+            (),
+            "1e6 rev",
+            "basic rating life L_10 with P the radial load carried (carried_radial_load: "
+            "F_r and the inner ring's weight; ISO 281:2007, 7.3)",
+        ),
+        "carried_radial_load": _var(
+            radial,
+            (),
+            "N",
+            "the radial load the bearing carries, P of L_10 and P_0r of s_0: the applied "
+            "radial load and the weight of the inner ring with its shaft section "
+            "(inner_ring.mass times operating.gravity across the axis), added as vectors",
+        ),
         "l10r": _var(
             l10r,
             (),

@@ -63,6 +63,10 @@ fn solution_dict<'py>(
     d.set_item("roller_slip", array(py, friction.roller_slip.clone()))?;
     d.set_item("roller_skew", array(py, friction.roller_skew.clone()))?;
     d.set_item("flange_offsets", array(py, friction.flange_offsets.clone()))?;
+    d.set_item(
+        "flange_sliding_speeds",
+        array(py, friction.flange_sliding_speeds.clone()),
+    )?;
     d.set_item("pair_force", array(py, friction.pair_forces.clone()))?;
     let rollers = &s.rollers;
     let per_roller = |f: &dyn Fn(usize) -> f64| array(py, (0..rollers.len()).map(f).collect());

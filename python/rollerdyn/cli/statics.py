@@ -404,12 +404,13 @@ def _print_case(ds) -> None:
         ("speed", _speed_text(ds)),
         ("ring displacement x, y, z", ", ".join(f"{v * 1e6:.4g} um" for v in ring[:3])),
         ("ring tilt about y, z", ", ".join(f"{v * 1e3:.4g} mrad" for v in ring[3:])),
-        ("heaviest roller", f"{float(ds.max_roller_load):.6g} N"),
+        ("heaviest roller, inner / outer race", _heaviest_text(ds)),
         ("largest race pressure", f"{float(ds.max_pressure) / 1e9:.4g} GPa"),
         ("largest flange force", _flange_force_text(ds)),
         (
             "load zone half-angle",
-            f"{float(ds.load_zone_angle):.4g} deg ({int(ds.loaded_rollers)} rollers loaded)",
+            f"{float(ds.load_zone_angle):.4g} deg ({_count(int(ds.loaded_rollers), 'roller')} "
+            "pressed between the races)",
         ),
         ("friction of steady rolling", _friction_text(ds)),
         ("roller slip (1 - spin / spin of rolling)", _slip_text(ds)),
@@ -421,12 +422,16 @@ def _print_case(ds) -> None:
             "C_r (ISO 281), C_0r (ISO 76)",
             f"{float(ds.dynamic_load_rating):.6g} N, {float(ds.static_load_rating):.6g} N",
         ),
-        ("static safety s_0 = C_0r / F_r (ISO 76)", f"{float(ds.s0):.4g}"),
+        (
+            "radial load carried P (F_r with the ring's weight)",
+            f"{float(ds.carried_radial_load):.6g} N",
+        ),
+        ("static safety s_0 = C_0r / P (ISO 76)", f"{float(ds.s0):.4g}"),
         (
             "static safety by stress: races, flanges",
             f"{float(ds.s0_races):.4g}, {float(ds.s0_flanges):.4g}",
         ),
-        ("L_10 (ISO 281, P = F_r)", f"{float(ds.l10):.4g} 1e6 rev"),
+        ("L_10 (ISO 281, at P)", f"{float(ds.l10):.4g} 1e6 rev"),
         ("L_10r (ISO/TS 16281)", f"{float(ds.l10r):.4g} 1e6 rev"),
         ("kappa, L_nmr", f"{float(ds.kappa):.3g}, {float(ds.lnmr):.4g} 1e6 rev"),
         ("race films (thinnest, inner, outer)", _thinnest_films(ds)),
@@ -435,6 +440,9 @@ def _print_case(ds) -> None:
     for name, value in rows:
         table.add_row(name, value)
     console.print(table)
+    caveat = str(ds["friction_caveat"].values) if "friction_caveat" in ds else ""
+    if caveat:
+        say(f"friction of steady rolling: {caveat}", "yellow")
 
 
 def _print_sweep(ds) -> None:
@@ -485,6 +493,9 @@ def _print_sweep(ds) -> None:
     if notes:
         cases = f"{len(notes)} case" + ("s" if len(notes) != 1 else "")
         say(f"{cases} without friction estimate (NaN): {notes[0]}", "yellow")
+    caveats = [str(v) for v in ds["friction_caveat"].values if v] if "friction_caveat" in ds else []
+    if caveats:
+        say(f"{_count(len(caveats), 'case')} with friction underestimated: {caveats[0]}", "yellow")
 
 
 def _cell(value) -> str:
@@ -545,6 +556,17 @@ def _by_load(ds, values, scale: float, unit: str) -> str:
             low, high = value[rows].min(), value[rows].max()
             parts.append(f"{name} {low:.3g} ... {high:.3g} {unit}")
     return ", ".join(parts)
+
+
+def _count(n: int, thing: str) -> str:
+    return f"{n} {thing}" + ("" if n == 1 else "s")
+
+
+def _heaviest_text(ds) -> str:
+    """The heaviest roller's load at each race (they differ by its centrifugal force and
+    weight: at 100 000 rpm B1's outer race carries 10 % more)."""
+    outer = np.asarray(ds.outer_race_load.values, dtype=float).max()
+    return f"{float(ds.max_roller_load):.6g} N / {outer:.6g} N"
 
 
 def _friction_note(ds) -> str:

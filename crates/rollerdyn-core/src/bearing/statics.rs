@@ -220,6 +220,12 @@ pub struct RollingFriction {
     /// skewed roller's end meets its flange off that plane, and the end's surface there
     /// moves across the rib's as well as along it.
     pub flange_offsets: Vec<f64>,
+    /// Each pressed roller end's sliding speed on its flange [m/s] (the contact's
+    /// [`super::contacts::Lubrication::sliding_speed`]), laid out as
+    /// [`Self::flange_offsets`]; NaN where the end does not press the flange. Where it is
+    /// near `surfaces.boundary_friction.smoothing_speed` the friction is smoothed towards
+    /// zero (a slowly turning bearing).
+    pub flange_sliding_speeds: Vec<f64>,
     /// Each roller's skew [rad] about its radial direction (as a run's `skew`), where its
     /// moments about that direction balance ([`super::skew_balance`]); 0 at rest.
     pub roller_skew: Vec<f64>,
@@ -311,6 +317,7 @@ impl BearingSystem<'_> {
     ) -> RollingFriction {
         let mut out = RollingFriction {
             flange_offsets: vec![f64::NAN; 4 * kin.rollers.len()],
+            flange_sliding_speeds: vec![f64::NAN; 4 * kin.rollers.len()],
             ..RollingFriction::default()
         };
         for (element, r) in self.elements().iter().zip(results) {
@@ -325,6 +332,7 @@ impl BearingSystem<'_> {
                         let center = kin.rollers[i].center;
                         let along = Vec3::x().cross(&radial_direction(&center));
                         out.flange_offsets[4 * i + k] = (r.location - center).dot(&along);
+                        out.flange_sliding_speeds[4 * i + k] = r.lubrication.sliding_speed;
                     }
                 }
                 Element::Pair(_) => {}
