@@ -495,3 +495,35 @@ def test_a_run_beside_its_quasi_static_estimate(tmp_path):
     write(ds, path)
     page = build_html([path])
     assert 'id="statics"' in page and "run / quasi-static" in page
+
+
+def test_results_with_nan_or_inf_values_plot_and_one_without_rollers_is_refused(result, tmp_path):
+    """A result whose azimuths are all NaN and whose last outputs are infinite (a damaged
+    or hand-made file) failed `plot` with matplotlib's "Data cannot be log-scaled"
+    traceback, and `report` printed NumPy's RuntimeWarnings; one without rollers gave an
+    IndexError. Now the figures are drawn from what can be drawn, the page is written
+    quietly, and a result without rollers is refused in one line (found by a review,
+    2026-12-02)."""
+    from rollerdyn.simulation import write
+
+    with xr.open_dataset(result, engine="h5netcdf") as ds:
+        ds = ds.load()
+    odd = ds.copy(deep=True)
+    odd["azimuth"][:] = np.nan
+    odd["frictional_torque"][-3:] = np.inf
+    write(odd, tmp_path / "odd.nc")
+    for command in (
+        ["plot", "-o", str(tmp_path / "figs")],
+        ["report", "-o", str(tmp_path / "r.html")],
+    ):
+        out = RUNNER.invoke(app, [*command, str(tmp_path / "odd.nc")])
+        assert out.exit_code == 0, out.output
+        assert "Warning" not in out.output and "Traceback" not in out.output, out.output
+    write(ds.isel(roller=slice(0, 0)), tmp_path / "none.nc")
+    for command in (
+        ["plot", "-o", str(tmp_path / "figs2")],
+        ["report", "-o", str(tmp_path / "n.html")],
+    ):
+        out = RUNNER.invoke(app, [*command, str(tmp_path / "none.nc")])
+        assert out.exit_code == 2, out.output
+        assert "none.nc: not a rollerdyn result (it holds no rollers)" in out.output

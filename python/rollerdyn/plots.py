@@ -259,8 +259,12 @@ def over_azimuth(
         psi = np.degrees(d.azimuth.values.ravel())
         for suffix, marker, v in series(d):
             curves.append((psi, v.values.ravel(), marker, _label(ds, p) + suffix))
-    if yscale == "log":
-        curves = [(x, y, m, lab) for x, y, m, lab in curves if (y > 0.0).any()]
+    if yscale == "log":  # a point to draw: a positive value at a finite azimuth
+        curves = [
+            (x, y, m, lab)
+            for x, y, m, lab in curves
+            if ((y > 0.0) & np.isfinite(y) & np.isfinite(x)).any()
+        ]
     if not curves:
         return
     fig, ax = plt.subplots(figsize=(7, 4))

@@ -132,6 +132,8 @@ def open_result(
         )
     if ds.sizes.get("time", 0) == 0:
         raise ReportError(f"{path}: the result holds no outputs (empty time axis)")
+    if "roller" in ds.sizes and ds.sizes["roller"] == 0:  # a bearing has at least 3
+        raise ReportError(f"{path}: not a rollerdyn result (it holds no rollers)")
     _check_numeric_attributes(path, ds.attrs)
     return ds
 

@@ -75,6 +75,20 @@ def refusing(bad_input: type[Exception] | tuple[type[Exception], ...], output: P
         raise refuse(f"-o {output}: {err}", 1) from None
 
 
+@contextlib.contextmanager
+def quiet_arithmetic():
+    """NumPy's warnings about NaN and infinite values (a result that holds them, whose
+    numbers show as n/a) kept off the command's output: one line per problem, not
+    RuntimeWarnings with source lines."""
+    import warnings
+
+    import numpy as np
+
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore", RuntimeWarning)
+        yield
+
+
 def output_option(help: str) -> Any:
     """The ``-o``/``--output`` option of a command, with its ``help``."""
     return typer.Option("--output", "-o", help=help)

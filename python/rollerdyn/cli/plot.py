@@ -8,7 +8,7 @@ from typing import Annotated
 import typer
 
 from ..paths import OutputPathError, check_name, check_output_dir
-from .common import checked, refuse, say
+from .common import checked, quiet_arithmetic, refuse, say
 
 #: Extensions of image files (matplotlib's formats): an -o named so is a figure's file name,
 #: given where plot takes the folder of its figures.
@@ -69,7 +69,8 @@ def plot(
 
     folder = checked(check_figure_folder, out)
     try:
-        written = plot_results(results, folder)
+        with quiet_arithmetic():
+            written = plot_results(results, folder)
     except ReportError as err:
         raise refuse(err) from None
     except OSError as err:

@@ -9,7 +9,7 @@ from typing import Annotated
 import typer
 
 from ..limits import MAX_FRAMES
-from .common import checked, error, refuse, say
+from .common import checked, error, quiet_arithmetic, refuse, say
 
 
 def report_command(
@@ -66,7 +66,8 @@ def report_command(
 
     checked(check_report_output, results, output)
     try:
-        written = report(results, output, max_frames=max_frames)
+        with quiet_arithmetic():
+            written = report(results, output, max_frames=max_frames)
     except ReportError as err:
         raise refuse(err) from None
     except OSError as err:  # written through a temporary file: an earlier report is intact
