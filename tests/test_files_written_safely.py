@@ -434,3 +434,32 @@ def test_attributes_that_are_no_numbers_are_refused(result, tmp_path, name, valu
         assert res.exit_code == 2, (args, res.output)
         line = one_line(res)
         assert line.startswith(f"{prefix}{bad}: not a rollerdyn result") and said in line, line
+
+
+def test_a_damaged_chunk_of_a_compressed_array_is_refused(tmp_path):
+    """The arrays a result compresses (64 kB or more) carry HDF5's Fletcher-32 checksum per
+    chunk: bytes changed inside the data (a flipped byte read as 6.3e268 N*m before) make
+    reading the file fail, which `report` and the rest refuse in one line naming it; the
+    file as written reads back bit for bit."""
+    import h5py
+
+    from rollerdyn.simulation import COMPRESS_FROM, write
+
+    n = COMPRESS_FROM // 8 * 4
+    torque = np.linspace(0.0, 0.3, n)
+    ds = xr.Dataset({"frictional_torque": ("time", torque)}, coords={"time": np.arange(n) * 1e-6})
+    path = tmp_path / "big.nc"
+    write(ds, path)
+    with h5py.File(path, "r") as f:
+        assert f["frictional_torque"].fletcher32
+        offset = f["frictional_torque"].id.get_chunk_info(1).byte_offset
+    with xr.open_dataset(path, engine="h5netcdf") as back:
+        np.testing.assert_array_equal(back["frictional_torque"].values, torque)
+    data = bytearray(path.read_bytes())
+    data[offset + 100] ^= 0xFF
+    damaged = tmp_path / "damaged.nc"
+    damaged.write_bytes(bytes(data))
+    with pytest.raises(ReportError, match=r"damaged.nc: not a rollerdyn result \(cannot be read"):
+        open_result(damaged)
+    out = invoke("report", damaged, "-o", tmp_path / "r.html")
+    assert out.exit_code == 2 and "filter returned failure" in one_line(out)

@@ -144,7 +144,8 @@ def load(path: Path, changes: dict[str, Any] | None = None):
     except ConfigError as err:
         text = str(err)
         error(
-            text if text.startswith("invalid configuration") else f"invalid configuration\n{text}"
+            # a file-level error (not found, malformed TOML) on one line with its heading
+            text if text.startswith("invalid configuration") else f"invalid configuration: {text}"
         )
         raise typer.Exit(2) from None
 
