@@ -80,8 +80,9 @@ B1_SECTIONS = ("geometry", "materials", "lubricant", "surfaces")
 
 
 def differs_from_b1(config: BearingConfig) -> str | None:
-    """The first section of ``config`` (:data:`B1_SECTIONS`, and the oil temperature) that
-    differs from examples/b1.toml's, or None: B1's own cases hold only for B1. None also
+    """The first section of ``config`` (:data:`B1_SECTIONS`, the oil temperature, and the
+    radial load and ``solver.line_fit``, which set eq. 11's fit) that differs from
+    examples/b1.toml's, or None: B1's own cases hold only for B1. None also
     where B1's file is not found (``--config`` then names B1 itself)."""
     try:
         b1 = load_config(default_config_path())
@@ -92,6 +93,12 @@ def differs_from_b1(config: BearingConfig) -> str | None:
             return section
     if config.operating.temperature != b1.operating.temperature:
         return "operating.temperature"
+    # eq. 11's fit range follows from the radial load (and solver.line_fit): its 1 % is
+    # B1's over the loads B1 sees (80 kN instead of 5 kN fitted to 1.03 % and 2.09 %)
+    if config.operating.model_dump()["radial_load"] != b1.operating.model_dump()["radial_load"]:
+        return "operating.radial_load"
+    if config.solver.line_fit.model_dump() != b1.solver.line_fit.model_dump():
+        return "solver.line_fit"
     return None
 
 
