@@ -51,8 +51,8 @@ def validate(config: ConfigOption = None) -> None:
     if other is not None:
         say(
             f"B1's own cases (eq. 11 at its races, its oil and traction, its roller) left out: "
-            f"{cfg.name} is another bearing ({other} differs from examples/b1.toml's), and "
-            "their expected values are B1's"
+            f"{cfg.name} is not B1 as published ({other} differs from examples/b1.toml's), "
+            "and their expected values are B1's"
         )
     if failures:
         raise typer.Exit(1)
