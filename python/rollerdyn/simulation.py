@@ -1058,7 +1058,7 @@ def _join(previous: xr.Dataset, continued: xr.Dataset) -> xr.Dataset:
 
 
 #: Lossless compression of a result's numeric arrays: HDF5's byte shuffle and gzip at level
-#: 1. B1's whole run (1 289 outputs): 16.7 MB -> 9.4 MB, written in 0.47-0.64 s (2026-12-01,
+#: 1. B1's whole run (1 289 outputs): 16.7 MB -> 9.4 MB, written in 0.41-0.65 s (2026-12-02, with the checksums;
 #: with every group of solver.outputs; before the lubrication outputs 11.2 MB -> 7.0 MB in
 #: 0.35-0.53 s instead of 0.21 s uncompressed, read in 0.29 s instead of 0.25 s; level 4
 #: was 1 % smaller and 20 % slower when measured with fewer outputs). Each compressed chunk
