@@ -1058,13 +1058,13 @@ def _join(previous: xr.Dataset, continued: xr.Dataset) -> xr.Dataset:
 
 
 #: Lossless compression of a result's numeric arrays: HDF5's byte shuffle and gzip at level
-#: 1. B1's whole run (1 289 outputs): 16.7 MB -> 9.4 MB, written in 0.41-0.65 s (2026-12-02, with the checksums;
-#: with every group of solver.outputs; before the lubrication outputs 11.2 MB -> 7.0 MB in
-#: 0.35-0.53 s instead of 0.21 s uncompressed, read in 0.29 s instead of 0.25 s; level 4
-#: was 1 % smaller and 20 % slower when measured with fewer outputs). Each compressed chunk
-#: carries HDF5's Fletcher-32 checksum: a damaged chunk is refused on reading (HDF5's
-#: "filter returned failure") instead of read as numbers (a byte flipped in a torque gave
-#: 6.3e268 N*m in a report).
+#: 1. B1's whole run (1 289 outputs): 16.7 MB -> 9.4 MB, written in 0.41-0.65 s (2026-12-02,
+#: with the checksums and every group of solver.outputs; before the lubrication outputs
+#: 11.2 MB -> 7.0 MB in 0.35-0.53 s instead of 0.21 s uncompressed, read in 0.29 s instead
+#: of 0.25 s; level 4 was 1 % smaller and 20 % slower when measured with fewer outputs).
+#: Each compressed chunk carries HDF5's Fletcher-32 checksum: a damaged chunk is refused on
+#: reading (HDF5's "filter returned failure") instead of read as numbers (a byte flipped in
+#: a torque gave 6.3e268 N*m in a report).
 COMPRESSION = {"compression": "gzip", "compression_opts": 1, "shuffle": True, "fletcher32": True}
 #: Arrays smaller than this [bytes] are stored as they are: a compressed array is stored in
 #: chunks, whose index costs a few kB per array (a result of 5 outputs: 113 kB plain,
