@@ -520,7 +520,9 @@ def test_bench_cases_refuse_t_end(tmp_path):
         (["mbs", "--threads", "2"], ("--threads", "mbs --cases")),
         # a dt_max the configuration refuses passed the option's own check and failed
         # after the first run with a 66-line traceback
-        (["mbs", "--t-end", "2 ms", "--sweep-dt-max", "5e-10"], ("solver.dt_max", "1 ns")),
+        (["mbs", "--t-end", "2 ms", "--sweep-dt-max", "5e-10"], ("--sweep-dt-max 5e-10", "1 ns")),
+        # -o without the cases or the study, which alone write files, was ignored
+        (["mbs", "--t-end", "2 ms"], ("-o applies to mbs --cases and mbs --sweep-dt-max",)),
     ],
 )
 def test_bench_options_out_of_range_or_of_another_target_are_refused(tmp_path, args, says):
@@ -530,6 +532,14 @@ def test_bench_options_out_of_range_or_of_another_target_are_refused(tmp_path, a
     for text in says:
         assert text in res.output, res.output
     assert not (tmp_path / "rs").exists()
+
+
+def test_a_dt_max_given_twice_is_run_once():
+    """A Δt_max given twice ran twice and then failed the table with "Index contains
+    duplicate entries" after every run."""
+    from rollerdyn.cli.bench import _dt_max_values
+
+    assert _dt_max_values("1e-4,3e-5,1e-4") == [3e-5, 1e-4]
 
 
 @pytest.mark.parametrize(

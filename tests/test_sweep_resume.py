@@ -194,7 +194,9 @@ def test_cli_resume_after_ctrl_c_finishes_the_sweep(tmp_path):
     start = time.monotonic()
     done = subprocess.run([*args, "--resume"], capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stdout + done.stderr
-    assert f"{len(stamps)} of 3 runs finished earlier in {folder}, kept" in done.stdout
+    kept = len(stamps)
+    said = f"{kept} of 3 runs kept" if kept < 3 else "all 3 runs kept"
+    assert f"{said} from the earlier sweep" in done.stdout, done.stdout
     assert all(_stamps(folder)[name] == stamp for name, stamp in stamps.items())
     frame = pd.read_parquet(folder / "summary.parquet")
     assert list(frame["status"]) == ["completed"] * 3, (frame, time.monotonic() - start)
@@ -209,3 +211,58 @@ def test_cli_resume_and_overwrite_together_are_refused(tmp_path):
     assert result.exit_code == 2
     assert "--overwrite and --resume: choose one" in result.output
     assert list(tmp_path.iterdir()) == []
+
+
+def _copy(finished: Path, tmp_path: Path) -> Path:
+    import shutil
+
+    return Path(shutil.copytree(finished, tmp_path / "copy"))
+
+
+def test_a_second_sweep_in_the_same_folder_is_refused_and_a_stale_lock_taken_over(
+    finished, tmp_path
+):
+    """Two sweeps writing one folder replaced each other's run files and both said they
+    completed (found by a review, 2026-12-02): a sweep holds the folder's lock
+    (``.sweep.lock``, its process id) while it runs, another is refused in one line before
+    it starts anything; a lock whose process is gone is taken over; none is left behind."""
+    folder = _copy(finished, tmp_path)
+    holder = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
+    try:
+        (folder / ".sweep.lock").write_text(str(holder.pid))
+        with pytest.raises(SweepError, match=rf"another sweep \(process {holder.pid}\) is running"):
+            rollerdyn.sweep(SHORT_DATA, GRID, folder, resume=True)
+    finally:
+        holder.kill()
+        holder.wait()
+    frame = rollerdyn.sweep(SHORT_DATA, GRID, folder, resume=True)  # its process is gone
+    assert list(frame["status"]) == ["completed"] * 3
+    assert not (folder / ".sweep.lock").exists()
+
+
+def test_resume_rewrites_a_summary_cut_short(finished, tmp_path):
+    """A summary left empty or cut short (a sweep killed while an older version wrote it in
+    place; it is now written through a temporary file) beside the sweep's own run files
+    was refused as another program's; --resume takes it as the sweep's and writes it
+    anew. Without run files of a sweep beside it, it is still refused."""
+    folder = _copy(finished, tmp_path)
+    whole = pd.read_parquet(folder / "summary.parquet")
+    (folder / "summary.parquet").write_bytes(b"")
+    frame = rollerdyn.sweep(SHORT_DATA, GRID, folder, resume=True)
+    pd.testing.assert_frame_equal(frame[NUMBERS], whole[NUMBERS])
+    assert pd.read_parquet(folder / "summary.parquet")[NUMBERS].equals(whole[NUMBERS])
+    alone = tmp_path / "alone"
+    alone.mkdir()
+    (alone / "summary.parquet").write_bytes(b"")
+    with pytest.raises(SweepError, match="summary.parquet is not a file an earlier sweep"):
+        rollerdyn.sweep(SHORT_DATA, GRID, alone, resume=True)
+
+
+def test_the_start_line_counts_what_the_sweep_kept():
+    """The progress's first line gives the count the sweep itself kept (a run file whose
+    data cannot be read is run again: 'no run left' was said before one was run)."""
+    from rollerdyn.cli.sweep import _started
+
+    assert _started(0, 3) == "3 runs submitted"
+    assert _started(2, 3) == "2 of 3 runs kept from the earlier sweep, 1 run submitted"
+    assert _started(3, 3) == "all 3 runs kept from the earlier sweep; writing the summary"

@@ -376,6 +376,48 @@ def process_alive(pid: int) -> bool:
     return True
 
 
+class FolderLocked(RuntimeError):
+    """Another living process holds a folder's lock (:func:`take_folder_lock`)."""
+
+
+def lock_holder(folder: Path, name: str) -> int | None:
+    """The id of another living process that holds the lock file ``folder/name`` (it holds
+    the holder's process id), else None (no lock, a stale one, or this process's)."""
+    try:
+        pid = int((Path(folder) / name).read_text().strip() or "0")
+    except (OSError, ValueError):
+        return None
+    return pid if pid > 0 and pid != os.getpid() and process_alive(pid) else None
+
+
+def check_unlocked(folder: Path, name: str, what: str) -> None:
+    """Raises :class:`FolderLocked` (``-o FOLDER: another WHAT (process N) is running in
+    this folder; ...``) if another living process holds the lock ``folder/name``."""
+    pid = lock_holder(folder, name)
+    if pid is not None:
+        raise FolderLocked(
+            f"-o {folder}: another {what} (process {pid}) is running in this folder; "
+            "wait for it or choose another folder"
+        )
+
+
+def take_folder_lock(folder: Path, name: str, what: str) -> Path:
+    """Takes the lock file ``folder/name`` (created exclusively, holding this process's id)
+    and returns it; a stale one (its process gone) is taken over. Raises
+    :class:`FolderLocked` (:func:`check_unlocked`) if another living process holds it:
+    two studies or sweeps writing one folder replace each other's files."""
+    lock = Path(folder) / name
+    try:
+        fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
+    except FileExistsError:
+        check_unlocked(folder, name, what)
+        lock.unlink(missing_ok=True)  # a stale lock (its process is gone) or our own
+        fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
+    with os.fdopen(fd, "w") as f:
+        f.write(str(os.getpid()))
+    return lock
+
+
 def remove_stale_temporaries(path: Path) -> list[tuple[Path, int]]:
     """Removes the files ``PATH.tmp<pid>`` beside ``path``, and ``.rollerdyn.tmp<pid>``
     there (:func:`temporary_path`: what :func:`rollerdyn.simulation.write` and

@@ -18,6 +18,7 @@ complete file and one summary row. See ``docs/sweeps.md``; the command is
 from __future__ import annotations
 
 import contextlib
+import io
 import itertools
 import logging
 import math
@@ -35,7 +36,7 @@ import numpy as np
 
 from .config import BearingConfig, ConfigError, _field_at, parse_config
 from .names import DETECTORS
-from .paths import printable
+from .paths import printable, write_atomically
 from .units import IntegerSpec, NumberSpec, QuantitySpec, parse_time
 
 __all__ = [
@@ -586,10 +587,6 @@ def sweep(
     failed) and the others run; a run file that is not this grid's is refused
     (:func:`rollerdyn.sweep_resume.kept_runs`). Without an earlier sweep it runs them all.
     """
-    from distributed import as_completed
-
-    from .simulation import failure_note
-
     t_end = _check_sweep_arguments(
         detector, t_end, scheduler, workers, retries, progress, force, overwrite, resume
     )
@@ -599,8 +596,9 @@ def sweep(
     out = Path(outdir).resolve()
     if out.exists() and not out.is_dir():
         raise SweepError(f"outdir = {outdir}: is a file, not a folder")
+    _check_unlocked(out)
     flag = "resume=True" if resume else "overwrite=True"
-    earlier = earlier_results(out, overwrite or resume, f"outdir = {outdir}", flag)
+    earlier = earlier_results(out, overwrite or resume, f"outdir = {outdir}", flag, resume)
     rows: dict[int, dict] = {}
     if resume:
         from .sweep_resume import kept_runs
@@ -620,8 +618,72 @@ def sweep(
             scheduler, min(workers, len(todo)) if scheduler is None else workers, connect_timeout
         )
     )
+    job = _Job(out, points, list(parameters), t_end, detector, force, retries)
     try:
-        out.mkdir(parents=True, exist_ok=True)
+        lock = _lock(out)
+    except BaseException:
+        disconnect(client, cluster, scheduler)
+        raise
+    try:
+        return _run(job, (client, cluster, scheduler), rows, todo, earlier, progress)
+    finally:
+        lock.unlink(missing_ok=True)
+
+
+@dataclass(frozen=True)
+class _Job:
+    """What a sweep runs: into the folder ``out``, the grid ``points`` of the swept
+    ``paths``, each run to ``t_end`` with ``detector`` and ``force``, retried ``retries``
+    times."""
+
+    out: Path
+    points: list[GridPoint]
+    paths: list[str]
+    t_end: float | None
+    detector: str | None
+    force: bool
+    retries: int
+
+
+#: The sweep folder's lock file (:func:`rollerdyn.paths.take_folder_lock`).
+LOCK = ".sweep.lock"
+
+
+def _check_unlocked(out: Path) -> None:
+    """:class:`SweepError` if another sweep is running in the folder ``out``."""
+    from .paths import FolderLocked, check_unlocked
+
+    try:
+        check_unlocked(out, LOCK, "sweep")
+    except FolderLocked as err:
+        raise SweepError(str(err)) from None
+
+
+def _lock(out: Path) -> Path:
+    """The folder ``out`` made and its lock taken (:class:`SweepError` if another sweep
+    holds it: two sweeps in one folder replaced each other's run files, and both said
+    they completed)."""
+    from .paths import FolderLocked, take_folder_lock
+
+    out.mkdir(parents=True, exist_ok=True)
+    try:
+        return take_folder_lock(out, LOCK, "sweep")
+    except FolderLocked as err:
+        raise SweepError(str(err)) from None
+
+
+def _run(job: _Job, dask: tuple, rows: dict, todo: list, earlier: list, progress):
+    """The runs ``todo`` of ``job`` on ``dask`` (client, cluster, scheduler of
+    :func:`connect`; None: nothing to run) into its folder (locked), after the ``earlier``
+    sweep's files are removed; ``rows``: the kept runs' rows, to which the others' are
+    added. Writes the summary and its figure; returns the summary."""
+    from distributed import as_completed
+
+    from .simulation import failure_note
+
+    client, cluster, scheduler = dask
+    out, points = job.out, job.points
+    try:
         for f in earlier:  # so that none of it can pass for this sweep's (earlier_results)
             f.unlink(missing_ok=True)
         futures, by_key = [], {}
@@ -632,11 +694,11 @@ def sweep(
                 p.si_numbers,
                 str(out),
                 p.file,
-                t_end,
-                detector,
-                force,
+                job.t_end,
+                job.detector,
+                job.force,
                 pure=False,
-                retries=retries,
+                retries=job.retries,
             )
             futures.append(fut)
             by_key[fut.key] = p
@@ -681,7 +743,7 @@ def sweep(
     from .sweep_figures import write_summary_figure
 
     # titled with the bearing's name, as the operating maps are
-    write_summary_figure(frame, list(parameters), out, str(points[0].data.get("name", "")))
+    write_summary_figure(frame, job.paths, out, str(points[0].data.get("name", "")))
     return frame
 
 
@@ -710,7 +772,7 @@ def _check_sweep_arguments(
     if progress is not None and not callable(progress):
         raise SweepError(f"progress = {progress!r}: must be a function (or None)")
     for name, value in (("force", force), ("overwrite", overwrite), ("resume", resume)):
-        if not isinstance(value, bool):
+        if not isinstance(value, bool | np.bool_):
             raise SweepError(f"{name} = {value!r}: must be True or False")
     if overwrite and resume:
         raise SweepError(
@@ -724,9 +786,13 @@ def _check_sweep_arguments(
 RUN_FILES = "run_[0-9][0-9][0-9][0-9].nc"
 
 
-def earlier_results(out: Path, overwrite: bool, where: str, flag: str) -> list[Path]:
+def earlier_results(
+    out: Path, overwrite: bool, where: str, flag: str, resume: bool = False
+) -> list[Path]:
     """The files an earlier sweep wrote into the folder ``out`` (``run_XXXX.nc``, the
-    summary and its figure), which ``overwrite`` lets a new sweep remove; raises
+    summary and its figure), which ``overwrite`` lets a new sweep remove (``resume``: keep
+    and continue; then a summary that cannot be read beside the sweep's run files is taken
+    as the earlier sweep's, cut short); raises
     :class:`SweepError` (starting with ``where``, e.g. ``"-o DIR"``; ``flag`` is the
     option that allows it) if there are any and not ``overwrite``, or if one of them
     cannot be told to be a sweep's: a run file that is not a rollerdyn result, a summary
@@ -747,6 +813,10 @@ def earlier_results(out: Path, overwrite: bool, where: str, flag: str) -> list[P
             "choose another folder"
         )
     summary = _not_a_summary(out / SUMMARY_FILE)
+    if summary and resume and _sweeps_folder(found):
+        # a summary the interrupted sweep could not finish writing (killed during an older
+        # version's write in place) beside its run files: rewritten by the resumed sweep
+        summary = ""
     listed = set() if summary else _listed_files(out / SUMMARY_FILE)
     # the summary first: a foreign one is the reason its run files are not this sweep's
     for f in sorted(found, key=lambda f: (f.name != SUMMARY_FILE, f.name)):
@@ -757,12 +827,20 @@ def earlier_results(out: Path, overwrite: bool, where: str, flag: str) -> list[P
             why = why or _not_drawn(f)
         else:
             why = "" if f.name in listed else _not_a_run(f)
+            why += ", nor does the summary list it" if why.startswith("a rollerdyn") else ""
         if why:
+            verb = "writes over" if resume else "replaces"
             raise SweepError(
                 f"{where}: {f.name} is not a file an earlier sweep wrote ({why}); {flag} "
-                "replaces only a sweep's own files: move it or choose another folder"
+                f"{verb} only a sweep's own files: move it or choose another folder"
             )
     return found
+
+
+def _sweeps_folder(found: list[Path]) -> bool:
+    """Whether ``found`` holds a run file that a sweep wrote under its name (a folder of
+    an earlier sweep, whatever its summary)."""
+    return any(f.name.startswith("run_") and not _not_a_run(f) for f in found)
 
 
 def _exists(path: Path) -> bool:
@@ -795,8 +873,10 @@ def run_attributes(path: Path) -> dict | str:
         if isinstance(value, np.ndarray) and value.size == 1:
             value = value.reshape(()).item()
         attrs[key] = bytes(value).decode("utf-8", "replace") if isinstance(value, bytes) else value
-    if attrs.get("sweep_file") != path.name:
-        return "a rollerdyn result that no sweep wrote under this name, nor its summary lists"
+    stamp = attrs.get("sweep_file")
+    if stamp != path.name:
+        written = f"a sweep wrote it as {stamp}" if stamp else "no sweep wrote it"
+        return f"a rollerdyn result that no sweep wrote under this name ({written})"
     return attrs
 
 
@@ -895,7 +975,11 @@ def _summarize(out: Path, points, rows: dict[int, dict], status: str = "", error
                 },
             )
     frame = pd.DataFrame([rows[p.run] for p in points])
-    frame.to_parquet(out / SUMMARY_FILE, engine="pyarrow", index=False)
+    # through a temporary file renamed into place: a sweep killed while writing it (the
+    # case --resume is for) leaves the earlier summary whole, not a truncated one
+    buffer = io.BytesIO()
+    frame.to_parquet(buffer, engine="pyarrow", index=False)
+    write_atomically(out / SUMMARY_FILE, buffer.getbuffer(), replace=True)
     return frame
 
 

@@ -239,10 +239,7 @@ def bench(
         bench_cases(cfg, cases, thread_counts, max_wall, Path(output))
     elif target == "mbs" and dt_max_values is not None:
         path = config if config is not None else default_config()
-        # each Δt_max checked by the configuration's rules (≥ 1 ns, above min_mean_step)
-        variants = [
-            (v, load(path, {**changes, "solver.dt_max": f"{v!r} s"})) for v in dt_max_values
-        ]
+        variants = [(v, _with_dt_max(path, changes, v)) for v in dt_max_values]
         runtime_study(variants, end, Path(output))
     elif target == "mbs":
         bench_mbs(cfg, end)
@@ -277,10 +274,26 @@ def _refuse_options_of_other_targets(target: str, given: dict[str, bool]) -> Non
         for option in ("--threads", "--max-wall"):
             if given[option]:
                 raise refuse(f"{option} applies to mbs --cases only")
+        if given["-o"] and not given["--sweep-dt-max"]:
+            raise refuse("-o applies to mbs --cases and mbs --sweep-dt-max only (their files)")
+
+
+def _with_dt_max(path: Path, changes: dict, dt_max: float):
+    """The configuration with ``solver.dt_max`` set to a value of ``--sweep-dt-max``,
+    checked by the configuration's rules (at least 1 ns, above solver.min_mean_step);
+    exits with status 2 naming the option and the value otherwise."""
+    from ..config import ConfigError, load_config
+
+    try:
+        return load_config(path, {**changes, "solver.dt_max": f"{dt_max!r} s"})
+    except ConfigError as err:
+        problems = "; ".join(str(p) for p in err.problems or ()) or str(err)
+        raise refuse(f"--sweep-dt-max {dt_max:g}: {problems}") from None
 
 
 def _dt_max_values(text: str) -> list[float]:
-    """``--sweep-dt-max`` of ``bench``: comma-separated positive times in s, sorted."""
+    """``--sweep-dt-max`` of ``bench``: comma-separated positive times in s, sorted, each
+    once (a value given twice failed the study's table after every run)."""
     try:
         values = [float(v) for v in text.split(",") if v.strip()]
     except ValueError:
@@ -290,7 +303,7 @@ def _dt_max_values(text: str) -> list[float]:
             f"--sweep-dt-max = {text!r}: must be comma-separated positive finite times in s, "
             "e.g. 1e-5,3e-5,1e-4"
         )
-    return sorted(values)
+    return sorted(set(values))
 
 
 def _thread_counts(text: str) -> list[int]:

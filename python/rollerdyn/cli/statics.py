@@ -98,10 +98,13 @@ def statics_command(
     raceway, the friction of steady rolling (the dynamic model's laws at the equilibrium,
     each roller spinning where its friction moments balance: a quick estimate) and the
     rollers' slip there (docs/statics.md), the load zone, the stiffness, the static safety
-    (ISO 76 s_0 = C_0r / F_r, and by stress the load factor to 4 000 MPa at the races and
-    at the flanges) and the rating lives (ISO 281 L_10, ISO/TS 16281 L_10r and L_nmr, in
-    10^6 revolutions). A sweep keeps its cases without equilibrium as NaN with their
-    message, writes everything, and then exits with status 1; one case without
+    (ISO 76 s_0 = C_0r / P, P the radial load carried: F_r with the inner ring's weight,
+    and by stress the load factor to 4 000 MPa at the races and at the flanges) and the
+    rating lives (ISO 281 L_10 at P, ISO/TS 16281 L_10r and L_nmr, in 10^6 revolutions);
+    below the table, where the roller ends slide on the flanges slower than
+    surfaces.boundary_friction.smoothing_speed, that the friction is underestimated. A
+    sweep keeps its cases without equilibrium as NaN with their message, writes
+    everything, and then exits with status 1; one case without
     equilibrium exits with status 1 naming the load level reached and the residual.
     """
     from .. import statics as st

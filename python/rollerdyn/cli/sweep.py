@@ -190,7 +190,7 @@ def sweep_command(
     )
     flag = "--resume" if resume else "--overwrite"
     with refusing(SweepError, output):  # --overwrite replaces a sweep's own files only
-        earlier_results(output, overwrite or resume, f"-o {output}", flag)
+        earlier_results(output, overwrite or resume, f"-o {output}", flag, resume)
 
     def stopped(cause: str) -> str:
         if (output / SUMMARY_FILE).is_file():
@@ -213,10 +213,9 @@ def sweep_command(
         runs = math.prod(len(v) for v in parameters.values())
         with console.status(f"checking the grid's {runs} configurations"):
             points = build_grid(config, parameters, end)  # all before the cluster starts
-            kept = len(finished_runs(output, points, end, detector)) if resume else 0
-        if resume:
-            say(f"sweep: {kept} of {runs} runs finished earlier in {output}, kept")
-        with _sweep_progress(console, scheduler, kept < runs) as progress:
+            if resume:  # another sweep's run files refused before the cluster starts
+                finished_runs(output, points, end, detector)
+        with _sweep_progress(console, scheduler, resume) as progress:
             frame = sweep(
                 config,
                 parameters,
@@ -276,22 +275,32 @@ class _Lines:
 
     def __call__(self, done: int, total: int, row: dict | None) -> None:
         wall = time.perf_counter() - self.started
-        if row is None and done == total:
-            return  # every run kept from the earlier sweep: said before
         if row is None:
-            kept = f", {done} kept from the earlier sweep" if done else ""
-            self.say(f"sweep: {total - done} runs submitted{kept} ({wall:.1f} s)")
+            self.say(f"sweep: {_started(done, total)} ({wall:.1f} s)")
         else:
             status = row["status"]
             self.say(f"sweep: run {row['run']} {status}; {done} of {total} done ({wall:.1f} s)")
 
 
+def _started(kept: int, total: int) -> str:
+    """What a sweep of ``total`` runs started with, ``kept`` of them kept from the earlier
+    sweep (``--resume``; the count :func:`rollerdyn.sweep.sweep` reports, which leaves
+    out a run file that cannot be read)."""
+    left = total - kept
+    runs = f"{left} run" + ("" if left == 1 else "s")
+    if not kept:
+        return f"{runs} submitted"
+    if not left:
+        return f"all {total} runs kept from the earlier sweep; writing the summary"
+    return f"{kept} of {total} runs kept from the earlier sweep, {runs} submitted"
+
+
 @contextlib.contextmanager
-def _sweep_progress(console, scheduler: str | None, runs: bool = True):
-    """The progress callback of :func:`sweep`: a live bar on a terminal, else lines;
-    ``runs``: whether any run is left to start (else no cluster is started)."""
+def _sweep_progress(console, scheduler: str | None, resume: bool = False):
+    """The progress callback of :func:`sweep`: a live bar on a terminal, else lines
+    (``resume``: the earlier sweep's finished runs are read first)."""
     start = "starting Dask workers" if scheduler is None else f"connecting to {scheduler}"
-    start = start if runs else "no run left: writing the summary"
+    start = f"reading the earlier sweep's runs, {start} for the others" if resume else start
     if not console.is_terminal:
         say(f"sweep: {start}")
         yield _Lines(say)
@@ -318,7 +327,7 @@ def _sweep_progress(console, scheduler: str | None, runs: bool = True):
         task = bar.add_task(plain(start), total=None, last="")
 
         def progress(done: int, total: int, row: dict | None) -> None:
-            last = "" if row is None else f"run {row['run']} {row['status']}"
+            last = _started(done, total) if row is None else f"run {row['run']} {row['status']}"
             bar.update(task, description="sweep", completed=done, total=total, last=last)
 
         yield progress

@@ -17,7 +17,6 @@ continues it from its last checkpoint.
 from __future__ import annotations
 
 import math
-import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -330,38 +329,23 @@ def execute(
         return rec
 
 
-def lock_holder(outdir: Path) -> int | None:
-    """The id of another living process that holds the study folder's lock
-    (``.study.lock``), else None."""
-    from ..paths import process_alive
-
-    try:
-        pid = int((Path(outdir) / LOCK).read_text().strip() or "0")
-    except (OSError, ValueError):
-        return None
-    return pid if pid > 0 and pid != os.getpid() and process_alive(pid) else None
-
-
 def check_unlocked(outdir: Path) -> None:
     """Raises :class:`StudyError` if another living process holds the folder's lock."""
-    pid = lock_holder(outdir)
-    if pid is not None:
-        raise StudyError(
-            f"-o {outdir}: another study (process {pid}) is running in this folder; "
-            "wait for it or choose another folder"
-        )
+    from ..paths import FolderLocked
+    from ..paths import check_unlocked as check
+
+    try:
+        check(outdir, LOCK, "study")
+    except FolderLocked as err:
+        raise StudyError(str(err)) from None
 
 
 def lock_folder(outdir: Path) -> Path:
     """Takes the study folder's lock file (``.study.lock`` with this process's id);
     raises :class:`StudyError` if another living process holds it."""
-    lock = Path(outdir) / LOCK
+    from ..paths import FolderLocked, take_folder_lock
+
     try:
-        fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
-    except FileExistsError:
-        check_unlocked(outdir)
-        lock.unlink(missing_ok=True)  # a stale lock (its process is gone) or our own
-        fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
-    with os.fdopen(fd, "w") as f:
-        f.write(str(os.getpid()))
-    return lock
+        return take_folder_lock(outdir, LOCK, "study")
+    except FolderLocked as err:
+        raise StudyError(str(err)) from None
