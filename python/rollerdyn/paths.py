@@ -390,27 +390,31 @@ def lock_holder(folder: Path, name: str) -> int | None:
     return pid if pid > 0 and pid != os.getpid() and process_alive(pid) else None
 
 
-def check_unlocked(folder: Path, name: str, what: str) -> None:
-    """Raises :class:`FolderLocked` (``-o FOLDER: another WHAT (process N) is running in
-    this folder; ...``) if another living process holds the lock ``folder/name``."""
+def check_unlocked(
+    folder: Path, name: str, what: str, error: type[Exception] = FolderLocked
+) -> None:
+    """Raises ``error`` (``-o FOLDER: another WHAT (process N) is running in this folder;
+    ...``) if another living process holds the lock ``folder/name``."""
     pid = lock_holder(folder, name)
     if pid is not None:
-        raise FolderLocked(
+        raise error(
             f"-o {folder}: another {what} (process {pid}) is running in this folder; "
             "wait for it or choose another folder"
         )
 
 
-def take_folder_lock(folder: Path, name: str, what: str) -> Path:
+def take_folder_lock(
+    folder: Path, name: str, what: str, error: type[Exception] = FolderLocked
+) -> Path:
     """Takes the lock file ``folder/name`` (created exclusively, holding this process's id)
-    and returns it; a stale one (its process gone) is taken over. Raises
-    :class:`FolderLocked` (:func:`check_unlocked`) if another living process holds it:
-    two studies or sweeps writing one folder replace each other's files."""
+    and returns it; a stale one (its process gone) is taken over. Raises ``error``
+    (:func:`check_unlocked`) if another living process holds it: two studies or sweeps
+    writing one folder replace each other's files."""
     lock = Path(folder) / name
     try:
         fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
     except FileExistsError:
-        check_unlocked(folder, name, what)
+        check_unlocked(folder, name, what, error)
         lock.unlink(missing_ok=True)  # a stale lock (its process is gone) or our own
         fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
     with os.fdopen(fd, "w") as f:

@@ -651,25 +651,19 @@ LOCK = ".sweep.lock"
 
 def _check_unlocked(out: Path) -> None:
     """:class:`SweepError` if another sweep is running in the folder ``out``."""
-    from .paths import FolderLocked, check_unlocked
+    from .paths import check_unlocked
 
-    try:
-        check_unlocked(out, LOCK, "sweep")
-    except FolderLocked as err:
-        raise SweepError(str(err)) from None
+    check_unlocked(out, LOCK, "sweep", SweepError)
 
 
 def _lock(out: Path) -> Path:
     """The folder ``out`` made and its lock taken (:class:`SweepError` if another sweep
     holds it: two sweeps in one folder replaced each other's run files, and both said
     they completed)."""
-    from .paths import FolderLocked, take_folder_lock
+    from .paths import take_folder_lock
 
     out.mkdir(parents=True, exist_ok=True)
-    try:
-        return take_folder_lock(out, LOCK, "sweep")
-    except FolderLocked as err:
-        raise SweepError(str(err)) from None
+    return take_folder_lock(out, LOCK, "sweep", SweepError)
 
 
 def _run(job: _Job, dask: tuple, rows: dict, todo: list, earlier: list, progress):

@@ -331,21 +331,14 @@ def execute(
 
 def check_unlocked(outdir: Path) -> None:
     """Raises :class:`StudyError` if another living process holds the folder's lock."""
-    from ..paths import FolderLocked
     from ..paths import check_unlocked as check
 
-    try:
-        check(outdir, LOCK, "study")
-    except FolderLocked as err:
-        raise StudyError(str(err)) from None
+    check(outdir, LOCK, "study", StudyError)
 
 
 def lock_folder(outdir: Path) -> Path:
     """Takes the study folder's lock file (``.study.lock`` with this process's id);
     raises :class:`StudyError` if another living process holds it."""
-    from ..paths import FolderLocked, take_folder_lock
+    from ..paths import take_folder_lock
 
-    try:
-        return take_folder_lock(outdir, LOCK, "study")
-    except FolderLocked as err:
-        raise StudyError(str(err)) from None
+    return take_folder_lock(outdir, LOCK, "study", StudyError)
