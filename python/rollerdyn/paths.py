@@ -376,10 +376,6 @@ def process_alive(pid: int) -> bool:
     return True
 
 
-class FolderLocked(RuntimeError):
-    """Another living process holds a folder's lock (:func:`take_folder_lock`)."""
-
-
 def lock_holder(folder: Path, name: str) -> int | None:
     """The id of another living process that holds the lock file ``folder/name`` (it holds
     the holder's process id), else None (no lock, a stale one, or this process's)."""
@@ -390,9 +386,7 @@ def lock_holder(folder: Path, name: str) -> int | None:
     return pid if pid > 0 and pid != os.getpid() and process_alive(pid) else None
 
 
-def check_unlocked(
-    folder: Path, name: str, what: str, error: type[Exception] = FolderLocked
-) -> None:
+def check_unlocked(folder: Path, name: str, what: str, error: type[Exception]) -> None:
     """Raises ``error`` (``-o FOLDER: another WHAT (process N) is running in this folder;
     ...``) if another living process holds the lock ``folder/name``."""
     pid = lock_holder(folder, name)
@@ -403,9 +397,7 @@ def check_unlocked(
         )
 
 
-def take_folder_lock(
-    folder: Path, name: str, what: str, error: type[Exception] = FolderLocked
-) -> Path:
+def take_folder_lock(folder: Path, name: str, what: str, error: type[Exception]) -> Path:
     """Takes the lock file ``folder/name`` (created exclusively, holding this process's id)
     and returns it; a stale one (its process gone) is taken over. Raises ``error``
     (:func:`check_unlocked`) if another living process holds it: two studies or sweeps

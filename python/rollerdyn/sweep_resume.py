@@ -18,9 +18,6 @@ from pathlib import Path
 from .config import parse_config
 from .provenance import check_same_configuration
 
-#: Times this close count as equal (the core's rule for output times).
-_SLACK = 1e-9
-
 
 def finished_runs(out: Path, points, t_end: float | None, detector: str | None) -> list:
     """The points of ``points`` whose runs an earlier sweep in the folder ``out`` finished
@@ -87,7 +84,9 @@ def _other_run(attrs: dict, point, t_end: float | None, detector: str | None) ->
         return f"was run with the detector {attrs.get('detector')!r}, this sweep's is {wanted!r}"
     end = cfg.end_time if t_end is None else t_end
     reached = float(attrs.get("final_time_s", math.nan))
-    slack = _SLACK * max(abs(end), 1.0)
+    from .study.runs import time_slack
+
+    slack = time_slack(end)
     completed = int(attrs.get("completed", 0)) == 1
     if reached > end + slack or (completed and reached < end - slack):
         return f"was run to t = {reached:.6g} s, this sweep's end time is {end:.6g} s"

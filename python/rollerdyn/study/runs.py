@@ -57,8 +57,9 @@ class RunSpec:
         return f"{self.name}.nc"
 
 
-def _slack(t: float) -> float:
-    """Times this close count as equal (the core's rule for output times)."""
+def time_slack(t: float) -> float:
+    """Times this close to ``t`` count as equal (a run's end against the end asked for;
+    shared with :mod:`rollerdyn.sweep_resume`)."""
     return 1e-9 * max(abs(t), 1.0)
 
 
@@ -129,7 +130,7 @@ def inspect_run(spec: RunSpec, attrs: dict | None) -> str:
             "folder (-o) or --overwrite"
         )
     reached = float(attrs["final_time_s"])
-    if reached > spec.t_end + _slack(spec.t_end):
+    if reached > spec.t_end + time_slack(spec.t_end):
         raise StudyError(
             f"{folder} holds {spec.file}, run to t = {reached:.6g} s, beyond this study's "
             f"end time {spec.t_end:.6g} s (--t-end): it holds a longer study; use another "
@@ -140,7 +141,7 @@ def inspect_run(spec: RunSpec, attrs: dict | None) -> str:
         return FAILED
     if attrs.get("study_done"):  # ended by its stop rule (e.g. steady): done
         return FINISHED
-    if int(attrs.get("completed", 0)) and reached >= spec.t_end - _slack(spec.t_end):
+    if int(attrs.get("completed", 0)) and reached >= spec.t_end - time_slack(spec.t_end):
         return FINISHED
     return PARTIAL
 
