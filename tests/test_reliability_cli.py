@@ -565,6 +565,30 @@ def test_ctrl_c_stops_a_core_benchmark_at_once(args):
     assert out.strip().splitlines()[-1] == "rollerdyn: interrupted", out
 
 
+@pytest.mark.parametrize("delay", [0.15, 3.0])
+def test_sigterm_where_no_command_takes_it_is_one_line(delay):
+    """SIGTERM ended a command without a SIGTERM handler of its own (here a core benchmark,
+    about 7 s) by Python's default: no word, status -15 to the caller; and a sweep's start
+    on a busy machine the same way (its test expects 143). Now one line and status 143,
+    during the imports (0.15 s) as in the core call (3 s)."""
+    import signal
+
+    command = Path(sys.executable).parent / "rollerdyn"
+    proc = subprocess.Popen(
+        [str(command), "bench", "traction", "--repetitions", "100000000"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+    )
+    time.sleep(delay)
+    proc.send_signal(signal.SIGTERM)
+    sent = time.monotonic()
+    out, _ = proc.communicate(timeout=60)
+    assert time.monotonic() - sent < 5.0, out
+    assert proc.returncode == 143, out
+    assert out.strip().splitlines()[-1] == "rollerdyn: terminated", out
+
+
 def test_cost_checks_cover_checkpoints_and_every_sweep_point(tmp_path):
     """A checkpoint interval of 1 ns crawled for 100 s before it stalled; a sweep point's
     result size was refused only inside the cluster, advising a --force sweep lacks."""

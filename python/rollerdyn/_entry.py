@@ -19,6 +19,11 @@ Ctrl-C in three phases:
 3. A command's own handling takes over where it has one (``rollerdyn run`` writes what
    the run computed).
 
+SIGTERM (``kill``, ``timeout``, a batch system) where no command takes it as Ctrl-C ends
+the process as Python's default would, at once, but with the line "rollerdyn: terminated"
+and status 143 (:func:`_exit_terminated`): during the start, the same on a slow or a busy
+machine.
+
 Before :func:`main` runs (Python's own start, ``import rollerdyn`` and this module, about
 30 ms), a Ctrl-C is Python's: a traceback, or none at all in its first milliseconds.
 """
@@ -44,6 +49,13 @@ def _exit_interrupted(signum: int, frame: object) -> None:
     """Ctrl-C during the imports: the line, and the process ends (nothing to undo yet)."""
     os.write(2, b"rollerdyn: interrupted\n")
     os._exit(130)
+
+
+def _exit_terminated(signum: int, frame: object) -> None:
+    """SIGTERM where no command handles it: the line, and the process ends at once (as with
+    Python's default, which ended it by the signal, status -15 to a caller and no word)."""
+    os.write(2, b"rollerdyn: terminated\n")
+    os._exit(143)
 
 
 def _redeliver(unraisable: sys.UnraisableHookArgs) -> None:
@@ -74,8 +86,9 @@ def _from_ctrl_c(exit_: SystemExit) -> bool:
 
 def main() -> None:
     """Runs the command line; Ctrl-C outside the commands' own handlers exits 130 with one
-    line."""
+    line; SIGTERM outside the commands' own handlers exits 143 with one line."""
     signal.signal(signal.SIGINT, _exit_interrupted)
+    signal.signal(signal.SIGTERM, _exit_terminated)
     from .cli import app
 
     sys.unraisablehook = _redeliver
