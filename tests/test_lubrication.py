@@ -68,7 +68,9 @@ def test_the_race_film_is_a_classical_line_contacts_film(at_speed):
     H_c = 3.06 U^0.69 G^0.56 W^-0.10, U = eta0 u0 / (E' R'), G = alpha E', W = q / (E' R').
     The model takes Moes' fit (eqs. 33-38) with Roelands' viscosity through Blok's alpha*
     (eq. 31) and the thermal correction (eq. 47): measured 0.945 of Dowson & Toyoda's
-    (31.7 nm against 33.5 nm). Bound 10 %: two fits of numerical solutions with their own
+    (31.7 nm against 33.5 nm; D&T here at the roller's mean line load, the model's film at
+    its most loaded slice, which carries about a quarter more: at equal load about 0.967,
+    an independent review's figure). Bound 10 %: two fits of numerical solutions with their own
     pressure-viscosity laws, and a thermal factor of a few per cent, against the film of
     another contact (the outer race's R' is 1.45 times the inner's: about 20 % more film)
     or a slice less loaded. The entrainment speed is the rolling speed (ring speed less

@@ -327,7 +327,7 @@ def _film_cases() -> Iterator[Case]:
     u, w, g = eta0 * u0 / (e * r), q / (e * r), alpha * e
     yield Case(
         "Film",
-        "Moes vs Dowson-Toyoda central film, B1 inner contact",
+        "Moes vs Dowson-Toyoda central film, B1 inner contact radius at 1 m/s",
         "Dowson & Toyoda (1979), HSJ",
         r * 3.06 * u**0.69 * g**0.56 * w**-0.10,
         lambda a=alpha, e0=eta0, r=r, u=u0, q=q: moes(a, e0, r, u, q),
