@@ -680,3 +680,17 @@ def test_resume_from_a_state_outside_the_bearing_fails_at_once(result):
     tampered["checkpoint_state"].values[:] = 1.0
     with pytest.raises(ValueError, match="inside the bearing: the inner ring left the bearing"):
         simulate(load_b1(), t_end=0.003, resume=tampered, threads=1)
+
+
+def test_statics_says_when_the_races_are_pressed_past_iso_76():
+    """B1 at 80 kN radially gave its whole table (10 GPa at the inner race, s_0 0.14)
+    without a word, while `rollerdyn check` notes that the races cannot carry it (a
+    review). The note names the static safety by stress below 1 (ISO 76's 4 GPa: 0.16 by
+    the model's slices) and the pressure; a sweep counts such cases."""
+    res = invoke("statics", B1, "--set", "operating.radial_load=80 kN", code=0)
+    text = " ".join(res.output.split())
+    assert "the races cannot carry this load" in text and "races 0.16 < 1" in text, text
+    res = invoke("statics", B1, "--set", "operating.radial_load=5 kN,20 kN,80 kN", code=0)
+    assert "2 cases past ISO 76's 4 GPa" in " ".join(res.output.split())
+    res = invoke("statics", B1, code=0)
+    assert "cannot carry" not in res.output

@@ -271,6 +271,20 @@ def test_bad_cases_are_refused_with_a_message(b1):
     assert parse_range("operating.inner_ring_speed", "0 rpm:3000 rpm:3")[-1] == pytest.approx(
         100 * math.pi
     )
+    # a bare speed was rad/s: 1000 gave 9549 rpm and its torque without a word (a review);
+    # the maps read a bare --speed as rpm. Speeds and angles need their unit but for 0.
+    for path, text in (
+        ("operating.inner_ring_speed", "1000"),
+        ("operating.carrier_speed", "0,1000"),
+        ("inner_ring.misalignment", "0.001"),
+        ("roller_set_phase", "0:0.3:4"),
+    ):
+        with pytest.raises(StaticsError, match=r"has no unit, and a bare \w+ \w* ?is ambiguous"):
+            parse_range(path, text)
+    assert parse_range("operating.outer_ring_speed", "0:3000 rpm:3")[-1] == pytest.approx(
+        100 * math.pi
+    )
+    assert parse_range("operating.radial_load", "0:10000:3") == [0.0, 5000.0, 10000.0]
 
 
 _RADIAL_ONLY = {"operating.radial_load": [5000.0], "operating.axial_load": [0.0]}

@@ -388,10 +388,16 @@ def _unquoted(text: str) -> str:
     return text
 
 
+#: The unit families whose bare numbers ``--set`` refuses, with an example of each.
+BARE_REFUSED = {"angular velocity": '"3000 rpm"', "angle": '"0.05 deg"'}
+
+
 def parse_range(path: str, text: str) -> list[float]:
     """The SI values of a sweep option: ``"a:b:n"`` (n values from a to b) or a comma list,
     each value a quantity with its unit (``"500 rpm"``, quoted or not) or a bare number in
-    the field's SI unit (N, rad/s, rad, N*m)."""
+    the field's SI unit (N, N*m). A bare speed or angle other than 0 is refused: rad/s and
+    rad are not what a bearing's speed and tilt are written in (a bare 1000 meant
+    9549 rpm), and the operating maps read a bare ``--speed`` as rpm."""
     _check_path(path)
     family = STATIC_FIELDS[path][1]
 
@@ -404,6 +410,11 @@ def parse_range(path: str, text: str) -> list[float]:
         else:
             if not math.isfinite(number):
                 raise StaticsError(f"--set {path}={text}: {item.strip()} is not finite")
+            if number != 0.0 and family in BARE_REFUSED:
+                raise StaticsError(
+                    f"--set {path}={text}: {item.strip()} has no unit, and a bare {family} is "
+                    f"ambiguous; give its unit, e.g. {BARE_REFUSED[family]}"
+                )
             return number
         if not family:
             raise StaticsError(f"--set {path}={text}: {item.strip()} is not a number (N*m)")

@@ -36,13 +36,13 @@ def statics_command(
             help="Vary the load case: PATH=START:STOP:COUNT or PATH=VALUE[,VALUE...], PATH "
             "one of operating.radial_load, operating.axial_load [N], "
             "operating.inner_ring_speed, operating.outer_ring_speed, "
-            "operating.carrier_speed [rad/s], "
-            "inner_ring.misalignment [rad], moment_y, "
-            "moment_z [N*m], roller_set_phase [rad] (the roller set turned from roller 0 "
+            "operating.carrier_speed, "
+            "inner_ring.misalignment, moment_y, "
+            "moment_z [N*m], roller_set_phase (the roller set turned from roller 0 "
             "under the load; over one pitch, 360 deg / Z, the ring's equilibrium shows the "
-            'varying compliance). Values carry a unit ("3000 rpm", "0.05 deg") or are bare '
-            'numbers in the SI unit in brackets: --set operating.radial_load="0:10000:101"; '
-            "quoted as in the configuration file or not. "
+            'varying compliance). Values carry a unit ("3000 rpm", "0.05 deg"; speeds and '
+            "angles must, but for 0) or are bare numbers in the SI unit in brackets: --set "
+            'operating.radial_load="0:10000:101"; quoted as in the configuration file or not. '
             "Any other configuration path varies the bearing itself (a design sweep), with "
             "values written as in the file, as 'rollerdyn sweep --set' takes them: --set "
             'geometry.diametral_clearance="0 um,10 um,20 um", --set '
@@ -446,6 +446,26 @@ def _print_case(ds) -> None:
     caveat = str(ds["friction_caveat"].values) if "friction_caveat" in ds else ""
     if caveat:
         say(f"friction of steady rolling: {caveat}", "yellow")
+    overload = _overload_text(ds)
+    if overload:
+        say(overload, "yellow")
+
+
+def _overload_text(ds) -> str:
+    """A note where a case's contacts are pressed past ISO 76's 4 GPa (a static safety by
+    stress below 1: the surfaces deform for good, which the elastic contacts do not
+    describe; ``rollerdyn check`` says the same of a configuration's loads), else ""."""
+    s0 = {"races": float(ds.s0_races), "flanges": float(ds.s0_flanges)}
+    past = [name for name, value in s0.items() if value < 1.0]
+    if not past:
+        return ""
+    safety = ", ".join(f"{name} {s0[name]:.3g}" for name in past)
+    return (
+        f"the {' and the '.join(past)} cannot carry this load: pressed past ISO 76's static "
+        f"limit of 4 GPa (static safety by stress {safety} < 1; largest race pressure "
+        f"{float(ds.max_pressure) / 1e9:.3g} GPa), where the surfaces deform for good and the "
+        "elastic contacts these results rest on no longer hold"
+    )
 
 
 def _print_sweep(ds) -> None:
@@ -499,6 +519,14 @@ def _print_sweep(ds) -> None:
     caveats = [str(v) for v in ds["friction_caveat"].values if v] if "friction_caveat" in ds else []
     if caveats:
         say(f"{_count(len(caveats), 'case')} with friction underestimated: {caveats[0]}", "yellow")
+    past = (ds.s0_races.values < 1.0) | (ds.s0_flanges.values < 1.0)
+    if past.any():
+        first = ds.isel(case=int(np.argmax(past)))
+        say(
+            f"{_count(int(past.sum()), 'case')} past ISO 76's 4 GPa; the first: "
+            f"{_overload_text(first)}",
+            "yellow",
+        )
 
 
 def _cell(value) -> str:
