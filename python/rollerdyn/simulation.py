@@ -135,12 +135,15 @@ def check_cost(
     t_end: float,
     t_start: float = 0.0,
     remedy: str = ", or force the run (--force, force=True)",
+    outputs_optional: bool = True,
 ) -> None:
     """Raises ValueError, with the estimate, if a run would be far beyond a normal one
     (see :data:`MAX_RESULT_BYTES`, :data:`MAX_MIN_STEPS`, :data:`MAX_CHECKPOINTS`);
     ``force=True`` of
     :func:`simulate` skips this check (the core still refuses what it cannot hold).
-    ``remedy`` ends the advice (where forcing is not offered, pass "")."""
+    ``remedy`` ends the advice (where forcing is not offered, pass ""); where the caller
+    needs every output group (a study), ``outputs_optional=False`` leaves out the advice
+    to record none."""
     cost = estimated_cost(config, t_end, t_start)
     s = config.solver
     if cost["memory_bytes"] > MAX_RESULT_BYTES:
@@ -149,7 +152,7 @@ def check_cost(
             f"to t = {t_end:g} s would take {cost['memory_bytes'] / 1e9:.3g} GB of results "
             f"while the run goes (with any group in solver.outputs, every group is recorded "
             f"until the result is built: more than {MAX_RESULT_BYTES / 1e9:g} GB); choose a "
-            f"longer interval or solver.outputs = []{remedy}"
+            f"longer interval{' or solver.outputs = []' if outputs_optional else ''}{remedy}"
         )
     if cost["min_steps"] > MAX_MIN_STEPS:
         raise ValueError(

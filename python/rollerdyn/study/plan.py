@@ -135,6 +135,20 @@ def _fmt(value: float) -> str:
     return f"{value:g}"
 
 
+def _check_cost(name: str, variant: BearingConfig, end: float) -> None:
+    """Refuses, before any run, a run of the plan whose results, steps or checkpoints to
+    ``end`` would be far beyond a normal run's (:func:`rollerdyn.simulation.check_cost`;
+    a study has no ``--force``): ``--t-end 1e9`` started all 17 runs, each of which failed
+    with that message."""
+    from ..simulation import check_cost
+
+    try:
+        remedy = " in the configuration, or a shorter --t-end"
+        check_cost(variant, end, remedy=remedy, outputs_optional=False)
+    except ValueError as err:
+        raise StudyError(f"--t-end = {end:g} s: the run {name}: {err}") from None
+
+
 def build_plan(
     config: BearingConfig,
     t_end: float | None = None,
@@ -180,6 +194,7 @@ def build_plan(
         if key in seen:
             return seen[key]
         seen[key] = name
+        _check_cost(name, variant, end)
         changed = [d.replace("'", "") for d in differences(base, resolved(variant))]
         if det != detector:
             changed.append(f"detector: {detector} -> {det}")
