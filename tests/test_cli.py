@@ -140,6 +140,35 @@ def test_compare_prints_the_largest_differences(tmp_path):
     missing = RUNNER.invoke(app, ["compare", a, str(tmp_path / "none.nc")])
     assert missing.exit_code == 2 and "none.nc: result file not found" in missing.output
     assert "Traceback" not in missing.output
+    # outputs every 0.7 ms against every 1 ms shared only t = 0: "1 common outputs" and
+    # 0 in every row, exit status 0 (a review); refused now, as runs sharing no output are
+    sparse = ds.assign_coords(time=ds.time * 0.7)
+    write(sparse, tmp_path / "c.nc")
+    other = RUNNER.invoke(app, ["compare", a, str(tmp_path / "c.nc")])
+    assert other.exit_code == 2, other.output
+    assert "share only their output at t = 0 s (outputs every 0.001 s and every 0.0007 s)" in (
+        " ".join(other.output.split())
+    )
+
+
+def test_runs_of_two_output_intervals_are_compared_where_both_have_outputs():
+    """The times both runs' outputs hit (every 7 ms for 0.7 and 1 ms), within 1e-12 s of
+    round-off; runs of one interval share their leading outputs."""
+    import xarray as xr
+
+    from rollerdyn.study.agreement import shared_outputs
+
+    def run(times):
+        return xr.Dataset(coords={"time": np.asarray(times, float)})
+
+    a = run(np.arange(22) * 1e-3)
+    b = run(np.arange(31) * 0.7e-3)
+    ia, ib = shared_outputs(a, b)
+    assert list(a.time.values[ia]) == pytest.approx([0.0, 0.007, 0.014, 0.021], abs=1e-15)
+    assert list(ib) == [0, 10, 20, 30]
+    ia, ib = shared_outputs(a, run(np.arange(5) * 1e-3 + 1e-13))
+    assert list(ia) == list(ib) == [0, 1, 2, 3, 4]
+    assert [len(x) for x in shared_outputs(a, run([]))] == [0, 0]
 
 
 def test_bench_contact_compares_the_methods():

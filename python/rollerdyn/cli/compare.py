@@ -64,7 +64,8 @@ def compare_command(
     record its rollers or flanges (solver.outputs); their measures show n/a.
 
     Exits with status 2 if a file is missing or not a rollerdyn run's result, if the two
-    runs share no output or differ in their roller count, or for a bad --full-speed.
+    runs share no output but their first or differ in their roller count, or for a bad
+    --full-speed. Runs of two output intervals are compared at the times both have.
     """
     from ..report import ReportError, open_result
     from ..simulation import recorded

@@ -68,6 +68,11 @@ MEASURES: dict[str, tuple[str, str]] = {
 }
 
 
+def _interval(ds: xr.Dataset) -> float:
+    """A run's output interval [s]: the median spacing of its output times."""
+    return float(np.median(np.diff(ds.time.values))) if ds.sizes["time"] > 1 else math.nan
+
+
 def missing_variables(ds: xr.Dataset) -> list[str]:
     """The variables :func:`differences` needs that ``ds`` lacks."""
     return [name for name in NEEDED if name not in ds.variables]
@@ -80,6 +85,20 @@ def common_outputs(a: xr.Dataset, b: xr.Dataset) -> int:
     return n if same.all() else int(np.argmin(same))
 
 
+def shared_outputs(a: xr.Dataset, b: xr.Dataset) -> tuple[np.ndarray, np.ndarray]:
+    """The indices in ``a`` and in ``b`` of the outputs at the same times (within 1e-12 s),
+    wherever they lie: two runs' leading outputs for runs of one output interval, the
+    times both intervals hit for runs of two (every 7 ms for 0.7 and 1 ms)."""
+    ta, tb = a.time.values, b.time.values
+    if ta.size == 0 or tb.size == 0:
+        return np.zeros(0, int), np.zeros(0, int)
+    after = np.clip(np.searchsorted(tb, ta), 0, tb.size - 1)  # the nearest at or after
+    before = np.clip(after - 1, 0, None)
+    nearest = np.where(np.abs(tb[before] - ta) < np.abs(tb[after] - ta), before, after)
+    same = np.abs(tb[nearest] - ta) <= 1e-12
+    return np.flatnonzero(same), nearest[same]
+
+
 def differences(a: xr.Dataset, b: xr.Dataset, full_speed: float = FULL_SPEED) -> dict:
     """The largest differences of :data:`MEASURES` between runs ``a`` and ``b`` over their
     common outputs (NaN where no output qualifies, e.g. no full speed in a short run), with
@@ -89,14 +108,24 @@ def differences(a: xr.Dataset, b: xr.Dataset, full_speed: float = FULL_SPEED) ->
     the output time [s], roller and its azimuth [deg] in ``a`` at which its largest
     difference lies (:func:`where_largest`). Measures of what a run did not record
     (``solver.outputs``: its rollers, its flanges) are NaN. Raises ``ValueError`` if the
-    runs have different roller counts or no common output."""
+    runs have different roller counts or share no output but the one at their start
+    (:func:`shared_outputs`; two runs of different output intervals are compared at the
+    times both have)."""
     rollers = a.sizes.get("roller"), b.sizes.get("roller")
     if None not in rollers and rollers[0] != rollers[1]:
         raise ValueError(f"the runs have {rollers[0]} and {rollers[1]} rollers")
-    n = common_outputs(a, b)
-    if n == 0:
+    ia, ib = shared_outputs(a, b)
+    if ia.size == 0:
         raise ValueError("the runs share no output times")
-    a, b = a.isel(time=slice(0, n)), b.isel(time=slice(0, n))
+    if ia.size == 1 and min(a.sizes["time"], b.sizes["time"]) > 1:
+        # one output at t = 0 compared the starts only and showed 0 everywhere (a review)
+        raise ValueError(
+            f"the runs share only their output at t = {float(a.time[ia[0]]):.6g} s (outputs "
+            f"every {_interval(a):.4g} s and every {_interval(b):.4g} s); compare runs "
+            "with a common solver.output_interval"
+        )
+    n = int(ia.size)
+    a, b = a.isel(time=ia), b.isel(time=ib)
     t = a.time.values
     full = t >= full_speed
     out: dict = {
