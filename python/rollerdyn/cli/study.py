@@ -564,7 +564,14 @@ class _Lines:
     def __call__(self, event: dict) -> None:
         wall = time.perf_counter() - self.started
         kind = event["kind"]
-        if kind == "plan":
+        if kind == "prepare":
+            if event["done"] == 0 or wall - self.last.get("", -math.inf) >= self.every:
+                self.last[""] = wall
+                say(
+                    f"{self.title}: preparing {event['total']} points (each checked, with its "
+                    f"start): {event['done']} done ({wall:.1f} s)"
+                )
+        elif kind == "plan":
             self.total, self.done = event["total"], len(event["reused"])
             n = event["total"]
             say(
@@ -616,7 +623,10 @@ def _progress(title: str, scheduler: str | None):
 
         def show(event: dict) -> None:
             kind = event["kind"]
-            if kind == "plan":
+            if kind == "prepare":
+                what = f"preparing points: {event['done']}/{event['total']}"
+                bar.update(overall, total=event["total"], completed=event["done"], what=what)
+            elif kind == "plan":
                 ends.update(event.get("t_end", {}))
                 done, total = len(event["reused"]), event["total"]
                 bar.update(overall, total=total, completed=done, what=f"{done}/{total} runs")

@@ -136,7 +136,9 @@ def run_all(
     ``distributed.Client`` uses that cluster (its workers must see ``outdir``).
     ``progress(event)`` receives dicts: ``{"kind": "plan", "total", "pending",
     "reused"}`` once, ``{"kind": "update", "name", "t", "t_end", "steps"}`` from the runs
-    (about once a second each), ``{"kind": "done", "name", "record"}`` as each ends.
+    (about once a second each), ``{"kind": "done", "name", "record"}`` as each ends
+    (an operating map sends ``{"kind": "prepare", "done", "total"}`` before, while it
+    checks its points).
     ``retries``: how many more times Dask runs a task whose worker died. ``stop_rules``:
     {name: rule} handed to :func:`.runs.execute` (a run ends early when its rule says).
     ``force``: every run as ``simulate(force=True)`` (the point law's load check skipped).
