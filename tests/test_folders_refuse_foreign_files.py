@@ -322,3 +322,32 @@ def test_sweep_arguments_are_refused_or_read_as_simulate_reads_them(tmp_path):
                 overwrite=True,
             )
     assert _files(folder) == before
+
+
+def test_a_rerun_removes_the_figures_of_its_earlier_plan_it_did_not_draw(tmp_path):
+    """A paper study rerun with fewer runs left the earlier plan's figures (fig. 14, the
+    tilt's, the distributed law's: 62 files, 20 of them written again) beside a report
+    without them (a review). The figures the manifest lists and this study did not draw
+    again are removed, with the figure folders left empty; nothing it does not list."""
+    import json
+
+    from rollerdyn.study.folder import replace_figures
+
+    listed = ["figures/tilt/fig8.png", "figures/tilt/fig8.svg", "figures/fig9.png"]
+    listed += ["figures/old/fig14.png", "runs/axial-0N.nc", "notes.txt"]
+    for rel in [*listed, "figures/old/mine.png"]:
+        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / rel).write_text("x")
+    (tmp_path / "study.json").write_text(json.dumps({"kind": "paper", "files": listed}))
+    replace_figures(tmp_path, [tmp_path / "figures" / "fig9.png"])
+    left = sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*") if p.is_file())
+    assert left == [
+        "figures/fig9.png",
+        "figures/old/mine.png",  # not the study's: kept, and so its folder
+        "notes.txt",
+        "runs/axial-0N.nc",
+        "study.json",
+    ]
+    assert not (tmp_path / "figures" / "tilt").exists()
+    files = json.loads((tmp_path / "study.json").read_text())["files"]
+    assert files == ["figures/fig9.png", "notes.txt", "runs/axial-0N.nc"]

@@ -142,6 +142,33 @@ def record_files(out: Path, files) -> None:
         _write_manifest(Path(out), data)
 
 
+def replace_figures(out: Path, written) -> None:
+    """Records the figures just ``written`` (:func:`record_files`) and removes the figures
+    an earlier study in ``out`` wrote that this one did not write again, with the figure
+    folders that leaves empty: a rerun with fewer runs left the old plan's figures (fig.
+    14, the tilt's, the distributed law's) beside a report without them. Only what the
+    manifest lists as the study's figures is removed."""
+    manifest = Path(out) / MANIFEST
+    root = Path(out).resolve()
+    with contextlib.suppress(OSError, ValueError, AttributeError, TypeError):
+        listed = json.loads(manifest.read_text(encoding="utf-8")).get("files", [])
+        now = {Path(f).resolve().relative_to(root).as_posix() for f in written}
+        stale = [
+            f
+            for f in listed
+            if _kind_of_file(f) and PurePosixPath(f).parts[0] == FIGURES and f not in now
+        ]
+        _remove(Path(out), stale)
+        for folder in sorted({(Path(out) / f).parent for f in stale}, reverse=True):
+            if folder != Path(out) / FIGURES:
+                with contextlib.suppress(OSError):
+                    folder.rmdir()  # only when empty
+        data = json.loads(manifest.read_text(encoding="utf-8"))
+        data["files"] = sorted(set(data.get("files", [])) - set(stale))
+        _write_manifest(Path(out), data)
+    record_files(out, written)
+
+
 def _write_manifest(out: Path, data: dict) -> None:
     tmp = out / f".{MANIFEST}.{os.getpid()}.tmp"
     try:

@@ -22,7 +22,7 @@ from typing import Any
 
 from ..limits import DEFAULT_MAX_WALL
 from .findings import Finding, check_findings
-from .folder import prepare_folder, record_files
+from .folder import prepare_folder, record_files, replace_figures
 from .plan import DEFAULT_LOADS, Plan, build_plan
 from .runs import StudyError, lock_folder, open_run, record
 from .schedule import Clock, check_scheduler, check_workers, run_all, timing
@@ -190,7 +190,9 @@ def paper(
         written, page = _write_outputs(
             out, plan, sets, records, findings, study_timing, report, figures
         )
-        record_files(out, written)  # what --overwrite may remove
+        # what --overwrite may remove; with the figures drawn, the earlier plan's that
+        # this one did not draw again removed
+        (replace_figures if figures else record_files)(out, written)
     finally:
         lock.unlink(missing_ok=True)
     import pandas as pd
