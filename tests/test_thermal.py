@@ -154,6 +154,18 @@ def test_the_map_options_make_the_dissipation_with_the_configurations_oil():
     )
     options["--oil-inlet"] = None
     assert _dissipation(cfg, [C + 40.0, C + 60.0], options).oil_inlet == pytest.approx(C + 20.0)
+    # a limit at or below the sinks' temperature has no permissible speed: refused (10 degC
+    # under a 20 degC ambient drew an empty figure with exit status 0; a review)
+    from rollerdyn.study import StudyError
+
+    for limit, sink in (("10", "20"), ("20 degC", "20")):
+        options["--permissible-temperature"] = limit
+        with pytest.raises(StudyError, match=f"must be above {sink} degC, the temperature of"):
+            _dissipation(cfg, [C + 40.0, C + 60.0], options)
+    options |= {"--oil-inlet": "40 degC", "--permissible-temperature": "25 degC"}
+    # the oil (13.8 W/K) outweighs the housing (0.34 W/K): the sinks are near 40 degC
+    with pytest.raises(StudyError, match=r"must be above 39\.\d+ degC"):
+        _dissipation(cfg, [C + 40.0, C + 60.0], options)
 
 
 def _frame(rows):

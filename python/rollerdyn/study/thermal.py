@@ -520,8 +520,19 @@ def dissipation_from_options(cfg, temperatures: list[float], options: dict):
     rate = flow * density * oil_specific_heat(inlet, lub.density.rho_15)
     permissible = given.get("--permissible-temperature")
     if permissible is not None:
+        text = permissible
         permissible = _quantity(permissible, "--permissible-temperature", "temperature", "degC")
-    return Dissipation(conductance, ambient, rate, inlet if flow else math.nan, permissible)
+    found = Dissipation(conductance, ambient, rate, inlet if flow else math.nan, permissible)
+    # the balance lies above the sinks' temperature (the ambient's and the oil inlet's, by
+    # their shares) at any speed that makes heat: a limit at or below it has no speed (an
+    # empty figure and exit status 0, before)
+    if permissible is not None and not permissible > found.reference:
+        raise StudyError(
+            f"--permissible-temperature {text!r}: must be above "
+            f"{found.reference - T0_CELSIUS:.4g} degC, the temperature of what the bearing's "
+            "heat flows to (--ambient, --oil-inlet): no speed keeps it at or below that"
+        )
+    return found
 
 
 def _quantity(value: Any, option: str, family: str, unit: str) -> float:
