@@ -136,6 +136,30 @@ def test_bad_options_are_named(tmp_path):
         (["--inner-raceway", "1", "--outer-raceway", "100"], "D/d_m = 0.98, outside 0.01"),
         (["--inner-raceway", "1000", "--outer-raceway", "1003"], "D/d_m = 0.00129, outside"),
         (["--inner-raceway", "40", "--outer-raceway", "40.01"], "give --clearance"),
+        # a clearance far past ISO 5753-1's groups (5 mm in a 6 mm gap: 3.5 mm rollers that
+        # carried no load), a roller 167 or 0.017 times its diameter long (a review)
+        (
+            ["--inner-raceway", "40", "--outer-raceway", "52", "--clearance", "5 mm"],
+            "--clearance 0.005 m: must be at most 1% of the pitch diameter (0.00046 m here)",
+        ),
+        (
+            ["--inner-raceway", "40", "--outer-raceway", "52", "--roller-length", "1 m"],
+            "must be 0.5 ... 10 times the roller diameter (0.005991 m here, L/D = 167)",
+        ),
+        (
+            ["--inner-raceway", "40", "--outer-raceway", "52", "--roller-length", "0.1 mm"],
+            "--roller-length 0.0001 m: must be 0.5 ... 10 times",
+        ),
+        # a value the configuration refuses is led by the option behind it, also where no
+        # option sets it (a tiny bearing's inner ring of 0.13 g)
+        (
+            ["--inner-raceway", "1", "--outer-raceway", "1.5"],
+            "--inner-raceway, --outer-raceway (B1's value scaled by their size): inner_ring.mass",
+        ),
+        (
+            ["--inner-raceway", "40", "--outer-raceway", "52", "--radial-load", "1e9"],
+            "--radial-load: operating.radial_load:",
+        ),
         # a speed of 0 has no end time to derive (was a ZeroDivisionError)
         (["--inner-raceway", "20", "--outer-raceway", "29", "--speed", "0"], "--speed 0 rpm"),
         # so slow that two roller-set revolutions pass the longest end time
