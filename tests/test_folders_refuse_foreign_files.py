@@ -351,3 +351,19 @@ def test_a_rerun_removes_the_figures_of_its_earlier_plan_it_did_not_draw(tmp_pat
     assert not (tmp_path / "figures" / "tilt").exists()
     files = json.loads((tmp_path / "study.json").read_text())["files"]
     assert files == ["figures/fig9.png", "notes.txt", "runs/axial-0N.nc"]
+
+
+def test_another_grid_is_shown_with_the_digits_that_differ():
+    """A map of 150 rad/s refused a rerun at 1432.39448783 rpm as "speeds 1432.39 rpm ...
+    now speeds 1432.39 rpm" (a review): where six digits show no difference, all are."""
+    import math
+
+    from rollerdyn.study.folder import _grid_texts
+
+    earlier = [[150.0], [5000.0], [0.0]]
+    now = [[1432.39448783 * math.pi / 30], [5000.0], [0.0]]
+    was, is_ = _grid_texts(earlier, now)
+    assert was != is_ and was.startswith("speeds 1432.394487827") and "5000 N" in was
+    was, is_ = _grid_texts([[100.0], [5000.0], [0.0]], now)
+    assert (was, is_[:20]) == ("speeds 954.93 rpm, radial loads 5000 N, axial loads 0 N", is_[:20])
+    assert is_.startswith("speeds 1432.39 rpm,")

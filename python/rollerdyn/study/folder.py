@@ -178,18 +178,28 @@ def _write_manifest(out: Path, data: dict) -> None:
         tmp.unlink(missing_ok=True)
 
 
-def _grid_text(grid: list) -> str:
+def _grid_texts(earlier: list, now: list) -> tuple[str, str]:
+    """Two maps' grids as :func:`_grid_text` writes them, to six digits, or to all where
+    six show no difference (150 rad/s against 1432.39448783 rpm read "1432.39 rpm" twice)."""
+    texts = _grid_text(earlier), _grid_text(now)
+    if texts[0] == texts[1]:
+        texts = _grid_text(earlier, ".17g"), _grid_text(now, ".17g")
+    return texts
+
+
+def _grid_text(grid: list, digits: str = ".6g") -> str:
     """A map's grid (speeds [rad/s], radial and axial loads [N], and the oil temperatures
     [K] where the map sets them) as its values, in rpm, N and degC."""
     try:
         speeds, radial, axial, *temperatures = grid
-        rpm = [f"{v * 30 / math.pi:.6g}" for v in speeds]
+        rpm = [f"{v * 30 / math.pi:{digits}}" for v in speeds]
         text = (
-            f"speeds {', '.join(rpm)} rpm, radial loads {', '.join(f'{v:.6g}' for v in radial)}"
-            f" N, axial loads {', '.join(f'{v:.6g}' for v in axial)} N"
+            f"speeds {', '.join(rpm)} rpm, radial loads "
+            f"{', '.join(f'{v:{digits}}' for v in radial)} N, axial loads "
+            f"{', '.join(f'{v:{digits}}' for v in axial)} N"
         )
         for axis in temperatures[:1]:
-            text += f", temperatures {', '.join(f'{v - 273.15:.6g}' for v in axis)} degC"
+            text += f", temperatures {', '.join(f'{v - 273.15:{digits}}' for v in axis)} degC"
         return text
     except (TypeError, ValueError):
         return "unreadable"
@@ -295,9 +305,10 @@ def _check_same(out: Path, old: dict, kind: str, digest, now, settings, source) 
     earlier = old.get("settings", {})
     changed = [k for k in settings if k in earlier and earlier[k] != settings[k]]
     if "grid" in changed:
+        was, now = _grid_texts(earlier["grid"], settings["grid"])
         raise StudyError(
-            f"-o {out}: holds a map of another grid ({_grid_text(earlier['grid'])}; "
-            f"now {_grid_text(settings['grid'])}); its points are numbered in their grid, "
+            f"-o {out}: holds a map of another grid ({was}; "
+            f"now {now}); its points are numbered in their grid, "
             "so a map continues only its own grid: use another folder or --overwrite"
         )
     if changed:
