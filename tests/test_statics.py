@@ -553,7 +553,7 @@ def test_the_friction_of_steady_rolling_at_the_flanges_is_boundary_friction_time
     assert ds.roller_slip.attrs["units"] == "1"
 
 
-def test_a_sweep_stopped_by_ctrl_c_keeps_the_cases_it_solved(b1, tmp_path):
+def test_a_sweep_stopped_by_ctrl_c_keeps_the_cases_it_solved(b1, tmp_path, capfd):
     """Ctrl-C in a sweep (here raised by its progress callback after the first chunk of 50
     cases) raises ``StaticsInterrupted``, a KeyboardInterrupt carrying the cases solved
     until then, the same as in the whole sweep; in a design sweep too."""
@@ -575,6 +575,18 @@ def test_a_sweep_stopped_by_ctrl_c_keeps_the_cases_it_solved(b1, tmp_path):
     design = {"geometry.diametral_clearance": ["0 um", "10 um"]}
     with pytest.raises(StaticsInterrupted, match="after 50 of 240 cases"):
         statics_sweep(B1, grid, design=design, progress=stop)
+    # the command without -o lost them (one line only, a review): now it shows their table
+    import typer
+
+    from rollerdyn.cli.statics import _keep_interrupted
+
+    capfd.readouterr()
+    with pytest.raises(typer.Exit) as status:
+        _keep_interrupted(err.value, None, 130)
+    said = " ".join("".join(capfd.readouterr()).split())
+    assert status.value.exit_code == 130
+    assert "(5 of the 50 cases shown; -o writes them all)" in said
+    assert said.endswith("the cases solved are above (-o FILE keeps them)"), said
 
 
 def test_sigterm_stops_a_sweep_and_keeps_the_cases_it_solved(tmp_path):

@@ -1296,10 +1296,15 @@ def test_timing_counts_a_run_refused_at_its_start_as_costing_nothing():
     assert t["parallel efficiency"] == pytest.approx(40.0 / 50.0)
 
 
-def test_sigterm_stops_a_study_as_ctrl_c_does(tmp_path):
+@pytest.mark.parametrize(
+    ("signame", "status", "said"),
+    [("SIGTERM", 143, "terminated (SIGTERM)"), ("SIGINT", 130, "interrupted")],
+)
+def test_sigterm_stops_a_study_as_ctrl_c_does(tmp_path, signame, status, said):
     # SIGTERM to the command alone (`kill`, `timeout`, a batch system) ended it at once
     # with no line, left its lock and lost the runs in flight; now it stops as after
-    # Ctrl-C: the workers closed, each run's file as far as it got, exit status 143
+    # Ctrl-C: the workers closed, each run's file as far as it got, exit status 143. Ctrl-C
+    # said only "rollerdyn: interrupted"; now the same line as SIGTERM's (a review)
     import signal
     import subprocess
     import sys
@@ -1317,13 +1322,14 @@ def test_sigterm_stops_a_study_as_ctrl_c_does(tmp_path):
         if "steps" in line and " 0 steps" not in line:
             break
     time.sleep(3.0)
-    proc.send_signal(signal.SIGTERM)
+    proc.send_signal(getattr(signal, signame))
     # the stop closes the Dask workers and writes each run's file: a few seconds alone;
     # the bound leaves room for a machine busy with another run, and a hang still fails
     out, _ = proc.communicate(timeout=240)
     out = "".join(lines) + out
-    assert proc.returncode == 143, out
-    assert "terminated (SIGTERM)" in out.strip().splitlines()[-1], out
+    assert proc.returncode == status, out
+    last = out.strip().splitlines()[-1]
+    assert last.startswith(f"rollerdyn study: {said};") and "keeps the runs" in last, out
     for noise in ("Traceback", "Exception ignored"):
         assert noise not in out, out
     assert list((tmp_path / "st" / "runs").glob("*.nc")), out

@@ -658,7 +658,9 @@ def _keep_interrupted(stop, output: Path | None, status: int, overwrite: bool = 
             raise typer.Exit(status) from None
         other = "" if written == output else f" ({output} was created meanwhile by another program)"
         error(f"rollerdyn statics: {stop}; wrote those to {written}{other}")
+    elif ds is not None:  # the cases solved shown, not lost (they were, without -o)
+        _print_sweep(ds)
+        error(f"rollerdyn statics: {stop}; the cases solved are above (-o FILE keeps them)")
     else:
-        kept = "; -o FILE keeps the cases solved" if ds is not None else ""
-        error(f"rollerdyn statics: {stop}{kept}")
+        error(f"rollerdyn statics: {stop}")
     raise typer.Exit(status)

@@ -16,6 +16,7 @@ from ..limits import DEFAULT_MAX_WALL
 from .common import (
     console,
     default_config,
+    error,
     load,
     output_option,
     plain,
@@ -516,16 +517,27 @@ def _run_study(title: str, study, config: Path, output: Path, **options):
     from ..study import StudyError
 
     # after SIGTERM as after Ctrl-C: the workers closed, the runs' files as far as they got
-    terminated = (
-        f"rollerdyn study: terminated (SIGTERM); {output} keeps the runs as far as they got, "
-        "and the same command continues them"
+    try:
+        with (
+            terminated_as_interrupted(lambda: _kept(output, "terminated (SIGTERM)")),
+            refusing(StudyError, output),
+            _progress(title, options.get("scheduler")) as show,
+        ):
+            return study(config, output, progress=show, **options)
+    except KeyboardInterrupt:
+        # Ctrl-C said only "rollerdyn: interrupted", less than SIGTERM's line (a review)
+        error(_kept(output, "interrupted"))
+        raise typer.Exit(130) from None
+
+
+def _kept(output: Path, how: str) -> str:
+    """The line of a study stopped ``how``: what its folder keeps."""
+    if not output.is_dir():
+        return f"rollerdyn study: {how}; nothing was run"
+    return (
+        f"rollerdyn study: {how}; {output} keeps the runs as far as they got, and the same "
+        "command continues them"
     )
-    with (
-        terminated_as_interrupted(terminated),
-        refusing(StudyError, output),
-        _progress(title, options.get("scheduler")) as show,
-    ):
-        return study(config, output, progress=show, **options)
 
 
 def _finish(output: Path, files, frame, figures: list, timing: dict, started: float) -> None:
