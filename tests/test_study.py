@@ -1350,3 +1350,15 @@ def test_the_papers_loads_and_steps_take_units_as_the_map_does():
     assert _numbers("none", "--loads", "N") == []
     with pytest.raises(typer.Exit):
         _numbers("5 kg", "--loads", "N")
+
+
+def test_a_long_failure_is_cut_in_the_printed_table():
+    # a failed map point's reason (about 900 characters) made a status cell 70 lines tall
+    # in the printed table (a review); the CSV keeps it whole
+    from rollerdyn.cli.study_tables import LONGEST_STATUS, _shortened
+
+    reason = "failed: " + "the point law " * 70
+    cut = _shortened(reason)
+    assert cut.startswith(reason[:200]) and cut.endswith("… (whole in the folder's CSV table)")
+    assert len(cut) < LONGEST_STATUS + 40
+    assert _shortened("steady") == "steady"

@@ -40,6 +40,18 @@ _RUN_COLUMNS = (
 )
 
 
+#: The longest status cell shown whole; a longer one (a failure's reason with the core's
+#: whole message: about 900 characters, a cell 70 lines tall) is cut there.
+LONGEST_STATUS = 240
+
+
+def _shortened(text: str) -> str:
+    """``text`` cut at :data:`LONGEST_STATUS` characters, saying where it is whole."""
+    if len(text) <= LONGEST_STATUS:
+        return text
+    return text[: LONGEST_STATUS - 1].rstrip() + "… (whole in the folder's CSV table)"
+
+
 def print_frame(frame, title: str, columns, status_text) -> None:
     """One row per row of ``frame``: ``columns`` (column, heading, format), the status
     coloured and shown as ``status_text(row)`` says."""
@@ -52,7 +64,7 @@ def print_frame(frame, title: str, columns, status_text) -> None:
             value = row.get(col, "")
             if col == "status":
                 style = _RUN_STYLE.get(value, "yellow")
-                cells.append(Text(plain(status_text(row)), style=style))
+                cells.append(Text(_shortened(plain(status_text(row))), style=style))
             else:
                 cells.append(Text(plain(_fmt(value, spec or ".4g"))))
         table.add_row(*cells)
