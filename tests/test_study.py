@@ -938,7 +938,7 @@ def test_map_figures_cross_points_not_steady_and_label_points_without_a_value(
         [
             (500.0, 5000.0, 0.0, "steady", 0.005),
             (500.0, 5000.0, 1000.0, "not steady", 0.30),
-            (2000.0, 5000.0, 0.0, "steady", 0.012),
+            (2000.0, 5000.0, 0.0, "steady", math.nan),
             (2000.0, 5000.0, 1000.0, "failed", math.nan),
         ]
     )
@@ -946,7 +946,8 @@ def test_map_figures_cross_points_not_steady_and_label_points_without_a_value(
     crosses = [line for line in ax.lines if line.get_marker() == "x"]
     assert [(float(c.get_xdata()[0]), float(c.get_ydata()[0])) for c in crosses] == [(0, 1)]
     labels = [(t.get_text(), t.get_position()) for t in ax.texts]
-    assert labels == [("failed", (1, 1))]
+    # a steady point without a value (a flange's film without axial load) said "steady"
+    assert labels == [("none", (1, 0)), ("failed", (1, 1))]
     # one swept quantity: a line; the failed point is a labelled dotted line at its value
     line = _map_frame(
         [

@@ -6,7 +6,7 @@ over the two with the most values (one panel per value of the others); with one,
 over it, the torque's with the quasi-static torque of steady rolling beside it. Points that
 are not steady are marked with a cross;
 points without a value (failed, or stopped before a whole window after the ramps) are
-left blank and labelled with their status.
+left blank and labelled with their status ("none" where a steady point has no value).
 """
 
 from __future__ import annotations
@@ -81,7 +81,7 @@ def write_maps(frame, out: Path, name: str) -> list[Path]:
                     at = sizes[x].index(row[x]), sizes[y].index(row[y])
                     if not np.isfinite(float(row[column])):
                         # no value (failed, or stopped before a window after the ramps)
-                        ax.text(*at, row["status"], ha="center", va="center", color="0.35")
+                        ax.text(*at, _blank(row), ha="center", va="center", color="0.35")
                     elif row["status"] != STEADY:
                         ax.plot(*at, "rx", ms=10, mew=2)
                 where = zip(shown, values, strict=True)
@@ -104,7 +104,7 @@ def write_maps(frame, out: Path, name: str) -> list[Path]:
             for _, row in rows[~valued].iterrows():
                 ax.axvline(row[x], color="0.6", ls=":")
                 ax.annotate(
-                    row["status"],
+                    _blank(row),
                     (row[x], 0.02),
                     xycoords=("data", "axes fraction"),
                     rotation=90,
@@ -116,3 +116,12 @@ def write_maps(frame, out: Path, name: str) -> list[Path]:
             ax.legend()
         written += save_figure(fig, out, f"map_{short}")
     return written
+
+
+def _blank(row) -> str:
+    """The label of a point without a value: its status where it did not reach a steady
+    state, "none" where it did and the quantity has none there (a flange's film without
+    axial load: the cell said "steady")."""
+    from .maps import STEADY
+
+    return "none" if row["status"] == STEADY else str(row["status"])
