@@ -217,7 +217,12 @@ def test_compare_and_modes_note_runs_of_another_bearing(tmp_path):
     compared, and a state evaluated with another bearing's --config, with a note naming
     what differs: the differences are then not a method's or round-off's."""
     runs = {}
-    for name, sets in (("b1", []), ("long", ["--set", 'geometry.roller.length="6 mm"'])):
+    law = ["--set", "surfaces.flange_law=distributed"]
+    for name, sets in (
+        ("b1", []),
+        ("long", ["--set", 'geometry.roller.length="6 mm"']),
+        ("law", law),
+    ):
         runs[name] = tmp_path / f"{name}.nc"
         args = ["run", str(B1), "-o", str(runs[name]), "--t-end", "0.0004", *sets]
         made = RUNNER.invoke(app, args)
@@ -229,6 +234,13 @@ def test_compare_and_modes_note_runs_of_another_bearing(tmp_path):
     )
     same = RUNNER.invoke(app, ["compare", str(runs["b1"]), str(runs["b1"])])
     assert same.exit_code == 0 and "different bearings" not in same.output
+    assert "differ in their case" not in same.output
+    # another flange law (or load, or oil) is the case's difference: named too (a review)
+    other = RUNNER.invoke(app, ["compare", str(runs["b1"]), str(runs["law"])])
+    assert other.exit_code == 0 and "different bearings" not in other.output
+    assert "differ in their case (surfaces.flange_law: 'point' -> 'distributed')" in " ".join(
+        other.output.split()
+    )
     modes = RUNNER.invoke(app, ["modes", str(runs["long"]), "-c", str(B1), "-n", "1"])
     assert modes.exit_code == 0, modes.output
     assert "--config describes another bearing" in modes.output

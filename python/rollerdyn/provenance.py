@@ -153,11 +153,19 @@ def differences(earlier: dict, now: dict) -> list[str]:
 BEARING_SECTIONS = ("geometry", "materials", "inner_ring")
 
 
-def bearing_differences(a: dict, b: dict, shown: int = 3) -> list[str]:
-    """'field: a -> b' for the first ``shown`` fields of :data:`BEARING_SECTIONS` in which
-    the resolved configurations ``a`` and ``b`` (:func:`resolved`, or a result's
-    ``config_resolved``) differ; with more, a last entry says how many more."""
-    found = differences(*({s: c.get(s) for s in BEARING_SECTIONS} for c in (a, b)))
+#: What makes a run's case besides its bearing: its loads and speeds, its oil and its
+#: contact models (the solver aside, whose settings a comparison of two runs is about).
+CASE_SECTIONS = ("operating", "lubricant", "surfaces")
+
+
+def bearing_differences(
+    a: dict, b: dict, shown: int = 3, sections: tuple[str, ...] = BEARING_SECTIONS
+) -> list[str]:
+    """'field: a -> b' for the first ``shown`` fields of ``sections`` (by default
+    :data:`BEARING_SECTIONS`) in which the resolved configurations ``a`` and ``b``
+    (:func:`resolved`, or a result's ``config_resolved``) differ; with more, a last entry
+    says how many more."""
+    found = differences(*({s: c.get(s) for s in sections} for c in (a, b)))
     more = len(found) - shown
     return found[:shown] + ([f"and {more} more"] if more > 0 else [])
 

@@ -61,7 +61,9 @@ def compare_command(
     the load zone's centre at 180°). Then both runs' steps, right-hand sides,
     gradient fallbacks and wall time. A note first names the fields in which the two runs'
     bearings (geometry, materials, inner ring) differ, if they do, and a run that did not
-    record its rollers or flanges (solver.outputs); their measures show n/a.
+    record its rollers or flanges (solver.outputs); their measures show n/a. A second
+    note names what else differs: the loads and speeds, the oil or the surfaces' models
+    (the solver's settings, which a comparison is usually about, are not named).
 
     Exits with status 2 if a file is missing or not a rollerdyn run's result, if the two
     runs share no output but their first or differ in their roller count, or for a bad
@@ -97,7 +99,7 @@ def compare_command(
 def _note_other_bearings(a: dict, b: dict, first: Path, second: Path) -> None:
     """A line when the two runs record bearings that differ (geometry, materials, inner
     ring): their differences are then not those of a method or of round-off."""
-    from ..provenance import bearing_differences, recorded_configuration
+    from ..provenance import CASE_SECTIONS, bearing_differences, recorded_configuration
 
     ra, rb = recorded_configuration(a), recorded_configuration(b)
     if ra is None or rb is None:
@@ -106,6 +108,14 @@ def _note_other_bearings(a: dict, b: dict, first: Path, second: Path) -> None:
     if differ:
         say(
             f"note: {first.name} and {second.name} are runs of different bearings "
+            f"({'; '.join(differ)}); the differences below include that",
+            "yellow",
+        )
+    # another load, oil or flange law (a review: point against distributed law, no word)
+    differ = bearing_differences(ra, rb, sections=CASE_SECTIONS)
+    if differ:
+        say(
+            f"note: {first.name} and {second.name} differ in their case "
             f"({'; '.join(differ)}); the differences below include that",
             "yellow",
         )
