@@ -285,6 +285,8 @@ def test_bad_cases_are_refused_with_a_message(b1):
         100 * math.pi
     )
     assert parse_range("operating.radial_load", "0:10000:3") == [0.0, 5000.0, 10000.0]
+    with pytest.raises(StaticsError, match="a value is given twice"):
+        parse_range("operating.radial_load", "1000,1 kN")
 
 
 _RADIAL_ONLY = {"operating.radial_load": [5000.0], "operating.axial_load": [0.0]}

@@ -445,7 +445,10 @@ def parse_range(path: str, text: str) -> list[float]:
         raise StaticsError(f"--set {path}={text}: no value given")
     if not all(v.strip() for v in items):
         raise StaticsError(f"--set {path}={text}: an empty value (two commas, or one at an end)")
-    return [value(v) for v in items]
+    values = [value(v) for v in items]
+    if len(set(values)) != len(values):  # the same case solved twice (the maps refuse it)
+        raise StaticsError(f"--set {path}={text}: a value is given twice")
+    return values
 
 
 #: The most configurations one design sweep builds (``statics_sweep(design=...)``): each

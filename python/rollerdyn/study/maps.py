@@ -141,7 +141,9 @@ def parse_range(
                 ) from None
             a, b = value(parts[0]), value(parts[1])
             if n < 1:
-                raise StudyError(f"{option} {text!r}: empty range ({n} points); n must be >= 1")
+                raise StudyError(
+                    f"{option} {text!r}: empty range ({n} points); n must be >= 2 (or 1 with a = b)"
+                )
             if a > b:
                 raise StudyError(
                     f"{option} {text!r}: reversed range (a = {parts[0].strip()} > b = "
