@@ -694,3 +694,41 @@ def test_statics_says_when_the_races_are_pressed_past_iso_76():
     assert "2 cases past ISO 76's 4 GPa" in " ".join(res.output.split())
     res = invoke("statics", B1, code=0)
     assert "cannot carry" not in res.output
+
+
+def test_a_mesh_run_too_fine_to_interrupt_is_refused_before_it_starts(tmp_path):
+    """The mesh detector at 1024 x 256 facets (allowed by the configuration's bounds, for
+    the detection study) ran for 12 minutes at full CPU before its first step, deaf to
+    Ctrl-C and SIGTERM, and only kill -9 stopped it (a review). A run takes at most
+    128 x 32 facets with it; --force still runs more."""
+    from rollerdyn.simulation import MAX_MESH_FACETS, check_cost
+
+    fine = ["--set", "solver.mesh_around=1024", "--set", "solver.mesh_along=256"]
+    res = invoke("run", B1, "-o", tmp_path / "x.nc", "--detector", "mesh", *fine, code=2)
+    one_line_saying(res.output, "solver.mesh_around x solver.mesh_along = 1024 x 256", "--force")
+    assert not (tmp_path / "x.nc").exists()
+    cfg = load_b1()
+    assert MAX_MESH_FACETS == 128 * 32
+    check_cost(cfg, 0.001, detector="mesh")  # the default 64 x 16
+    fine_cfg = cfg.model_copy(
+        update={"solver": cfg.solver.model_copy(update={"mesh_around": 256, "mesh_along": 32})}
+    )
+    with pytest.raises(ValueError, match="256 x 32"):
+        check_cost(fine_cfg, 0.001, detector="mesh")
+    check_cost(fine_cfg, 0.001)  # B1's own detector: no mesh
+    res = invoke("check", B1, *fine, "--set", "solver.detector=mesh", code=0)
+    assert "rollerdyn run refuses this configuration: solver.mesh_around" in " ".join(
+        res.output.split()
+    )
+
+
+def test_check_names_a_start_that_run_refuses():
+    """B1's ring misaligned by 0.5 deg: `check` passed it with a note on creeping, `run`
+    refused it at once (the raceway overlaps the untilted rollers at rest; a review).
+    `check` now says so, and names the start from equilibrium, which runs it."""
+    res = invoke("check", B1, "--set", "inner_ring.misalignment=0.5 deg", code=0)
+    text = " ".join(res.output.split())
+    assert "rollerdyn run refuses this configuration: inner_ring.misalignment = 0.5000 deg" in text
+    assert "overlap by 14.544 um" in text and 'solver.start = "equilibrium"' in text
+    res = invoke("check", B1, code=0)
+    assert "refuses" not in res.output

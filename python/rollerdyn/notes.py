@@ -11,7 +11,7 @@ import os
 
 from .config import BearingConfig
 from .config.base import TimeTable
-from .names import RACES
+from .names import RACES, SEMI_ANALYTICAL
 
 
 def configuration_notes(
@@ -132,9 +132,39 @@ def refusal_note(cfg: BearingConfig, t_end: float | None = None) -> str | None:
     quasi-static equilibrium, so it is made on the statics' core model (no traction
     table)."""
     refusal = point_law_refusal(cfg, cfg.end_time if t_end is None else float(t_end))
-    if refusal is None:
-        return None
-    return f"note: rollerdyn run refuses this configuration (--force runs it): {refusal}"
+    if refusal is not None:
+        return f"note: rollerdyn run refuses this configuration (--force runs it): {refusal}"
+    refusal = start_refusal(cfg)
+    if refusal is not None:
+        return f"note: rollerdyn run refuses this configuration: {refusal}"
+    return None
+
+
+def start_refusal(cfg: BearingConfig) -> str | None:
+    """Why a run of ``cfg`` has no state to start from (``solver.start``: at rest, bodies
+    that overlap, e.g. B1's ring misaligned by 0.5°; from equilibrium, none found), as the
+    core says it before the first step, or None. ``rollerdyn check`` passed such a
+    configuration that ``rollerdyn run`` then refused (a review). Neither start
+    evaluates the traction: its untabulated model serves. The contacts are found by the
+    semi-analytical detector whatever the run's (they agree on the start; the mesh
+    detector at its finest took minutes for it)."""
+    from . import _core
+    from .model import Model
+    from .simulation import model_parameters
+
+    try:
+        params = model_parameters(cfg, SEMI_ANALYTICAL)
+        traction = Model(cfg).traction_model(tabulated=False)
+    except ValueError:
+        return None  # no model to run at all: not this check's refusal (run names it)
+    try:
+        if cfg.solver.start == "equilibrium":
+            _core.equilibrium_state(params, traction, 0.0)
+        else:
+            _core.initial_state(params, traction)
+    except ValueError as refusal:
+        return str(refusal)
+    return None
 
 
 def point_law_refusal(cfg: BearingConfig, t_end: float) -> str | None:

@@ -130,12 +130,19 @@ def numbers_per_output(z: int, groups: tuple[str, ...] = OUTPUT_GROUPS) -> int:
     return 1 + len(_SCALARS) + 3 + 2 + z * (per_roller_count + 4 * per_flange_count)
 
 
+#: The most facets (``solver.mesh_around`` x ``solver.mesh_along``) of a figure that a
+#: run with the mesh detector takes (:func:`check_cost`): at 1024 x 256 a run ignored
+#: Ctrl-C for 12 minutes before its first step (a review).
+MAX_MESH_FACETS = 128 * 32
+
+
 def check_cost(
     config: BearingConfig,
     t_end: float,
     t_start: float = 0.0,
     remedy: str = ", or force the run (--force, force=True)",
     outputs_optional: bool = True,
+    detector: str | None = None,
 ) -> None:
     """Raises ValueError, with the estimate, if a run would be far beyond a normal one
     (see :data:`MAX_RESULT_BYTES`, :data:`MAX_MIN_STEPS`, :data:`MAX_CHECKPOINTS`);
@@ -143,9 +150,20 @@ def check_cost(
     :func:`simulate` skips this check (the core still refuses what it cannot hold).
     ``remedy`` ends the advice (where forcing is not offered, pass ""); where the caller
     needs every output group (a study), ``outputs_optional=False`` leaves out the advice
-    to record none."""
+    to record none. ``detector``: the run's, if not the configuration's (the mesh
+    detector's resolution is bounded, :data:`MAX_MESH_FACETS`)."""
     cost = estimated_cost(config, t_end, t_start)
     s = config.solver
+    facets = s.mesh_around * s.mesh_along
+    if (detector or s.detector) == "mesh" and facets > MAX_MESH_FACETS:
+        raise ValueError(
+            f"solver.mesh_around x solver.mesh_along = {s.mesh_around} x {s.mesh_along}: a "
+            f"run with the mesh detector at more than {MAX_MESH_FACETS} facets a figure "
+            "(128 x 32) takes minutes a step (a roller end's detection 10.7 ms at 64 x 16 "
+            "and 56 ms at 128 x 32, growing with the facets, 68 of them a right-hand side), "
+            "and Ctrl-C is taken only between steps; choose fewer facets (`rollerdyn bench "
+            f"contact` compares the resolutions){remedy}"
+        )
     if cost["memory_bytes"] > MAX_RESULT_BYTES:
         raise ValueError(
             f"solver.output_interval = {s.output_interval:g} s: {cost['outputs']:.3g} outputs "
@@ -739,7 +757,7 @@ def simulate(
     if resume is not None:
         start = _resume_point(resume, config, det, end)
     if not force:
-        check_cost(config, end, 0.0 if start is None else start[0])
+        check_cost(config, end, 0.0 if start is None else start[0], detector=det)
     forced = _forced_past(config, end, force, resume)
     model = Model(config)
     params = model_parameters(config, det)
