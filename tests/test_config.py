@@ -1387,3 +1387,14 @@ def test_output_groups_are_taken_once_each_in_their_order():
     with pytest.raises(ConfigError, match='"power" twice'):
         parse_config(changed_b1({"solver.outputs": ["power", "rollers", "power"]}))
     assert parse_config(changed_b1({"solver.outputs": []})).solver.outputs == ()
+
+
+def test_a_path_the_file_system_cannot_take_or_a_files_text_is_refused_cleanly(tmp_path):
+    """A name of 300 bytes (past the file system's 255) raised OSError from Path.exists()
+    through `rollerdyn check`, `run` and `validate -c` as a traceback; the file's text
+    passed instead of its path raised a raw OSError (a review)."""
+    with pytest.raises(ConfigError, match=r"\.\.\.: cannot be read \(File name too long\)"):
+        load_config(tmp_path / ("a" * 300 + ".toml"))
+    text = (Path(__file__).parents[1] / "examples" / "b1.toml").read_text()
+    with pytest.raises(ConfigError, match="looks like a configuration's TOML text, not its file"):
+        load_config(text)

@@ -37,11 +37,24 @@ def load_config(path: str | Path, changes: Mapping[str, Any] | None = None) -> B
         )
     if isinstance(path, str) and not path.strip():
         raise ConfigError("path = '': no configuration file named")
+    from ..paths import printable
+
     p = Path(path)
-    if not p.exists():
-        raise ConfigError(f"{p}: configuration file not found", source=str(p))
-    if not p.is_file():
-        raise ConfigError(f"{p}: not a file", source=str(p))
+    shown = printable(str(p)) if len(str(p)) <= 200 else printable(str(p)[:197]) + "..."
+    if "\n" in str(path) and ("=" in str(path) or "[" in str(path)):
+        # the file's text given instead of its path (a review: a raw OSError)
+        raise ConfigError(
+            f"path = {str(path)[:40]!r}...: this looks like a configuration's TOML text, not "
+            "its file's path; pass the path, or parse the text with "
+            "rollerdyn.parse_config(tomllib.loads(text))"
+        )
+    try:
+        if not p.exists():
+            raise ConfigError(f"{p}: configuration file not found", source=str(p))
+        if not p.is_file():
+            raise ConfigError(f"{p}: not a file", source=str(p))
+    except OSError as exc:  # a name longer than the file system takes (255 bytes): a traceback
+        raise ConfigError(f"{shown}: cannot be read ({exc.strerror})", source=str(p)) from None
     try:
         text = p.read_bytes().decode("utf-8-sig")  # a byte-order mark is not TOML
     except UnicodeDecodeError as exc:
