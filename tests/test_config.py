@@ -475,6 +475,28 @@ BAD = [
         "geometry.diametral_clearance",
         "leaves no room for rollers",
     ),
+    # absurd values that ended in solver failures naming no field, or passed silently
+    (
+        "mu_b0 1e6",
+        "surfaces.boundary_friction.mu_b0",
+        1e6,
+        "surfaces.boundary_friction.mu_b0",
+        "must be >= 0 and <= 1",
+    ),
+    (
+        "hysteresis 1e300",
+        "surfaces.hysteresis_coefficient",
+        1e300,
+        "surfaces.hysteresis_coefficient",
+        "must be >= 0 and <= 1",
+    ),
+    (
+        "viscosity 1e30 mPa*s",
+        "lubricant.reference_viscosity.viscosity",
+        "1e30 mPa*s",
+        "lubricant.reference_viscosity.viscosity",
+        "<= 1000 Pa*s",
+    ),
     (  # exactly the gap: 4e-16 mm of roller by round-off passed on to other rules (a review)
         "clearance equal to the gap",
         "geometry.diametral_clearance",

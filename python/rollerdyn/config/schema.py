@@ -112,6 +112,11 @@ class RollerConfig(RollerDerived, _Section):
         return self
 
 
+#: The largest crown drop, a share of the roller diameter (B1's 4.5 mm rollers: 45 µm;
+#: crowns drop by micrometres).
+MAX_CROWN_DROP = 0.01
+
+
 class FlangeConfig(_Section):
     """``[geometry.flange]``: a cone between a root torus (at the raceway) and a rim torus."""
 
@@ -220,6 +225,14 @@ class GeometryConfig(GeometryDerived, _Section):
                 f"{_mm(self.pitch_diameter)}; at most {z_max} rollers fit)",
             )
         r = self.roller
+        if r.crown_drop > MAX_CROWN_DROP * dia:
+            # 10 mm on a 4.5 mm roller passed `check` silently (a review)
+            cross.add(
+                "roller.crown_drop",
+                _mm(r.crown_drop),
+                f"must be <= {MAX_CROWN_DROP:.0%} of the roller diameter "
+                f"({_mm(MAX_CROWN_DROP * dia)}): a crown's drop is micrometres",
+            )
         if r.edge_radius >= dia / 2.0:
             cross.add(
                 "roller.edge_radius",
@@ -352,7 +365,7 @@ class ReferenceViscosityConfig(_Section):
     """A measured viscosity that rescales the Vogel factor ``k``."""
 
     temperature: Quantity("temperature", example="40 degC")
-    viscosity: Quantity("dynamic viscosity", positive=True, example="81 mPa*s")
+    viscosity: Quantity("dynamic viscosity", positive=True, le="1000 Pa*s", example="81 mPa*s")
 
 
 def _z_value(value: Any) -> Any:
@@ -507,7 +520,7 @@ class SurfacePairConfig(_Section):
 class BoundaryFrictionConfig(_Section):
     """Boundary friction (eqs. 51, 52) and its smoothing at small sliding speed."""
 
-    mu_b0: Number(ge=0.0)
+    mu_b0: Number(ge=0.0, le=1.0)  # dry steel on steel is about 0.6
     s0: Number(gt=0.0)
     smoothing_speed: Quantity("speed", positive=True) = "1 mm/s"
 
@@ -553,7 +566,7 @@ class SurfacesConfig(SurfacesDerived, _Section):
     flange_law: Literal["point", "distributed"] = "point"
     roller_roller: SurfacePairConfig | None = None
     boundary_friction: BoundaryFrictionConfig
-    hysteresis_coefficient: Number(ge=0.0)
+    hysteresis_coefficient: Number(ge=0.0, le=1.0)  # a share of the rolling work
     rolling_resistance: Literal["paper", "balanced"] = "balanced"
     damping_ratio: Number(ge=0.0, le=2.0) = 0.1
     squeeze_film: SqueezeFilmConfig = Field(default_factory=SqueezeFilmConfig)
