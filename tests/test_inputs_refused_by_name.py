@@ -325,6 +325,15 @@ def test_one_slice_under_an_axial_load_names_the_slices(law):
     swept = statics_sweep(cfg, {"operating.axial_load": [0.0, 500.0]})
     assert swept.error.values[0] == ""
     assert "geometry.roller.slices = 1" in str(swept.error.values[1])
+    if law == "point":  # a run's refusal advised the distributed law (a review)
+        from rollerdyn.simulation import simulate
+
+        with pytest.raises(ValueError) as refused:
+            simulate(cfg, t_end="0.5 ms")
+        message = str(refused.value)
+        assert "(radial 0.012337 N, axial 0.0024674 N)" in message
+        assert message.endswith("give more slices (B1 has 20)"), message
+        assert 'use surfaces.flange_law = "distributed"' not in message
 
 
 def test_no_axial_load_no_tipping_hint():

@@ -182,8 +182,19 @@ def point_law_refusal(cfg: BearingConfig, t_end: float) -> str | None:
     try:
         model.check_point_law(t_end)
     except ValueError as refusal:
-        return str(refusal)
+        from .simulation import _with_its_cause
+
+        return _with_its_cause(cfg, str(refusal))
     return None
+
+
+#: Why a roller of one slice has no equilibrium once anything tilts it (the statics'
+#: hint too).
+ONE_SLICE = (
+    "a roller of one slice (geometry.roller.slices = 1) has no tilting stiffness at its "
+    "races, so nothing holds it against the moment its flange contacts (or a "
+    "misalignment) put on it, with either flange law: give more slices (B1 has 20)"
+)
 
 
 def capacity_note(cfg: BearingConfig, t: float) -> str | None:

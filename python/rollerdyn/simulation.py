@@ -800,7 +800,10 @@ def simulate(
     # never more threads than the cores this process may use (as the core does; and a
     # number too large for the core's integers is no error)
     core = _core.Model(params, model.traction, min(threads, default_threads()))
-    raw = core.run(options, callback, start, None if checkpoint is None else at_checkpoint)
+    try:
+        raw = core.run(options, callback, start, None if checkpoint is None else at_checkpoint)
+    except ValueError as refusal:
+        raise ValueError(_with_its_cause(config, str(refusal))) from None
     raw["stats"]["checkpoint_seconds"] = saving["seconds"]
     ds = to_dataset(raw, config, det)
     ds.attrs["threads"] = min(threads, default_threads()) if det != GRADIENT else 1
@@ -821,6 +824,16 @@ def simulate(
     if raw["error"] is not None:
         raise SimulationError(raw["error"], ds)
     return ds
+
+
+def _with_its_cause(config: BearingConfig, refusal: str) -> str:
+    """The core's refusal of a run before its first step, with the point law's advice
+    replaced where a roller of one slice is the cause (:data:`rollerdyn.notes.ONE_SLICE`)."""
+    from .notes import ONE_SLICE
+
+    if config.geometry.roller.slices == 1 and "no quasi-static equilibrium" in refusal:
+        return refusal.split("; use surfaces.flange_law", 1)[0] + "; " + ONE_SLICE
+    return refusal
 
 
 #: How ``attrs["forced"]`` of a forced run begins (its refusal follows).

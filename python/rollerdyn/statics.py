@@ -263,11 +263,9 @@ def _no_equilibrium_hint(cfg: BearingConfig, case: StaticCase, message: str) -> 
         return message[: min(starts)] if starts else message
 
     if cfg.geometry.roller.slices == 1 and (along_axis != 0.0 or tilted):
-        return without(*_CORE_HINTS) + (
-            "; a roller of one slice (geometry.roller.slices = 1) has no tilting stiffness "
-            "at its races, so nothing holds it against the moment its flange contacts (or "
-            "a misalignment) put on it, with either flange law: give more slices (B1 has 20)"
-        )
+        from .notes import ONE_SLICE
+
+        return without(*_CORE_HINTS) + "; " + ONE_SLICE
     if along_axis != 0.0 or tilted or _CORE_HINTS["axial load"] not in message:
         return message
     text = without("axial load")

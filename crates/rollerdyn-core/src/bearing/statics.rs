@@ -922,13 +922,22 @@ fn past_the_flanges_limit(solution: &StaticSolution) -> Option<String> {
     })
 }
 
-/// A load in a message: as written for everyday magnitudes (5000), in exponent form
-/// beyond them (1e-320, not three hundred zeros).
+/// A load in a message: to six significant digits as written for everyday magnitudes
+/// (5000, 0.012337; not 0.012336995354467195), in exponent form beyond them (1e-320, not
+/// three hundred zeros).
 fn shown(x: f64) -> String {
-    if x == 0.0 || (1e-3..1e9).contains(&x.abs()) {
-        format!("{x}")
+    if x == 0.0 {
+        return "0".to_string();
+    }
+    if !(1e-3..1e9).contains(&x.abs()) {
+        return format!("{x:e}");
+    }
+    let decimals = (5 - x.abs().log10().floor() as i32).max(0) as usize;
+    let text = format!("{x:.decimals$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
     } else {
-        format!("{x:e}")
+        text
     }
 }
 
@@ -1048,6 +1057,11 @@ mod tests {
         assert_eq!(super::shown(0.0), "0");
         assert_eq!(super::shown(1e-320), "1e-320");
         assert_eq!(super::shown(2.5e12), "2.5e12");
+        // and a ramp's load to six digits, not seventeen (a review)
+        assert_eq!(super::shown(0.012336995354467195), "0.012337");
+        assert_eq!(super::shown(-1234.5678), "-1234.57");
+        assert_eq!(super::shown(999999.6), "1000000");
+        assert_eq!(super::shown(1e-3), "0.001");
     }
 }
 
