@@ -732,3 +732,29 @@ def test_check_names_a_start_that_run_refuses():
     assert "overlap by 14.544 um" in text and 'solver.start = "equilibrium"' in text
     res = invoke("check", B1, code=0)
     assert "refuses" not in res.output
+
+
+def test_a_run_goes_on_when_its_standard_output_is_closed(tmp_path):
+    """`rollerdyn run ... | head -1`: rich ended the process (SystemExit 1) at the first
+    progress line after the pipe's reader left, with no word on standard error and the
+    result cut at 10 ms with the error "SystemExit: 1" (a review). The run now goes on
+    without progress lines, says so once on standard error and writes its whole result."""
+    import xarray as xr
+
+    command = Path(sys.executable).parent / "rollerdyn"
+    out = tmp_path / "p.nc"
+    proc = subprocess.Popen(
+        [str(command), "run", str(B1), "-o", str(out), "--t-end", "0.05"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    assert proc.stdout.readline()  # the first progress line, then the reader leaves
+    proc.stdout.close()
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 0, err
+    assert err.strip() == (
+        "rollerdyn run: standard output closed; the run goes on without progress lines"
+    )
+    with xr.open_dataset(out) as ds:
+        assert float(ds.time[-1]) == pytest.approx(0.05) and "error" not in ds.attrs

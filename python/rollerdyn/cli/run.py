@@ -7,6 +7,7 @@ from __future__ import annotations
 import contextlib
 import math
 import signal
+import sys
 import time
 from pathlib import Path
 from typing import Annotated
@@ -422,7 +423,7 @@ class ProgressLines:
 def _run_progress(name: str, t_start: float, t_end: float):
     """The progress callback of a run: rich's live bar on a terminal, else plain lines."""
     if not console.is_terminal:
-        yield ProgressLines(name, t_start, t_end)
+        yield _going_on_without_stdout(ProgressLines(name, t_start, t_end))
         return
     from rich.progress import (
         BarColumn,
@@ -450,6 +451,31 @@ def _run_progress(name: str, t_start: float, t_end: float):
             bar.update(task, completed=p.time, steps=p.steps, rate=rate)
 
         yield show
+
+
+def _going_on_without_stdout(show):
+    """``show``, which a closed standard output does not stop: rich ends the process
+    (SystemExit 1, standard output then sent to /dev/null) when the reader of a pipe has
+    left (``rollerdyn run ... | head -1``), which stopped the run with no word on its
+    standard error (a review). The run goes on without progress lines, says so once on
+    standard error, and writes its result."""
+    gone: list[bool] = []
+
+    def guarded(p) -> None:
+        if gone:
+            return
+        try:
+            show(p)
+        except SystemExit as stop:
+            if not isinstance(stop.__context__, BrokenPipeError):
+                raise
+            gone.append(True)
+            print(
+                "rollerdyn run: standard output closed; the run goes on without progress lines",
+                file=sys.stderr,
+            )
+
+    return guarded
 
 
 def _stop_if(received: list[int]) -> None:
