@@ -758,3 +758,13 @@ def test_a_run_goes_on_when_its_standard_output_is_closed(tmp_path):
     )
     with xr.open_dataset(out) as ds:
         assert float(ds.time[-1]) == pytest.approx(0.05) and "error" not in ds.attrs
+
+
+def test_run_and_check_take_a_text_with_colons_as_text():
+    """--set on run and check read 'ratio 1:2:3' as a sweep's A:B:N and refused it with no
+    field named (a review); they take one value, so it is text, and a range given there
+    is refused by the field's own rule."""
+    res = invoke("check", B1, "--set", "description=ratio 1:2:3", code=0)
+    assert "A:B:N" not in res.output
+    res = invoke("check", B1, "--set", "operating.radial_load=0 N:5000 N:1", code=2)
+    one_line_saying(res.output, 'operating.radial_load: "0 N:5000 N:1"', "expected a force")

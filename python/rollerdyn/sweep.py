@@ -137,9 +137,10 @@ def toml_value(text: str) -> Any:
         return text
 
 
-def parse_set(option: str) -> tuple[str, list[Any]]:
+def parse_set(option: str, ranges: bool = True) -> tuple[str, list[Any]]:
     """``"operating.axial_load=0 N,500 N"`` -> ``("operating.axial_load", ["0 N", "500 N"])``
-    (values read by :func:`toml_value`)."""
+    (values read by :func:`toml_value`); ``A:B:N`` a range where ``ranges`` (a sweep's),
+    else text as any other value (``rollerdyn run``'s: ``description=ratio 1:2:3``)."""
     if not isinstance(option, str):
         raise SweepError(f"--set {option!r}: expected a string PATH=VALUE[,VALUE...]")
     shown = printable(option)
@@ -161,7 +162,7 @@ def parse_set(option: str) -> tuple[str, list[Any]]:
     texts = split_values(values)
     if any(not t for t in texts):
         raise SweepError(f"--set {path}={values}: an empty value (two commas, or none given)")
-    if len(texts) == 1 and _RANGE.match(texts[0]):
+    if ranges and len(texts) == 1 and _RANGE.match(texts[0]):
         return path, range_values(path, texts[0])
     return path, [toml_value(t) for t in texts]
 

@@ -168,7 +168,7 @@ def set_options(options: list[str] | None) -> dict[str, Any]:
     changes: dict[str, Any] = {}
     for option in options or []:
         try:
-            path, values = parse_set(option)
+            path, values = parse_set(option, ranges=False)
         except SweepError as err:
             raise refuse(err) from None
         if len(values) != 1:
