@@ -209,6 +209,17 @@ def test_a_crawling_run_says_so_once():
     (note,) = [n for n in found if n]
     assert "held below solver.checkpoint_interval = 5e-07 s" in note
     assert "distributed" not in note
+    # a dt_max of 1 ns was blamed on the point law (a review): named as the largest step
+    clock = [0.0]
+    tiny = CrawlWatch(True, clock=lambda: clock[0], step_caps={"solver.dt_max": 1e-9})
+    found = []
+    for second in range(61):
+        clock[0] = float(second)
+        n = 1000 * second
+        found.append(tiny(Progress(n * 1e-9, 1.0, n, 0, 0, 1e-9)))
+    (note,) = [n for n in found if n]
+    assert "held below solver.dt_max = 1e-09 s, the largest step the solver takes" in note
+    assert "distributed" not in note
 
 
 def test_a_crawling_run_is_noted_in_its_result_and_by_run(tmp_path, monkeypatch):

@@ -769,7 +769,11 @@ def simulate(
         config.surfaces.flange_law == "point",
         # the run stops at every checkpoint time, saved or not (a resumed run takes the
         # same path as the uninterrupted one)
-        step_caps={"solver.checkpoint_interval": config.solver.checkpoint_interval},
+        step_caps={
+            "solver.checkpoint_interval": config.solver.checkpoint_interval,
+            # a dt_max of 1 ns was blamed on the point law (a review)
+            "solver.dt_max": config.solver.dt_max,
+        },
     )
 
     def callback(t, t_end_, steps, rhs, jac, step, at_output):
@@ -856,6 +860,13 @@ def _forced_past(
     return None if refusal is None else f"{FORCED_MARK}: {refusal}"
 
 
+#: What each of :class:`CrawlWatch`'s step caps does to a step.
+_CAP_REASONS = {
+    "solver.checkpoint_interval": "which ends a step at every multiple of it",
+    "solver.dt_max": "the largest step the solver takes",
+}
+
+
 class CrawlWatch:
     """Notices once when a run crawls: when its steps over at least ``window`` seconds of
     wall time, ``after`` seconds into the run, average less than ``mean_step`` of simulated
@@ -900,10 +911,11 @@ class CrawlWatch:
         capped = [(name, cap) for name, cap in self.step_caps.items() if cap < self.mean_step]
         if capped:
             name, cap = min(capped, key=lambda item: item[1])
+            why = _CAP_REASONS.get(name, "which ends a step at every multiple of it")
             self.note = (
                 f"the run crawled: from t = {t:.6g} s its {p.steps - steps} steps averaged "
                 f"{mean:.2g} s of simulated time each, held below {name} = {cap:.2g} s, "
-                "which ends a step at every multiple of it; a longer one lets the steps grow"
+                f"{why}; a longer one lets the steps grow"
             )
             return self.note
         law = (
