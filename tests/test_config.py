@@ -1427,3 +1427,16 @@ def test_a_path_the_file_system_cannot_take_or_a_files_text_is_refused_cleanly(t
     text = (Path(__file__).parents[1] / "examples" / "b1.toml").read_text()
     with pytest.raises(ConfigError, match="looks like a configuration's TOML text, not its file"):
         load_config(text)
+
+
+def test_changes_take_a_pint_quantity_and_refuse_an_empty_path_part():
+    """A pint Quantity as a change raised AttributeError ("Magnitude 'int' does not
+    support tolist"), and "a..b" made a table of an empty key (a review)."""
+    import pint
+
+    units = pint.UnitRegistry()
+    b1 = Path(__file__).parents[1] / "examples" / "b1.toml"
+    cfg = load_config(b1, {"geometry.roller.length": units.Quantity(6, "mm")})
+    assert cfg.geometry.roller.length == pytest.approx(6e-3)
+    with pytest.raises(ConfigError, match="expected a mapping of dotted paths"):
+        load_config(b1, {"a..b": 1})

@@ -108,8 +108,9 @@ def _plain_changes(changes: Mapping[str, Any], source: str) -> dict[str, Any]:
     lists (what tomllib reads), so that their TOML text reads back as they are;
     ConfigError unless a mapping of dotted paths."""
     if not isinstance(changes, Mapping) or not all(
-        isinstance(k, str) and k.strip() for k in changes
-    ):
+        isinstance(k, str) and k.strip() and all(part.strip() for part in k.split("."))
+        for k in changes
+    ):  # "a..b" made a table of an empty key (a review)
         raise ConfigError(
             f"changes = {changes!r}: expected a mapping of dotted paths to values written as "
             'in the file, e.g. {"surfaces.flange_law": "distributed"}',
@@ -121,6 +122,10 @@ def _plain_changes(changes: Mapping[str, Any], source: str) -> dict[str, Any]:
             return {k: plain(v) for k, v in value.items()}
         if isinstance(value, list | tuple):
             return [plain(v) for v in value]
+        if hasattr(value, "magnitude") and hasattr(value, "units"):
+            # a pint Quantity: as text with its unit, as the file writes it (its magnitude
+            # an int failed on tolist(); a review)
+            return str(value)
         if not isinstance(value, str | bytes) and hasattr(value, "tolist"):
             # a numpy scalar or array: its Python values (an array as nested lists, which
             # the field's rules then judge: a vector has three components)
