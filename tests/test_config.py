@@ -1440,3 +1440,19 @@ def test_changes_take_a_pint_quantity_and_refuse_an_empty_path_part():
     assert cfg.geometry.roller.length == pytest.approx(6e-3)
     with pytest.raises(ConfigError, match="expected a mapping of dotted paths"):
         load_config(b1, {"a..b": 1})
+
+
+def test_a_flood_of_problems_is_listed_in_part():
+    """2 000 unknown keys gave a message of 2 001 lines headed by every key's path, and a
+    unit of 2 000 characters was echoed whole (a review): the message lists the first 20
+    problems and five paths, the error's ``problems`` keep them all."""
+    b1 = Path(__file__).parents[1] / "examples" / "b1.toml"
+    with pytest.raises(ConfigError) as err:
+        load_config(b1, {f"x{i}": 1 for i in range(2000)})
+    lines = str(err.value).splitlines()
+    assert len(lines) == 22 and len(err.value.problems) == 2000
+    assert lines[0].endswith("with --set x0, x1, x2, x3, x4 and 1995 more (2000 problems):")
+    assert lines[-1] == "... and 1980 more problems"
+    with pytest.raises(ConfigError) as err:
+        load_config(b1, {"operating.radial_load": "5 " + "a" * 2000})
+    assert len(str(err.value)) < 600

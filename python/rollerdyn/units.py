@@ -305,8 +305,10 @@ def parse_quantity(value: Any, fam: str | Family, *, si_numbers: bool = False) -
         # tokenize.TokenError for "5''' MPa", ZeroDivisionError for "A/0", KeyError for
         # "m**-0"); any failure to parse is an unknown unit.
         except Exception as exc:
+            # a unit of 200 000 characters was echoed whole (a review)
+            shown = unit_text if len(unit_text) <= 60 else unit_text[:57] + "..."
             raise QuantityError(
-                f"unknown unit {unit_text!r} ({_pint_reason(exc)}); {hint}"
+                f"unknown unit {shown!r} ({_pint_reason(exc)[:200]}); {hint}"
             ) from None
     else:
         raise QuantityError(

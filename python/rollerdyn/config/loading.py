@@ -96,7 +96,9 @@ def load_config(path: str | Path, changes: Mapping[str, Any] | None = None) -> B
         raise ConfigError(
             f"invalid configuration {p}: changes: a value nested too deeply", source=str(p)
         ) from None
-    config = parse_config(data, source=f"{p} with --set {', '.join(plain_changes)}")
+    paths = list(plain_changes)
+    named = ", ".join(paths[:5]) + (f" and {len(paths) - 5} more" if len(paths) > 5 else "")
+    config = parse_config(data, source=f"{p} with --set {named}")
     shown = ", ".join(f"{k} = {_shown(v)}" for k, v in plain_changes.items())
     # the file's name as UTF-8 (a result file holds nothing else)
     config._toml = toml_text(data, header=f"{printable(p)}, changed: {shown}")
@@ -246,10 +248,17 @@ def parse_config(
         ]
     if problems:
         n = len(problems)
-        lines = [f"{head} ({n} problem{'s' if n != 1 else ''}):", *map(str, problems)]
+        # every problem stays in .problems; the message lists the first ones (200 000
+        # unknown keys gave 200 000 lines; a review)
+        lines = [f"{head} ({n} problem{'s' if n != 1 else ''}):", *map(str, problems[:SHOWN])]
+        if n > SHOWN:
+            lines.append(f"... and {n - SHOWN} more problems")
         raise ConfigError("\n".join(lines), problems, source)
     return config
 
+
+#: The most problems a :class:`ConfigError`'s message lists (its ``problems`` hold all).
+SHOWN = 20
 
 #: The largest of TOML's integers (the TOML specification: 64-bit signed, -2^63 ... 2^63
 #: - 1, read losslessly or refused; Python's tomllib reads any): far beyond them a number
