@@ -768,3 +768,11 @@ def test_run_and_check_take_a_text_with_colons_as_text():
     assert "A:B:N" not in res.output
     res = invoke("check", B1, "--set", "operating.radial_load=0 N:5000 N:1", code=2)
     one_line_saying(res.output, 'operating.radial_load: "0 N:5000 N:1"', "expected a force")
+
+
+def test_dash_is_not_taken_for_a_result_file_name(tmp_path, monkeypatch):
+    """`-o -` wrote a file named "-" in the current folder (a review)."""
+    monkeypatch.chdir(tmp_path)
+    res = invoke("run", B1, "-o", "-", "--t-end", "1 ms", code=2)
+    one_line_saying(res.output, "-o -: standard output takes no result file")
+    assert list(tmp_path.iterdir()) == []
