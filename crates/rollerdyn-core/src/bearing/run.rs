@@ -476,8 +476,8 @@ pub fn run(
         },
         Err(failure) => RunOutput {
             error: Some(format!(
-                "the integration failed at t = {:.6e} s: {}; {}",
-                failure.time,
+                "the integration failed at t = {} s: {}; {}",
+                super::statics::shown(failure.time),
                 failure.message,
                 diagnose(system, failure.time, &failure.state)
             )),

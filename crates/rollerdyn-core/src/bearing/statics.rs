@@ -922,10 +922,11 @@ fn past_the_flanges_limit(solution: &StaticSolution) -> Option<String> {
     })
 }
 
-/// A load in a message: to six significant digits as written for everyday magnitudes
+/// A number in a message (a load, a run's time; not `0.000000e0`): to six significant
+/// digits as written for everyday magnitudes
 /// (5000, 0.012337; not 0.012336995354467195), in exponent form beyond them (1e-320, not
 /// three hundred zeros).
-fn shown(x: f64) -> String {
+pub(crate) fn shown(x: f64) -> String {
     if x == 0.0 {
         return "0".to_string();
     }
