@@ -290,6 +290,8 @@ def test_an_end_time_of_any_real_number_type_is_taken(b1):
     with pytest.raises(ValueError, match="a control character in it"):
         parse_time("2 ms\x00", "t_end")
     assert parse_time("2 ms\n", "t_end") == pytest.approx(0.002)
+    with pytest.raises(ValueError, match="a control character in it"):
+        parse_time("2 ms\x1f", "t_end")  # which str.strip() removes
     ds = simulate(b1, t_end=np.float64(0.001), threads=1)
     assert float(ds.attrs["final_time_s"]) == pytest.approx(0.001)
 

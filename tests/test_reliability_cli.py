@@ -694,6 +694,16 @@ def test_statics_says_when_the_races_are_pressed_past_iso_76():
     assert "2 cases past ISO 76's 4 GPa" in " ".join(res.output.split())
     res = invoke("statics", B1, code=0)
     assert "cannot carry" not in res.output
+    # past at the flanges alone: their pressure named, not the races' (a review)
+    import importlib
+
+    from rollerdyn.cli.statics import _overload_text
+
+    ds = importlib.import_module("rollerdyn.statics").statics(load_b1())
+    ds["s0_flanges"] = 0.6
+    text = _overload_text(ds)
+    assert text.startswith("the flanges cannot carry this load") and "race pressure" not in text
+    assert "largest flange pressure 1.95 GPa by Hertz's exact ellipse" in text
 
 
 def test_a_mesh_run_too_fine_to_interrupt_is_refused_before_it_starts(tmp_path):
@@ -725,11 +735,15 @@ def test_a_mesh_run_too_fine_to_interrupt_is_refused_before_it_starts(tmp_path):
 def test_check_names_a_start_that_run_refuses():
     """B1's ring misaligned by 0.5 deg: `check` passed it with a note on creeping, `run`
     refused it at once (the raceway overlaps the untilted rollers at rest; a review).
-    `check` now says so, and names the start from equilibrium, which runs it."""
+    `check` now says so, with the core's advice, the start from equilibrium, checked: at
+    0.15 deg that start runs it (B1's doc comment), at 0.5 deg it finds none either."""
+    res = invoke("check", B1, "--set", "inner_ring.misalignment=0.15 deg", code=0)
+    text = " ".join(res.output.split())
+    assert "rollerdyn run refuses this configuration: inner_ring.misalignment = 0.1500 deg" in text
+    assert 'solver.start = "equilibrium"' in text and "none either" not in text
     res = invoke("check", B1, "--set", "inner_ring.misalignment=0.5 deg", code=0)
     text = " ".join(res.output.split())
-    assert "rollerdyn run refuses this configuration: inner_ring.misalignment = 0.5000 deg" in text
-    assert "overlap by 14.544 um" in text and 'solver.start = "equilibrium"' in text
+    assert "overlap by 14.544 um" in text and "but that start finds none either" in text
     res = invoke("check", B1, code=0)
     assert "refuses" not in res.output
 
@@ -774,5 +788,5 @@ def test_dash_is_not_taken_for_a_result_file_name(tmp_path, monkeypatch):
     """`-o -` wrote a file named "-" in the current folder (a review)."""
     monkeypatch.chdir(tmp_path)
     res = invoke("run", B1, "-o", "-", "--t-end", "1 ms", code=2)
-    one_line_saying(res.output, "-o -: standard output takes no result file")
+    one_line_saying(res.output, "-o -: '-' (standard output) is not taken for a file here")
     assert list(tmp_path.iterdir()) == []

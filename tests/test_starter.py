@@ -144,7 +144,7 @@ def test_bad_options_are_named(tmp_path):
         ),
         (
             ["--inner-raceway", "40", "--outer-raceway", "52", "--roller-length", "1 m"],
-            "must be 0.5 ... 10 times the roller diameter (0.005991 m here, L/D = 167)",
+            "must be 0.5 ... 10 times the roller diameter (0.005991 m here, L/D = 166.9)",
         ),
         (
             ["--inner-raceway", "40", "--outer-raceway", "52", "--roller-length", "0.1 mm"],
@@ -159,6 +159,16 @@ def test_bad_options_are_named(tmp_path):
         (
             ["--inner-raceway", "40", "--outer-raceway", "52", "--radial-load", "1e9"],
             "--radial-load: operating.radial_load:",
+        ),
+        # the axial load not given is the radial load's share (not "--axial-load")
+        (
+            ["--inner-raceway", "40", "--outer-raceway", "52", "--radial-load", "1e9"],
+            "--radial-load (the axial load's default is a fifth of it): operating.axial_load",
+        ),
+        # a ratio just past the bound is not shown as the bound (60 mm was "L/D = 10")
+        (
+            ["--inner-raceway", "40", "--outer-raceway", "52", "--roller-length", "60 mm"],
+            "L/D = 10.02",
         ),
         # a speed of 0 has no end time to derive (was a ZeroDivisionError)
         (["--inner-raceway", "20", "--outer-raceway", "29", "--speed", "0"], "--speed 0 rpm"),

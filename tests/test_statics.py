@@ -287,6 +287,15 @@ def test_bad_cases_are_refused_with_a_message(b1):
     assert parse_range("operating.radial_load", "0:10000:3") == [0.0, 5000.0, 10000.0]
     with pytest.raises(StaticsError, match="a value is given twice"):
         parse_range("operating.radial_load", "1000,1 kN")
+    with pytest.raises(StaticsError, match="START = STOP with 3 values"):
+        parse_range("operating.radial_load", "5000 N:5000 N:3")
+    from typer.testing import CliRunner
+
+    from rollerdyn.cli import app
+
+    twice = ["statics", str(B1), "--set", "geometry.diametral_clearance=10 um,10 um"]
+    res = CliRunner().invoke(app, twice)
+    assert res.exit_code == 2 and "a value is given twice" in res.output, res.output
 
 
 _RADIAL_ONLY = {"operating.radial_load": [5000.0], "operating.axial_load": [0.0]}

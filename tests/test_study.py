@@ -1023,6 +1023,7 @@ def test_map_says_it_prepares_its_points_before_they_run():
     specs, _ = _map_points(load_b1(), axes, "equilibrium", 0.02, 0.01, 0.02, 0.1, events.append)
     assert len(specs) == 4
     assert events[0] == {"kind": "prepare", "done": 0, "total": 4}
+    assert events[-1] == {"kind": "prepare", "done": 4, "total": 4}
     assert all(e["kind"] == "prepare" and e["total"] == 4 for e in events)
 
 
@@ -1353,7 +1354,7 @@ def test_the_papers_loads_and_steps_take_units_as_the_map_does():
         _numbers("5 kg", "--loads", "N")
 
 
-def test_a_long_failure_is_cut_in_the_printed_table():
+def test_a_long_failure_is_cut_in_the_printed_table(capfd):
     # a failed map point's reason (about 900 characters) made a status cell 70 lines tall
     # in the printed table (a review); the CSV keeps it whole
     from rollerdyn.cli.study_tables import LONGEST_STATUS, _shortened
@@ -1363,3 +1364,17 @@ def test_a_long_failure_is_cut_in_the_printed_table():
     assert cut.startswith(reason[:200]) and cut.endswith("… (whole in the folder's CSV table)")
     assert len(cut) < LONGEST_STATUS + 40
     assert _shortened("steady") == "steady"
+    # the map's marks follow the cut reason, not cut with it (a review)
+    import pandas as pd
+
+    from rollerdyn.cli.study_tables import print_map
+    from rollerdyn.simulation import FORCED_MARK
+    from rollerdyn.study.maps import FALLBACK, MAP_COLUMNS
+
+    row = {column: 1.0 for column, _, _ in MAP_COLUMNS}
+    row |= {"status": "failed", "note": reason + FORCED_MARK, "start": f"{FALLBACK} (x)"}
+    capfd.readouterr()
+    print_map(pd.DataFrame([row]), "map")
+    shown = "".join(capfd.readouterr().out.replace("│", "").split())
+    assert "(fromshortramps:noequilibrium)" in shown
+    assert "(--force:pastthepointlaw'sloadcheck)" in shown

@@ -642,15 +642,18 @@ def test_dask_logs_are_held_back_while_the_cluster_closes(caplog):
     from rollerdyn.sweep import _dask_logs_silenced
 
     dask_logger = logging.getLogger("distributed")
+    client = logging.getLogger("distributed.client")  # a level of its own (a review)
     before = dask_logger.level
+    client.setLevel(logging.WARNING)
     with caplog.at_level(logging.DEBUG):
         with _dask_logs_silenced():
             logging.getLogger("distributed.batched").info("Batched Comm Closed")
             logging.getLogger("distributed.worker").error("a worker's error")
+            client.warning("a client's warning")
         assert caplog.records == []
         logging.getLogger("distributed.batched").critical("after the block")
     assert [r.getMessage() for r in caplog.records] == ["after the block"]
-    assert dask_logger.level == before
+    assert dask_logger.level == before and client.level == logging.WARNING
 
 
 @pytest.mark.parametrize(

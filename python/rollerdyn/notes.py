@@ -163,7 +163,14 @@ def start_refusal(cfg: BearingConfig) -> str | None:
         else:
             _core.initial_state(params, traction)
     except ValueError as refusal:
-        return str(refusal)
+        text = str(refusal)
+        if cfg.solver.start != "equilibrium" and 'solver.start = "equilibrium"' in text:
+            # the advice checked: B1 misaligned 0.5 deg has no equilibrium either (a review)
+            try:
+                _core.equilibrium_state(params, traction, 0.0)
+            except ValueError as none:
+                text += f"; but that start finds none either ({str(none).split(': ', 1)[-1]})"
+        return text
     return None
 
 

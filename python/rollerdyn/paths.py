@@ -185,7 +185,9 @@ def check_output_file(
     first; 0 for a writer that uses :func:`write_atomically`, which shortens it itself)."""
     path = Path(path)
     if str(path) == "-":  # a file named "-" was written (a review): "-" reads as stdout
-        raise OutputPathError(f"{option} -: standard output takes no result file; give a file name")
+        raise OutputPathError(
+            f"{option} -: '-' (standard output) is not taken for a file here; give a file name"
+        )
     check_name(path, option)
     _check_room(path, option, len(f".tmp{os.getpid()}") if reserve is None else reserve)
     if path.is_dir():

@@ -247,7 +247,7 @@ def starter_config(
         low, high = ROLLER_LENGTH_RATIO
         raise StarterError(
             f"--roller-length {roller_length:g} m: must be {low:g} ... {high:g} times the "
-            f"roller diameter ({geometry.roller_diameter:.4g} m here, L/D = {ratio:.3g}): a "
+            f"roller diameter ({geometry.roller_diameter:.4g} m here, L/D = {ratio:.4g}): a "
             f"cylindrical roller (B1: {5.0 / (B1_ROLLER_DIAMETER * 1e3):.3g}; needle rollers "
             "reach about 10)"
         )

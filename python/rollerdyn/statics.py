@@ -435,6 +435,8 @@ def parse_range(path: str, text: str) -> list[float]:
                 f"--set {path}={text}: the count must be 2 ... 100000 (or 1 with START = STOP), "
                 f"not {n}"
             )
+        if n > 1 and a == b:  # the same case n times
+            raise StaticsError(f"--set {path}={text}: START = STOP with {n} values")
         return list(np.linspace(a, b, n))
     if len(parts) != 1:
         raise StaticsError(f"--set {path}={text}: expected START:STOP:COUNT or a comma list")
@@ -1087,9 +1089,10 @@ def _slow_sliding_caveat(cfg: BearingConfig, case: StaticCase, forces, r: dict) 
     boundary friction and the EHL traction are smoothed towards zero (docs/dynamics.md,
     "Creep zone of the EHL traction"). The smoothing keeps the integrator's Jacobian
     finite where a sliding speed changes sign; at steady sliding below v_s it is not the
-    Coulomb friction of the contact. B1's flanges slide at about 0.12 mm/s per rpm: its
-    friction torque is 0.3038 N*m at 30 rpm (slowest contact 1.9 mm/s), 3 % less at 10 rpm
-    (0.9 mm/s), 64 % less at 3 rpm."""
+    Coulomb friction of the contact. B1's most loaded ends slide at about 0.18 (inner
+    ring's flange) and 0.14 mm/s (outer's) per rpm: its friction torque is 0.3038 N*m at
+    30 rpm (slowest pressed contact 1.9 mm/s), 3 % less at 10 rpm (0.9 mm/s), 64 % less at
+    3 rpm."""
     if not _turns_relatively(case) or not forces.max() > 0.0:
         return ""
     sliding = np.asarray(r["flange_sliding_speeds"], dtype=float).reshape(forces.shape)

@@ -336,15 +336,18 @@ def build_grid(
     config: str | Path | Mapping | BearingConfig,
     parameters: Mapping[str, Sequence[Any]],
     t_end: float | None = None,
+    detector: str | None = None,
 ) -> list[GridPoint]:
     """Every grid point of the cartesian product of ``parameters`` (the last path varies
     fastest), each validated, also for the cost of its run to ``t_end`` (default: its
-    configuration's end; :func:`rollerdyn.simulation.check_cost`); raises
-    :class:`SweepError` listing every point that fails."""
+    configuration's end) with ``detector`` (default: its configuration's;
+    :func:`rollerdyn.simulation.check_cost`); raises :class:`SweepError` listing every
+    point that fails."""
     from .simulation import check_cost
 
     def cost(cfg: BearingConfig) -> None:
-        check_cost(cfg, cfg.end_time if t_end is None else t_end, remedy="")
+        end = cfg.end_time if t_end is None else t_end
+        check_cost(cfg, end, remedy="", detector=detector)
 
     return [point for point, _ in parsed_grid(config, parameters, check=cost)]
 
@@ -591,7 +594,7 @@ def sweep(
     t_end = _check_sweep_arguments(
         detector, t_end, scheduler, workers, retries, progress, force, overwrite, resume
     )
-    points = build_grid(config, parameters, t_end)
+    points = build_grid(config, parameters, t_end, detector)
     if not isinstance(outdir, str | os.PathLike):
         raise SweepError(f"outdir = {outdir!r}: must be a folder's path")
     out = Path(outdir).resolve()
@@ -1093,14 +1096,23 @@ def _dask_logs_silenced():
     about connections that a stop broke (a ``Batched Comm Closed`` at INFO with a
     ``CommClosedError`` traceback, seen in 2 of 11 sweeps stopped by SIGTERM to their
     process group) is not the user's business: a run's failure is in its row of the
-    summary."""
-    logger = logging.getLogger("distributed")
-    previous = logger.level
-    logger.setLevel(logging.CRITICAL)
+    summary. Every logger of Dask's with a level of its own (``distributed.client`` at
+    WARNING) is raised too, and each gets its level back."""
+    loggers = [logging.getLogger("distributed")] + [
+        logger
+        for name, logger in logging.root.manager.loggerDict.items()
+        if name.startswith("distributed.")
+        and isinstance(logger, logging.Logger)
+        and logger.level != logging.NOTSET
+    ]
+    previous = [logger.level for logger in loggers]
+    for logger in loggers:
+        logger.setLevel(logging.CRITICAL)
     try:
         yield
     finally:
-        logger.setLevel(previous)
+        for logger, level in zip(loggers, previous, strict=True):
+            logger.setLevel(level)
 
 
 @contextlib.contextmanager

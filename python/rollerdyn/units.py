@@ -353,7 +353,8 @@ def parse_time(value: Any, name: str, zero: bool = False) -> float:
     rule = f"must be a finite time of at least {least}, e.g. 50 ms, 0.05 s or 0.05 (seconds)"
     if isinstance(value, bool) or type(value).__name__ == "bool_":
         raise ValueError(f"{name} = {shown}: {rule}")
-    if isinstance(value, str) and any(ord(c) < 32 or ord(c) == 127 for c in value.strip()):
+    inner = value.strip(" \t\r\n") if isinstance(value, str) else ""  # str.strip() takes \x1f
+    if any(ord(c) < 32 or ord(c) == 127 for c in inner):
         raise ValueError(f"{name} = {shown}: a control character in it; {rule}")  # "2 ms\x00"
     if not isinstance(value, int | float | str):
         if not _real_scalar(value):

@@ -158,7 +158,7 @@ def _hertz_cases() -> Iterator[Case]:
                     1e-4,
                     "published to 5 digits",
                 )
-    # The fit's known error (measured: 8.7, 0.63, 3.1, 9.5, 20.6 %) as the limit.
+    # The fit's known error (measured: 8.7, 0.63, 3.1, 9.5, 20.5 %) as the limit.
     for alpha, limit in ((1.0, 0.10), (10.0, 0.01), (50.0, 0.04), (200.0, 0.11), (1000.0, 0.23)):
         yield Case(
             "Hertz point",

@@ -55,7 +55,8 @@ def new_command(
         typer.Option(
             "--clearance",
             help='Radial internal clearance (diametral), with a unit ("20 um") or a bare '
-            "number of um. Default: B1's 10 um times the pitch diameter over B1's 24.5 mm.",
+            "number of um. Default: B1's 10 um times the pitch diameter over B1's 24.5 mm; at "
+            "most 1 % of the pitch diameter.",
             metavar="LENGTH",
         ),
     ] = None,
@@ -72,7 +73,7 @@ def new_command(
         typer.Option(
             "--roller-length",
             help="Roller length, with a unit or a bare number of mm. Default: B1's 5 mm "
-            "times the roller diameter over B1's 4.495 mm.",
+            "times the roller diameter over B1's 4.495 mm; 0.5 ... 10 roller diameters.",
             metavar="LENGTH",
         ),
     ] = None,
@@ -166,7 +167,7 @@ def new_command(
     try:
         parse_config(tomllib.loads(text), source=str(path))
     except ConfigError as err:
-        raise refuse(_invalid_bearing(err)) from None
+        raise refuse(_invalid_bearing(err, axial_given=axial_load is not None)) from None
     try:
         write_starter(path, text)
     except OSError as err:
@@ -214,15 +215,16 @@ _OPTION_OF = {
     "geometry.diametral_clearance": "--clearance",
     "geometry.roller.length": "--roller-length",
     "operating.radial_load": "--radial-load",
-    "operating.axial_load": "--axial-load (by default a fifth of the radial load)",
+    "operating.axial_load": "--axial-load",
     "operating.inner_ring_speed": "--speed",
 }
 
 
-def _invalid_bearing(err) -> str:
+def _invalid_bearing(err, axial_given: bool) -> str:
     """One line for a configuration the options made that its rules refuse, each problem
     led by the option behind it (a tiny bearing's inner ring of 0.13 g was refused on
-    inner_ring.mass, which no option sets: the raceways' size made it)."""
+    inner_ring.mass, which no option sets: the raceways' size made it); an axial load not
+    given is the radial load's default share."""
     problems = err.problems or ()
     if not problems:
         return f"these values make no valid bearing: {' '.join(str(err).split())}"
@@ -231,5 +233,7 @@ def _invalid_bearing(err) -> str:
         option = _OPTION_OF.get(
             problem.path, "--inner-raceway, --outer-raceway (B1's value scaled by their size)"
         )
+        if problem.path == "operating.axial_load" and not axial_given:
+            option = "--radial-load (the axial load's default is a fifth of it)"
         said.append(f"{option}: {problem}")
     return "these values make no valid bearing: " + "; ".join(said)

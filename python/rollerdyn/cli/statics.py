@@ -331,6 +331,8 @@ def _split_sets(options: list[str]) -> tuple[dict[str, tuple[str, list]], dict[s
         except SweepError as err:
             raise refuse(err) from None
         refuse_overlap(option, path, design)
+        if len({repr(v) for v in values}) != len(values):  # the same design solved twice
+            raise refuse(f"--set {option}: a value is given twice")
         design[path] = values
     return grid, design
 
@@ -460,11 +462,18 @@ def _overload_text(ds) -> str:
     if not past:
         return ""
     safety = ", ".join(f"{name} {s0[name]:.3g}" for name in past)
+    pressures = {
+        "races": f"largest race pressure {float(ds.max_pressure) / 1e9:.3g} GPa",
+        # the flanges' safety is judged by Hertz's exact ellipse, 9-13 % above the fits'
+        # pressure the forces use (docs/statics.md)
+        "flanges": "largest flange pressure "
+        f"{float(np.nanmax(ds.flange_pressure.values)) / 1e9:.3g} GPa by Hertz's exact ellipse",
+    }
     return (
         f"the {' and the '.join(past)} cannot carry this load: pressed past ISO 76's static "
-        f"limit of 4 GPa (static safety by stress {safety} < 1; largest race pressure "
-        f"{float(ds.max_pressure) / 1e9:.3g} GPa), where the surfaces deform for good and the "
-        "elastic contacts these results rest on no longer hold"
+        f"limit of 4 GPa (static safety by stress {safety} < 1; "
+        f"{'; '.join(pressures[name] for name in past)}), where the surfaces deform for good "
+        "and the elastic contacts these results rest on no longer hold"
     )
 
 

@@ -45,11 +45,11 @@ _RUN_COLUMNS = (
 LONGEST_STATUS = 240
 
 
-def _shortened(text: str) -> str:
-    """``text`` cut at :data:`LONGEST_STATUS` characters, saying where it is whole."""
-    if len(text) <= LONGEST_STATUS:
+def _shortened(text: str, longest: int = LONGEST_STATUS) -> str:
+    """``text`` cut at ``longest`` characters, saying where it is whole."""
+    if len(text) <= longest:
         return text
-    return text[: LONGEST_STATUS - 1].rstrip() + "… (whole in the folder's CSV table)"
+    return text[: longest - 1].rstrip() + "… (whole in the folder's CSV table)"
 
 
 def print_frame(frame, title: str, columns, status_text) -> None:
@@ -95,7 +95,8 @@ def print_map(frame, title: str) -> None:
 
     def status(row) -> str:
         steady = row["status"] in ("steady", "not steady")
-        text = row["status"] if steady else run_status(row)
+        # a long reason cut before the marks are added, which the cut would drop
+        text = row["status"] if steady else _shortened(run_status(row), LONGEST_STATUS - 130)
         if str(row.get("start", "")).startswith(FALLBACK):
             # no equilibrium at t = 0: the point ran from short ramps (docs/study.md)
             text = f"{text} (from short ramps: no equilibrium)"

@@ -212,7 +212,7 @@ def sweep_command(
             import pyarrow.parquet  # noqa: F401
         runs = math.prod(len(v) for v in parameters.values())
         with console.status(f"checking the grid's {runs} configurations"):
-            points = build_grid(config, parameters, end)  # all before the cluster starts
+            points = build_grid(config, parameters, end, detector)  # before the cluster
             if resume:  # another sweep's run files refused before the cluster starts
                 finished_runs(output, points, end, detector)
         with _sweep_progress(console, scheduler, resume) as progress:

@@ -74,8 +74,9 @@ def check(
     fitted to Tripp with their errors; the flanges the rings have (geometry.flanges), the
     bearing type they make and the axial loads they carry; then whether `rollerdyn run`
     would refuse the run
-    at its start (a run far beyond a normal one, or the point end-flange law's load check,
-    which --force skips; a start whose bodies overlap, or without equilibrium), and the
+    at its start (a run far beyond a normal one or the point end-flange law's load check,
+    both of which --force skips; a start whose bodies overlap, or without equilibrium), and
+    the
     notes it would print: a configuration known to creep with the point end-flange law (a
     free or prescribed ring tilt), an equilibrium start before the loads, and loads at
     the end time whose quasi-static equilibrium presses a flange or a race past ISO 76's

@@ -345,8 +345,10 @@ def operating_map(
     a point that is not steady ends; ``max_wall`` [s]: wall-time cap per point and
     invocation. ``force``: run the points the point end-flange law's load check refuses
     (as ``rollerdyn run --force``; their rows' notes say so); without it such a point is a
-    run that could not be run, and a later invocation with ``force`` runs it. Other
-    arguments as in :func:`rollerdyn.study.paper`."""
+    run that could not be run, and a later invocation with ``force`` runs it.
+    ``progress`` hears ``{"kind": "prepare", "done", "total"}`` while the points are
+    checked, then the runs' events (:func:`.schedule.run_all`). Other arguments as in
+    :func:`rollerdyn.study.paper`."""
     from ..simulation import as_config
     from .paper import _source_name, check_arguments, default_workers
     from .schedule import Clock, check_scheduler, check_workers
@@ -477,7 +479,8 @@ def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time, progress=Non
     """The runs of the grid ``axes`` (speeds, radial loads, axial loads) and the
     steadiness rule of each run by name. Every point is validated before any runs: the
     points that fail are named together. ``progress`` receives ``{"kind": "prepare",
-    "done", "total"}`` before the first point and at most every 0.5 s after (each point
+    "done", "total"}`` before the first point, at most every 0.5 s after and when all are
+    done (each point
     takes about 57 ms with its quasi-static start: a grid of 1000 points was silent for a
     minute)."""
     from ..config import ConfigError
@@ -544,6 +547,8 @@ def _map_points(cfg: Any, axes, start, ramp, window, tol, max_time, progress=Non
         )
         rules[name] = SteadyRule(settle, win, tol, factor)
         specs.append(spec)
+    if progress is not None:
+        progress({"kind": "prepare", "done": total, "total": total})
     if problems:
         failing = len({p.split(" (", 1)[0] for p in problems})  # "point i (...): ..."
         raise StudyError(

@@ -135,18 +135,27 @@ def _fmt(value: float) -> str:
     return f"{value:g}"
 
 
-def _check_cost(name: str, variant: BearingConfig, end: float) -> None:
+def _check_cost(name: str, variant: BearingConfig, end: float, det: str, given: bool) -> None:
     """Refuses, before any run, a run of the plan whose results, steps or checkpoints to
-    ``end`` would be far beyond a normal run's (:func:`rollerdyn.simulation.check_cost`;
-    a study has no ``--force``): ``--t-end 1e9`` started all 17 runs, each of which failed
-    with that message."""
+    ``end`` with the detector ``det`` would be far beyond a normal run's
+    (:func:`rollerdyn.simulation.check_cost`; a study has no ``--force``): ``--t-end 1e9``
+    started all 17 runs, each of which failed with that message. ``given``: whether
+    ``--t-end`` was (the message leads with it then); a runtime run's dt_max is
+    ``--dt-max``'s."""
     from ..simulation import check_cost
 
+    own = " (its --dt-max)" if name.startswith("dt-max-") else " in the configuration"
     try:
-        remedy = " in the configuration, or a shorter --t-end"
-        check_cost(variant, end, remedy=remedy, outputs_optional=False)
+        check_cost(
+            variant,
+            end,
+            remedy=f"{own}, or a shorter --t-end",
+            outputs_optional=False,
+            detector=det,
+        )
     except ValueError as err:
-        raise StudyError(f"--t-end = {end:g} s: the run {name}: {err}") from None
+        lead = f"--t-end = {end:g} s: " if given else ""
+        raise StudyError(f"{lead}the run {name}: {err}") from None
 
 
 def build_plan(
@@ -194,7 +203,7 @@ def build_plan(
         if key in seen:
             return seen[key]
         seen[key] = name
-        _check_cost(name, variant, end)
+        _check_cost(name, variant, end, det, t_end is not None)
         changed = [d.replace("'", "") for d in differences(base, resolved(variant))]
         if det != detector:
             changed.append(f"detector: {detector} -> {det}")

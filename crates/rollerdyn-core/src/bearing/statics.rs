@@ -924,14 +924,17 @@ fn past_the_flanges_limit(solution: &StaticSolution) -> Option<String> {
 
 /// A number in a message (a load, a run's time; not `0.000000e0`): to six significant
 /// digits as written for everyday magnitudes
-/// (5000, 0.012337; not 0.012336995354467195), in exponent form beyond them (1e-320, not
+/// (5000, 0.012337; not 0.012336995354467195), in exponent form beyond them (1e-300, not
 /// three hundred zeros).
 pub(crate) fn shown(x: f64) -> String {
     if x == 0.0 {
         return "0".to_string();
     }
     if !(1e-3..1e9).contains(&x.abs()) {
-        return format!("{x:e}");
+        let text = format!("{x:.5e}");
+        let (mantissa, exponent) = text.split_once('e').unwrap_or((&text, "0"));
+        let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+        return format!("{mantissa}e{exponent}");
     }
     let decimals = (5 - x.abs().log10().floor() as i32).max(0) as usize;
     let text = format!("{x:.decimals$}");
@@ -1056,13 +1059,16 @@ mod tests {
     fn loads_in_messages_are_short_at_any_magnitude() {
         assert_eq!(super::shown(5000.0), "5000");
         assert_eq!(super::shown(0.0), "0");
-        assert_eq!(super::shown(1e-320), "1e-320");
+        assert_eq!(super::shown(1e-300), "1e-300");
+        assert_eq!(super::shown(1e-320), "9.99989e-321"); // a subnormal, to six digits
         assert_eq!(super::shown(2.5e12), "2.5e12");
         // and a ramp's load to six digits, not seventeen (a review)
         assert_eq!(super::shown(0.012336995354467195), "0.012337");
         assert_eq!(super::shown(-1234.5678), "-1234.57");
         assert_eq!(super::shown(999999.6), "1000000");
         assert_eq!(super::shown(1e-3), "0.001");
+        assert_eq!(super::shown(1.2336995354467195e-4), "1.2337e-4");
+        assert_eq!(super::shown(-6.02214076e23), "-6.02214e23");
     }
 }
 
