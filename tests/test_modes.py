@@ -197,29 +197,28 @@ def test_a_crawling_run_says_so_once():
     assert "crawled" in note and "distributed" not in note
     # a checkpoint interval below the pace ends every step: named as the cause (a run with
     # --checkpoint-interval 0.0005ms was told to look at its roller ends and flange law)
-    clock = [0.0]
-    capped = CrawlWatch(
-        True, clock=lambda: clock[0], step_caps={"solver.checkpoint_interval": 5e-7}
-    )
-    found = []
-    for second in range(61):
-        clock[0] = float(second)
-        n = 1000 * second
-        found.append(capped(Progress(n * 5e-7, 1.0, n, 0, 0, 5e-7)))
-    (note,) = [n for n in found if n]
+    note = _note_of_capped_steps("solver.checkpoint_interval", 5e-7)
     assert "held below solver.checkpoint_interval = 5e-07 s" in note
     assert "distributed" not in note
     # a dt_max of 1 ns was blamed on the point law (a review): named as the largest step
+    note = _note_of_capped_steps("solver.dt_max", 1e-9)
+    assert "held below solver.dt_max = 1e-09 s, the largest step the solver takes" in note
+    assert "distributed" not in note
+
+
+def _note_of_capped_steps(name: str, cap: float) -> str:
+    """The one note of a watch over a minute of steps of ``cap`` each, held by ``name``."""
+    from rollerdyn.simulation import CrawlWatch, Progress
+
     clock = [0.0]
-    tiny = CrawlWatch(True, clock=lambda: clock[0], step_caps={"solver.dt_max": 1e-9})
+    watch = CrawlWatch(True, clock=lambda: clock[0], step_caps={name: cap})
     found = []
     for second in range(61):
         clock[0] = float(second)
         n = 1000 * second
-        found.append(tiny(Progress(n * 1e-9, 1.0, n, 0, 0, 1e-9)))
+        found.append(watch(Progress(n * cap, 1.0, n, 0, 0, cap)))
     (note,) = [n for n in found if n]
-    assert "held below solver.dt_max = 1e-09 s, the largest step the solver takes" in note
-    assert "distributed" not in note
+    return note
 
 
 def test_a_crawling_run_is_noted_in_its_result_and_by_run(tmp_path, monkeypatch):

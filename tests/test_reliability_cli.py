@@ -552,17 +552,25 @@ def test_ctrl_c_stops_a_core_benchmark_at_once(args):
     must end within 5 s of the Ctrl-C with the one line and status 130."""
     import signal
 
+    # after 3 s the core call has started (Python's start takes about 1 s)
+    status, out = _signalled_bench(args, signal.SIGINT, 3.0)
+    assert status == 130, out
+    assert out.strip().splitlines()[-1] == "rollerdyn: interrupted", out
+
+
+def _signalled_bench(args: list[str], signum: int, delay: float) -> tuple[int, str]:
+    """(exit status, output) of ``rollerdyn bench ARGS`` sent ``signum`` after ``delay``
+    seconds, which must end it within 5 s."""
     command = Path(sys.executable).parent / "rollerdyn"
     proc = subprocess.Popen(
         [str(command), "bench", *args], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True
     )
-    time.sleep(3.0)  # the core call has started (Python's start takes about 1 s)
-    proc.send_signal(signal.SIGINT)
+    time.sleep(delay)
+    proc.send_signal(signum)
     sent = time.monotonic()
     out, _ = proc.communicate(timeout=60)
     assert time.monotonic() - sent < 5.0, out
-    assert proc.returncode == 130, out
-    assert out.strip().splitlines()[-1] == "rollerdyn: interrupted", out
+    return proc.returncode, out
 
 
 @pytest.mark.parametrize("delay", [0.15, 3.0])
@@ -573,19 +581,9 @@ def test_sigterm_where_no_command_takes_it_is_one_line(delay):
     during the imports (0.15 s) as in the core call (3 s)."""
     import signal
 
-    command = Path(sys.executable).parent / "rollerdyn"
-    proc = subprocess.Popen(
-        [str(command), "bench", "traction", "--repetitions", "100000000"],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        text=True,
-    )
-    time.sleep(delay)
-    proc.send_signal(signal.SIGTERM)
-    sent = time.monotonic()
-    out, _ = proc.communicate(timeout=60)
-    assert time.monotonic() - sent < 5.0, out
-    assert proc.returncode == 143, out
+    args = ["traction", "--repetitions", "100000000"]
+    status, out = _signalled_bench(args, signal.SIGTERM, delay)
+    assert status == 143, out
     assert out.strip().splitlines()[-1] == "rollerdyn: terminated", out
 
 

@@ -112,6 +112,10 @@ def test_the_roller_count_is_the_most_that_fit(pitch, ratio):
     assert pitch * math.sin(math.pi / (z + 1)) < LEAST_SPACING * diameter
 
 
+#: The raceways of README's example bearing, 40 and 52 mm, as `rollerdyn new` takes them.
+RACEWAYS_40_52 = ["--inner-raceway", "40", "--outer-raceway", "52"]
+
+
 def test_bad_options_are_named(tmp_path):
     """Raceways that make no roller, too many rollers, a clearance larger than the gap, a
     length in kilograms, a speed of 0 or one too slow for an end time, and an existing file
@@ -139,15 +143,15 @@ def test_bad_options_are_named(tmp_path):
         # a clearance far past ISO 5753-1's groups (5 mm in a 6 mm gap: 3.5 mm rollers that
         # carried no load), a roller 167 or 0.017 times its diameter long (a review)
         (
-            ["--inner-raceway", "40", "--outer-raceway", "52", "--clearance", "5 mm"],
+            [*RACEWAYS_40_52, "--clearance", "5 mm"],
             "--clearance 0.005 m: must be at most 1% of the pitch diameter (0.00046 m here)",
         ),
         (
-            ["--inner-raceway", "40", "--outer-raceway", "52", "--roller-length", "1 m"],
+            [*RACEWAYS_40_52, "--roller-length", "1 m"],
             "must be 0.5 ... 10 times the roller diameter (0.005991 m here, L/D = 166.9)",
         ),
         (
-            ["--inner-raceway", "40", "--outer-raceway", "52", "--roller-length", "0.1 mm"],
+            [*RACEWAYS_40_52, "--roller-length", "0.1 mm"],
             "--roller-length 0.0001 m: must be 0.5 ... 10 times",
         ),
         # a value the configuration refuses is led by the option behind it, also where no
@@ -157,17 +161,17 @@ def test_bad_options_are_named(tmp_path):
             "--inner-raceway, --outer-raceway (B1's value scaled by their size): inner_ring.mass",
         ),
         (
-            ["--inner-raceway", "40", "--outer-raceway", "52", "--radial-load", "1e9"],
+            [*RACEWAYS_40_52, "--radial-load", "1e9"],
             "--radial-load: operating.radial_load:",
         ),
         # the axial load not given is the radial load's share (not "--axial-load")
         (
-            ["--inner-raceway", "40", "--outer-raceway", "52", "--radial-load", "1e9"],
+            [*RACEWAYS_40_52, "--radial-load", "1e9"],
             "--radial-load (the axial load's default is a fifth of it): operating.axial_load",
         ),
         # a ratio just past the bound is not shown as the bound (60 mm was "L/D = 10")
         (
-            ["--inner-raceway", "40", "--outer-raceway", "52", "--roller-length", "60 mm"],
+            [*RACEWAYS_40_52, "--roller-length", "60 mm"],
             "L/D = 10.02",
         ),
         # a speed of 0 has no end time to derive (was a ZeroDivisionError)
