@@ -788,3 +788,14 @@ def test_dash_is_not_taken_for_a_result_file_name(tmp_path, monkeypatch):
     res = invoke("run", B1, "-o", "-", "--t-end", "1 ms", code=2)
     one_line_saying(res.output, "-o -: '-' (standard output) is not taken for a file here")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_statics_sweep_shows_speeds_and_angles_as_given():
+    """A sweep typed in rpm and degrees was shown in rad/s and rad (a review); the table
+    shows rpm and degrees, the dataset keeps SI."""
+    sets = ["--set", "operating.inner_ring_speed=1000 rpm,3000 rpm"]
+    sets += ["--set", "roller_set_phase=0 deg,10 deg"]
+    res = invoke("statics", B1, *sets, code=0)
+    text = " ".join(res.output.split())
+    assert "[rpm]" in text and "[deg]" in text and "[rad/s]" not in text, text
+    assert "│ 3000 │ 10 │" in text, text

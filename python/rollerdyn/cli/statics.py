@@ -492,15 +492,23 @@ def _print_sweep(ds) -> None:
         "L_nmr [1e6 rev]",
         "smallest race Lambda",
     ]
-    units = [ds[s].attrs.get("units", "") for s in swept]
-    for name in [*(f"{s} [{u}]" if u else s for s, u in zip(swept, units, strict=True)), *columns]:
+    # speeds in rpm and angles in degrees, as they are given (the dataset keeps SI; a
+    # review: a sweep typed in rpm was shown in rad/s)
+    shown_in = [
+        _SHOWN_IN.get(ds[s].attrs.get("units", ""), (ds[s].attrs.get("units", ""), 1.0))
+        for s in swept
+    ]
+    for name in [
+        *(f"{s} [{u}]" if u else s for s, (u, _) in zip(swept, shown_in, strict=True)),
+        *columns,
+    ]:
         table.add_column(name)
     n = ds.sizes["case"]
     shown = range(n) if n <= 20 else sorted({0, n // 4, n // 2, 3 * n // 4, n - 1})
     for i in shown:
         row = ds.isel(case=i)
         table.add_row(
-            *[_cell(row[s].values) for s in swept],
+            *[_cell(row[s].values, f) for s, (_, f) in zip(swept, shown_in, strict=True)],
             f"{float(row.max_roller_load):.6g}",
             _flange_cell(row),
             f"{float(row.friction_torque):.4g}",
@@ -538,10 +546,17 @@ def _print_sweep(ds) -> None:
         )
 
 
-def _cell(value) -> str:
-    """A swept value in the sweep's table: a number to six digits, a text as it is."""
+#: The sweep table's units for the dataset's SI ones: (unit shown, factor).
+_SHOWN_IN = {"rad/s": ("rpm", 30.0 / math.pi), "rad": ("deg", 180.0 / math.pi)}
+
+
+def _cell(value, factor: float = 1.0) -> str:
+    """A swept value in the sweep's table: a number (times ``factor``) to six digits, a
+    text as it is."""
     item = value.item() if hasattr(value, "item") else value
-    return f"{item:.6g}" if isinstance(item, int | float) else str(item)
+    if isinstance(item, bool) or not isinstance(item, int | float):
+        return str(item)
+    return f"{item * factor:.6g}"
 
 
 def _flange_force_text(ds) -> str:
