@@ -189,9 +189,9 @@ def point_law_refusal(cfg: BearingConfig, t_end: float) -> str | None:
     try:
         model.check_point_law(t_end)
     except ValueError as refusal:
-        from .simulation import _with_its_cause
+        from .simulation import refusal_with_its_cause
 
-        return _with_its_cause(cfg, str(refusal))
+        return refusal_with_its_cause(cfg, str(refusal))
     return None
 
 

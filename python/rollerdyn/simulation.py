@@ -807,7 +807,7 @@ def simulate(
     try:
         raw = core.run(options, callback, start, None if checkpoint is None else at_checkpoint)
     except ValueError as refusal:
-        raise ValueError(_with_its_cause(config, str(refusal))) from None
+        raise ValueError(refusal_with_its_cause(config, str(refusal))) from None
     raw["stats"]["checkpoint_seconds"] = saving["seconds"]
     ds = to_dataset(raw, config, det)
     ds.attrs["threads"] = min(threads, default_threads()) if det != GRADIENT else 1
@@ -830,7 +830,7 @@ def simulate(
     return ds
 
 
-def _with_its_cause(config: BearingConfig, refusal: str) -> str:
+def refusal_with_its_cause(config: BearingConfig, refusal: str) -> str:
     """The core's refusal of a run before its first step, with the point law's advice
     replaced where a roller of one slice is the cause (:data:`rollerdyn.notes.ONE_SLICE`)."""
     from .notes import ONE_SLICE
